@@ -1,0 +1,102 @@
+#include "common/lcm_rx.h"
+
+#include "common/lcm_validate.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct rx_sub {
+    lcm_subscription_t *lcm_sub;
+    const auv_type_entry_t *type;
+    rx_handler_t handler;
+    void *user;
+    rx_stats_t stats;
+    void *scratch;              /* one decoded struct, reused every message */
+};
+
+int rx_decode(const auv_type_entry_t *type, const void *data, int len, void *out)
+{
+    const lcm_type_info_t *info = type->info();
+    if (len < 8 || auv_fingerprint_of(data, (size_t)len) != info->get_hash())
+        return -1;
+    /* Validate before decoding: lcm-gen's decoders leak what they allocated
+     * when they fail half-way. A payload that is longer than its message is
+     * as wrong as one that is cut short: the sender used another layout. */
+    if (lcm_validate_body(type, (const uint8_t *)data + 8, len - 8) != len - 8)
+        return -2;
+    memset(out, 0, type->struct_size);
+    if (info->decode(data, 0, len, out) != len) {
+        info->decode_cleanup(out);
+        return -2;
+    }
+    return 0;
+}
+
+/* Report the first few failures per subscription, then only count them. */
+static void report(rx_sub_t *s, const char *channel, const char *what, int len)
+{
+    uint64_t errors = s->stats.wrong_fingerprint + s->stats.malformed;
+    if (errors <= 3)
+        fprintf(stderr, "lcm_rx: %s: dropped %d-byte message (%s as %s)%s\n", channel, len, what,
+                s->type->lcm_name, errors == 3 ? "; further drops are only counted" : "");
+}
+
+static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+{
+    rx_sub_t *s = user;
+    s->stats.received++;
+    int rc = rx_decode(s->type, rbuf->data, (int)rbuf->data_size, s->scratch);
+    if (rc == -1) {
+        s->stats.wrong_fingerprint++;
+        report(s, channel, "wrong fingerprint", (int)rbuf->data_size);
+        return;
+    }
+    if (rc == -2) {
+        s->stats.malformed++;
+        report(s, channel, "truncated or malformed", (int)rbuf->data_size);
+        return;
+    }
+    s->stats.delivered++;
+    s->handler(channel, s->scratch, rbuf->recv_utime, s->user);
+    s->type->info()->decode_cleanup(s->scratch);
+}
+
+rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,
+                       rx_handler_t handler, void *user)
+{
+    if (!lcm || !channel || !type || !handler)
+        return NULL;
+    rx_sub_t *s = calloc(1, sizeof *s);
+    if (!s)
+        return NULL;
+    s->scratch = calloc(1, type->struct_size);
+    s->type = type;
+    s->handler = handler;
+    s->user = user;
+    if (s->scratch)
+        s->lcm_sub = lcm_subscribe(lcm, channel, on_message, s);
+    if (!s->lcm_sub) {
+        free(s->scratch);
+        free(s);
+        return NULL;
+    }
+    return s;
+}
+
+void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub)
+{
+    if (!sub)
+        return;
+    lcm_unsubscribe(lcm, sub->lcm_sub);
+    free(sub->scratch);
+    free(sub);
+}
+
+const rx_stats_t *rx_stats(const rx_sub_t *sub) { return &sub->stats; }
+
+uint64_t rx_decode_errors(const rx_sub_t *sub)
+{
+    return sub->stats.wrong_fingerprint + sub->stats.malformed;
+}

@@ -1,0 +1,46 @@
+/* Typed LCM subscriptions that count and drop bad messages.
+ *
+ * lcm-gen's own *_subscribe() prints to stderr and carries on when a message
+ * fails to decode, so a broken publisher is only visible in a terminal. This
+ * helper checks the fingerprint, decodes with the type's decode function,
+ * and counts every failure per subscription (wrong fingerprint, truncated or
+ * otherwise malformed payload) so managers can publish the counts in their
+ * status and health messages. A bad message never reaches the handler and
+ * never ends the receive loop. */
+#ifndef AUV_LCM_RX_H
+#define AUV_LCM_RX_H
+
+#include <stdint.h>
+
+#include <lcm/lcm.h>
+
+#include "common/auv_types.h"
+
+typedef struct {
+    uint64_t received;          /* every message on the channel */
+    uint64_t delivered;         /* decoded and handed to the handler */
+    uint64_t wrong_fingerprint; /* another type, or garbage */
+    uint64_t malformed;         /* right type, but truncated or corrupt */
+} rx_stats_t;
+
+/* msg is the decoded struct (e.g. auv_nav_solution_t *); it is freed after
+ * the handler returns, so copy what must be kept. */
+typedef void (*rx_handler_t)(const char *channel, const void *msg, int64_t recv_utime, void *user);
+
+typedef struct rx_sub rx_sub_t;
+
+/* Subscribe to channel (an LCM regex) expecting one type. NULL on failure. */
+rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,
+                       rx_handler_t handler, void *user);
+void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub);
+
+const rx_stats_t *rx_stats(const rx_sub_t *sub);
+uint64_t rx_decode_errors(const rx_sub_t *sub);
+
+/* Decode one buffer as the given type into out (struct_size bytes), checking
+ * the fingerprint first. Returns 0 on success, -1 wrong fingerprint,
+ * -2 malformed. On success the caller owns out and must call
+ * type->info()->decode_cleanup(out). Exposed for tests and log readers. */
+int rx_decode(const auv_type_entry_t *type, const void *data, int len, void *out);
+
+#endif

@@ -1,0 +1,81 @@
+"""Typed subscriptions that count and drop messages that fail to decode.
+
+A bad message (another type on the channel, a truncated or corrupt payload)
+never reaches the handler and never raises out of lc.handle(): it is counted
+in the subscription's stats, and the first few are reported on stderr.
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+from typing import Any, Callable
+
+import lcm
+
+from auvlcm.decode import DecodeError, decode_strict
+
+Handler = Callable[[str, Any], None]
+
+
+@dataclass
+class RxStats:
+    received: int = 0
+    delivered: int = 0
+    wrong_fingerprint: int = 0
+    malformed: int = 0
+    last_error: str = ""
+
+    @property
+    def decode_errors(self) -> int:
+        return self.wrong_fingerprint + self.malformed
+
+
+@dataclass
+class Subscription:
+    channel: str
+    msg_type: type
+    handler: Handler
+    stats: RxStats = field(default_factory=RxStats)
+    lcm_sub: Any = None
+
+    REPORT_FIRST = 3
+
+    def on_raw(self, channel: str, data: bytes) -> None:
+        self.stats.received += 1
+        try:
+            msg = decode_strict(self.msg_type, data)
+        except DecodeError as exc:
+            setattr(self.stats, exc.kind, getattr(self.stats, exc.kind) + 1)
+            self.stats.last_error = str(exc)
+            if self.stats.decode_errors <= self.REPORT_FIRST:
+                print(f"lcm_rx: {channel}: dropped {len(data)}-byte message ({exc})",
+                      file=sys.stderr)
+            return
+        self.stats.delivered += 1
+        self.handler(channel, msg)
+
+
+class Receiver:
+    """Owns typed subscriptions on one LCM instance."""
+
+    def __init__(self, lc: lcm.LCM) -> None:
+        self.lc = lc
+        self.subscriptions: list[Subscription] = []
+
+    def subscribe(self, channel: str, msg_type: type, handler: Handler,
+                  queue_capacity: int | None = None) -> Subscription:
+        sub = Subscription(channel, msg_type, handler)
+        sub.lcm_sub = self.lc.subscribe(channel, sub.on_raw)
+        if queue_capacity is not None:
+            sub.lcm_sub.set_queue_capacity(queue_capacity)
+        self.subscriptions.append(sub)
+        return sub
+
+    def unsubscribe(self, sub: Subscription) -> None:
+        self.lc.unsubscribe(sub.lcm_sub)
+        self.subscriptions.remove(sub)
+
+    @property
+    def decode_errors(self) -> int:
+        return sum(s.stats.decode_errors for s in self.subscriptions)
