@@ -122,7 +122,8 @@ C_PROGRAMS := bin/auv-lcm-probe
 C_LIBS := lib/libauvtypes.a lib/libauvcommon.a
 
 # Components add their rules and append to C_PROGRAMS / C_LIBS here.
--include $(sort $(wildcard c/*/component.mk))
+COMPONENTS ?= $(sort $(wildcard c/*/component.mk))
+-include $(COMPONENTS)
 
 C_OUTPUTS := $(addprefix $(BUILD)/,$(C_PROGRAMS) $(C_LIBS))
 SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))

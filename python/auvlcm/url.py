@@ -1,6 +1,6 @@
 """LCM URLs: the project's default, and the rule that traffic stays local.
 
-udpm with ttl=0 never leaves the host. ttl=1 is allowed only where the caller
+udpm with ttl=0 never leaves the host. A TTL of 1 is allowed only where the caller
 says it runs inside a network namespace that it created (multi-host tests).
 """
 
@@ -29,5 +29,5 @@ def check_local(url: str, inside_netns: bool = False) -> str:
     ttl = int(ttl_values[-1])
     if ttl > 1 or (ttl == 1 and not inside_netns):
         raise ValueError(f"{url}: ttl={ttl} would send beyond this host; use ttl=0 "
-                         "(ttl=1 only inside a network namespace made for the run)")
+                         "(a TTL of 1 only inside a network namespace made for the run)")
     return url

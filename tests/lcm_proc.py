@@ -1,0 +1,58 @@
+"""Helpers for tests that run real processes over real LCM."""
+
+from __future__ import annotations
+
+import os
+import select
+import signal
+import subprocess
+import time
+from pathlib import Path
+
+import lcm
+
+LCM_BIN = Path(lcm.LCM_BIN_DIR).resolve()
+
+
+def lcm_tool(name: str) -> str:
+    """The real binary of an LCM tool (not the wheel's Python wrapper, which
+    would leave the binary orphaned when the wrapper is killed)."""
+    path = LCM_BIN / name
+    assert path.exists(), f"{path} missing from the lcm wheel"
+    return str(path)
+
+
+def wait_for_line(proc: subprocess.Popen, text: str, timeout: float = 10.0) -> str:
+    """Read proc's stdout until a line contains text; fail on timeout or exit."""
+    deadline = time.monotonic() + timeout
+    seen = []
+    while time.monotonic() < deadline:
+        ready, _, _ = select.select([proc.stdout], [], [], 0.1)
+        if ready:
+            line = proc.stdout.readline()
+            if not line:
+                break
+            seen.append(line)
+            if text in line:
+                return line
+    raise AssertionError(f"no line with {text!r} within {timeout}s; got {seen!r}")
+
+
+def pump(lc: lcm.LCM, until, timeout: float = 10.0) -> bool:
+    """Handle LCM messages until until() is true or timeout; returns until()."""
+    deadline = time.monotonic() + timeout
+    while not until() and time.monotonic() < deadline:
+        lc.handle_timeout(50)
+    return until()
+
+
+def stop(proc: subprocess.Popen, sig: int = signal.SIGINT, timeout: float = 10.0) -> int:
+    """Signal a process and wait for it; kill it if it does not end."""
+    if proc.poll() is None:
+        proc.send_signal(sig)
+        try:
+            proc.wait(timeout)
+        except subprocess.TimeoutExpired:
+            os.kill(proc.pid, signal.SIGKILL)
+            proc.wait()
+    return proc.returncode

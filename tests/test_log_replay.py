@@ -1,0 +1,88 @@
+"""lcm-logger records the project's publishers; lcm-logplayer replays the log
+to another URL; the project's reader decodes every event with its types."""
+
+from __future__ import annotations
+
+import subprocess
+import time
+from collections import Counter
+
+import lcm
+
+from auv import actuators_t, depth_t, nav_solution_t
+from auvlcm.log import LogStats, read_events
+from auvlcm.rx import Receiver
+from conftest import c_program
+from lcm_proc import lcm_tool, pump, stop
+
+COUNT = 30
+CHANNELS = {"AUV5.NAV": nav_solution_t, "AUV5.DEPTH": depth_t, "AUV5.ACTUATORS": actuators_t}
+
+
+def record(url: str, path, child_env) -> None:
+    logger = subprocess.Popen([lcm_tool("lcm-logger"), f"--lcm-url={url}", "--quiet", str(path)],
+                              stderr=subprocess.PIPE, text=True)
+    try:
+        deadline = time.monotonic() + 10
+        while not path.exists() and time.monotonic() < deadline:
+            time.sleep(0.05)  # the logger creates its file once it is listening
+        time.sleep(0.3)
+        pub = subprocess.run([c_program("bin/auv-lcm-probe"), "publish-track", "--url", url,
+                              "--vehicle", "AUV5", "--count", str(COUNT), "--rate", "100"],
+                             env=child_env, timeout=30)
+        assert pub.returncode == 0
+        time.sleep(0.5)
+    finally:
+        assert stop(logger) == 0, logger.stderr.read()
+
+
+def test_logger_records_and_reader_decodes_everything(tmp_path, lcm_url, child_env):
+    log = tmp_path / "run.lcmlog"
+    record(lcm_url, log, child_env)
+    stats = LogStats()
+    events = list(read_events(log, stats))
+    assert stats.events == 3 * COUNT and stats.decoded == 3 * COUNT and stats.undecodable == 0
+    assert stats.per_channel == Counter({ch: COUNT for ch in CHANNELS})
+    for ev in events:
+        assert isinstance(ev.msg, CHANNELS[ev.channel])
+    navs = [ev.msg for ev in events if ev.channel == "AUV5.NAV"]
+    assert [n.utime for n in navs] == [round(i / 100 * 1e6) for i in range(COUNT)]
+
+
+def test_logplayer_replays_to_another_url(tmp_path, lcm_url, child_env):
+    log = tmp_path / "run.lcmlog"
+    record(lcm_url, log, child_env)
+    logged = {(ev.channel, ev.msg.encode()) for ev in read_events(log)}
+
+    port = int(lcm_url.rsplit(":", 1)[1].split("?")[0])
+    replay_url = lcm_url.replace(f":{port}?", f":{port + 1000}?")  # another port: another world
+    assert replay_url != lcm_url
+    lc = lcm.LCM(replay_url)
+    rx = Receiver(lc)
+    got = []
+    for ch, cls in CHANNELS.items():
+        rx.subscribe(ch, cls, lambda c, m: got.append((c, m.encode())), queue_capacity=500)
+    player = subprocess.Popen([lcm_tool("lcm-logplayer"), f"--lcm-url={replay_url}", "--speed=4",
+                               str(log)], stderr=subprocess.PIPE, text=True)
+    try:
+        assert pump(lc, lambda: len(got) == 3 * COUNT, timeout=20), f"{len(got)} replayed"
+        assert player.wait(10) == 0
+    finally:
+        stop(player)
+    assert set(got) == logged and rx.decode_errors == 0
+
+
+def test_reader_counts_undecodable_events(tmp_path):
+    path = tmp_path / "mixed.lcmlog"
+    log = lcm.EventLog(str(path), "w")
+    good = depth_t()
+    good.depth_m = 3.0
+    log.write_event(1, "AUV1.DEPTH", good.encode())
+    log.write_event(2, "AUV1.DEPTH", good.encode()[:-2])
+    log.write_event(3, "OTHER", b"not an lcm message")
+    log.close()
+    stats = LogStats()
+    events = list(read_events(path, stats))
+    assert [e.msg is not None for e in events] == [True, False, False]
+    assert (stats.decoded, stats.undecodable) == (1, 2)
+    assert events[2].error == "unknown fingerprint"
