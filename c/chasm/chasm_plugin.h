@@ -1,0 +1,147 @@
+/* chasm_plugin.h: everything a behavior or test-handler plugin needs.
+ *
+ * A plugin is a shared object that exports ONE symbol, `chasm_plugin`, of type
+ * chasm_plugin_descriptor (use CHASM_PLUGIN_EXPORT). It describes the plugin's
+ * behaviors and test handlers and, for each, a schema of parameters: the Loader
+ * checks every value of a plan against that schema (type, unit, range,
+ * required) before a mission starts, so a behavior never has to validate them.
+ *
+ * Plugins see CHASM only through chasm_ctx and the inline accessors below, which
+ * call through a function table: a plugin links against nothing and does not
+ * depend on the engine's internal layout. Values are SI (m, s, rad, m/s, rad/s).
+ *
+ * Slots: a behavior's parameters are numbered in the order of its schema; the
+ * same index is used to read a parameter (chasm_param_*) or, for a
+ * CHASM_READS/CHASM_WRITES entry, the blackboard variable the plan bound to it
+ * (chasm_read_* / chasm_write_*). Reading a slot of the wrong type gives 0/"". */
+#ifndef CHASM_PLUGIN_H
+#define CHASM_PLUGIN_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Bumped whenever any struct below changes layout; the Loader refuses others. */
+#define CHASM_PLUGIN_ABI 1
+#define CHASM_PLUGIN_SYMBOL "chasm_plugin"
+
+typedef enum { CHASM_DOUBLE = 0, CHASM_INT = 1, CHASM_BOOL = 2, CHASM_STRING = 3 } chasm_type;
+
+/* What a schema entry is: a constant parameter, or a blackboard variable the
+ * behavior reads or writes (the one-writer rule covers CHASM_WRITES slots). */
+typedef enum { CHASM_PARAM = 0, CHASM_READS = 1, CHASM_WRITES = 2 } chasm_slot_kind;
+
+typedef enum { CHASM_RUNNING = 0, CHASM_DONE = 1, CHASM_FAILED = 2 } chasm_status_code;
+
+typedef struct {
+    const char *name;        /* as written in the plan: goto(north = 10 m) */
+    chasm_slot_kind kind;
+    chasm_type type;
+    const char *unit;        /* SI unit: "m", "s", "rad", "m/s", "rad/s", "Hz", "" */
+    int required;            /* 1: the plan must give it (PARAM) or bind it (READS/WRITES) */
+    double def_number;       /* default of an optional DOUBLE/INT/BOOL param */
+    const char *def_string;  /* default of an optional STRING param; for READS/WRITES
+                                the default variable name, e.g. "setpoint.heading" */
+    int has_range;           /* 1: min <= value <= max is checked at load */
+    double min, max;
+    const char *doc;         /* one line, shown by `chasm check --describe` */
+} chasm_param_spec;
+
+typedef struct chasm_ctx chasm_ctx;
+
+/* The engine's side of the context; plugins use the inline helpers instead. */
+typedef struct {
+    double (*param_double)(const chasm_ctx *, int slot);
+    int64_t (*param_int)(const chasm_ctx *, int slot);
+    int (*param_bool)(const chasm_ctx *, int slot);
+    const char *(*param_string)(const chasm_ctx *, int slot);
+    double (*read_double)(const chasm_ctx *, int slot);
+    int64_t (*read_int)(const chasm_ctx *, int slot);
+    int (*read_bool)(const chasm_ctx *, int slot);
+    const char *(*read_string)(const chasm_ctx *, int slot);
+    double (*age_s)(const chasm_ctx *, int slot);   /* since the variable's last update */
+    void (*write_double)(chasm_ctx *, int slot, double v);
+    void (*write_int)(chasm_ctx *, int slot, int64_t v);
+    void (*write_bool)(chasm_ctx *, int slot, int v);
+    void (*write_string)(chasm_ctx *, int slot, const char *v);
+    void (*log)(chasm_ctx *, const char *message);
+} chasm_host_api;
+
+/* Handed to every call. Read-only for the plugin except through the api. */
+struct chasm_ctx {
+    const chasm_host_api *api;
+    int64_t now_us;          /* mission time of this cycle */
+    double dt_s;             /* since this action last ran (0 at its first run) */
+    double time_in_state_s;  /* since its state was entered */
+    const char *state_path;  /* "mission/survey/leg", for messages */
+    void *engine;            /* opaque */
+};
+
+static inline double chasm_param_double(const chasm_ctx *c, int s) { return c->api->param_double(c, s); }
+static inline int64_t chasm_param_int(const chasm_ctx *c, int s) { return c->api->param_int(c, s); }
+static inline int chasm_param_bool(const chasm_ctx *c, int s) { return c->api->param_bool(c, s); }
+static inline const char *chasm_param_string(const chasm_ctx *c, int s) { return c->api->param_string(c, s); }
+static inline double chasm_read_double(const chasm_ctx *c, int s) { return c->api->read_double(c, s); }
+static inline int64_t chasm_read_int(const chasm_ctx *c, int s) { return c->api->read_int(c, s); }
+static inline int chasm_read_bool(const chasm_ctx *c, int s) { return c->api->read_bool(c, s); }
+static inline const char *chasm_read_string(const chasm_ctx *c, int s) { return c->api->read_string(c, s); }
+static inline double chasm_age_s(const chasm_ctx *c, int s) { return c->api->age_s(c, s); }
+static inline void chasm_write_double(chasm_ctx *c, int s, double v) { c->api->write_double(c, s, v); }
+static inline void chasm_write_int(chasm_ctx *c, int s, int64_t v) { c->api->write_int(c, s, v); }
+static inline void chasm_write_bool(chasm_ctx *c, int s, int v) { c->api->write_bool(c, s, v); }
+static inline void chasm_write_string(chasm_ctx *c, int s, const char *v) { c->api->write_string(c, s, v); }
+static inline void chasm_log(chasm_ctx *c, const char *m) { c->api->log(c, m); }
+
+/* A behavior: per-instance state of state_size bytes, zeroed before start().
+ * start() runs when its state is entered (return non-zero to fail), step() when
+ * its time model says so, stop() when the state is left. Any may be NULL except
+ * step. step() returns CHASM_DONE to complete its state (periodic actions) or
+ * CHASM_FAILED to raise `failed`, which the plan can catch. */
+typedef struct {
+    const char *name;
+    const char *doc;
+    const chasm_param_spec *params;
+    size_t n_params;
+    size_t state_size;
+    int (*start)(chasm_ctx *, void *state);
+    chasm_status_code (*step)(chasm_ctx *, void *state);
+    void (*stop)(chasm_ctx *, void *state);
+} chasm_behavior_spec;
+
+/* A test handler: evaluate() returns 1 when its criterion holds this cycle.
+ * The engine adds `for at least T` itself. Params and slots as for behaviors. */
+typedef struct {
+    const char *name;
+    const char *doc;
+    const chasm_param_spec *params;
+    size_t n_params;
+    int (*evaluate)(chasm_ctx *);
+} chasm_test_spec;
+
+typedef struct {
+    uint32_t abi_version;    /* CHASM_PLUGIN_ABI */
+    uint32_t struct_size;    /* sizeof(chasm_plugin_descriptor) */
+    const char *name;        /* matches `use NAME` in plans and the file chasm_NAME.so */
+    const char *version;     /* free text, "1.2.0" */
+    const chasm_behavior_spec *behaviors;
+    size_t n_behaviors;
+    const chasm_test_spec *tests;
+    size_t n_tests;
+} chasm_plugin_descriptor;
+
+#define CHASM_COUNT(a) (sizeof(a) / sizeof((a)[0]))
+
+/* Defines the exported descriptor. Example:
+ *   CHASM_PLUGIN_EXPORT("survey", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0); */
+#define CHASM_PLUGIN_EXPORT(NAME, VERSION, BEH, NBEH, TESTS, NTESTS)                 \
+    __attribute__((visibility("default"))) const chasm_plugin_descriptor chasm_plugin = { \
+        CHASM_PLUGIN_ABI, (uint32_t)sizeof(chasm_plugin_descriptor), NAME, VERSION,   \
+        BEH, NBEH, TESTS, NTESTS}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

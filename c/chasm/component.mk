@@ -1,0 +1,50 @@
+# libchasm, the chasm tool, its tests, fuzz target and benchmark.
+# Included by the top Makefile; defines rules for each build variant.
+
+CHASM_LIB_SRCS := $(sort $(wildcard c/chasm/cm_*.c))
+CHASM_TOOL_SRCS := $(sort $(wildcard c/chasm/tool/*.c))
+CHASM_UNIT_SRCS := $(sort $(wildcard tests/chasm/unit/*.c))
+CHASM_TEST_PLUGINS := $(patsubst tests/chasm/plugins/%.c,plugins/chasm_%.so,$(sort $(wildcard tests/chasm/plugins/*.c)))
+
+define chasm_rules
+$(1)/lib/libchasm.a: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_LIB_SRCS))
+	@mkdir -p $$(@D)
+	$$(AR) rcs $$@ $$^
+$(1)/bin/chasm: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_TOOL_SRCS)) $(1)/lib/libchasm.a
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+$(1)/bin/chasm_unit_tests: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_UNIT_SRCS)) $(1)/lib/libchasm.a
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+$(1)/bin/chasm_fuzz: $(1)/obj/c/chasm/fuzz/fuzz_loader.o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(1)/lib/libchasm.a
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+$(1)/bin/chasm_bench: $(1)/obj/bench/chasm_bench.o $(1)/lib/libchasm.a
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+# Test plugins: one source each (good, v2, broken, wrong ABI, ...).
+$(1)/plugins/chasm_%.so: $(1)/obj/tests/chasm/plugins/%.o
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) -shared $$< -o $$@
+endef
+$(foreach v,$(VARIANTS),$(eval $(call chasm_rules,$(v))))
+
+C_PROGRAMS += bin/chasm bin/chasm_unit_tests bin/chasm_fuzz bin/chasm_bench $(CHASM_TEST_PLUGINS)
+C_LIBS += lib/libchasm.a
+
+# Long fuzz run of the Loader. With clang, a real libFuzzer binary; otherwise
+# the self-written mutation driver (built with ASan+UBSan). FUZZ_SECONDS=600.
+FUZZ_SECONDS ?= 600
+CLANG := $(shell command -v clang 2>/dev/null)
+.PHONY: fuzz
+ifneq ($(CLANG),)
+$(BUILD)/fuzz/chasm_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_loader.c
+	@mkdir -p $(@D)
+	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
+fuzz: $(BUILD)/fuzz/chasm_libfuzzer
+	@mkdir -p $(BUILD)/fuzz/corpus && cp tests/chasm/fuzz_corpus/* $(BUILD)/fuzz/corpus/
+	$< -max_total_time=$(FUZZ_SECONDS) -dict=c/chasm/fuzz/chasm.dict $(BUILD)/fuzz/corpus
+else
+fuzz: $(BUILD)/san/bin/chasm_fuzz
+	$< --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/chasm/fuzz_corpus
+endif

@@ -1,0 +1,32 @@
+/* libFuzzer target for the Loader: any bytes as a plan. A plan that loads is
+ * also started and stepped, so the runtime is fuzzed on every valid plan. */
+#include <stddef.h>
+#include <stdint.h>
+
+#include "chasm/chasm.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    chasm_errors *e = NULL;
+    chasm_machine *m = chasm_load_string("fuzz.chasm", (const char *)data, size, NULL, &e);
+    for (size_t i = 0; i < chasm_errors_count(e); i++) (void)chasm_errors_get(e, i);
+    chasm_errors_free(e);
+    if (!m) return 0;
+    chasm_start(m, 0);
+    for (int64_t t = 1; t <= 50; t++) {
+        /* feed every variable something, so tests flip */
+        for (size_t v = 0; v < chasm_var_count(m); v++) {
+            if (chasm_var_kind_of(m, (int)v) != CHASM_VAR_INPUT) continue;
+            chasm_var_set_double(m, (int)v, (double)(t % 7), t * 100000);
+            chasm_var_set_int(m, (int)v, t % 5, t * 100000);
+            chasm_var_set_bool(m, (int)v, t % 3 == 0, t * 100000);
+        }
+        if (chasm_step(m, t * 100000) != CHASM_RUN_RUNNING) break;
+        chasm_status st;
+        chasm_status_get(m, t * 100000, &st);
+    }
+    chasm_free(m);
+    return 0;
+}

@@ -1,0 +1,75 @@
+/* Behaviors of the test plugin, shared by version 1 and 2 (TEST_GAIN differs
+ * so a test can see which code ran). Header-only: each .so is one source. */
+#include <stdio.h>
+#include <string.h>
+
+#include "chasm/chasm_plugin.h"
+
+/* hold: writes value * TEST_GAIN to its output every time it runs; never done. */
+enum { HOLD_VALUE, HOLD_OUT };
+static const chasm_param_spec hold_params[] = {
+    {"value", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, -100, 100, "depth to hold"},
+    {"out", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, "test.out", 0, 0, 0, "where it goes"},
+};
+static chasm_status_code hold_step(chasm_ctx *c, void *st)
+{
+    (void)st;
+    chasm_write_double(c, HOLD_OUT, chasm_param_double(c, HOLD_VALUE) * TEST_GAIN);
+    return CHASM_RUNNING;
+}
+
+/* count_to: done after n steps; writes its count. */
+enum { COUNT_N, COUNT_OUT };
+static const chasm_param_spec count_params[] = {
+    {"n", CHASM_PARAM, CHASM_INT, "", 1, 0, NULL, 1, 1, 1000000, "steps until done"},
+    {"count", CHASM_WRITES, CHASM_INT, "", 0, 0, "test.count", 0, 0, 0, NULL},
+};
+typedef struct { int64_t k; } count_state;
+static chasm_status_code count_step(chasm_ctx *c, void *st)
+{
+    count_state *s = st;
+    s->k++;
+    chasm_write_int(c, COUNT_OUT, s->k);
+    return s->k >= chasm_param_int(c, COUNT_N) ? CHASM_DONE : CHASM_RUNNING;
+}
+
+/* fail_after: fails at its n-th step. */
+static const chasm_param_spec fail_params[] = {
+    {"n", CHASM_PARAM, CHASM_INT, "", 0, 1, NULL, 0, 0, 0, NULL},
+};
+static chasm_status_code fail_step(chasm_ctx *c, void *st)
+{
+    count_state *s = st;
+    return ++s->k >= chasm_param_int(c, 0) ? CHASM_FAILED : CHASM_RUNNING;
+}
+
+/* trace: logs "start TAG", "step TAG" and "stop TAG" so tests see the order. */
+static const chasm_param_spec trace_params[] = {
+    {"tag", CHASM_PARAM, CHASM_STRING, "", 1, 0, NULL, 0, 0, 0, NULL},
+};
+static void trace_msg(chasm_ctx *c, const char *what)
+{
+    char b[160];
+    snprintf(b, sizeof b, "%s %s v%d", what, chasm_param_string(c, 0), TEST_GAIN);
+    chasm_log(c, b);
+}
+static int trace_start(chasm_ctx *c, void *st) { (void)st; trace_msg(c, "start"); return 0; }
+static chasm_status_code trace_step(chasm_ctx *c, void *st) { (void)st; trace_msg(c, "step"); return CHASM_RUNNING; }
+static void trace_stop(chasm_ctx *c, void *st) { (void)st; trace_msg(c, "stop"); }
+
+static const chasm_behavior_spec behaviors[] = {
+    {"hold", "hold a value", hold_params, CHASM_COUNT(hold_params), 0, NULL, hold_step, NULL},
+    {"count_to", "count steps", count_params, CHASM_COUNT(count_params), sizeof(count_state), NULL, count_step, NULL},
+    {"fail_after", "fail after n steps", fail_params, CHASM_COUNT(fail_params), sizeof(count_state), NULL, fail_step, NULL},
+    {"trace", "log calls", trace_params, CHASM_COUNT(trace_params), 0, trace_start, trace_step, trace_stop},
+};
+
+/* above: true when the variable x is above limit. */
+static const chasm_param_spec above_params[] = {
+    {"x", CHASM_READS, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, NULL},
+    {"limit", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, NULL},
+};
+static int above_eval(chasm_ctx *c) { return chasm_read_double(c, 0) > chasm_param_double(c, 1); }
+static const chasm_test_spec tests[] = {
+    {"above", "x > limit", above_params, CHASM_COUNT(above_params), above_eval},
+};
