@@ -7,11 +7,22 @@
 
 #include "chasm/cm_lexer.h"
 
+/* Reserved words cannot name anything. Other words of the language (entry,
+ * exit, cycle, every, after, for, within, of, tolerance, age, deep) are only
+ * special where they are expected, so states may be called `after` or `deep`. */
 static const char *keywords[] = {
-    "include", "param", "use", "input", "output", "var", "test", "abort", "when",
-    "start", "next", "state", "do", "set", "on", "entry", "exit", "every", "cycle", "after",
-    "for", "within", "of", "tolerance", "age", "elapsed", "and", "or", "not", "true", "false",
-    "resume", "deep", "done", "failed", NULL};
+    "include", "param", "use", "input", "output", "var", "test", "abort", "when", "start", "next",
+    "state", "do", "set", "and", "or", "not", "true", "false", "resume", "done", "failed", "elapsed", NULL};
+
+/* Words that may follow a number and so are never read as its unit. */
+static const char *after_number[] = {"of", "for", "tolerance", "on", "every", "after", "and", "or", "at", NULL};
+
+static int stops_unit(const char *s)
+{
+    for (int i = 0; after_number[i]; i++)
+        if (!strcmp(s, after_number[i])) return 1;
+    return 0;
+}
 
 int cm_is_keyword(const char *s)
 {
@@ -126,7 +137,7 @@ static void end_statement(P *p)
 static void unit_after_number(P *p, cm_aval *v)
 {
     cm_token *t = cur(p);
-    if (t->type != T_IDENT || cm_is_keyword(t->text) || t->line != peek(p, -1)->line) return;
+    if (t->type != T_IDENT || cm_is_keyword(t->text) || stops_unit(t->text) || t->line != peek(p, -1)->line) return;
     char buf[64];
     snprintf(buf, sizeof buf, "%s", t->text);
     cm_loc l = loc_of(p, t);
@@ -246,7 +257,7 @@ static void criterion(P *p, cm_acrit *c)
 {
     cm_token *t = cur(p);
     c->loc = loc_of(p, t);
-    if (is_kw(t, "age")) {
+    if (is_kw(t, "age") && peek(p, 1)->type == T_IDENT) {
         adv(p);
         if (is_kw(cur(p), "of")) adv(p);
         c->kind = CR_AGE;
@@ -413,7 +424,7 @@ static cm_atrans *transition(P *p, cm_token *kw)
     if (is_kw(cur(p), "resume")) {
         adv(p);
         tr->history = HIST_SHALLOW;
-        if (is_kw(cur(p), "deep")) {
+        if (is_kw(cur(p), "deep") && peek(p, 1)->type == T_IDENT) {
             adv(p);
             tr->history = HIST_DEEP;
         }

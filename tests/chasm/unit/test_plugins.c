@@ -1,0 +1,136 @@
+/* Plugins: a good one, and hot plug of new, broken and incompatible versions. */
+#include <stdlib.h>
+#include <unistd.h>
+
+#include "harness.h"
+
+static const char *PLAN =
+    "use test_basic\n"
+    "input x : double m\ninput go : bool\noutput test.out : double m\n"
+    "test go_on : go == true\ntest go_off : go == false\n"
+    "state a {\n do hold(value = 3 m)\n test high : above(x = x, limit = 5 m)\n when high -> c\n when go_on -> b\n}\n"
+    "state b {\n when go_off -> a\n}\n"
+    "state c {\n}\n";
+
+static void path_of(char *buf, size_t n, const char *file) { snprintf(buf, n, "%s/%s", plugin_dir, file); }
+
+static void good_plugin(void)
+{
+    chasm_machine *m = load_plan(PLAN);
+    if (!m) return;
+    CHECK(chasm_plugin_versions_loaded(m) == 1);
+    chasm_start(m, 0);
+    set_d(m, "x", 1, 0);
+    run_until(m, 0.1, 0.3);
+    CHECK(get_d(m, "test.out") == 3.0);
+    CHECK(chasm_var_updated_us(m, chasm_var_find(m, "test.out")) == 300000);
+    set_d(m, "x", 6, 0.3);
+    run_until(m, 0.4, 0.4);
+    CHECK_STR(leaf(m), "c"); /* the plugin test handler fired */
+    chasm_free(m);
+}
+
+/* A new version takes effect at the next entry; the old code goes when unused. */
+static void hotplug_new_version(void)
+{
+    chasm_machine *m = load_plan(PLAN);
+    if (!m) return;
+    chasm_start(m, 0);
+    set_b(m, "go", 0, 0);
+    run_until(m, 0.1, 0.2);
+    CHECK(get_d(m, "test.out") == 3.0);
+    char p[1024], err[2048];
+    path_of(p, sizeof p, "chasm_test_basic_v2.so");
+    int rc = chasm_hotplug(m, p, err, sizeof err);
+    if (rc) fprintf(stderr, "%s\n", err);
+    CHECK(rc == 0);
+    CHECK(chasm_plugin_versions_loaded(m) == 2); /* state a still runs version 1 */
+    run_until(m, 0.3, 0.4);
+    CHECK(get_d(m, "test.out") == 3.0);
+    set_b(m, "go", 1, 0.4);
+    run_until(m, 0.5, 0.5);
+    CHECK_STR(leaf(m), "b");
+    CHECK(chasm_plugin_versions_loaded(m) == 1); /* version 1 unloaded on exit */
+    set_b(m, "go", 0, 0.5);
+    run_until(m, 0.6, 0.7);
+    CHECK_STR(leaf(m), "a");
+    CHECK(get_d(m, "test.out") == 6.0); /* version 2 doubles */
+    /* a second update of the same path gets its own handle too */
+    rc = chasm_hotplug(m, p, err, sizeof err);
+    CHECK(rc == 0);
+    CHECK(chasm_plugin_versions_loaded(m) == 2);
+    chasm_free(m);
+}
+
+/* When no active state uses the plugin, the old code goes at once. */
+static void hotplug_while_unused(void)
+{
+    chasm_machine *m = load_plan(PLAN);
+    if (!m) return;
+    set_b(m, "go", 1, 0);
+    chasm_start(m, 0);
+    run_until(m, 0.1, 0.1);
+    CHECK_STR(leaf(m), "b");
+    char p[1024], err[2048];
+    path_of(p, sizeof p, "chasm_test_basic_v2.so");
+    CHECK(chasm_hotplug(m, p, err, sizeof err) == 0);
+    CHECK(chasm_plugin_versions_loaded(m) == 1);
+    chasm_free(m);
+}
+
+static void expect_rejected(const char *file, int write_garbage, const char *expect_in_error)
+{
+    chasm_machine *m = load_plan(PLAN);
+    if (!m) return;
+    chasm_start(m, 0);
+    set_b(m, "go", 0, 0);
+    run_until(m, 0.1, 0.2);
+    char p[1024], err[4096];
+    if (write_garbage) {
+        const char *tmp = getenv("TMPDIR");
+        snprintf(p, sizeof p, "%s/chasm_unit_broken_%d.so", tmp && *tmp ? tmp : "/tmp", (int)getpid());
+        FILE *f = fopen(p, "wb");
+        if (f) {
+            fputs("\177ELF this is not really a shared object", f);
+            fclose(f);
+        }
+    } else path_of(p, sizeof p, file);
+    CHECK(chasm_hotplug(m, p, err, sizeof err) == -1);
+    if (!strstr(err, expect_in_error)) {
+        fprintf(stderr, "error text \"%s\" lacks \"%s\"\n", err, expect_in_error);
+        failures++;
+    }
+    if (write_garbage) unlink(p);
+    CHECK(chasm_plugin_versions_loaded(m) == 1);
+    /* the mission goes on with the old code, through re-entries too */
+    run_until(m, 0.3, 0.5);
+    CHECK(chasm_run_state_of(m) == CHASM_RUN_RUNNING);
+    CHECK(get_d(m, "test.out") == 3.0);
+    set_b(m, "go", 1, 0.5);
+    run_until(m, 0.6, 0.6);
+    set_b(m, "go", 0, 0.6);
+    run_until(m, 0.7, 0.8);
+    CHECK_STR(leaf(m), "a");
+    CHECK(get_d(m, "test.out") == 3.0);
+    chasm_free(m);
+}
+
+static void hotplug_broken_file(void) { expect_rejected(NULL, 1, "cannot load plugin file"); }
+static void hotplug_missing_file(void) { expect_rejected("chasm_no_such_plugin.so", 0, "cannot read plugin file"); }
+static void hotplug_wrong_abi(void) { expect_rejected("chasm_test_basic_badabi.so", 0, "built for plugin ABI 99"); }
+static void hotplug_schema_mismatch(void) { expect_rejected("chasm_test_basic_noschema.so", 0, "unknown parameter 'value' for 'hold'"); }
+static void hotplug_missing_symbol(void) { expect_rejected("chasm_test_nosym.so", 0, "does not export the symbol 'chasm_plugin'"); }
+static void hotplug_unused_plugin(void) { expect_rejected("chasm_test_other.so", 0, "is not used by the running plan"); }
+
+const unit_test plugin_tests[] = {
+    {"good_plugin", good_plugin},
+    {"hotplug_new_version", hotplug_new_version},
+    {"hotplug_while_unused", hotplug_while_unused},
+    {"hotplug_broken_file", hotplug_broken_file},
+    {"hotplug_missing_file", hotplug_missing_file},
+    {"hotplug_wrong_abi", hotplug_wrong_abi},
+    {"hotplug_schema_mismatch", hotplug_schema_mismatch},
+    {"hotplug_missing_symbol", hotplug_missing_symbol},
+    {"hotplug_unused_plugin", hotplug_unused_plugin},
+    {NULL, NULL},
+};
