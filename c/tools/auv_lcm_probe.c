@@ -11,6 +11,11 @@
  *   auv-lcm-probe listen --url URL --channel REGEX --type TYPE [--count N] [--timeout-ms MS]
  *       Print each message that decodes as one `field=value` line, then the
  *       receive counters; bad messages are counted and dropped.
+ *   auv-lcm-probe field TYPE PATH MSGFILE
+ *       Resolve a field path (as managers bind variables) and print its value
+ *       in the encoded message MSGFILE.
+ *   auv-lcm-probe sha256 FILE
+ *       The digest plugin uploads are checked against.
  */
 #include <errno.h>
 #include <inttypes.h>
@@ -24,8 +29,10 @@
 #include "auv/auv_depth_t.h"
 #include "auv/auv_nav_solution_t.h"
 #include "common/auv_types.h"
+#include "common/field_path.h"
 #include "common/lcm_rx.h"
 #include "common/msg_print.h"
+#include "common/sha256.h"
 
 static const char *opt(int argc, char **argv, const char *name, const char *fallback)
 {
@@ -233,6 +240,55 @@ static int cmd_listen(lcm_t *lcm, const char *channel, const char *type_name, in
     return 0;
 }
 
+/* ------------------------------------------------------------ field, sha256 */
+
+static int cmd_field(const char *type_name, const char *path, const char *msg_file)
+{
+    const auv_type_entry_t *type = auv_type_find(type_name);
+    if (!type) {
+        fprintf(stderr, "auv-lcm-probe: unknown type '%s'\n", type_name);
+        return 2;
+    }
+    field_ref_t ref;
+    char err[256];
+    if (field_path_resolve(type, path, &ref, err, sizeof err) != 0) {
+        fprintf(stderr, "%s\n", err);
+        return 1;
+    }
+    size_t len;
+    unsigned char *buf = read_file(msg_file, &len);
+    void *msg = calloc(1, type->struct_size);
+    int rc = 1;
+    if (buf && msg && rx_decode(type, buf, (int)len, msg) == 0) {
+        if (field_ref_is_numeric(&ref))
+            printf("%.17g\n", field_ref_get_double(&ref, msg));
+        else
+            printf("%s\n", field_ref_get_string(&ref, msg));
+        type->info()->decode_cleanup(msg);
+        rc = 0;
+    } else {
+        fprintf(stderr, "auv-lcm-probe: %s does not hold a %s\n", msg_file, type->lcm_name);
+    }
+    free(msg);
+    free(buf);
+    return rc;
+}
+
+static int cmd_sha256(const char *path)
+{
+    size_t len;
+    unsigned char *buf = read_file(path, &len);
+    if (!buf) {
+        fprintf(stderr, "auv-lcm-probe: %s: %s\n", path, strerror(errno));
+        return 2;
+    }
+    char hex[65];
+    sha256_hex(buf, len, hex);
+    printf("%s\n", hex);
+    free(buf);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -241,6 +297,10 @@ int main(int argc, char **argv)
     }
     if (!strcmp(argv[1], "roundtrip") && argc == 3)
         return cmd_roundtrip(argv[2]);
+    if (!strcmp(argv[1], "field") && argc == 5)
+        return cmd_field(argv[2], argv[3], argv[4]);
+    if (!strcmp(argv[1], "sha256") && argc == 3)
+        return cmd_sha256(argv[2]);
     const char *url = opt(argc, argv, "--url", "udpm://239.255.76.67:7667?ttl=0");
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
