@@ -102,9 +102,12 @@ static void add_tests(cm_cc *cc, const cm_atest *list, cm_state *owner, cm_test 
         cm_test *t = &(*arr)[*n];
         cm_test *dup = cm_map_put(&cc->test_map, key, t);
         if (dup) {
-            cm_error(cc->d, a->loc, "test '%s' is defined twice%s%s (first at %s:%d:%d)", a->name,
-                     owner ? " in state " : " at the top level", owner ? owner->name : "", dup->loc.file, dup->loc.line,
-                     dup->loc.col);
+            if (owner)
+                cm_error(cc->d, a->loc, "test '%s' is defined twice in state '%s' (first at %s:%d:%d)", a->name,
+                         owner->name, dup->loc.file, dup->loc.line, dup->loc.col);
+            else
+                cm_error(cc->d, a->loc, "test '%s' is defined twice at the top level (first at %s:%d:%d)", a->name,
+                         dup->loc.file, dup->loc.line, dup->loc.col);
             continue;
         }
         compile_test(cc, a, owner, t);

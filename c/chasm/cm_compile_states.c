@@ -130,7 +130,7 @@ void cm_compile_states(cm_cc *cc)
         s->next_done = a->next_is_done;
     }
     if (!m->n_states) {
-        cm_error(cc->d, (cm_loc){cc->plan->roots ? cc->plan->roots->loc.file : "plan", 0, 1, 1},
+        cm_error(cc->d, (cm_loc){cc->m->plan_name ? cc->m->plan_name : "plan", 0, 1, 1},
                  "the plan has no states (write `state NAME { ... }`)");
         return;
     }

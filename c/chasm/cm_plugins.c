@@ -276,6 +276,7 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
     b->n_slots = (int)n;
     b->slots = cm_alloc(a, sizeof *b->slots * (n ? n : 1));
     const cm_aarg **given = cm_alloc(a, sizeof *given * (n ? n : 1));
+    bool *guessed = cm_alloc(a, sizeof *guessed * (n ? n : 1)); /* a typo was reported for it */
     for (const cm_aarg *g = args; g; g = g->next) {
         size_t k = 0;
         while (k < n && strcmp(specs[k].name, g->name)) k++;
@@ -285,6 +286,8 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
             for (size_t j = 0; j < n; j++) cm_suggest_add(&sg, specs[j].name);
             char h[96];
             cm_error(cc->d, g->loc, "unknown parameter '%s' for '%s'%s", g->name, item, cm_suggest_hint(&sg, h, sizeof h));
+            for (size_t j = 0; j < n; j++)
+                if (sg.best == specs[j].name) guessed[j] = true;
             continue;
         }
         if (given[k]) {
@@ -302,7 +305,7 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
         snprintf(what, sizeof what, "parameter '%s' of '%s'", s->name, item);
         if (s->kind == CHASM_PARAM) {
             if (!g) {
-                if (s->required) {
+                if (s->required && !guessed[k]) {
                     cm_error(cc->d, item_loc, "'%s' needs parameter '%s'%s%s", item, s->name, s->doc ? ": " : "",
                              s->doc ? s->doc : "");
                     continue;
@@ -344,7 +347,7 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
                 continue;
             }
         } else {
-            if (s->required) cm_error(cc->d, item_loc, "'%s' needs parameter '%s' (the variable it %s)", item, s->name,
+            if (s->required && !guessed[k]) cm_error(cc->d, item_loc, "'%s' needs parameter '%s' (the variable it %s)", item, s->name,
                                       slot_kind_name(s->kind));
             continue;
         }

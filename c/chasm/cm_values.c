@@ -216,8 +216,9 @@ void cm_compile_vars(cm_cc *cc)
             if (!strcmp(a->type_name, "float") || !strcmp(a->type_name, "real")) s.best = "double";
             if (!strcmp(a->type_name, "boolean")) s.best = "bool";
             char h[96];
-            cm_error(cc->d, a->type_loc, "unknown type '%s' for variable '%s'%s (types: double, int, bool, string)",
-                     a->type_name, a->name, cm_suggest_hint(&s, h, sizeof h));
+            const char *hint = cm_suggest_hint(&s, h, sizeof h);
+            cm_error(cc->d, a->type_loc, "unknown type '%s' for variable '%s'%s", a->type_name, a->name,
+                     *hint ? hint : " (types: double, int, bool, string)");
             continue;
         }
         v->type = (chasm_type)t;
