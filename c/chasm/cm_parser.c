@@ -308,8 +308,14 @@ static void criterion(P *p, cm_acrit *c)
 
 static cm_aexpr *expr_or(P *p);
 
+static int expr_nodes; /* per condition: bounds the compiler's recursion */
+
 static cm_aexpr *new_expr(P *p, cm_ekind k, cm_token *t)
 {
+    if (++expr_nodes == 2000 && !p->failed) {
+        cm_error(p->ctx->diag, loc_of(p, t), "condition is too long (split it into several tests)");
+        p->failed = 1;
+    }
     cm_aexpr *e = cm_alloc(p->ctx->arena, sizeof *e);
     e->kind = k;
     e->loc = loc_of(p, t);
@@ -362,7 +368,7 @@ static int expr_depth;
 static cm_aexpr *expr_and(P *p)
 {
     cm_aexpr *l = expr_primary(p, expr_depth);
-    while (l && is_kw(cur(p), "and")) {
+    while (l && !p->failed && is_kw(cur(p), "and")) {
         cm_token *t = cur(p);
         adv(p);
         cm_aexpr *e = new_expr(p, E_AND, t);
@@ -383,7 +389,7 @@ static cm_aexpr *expr_or(P *p)
         return NULL;
     }
     cm_aexpr *l = expr_and(p);
-    while (l && is_kw(cur(p), "or")) {
+    while (l && !p->failed && is_kw(cur(p), "or")) {
         cm_token *t = cur(p);
         adv(p);
         cm_aexpr *e = new_expr(p, E_OR, t);
@@ -406,6 +412,7 @@ static cm_atrans *transition(P *p, cm_token *kw)
     tr->loc = loc_of(p, kw);
     cm_token *first = cur(p);
     expr_depth = 0;
+    expr_nodes = 0;
     tr->cond = expr_or(p);
     if (!tr->cond) {
         if (!p->failed) err_expected(p, "a condition");

@@ -13,9 +13,10 @@ $(1)/lib/libchasm.a: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_LIB_SRCS))
 $(1)/bin/chasm: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_TOOL_SRCS)) $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+# The unit tests wrap malloc & co. to prove chasm_step() never allocates.
 $(1)/bin/chasm_unit_tests: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_UNIT_SRCS)) $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
-	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+	$$(CC) $$(vflags) $$^ -o $$@ -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc $$(LDLIBS_ALL)
 $(1)/bin/chasm_fuzz: $(1)/obj/c/chasm/fuzz/fuzz_loader.o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)

@@ -3,6 +3,19 @@
 #include <stdlib.h>
 
 const char *plugin_dir = ".";
+long alloc_count;
+
+/* Linked with --wrap: every malloc/calloc/realloc of libchasm and the tests
+ * passes here, so a test can check that stepping allocates nothing. */
+void *__real_malloc(size_t n);
+void *__real_calloc(size_t n, size_t k);
+void *__real_realloc(void *p, size_t n);
+void *__wrap_malloc(size_t n);
+void *__wrap_calloc(size_t n, size_t k);
+void *__wrap_realloc(void *p, size_t n);
+void *__wrap_malloc(size_t n) { alloc_count++; return __real_malloc(n); }
+void *__wrap_calloc(size_t n, size_t k) { alloc_count++; return __real_calloc(n, k); }
+void *__wrap_realloc(void *p, size_t n) { alloc_count++; return __real_realloc(p, n); }
 int failures;
 char logbuf[65536];
 

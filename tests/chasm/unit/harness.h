@@ -10,6 +10,7 @@
 
 extern const char *plugin_dir;
 extern int failures;
+extern long alloc_count; /* allocations so far (malloc, calloc, realloc) */
 extern char logbuf[65536];
 
 #define CHECK(cond)                                                                     \

@@ -429,7 +429,35 @@ static void one_writer_branches_ok(void)
               "and 'set' in state 'a/b'");
 }
 
+/* Stepping (actions, tests, transitions, entries and exits, plugin calls)
+ * allocates nothing: everything was built at load. */
+static void step_does_not_allocate(void)
+{
+    chasm_machine *m = load_plan("use test_basic\n" IO "output test.out : double m\nvar c : int\n"
+                                 "test hi : x > 1 m\ntest lo : x < 1 m for 0.2 s\n"
+                                 "state a {\n do hold(value = 2 m)\n do count_to(n = 1000, count = c) every 0.3 s\n"
+                                 " do trace(tag = \"a\") on exit\n when hi -> b\n"
+                                 " state a1 {\n  test t : age x > 1 s\n  when t -> resume deep a\n }\n}\n"
+                                 "state b {\n when lo -> a\n}\n");
+    if (!m) return;
+    chasm_start(m, 0);
+    long before = alloc_count;
+    CHECK(before > 0); /* the wrapper does see the loader allocate */
+    for (int k = 0; k < 2000; k++) {
+        set_d(m, "x", (k / 7) % 2 ? 2.0 : 0.0, k * 0.1);
+        chasm_step(m, (int64_t)k * 100000 + 100000);
+        chasm_status st;
+        chasm_status_get(m, (int64_t)k * 100000, &st);
+    }
+    chasm_status st;
+    chasm_status_get(m, 0, &st);
+    CHECK(st.last_transition_us > 100000000); /* it kept moving */
+    CHECK(alloc_count == before);
+    chasm_free(m);
+}
+
 const unit_test semantics_tests[] = {
+    {"step_does_not_allocate", step_does_not_allocate},
     {"priority_outer_first", priority_outer_first},
     {"priority_declaration_order", priority_declaration_order},
     {"exit_entry_order_through_lca", exit_entry_order_through_lca},
