@@ -1,0 +1,197 @@
+"""The world's environment: currents, waves, bathymetry, sound speed, LBL.
+
+Everything here is a deterministic function of (time, position, seed), built
+from exactly the parameters that auv.env_model_t carries. Why: any simulator
+can serve the environment, and a client that takes over the server role after
+a failover continues it from the same parameters without a jump, because no
+hidden state (no integrated random walk) is involved.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from sim.bathymetry import Bathymetry
+
+G = 9.81
+# Spatial wavelength of the slow current variation [m]: large against a
+# vehicle's range, so the variation reads as "the tide turning".
+CURRENT_VARIATION_WAVELENGTH_M = 10_000.0
+WAVE_COMPONENTS = (0.8, 0.9, 1.0, 1.15, 1.3, 1.5)  # frequencies / peak frequency
+
+
+@dataclass
+class CurrentLayer:
+    depth_m: float
+    north_mps: float
+    east_mps: float
+    down_mps: float = 0.0
+
+
+@dataclass
+class Transponder:
+    id: int
+    north_m: float
+    east_m: float
+    depth_m: float
+    turnaround_s: float = 0.0
+
+
+@dataclass
+class EnvParams:
+    world: str = "default"
+    seed: int = 1
+    origin_latitude_deg: float = 41.52
+    origin_longitude_deg: float = -70.67
+    current: list[CurrentLayer] = field(default_factory=list)
+    current_variation_mps: float = 0.0
+    current_variation_period_s: float = 43200.0
+    wave_height_m: float = 0.0
+    wave_period_s: float = 8.0
+    wave_direction_rad: float = 0.0
+    bathymetry_ref: str = "flat:depth=50"
+    sound_speed_mps: float = 1500.0
+    sound_speed_gradient_per_m: float = 0.0
+    transponders: list[Transponder] = field(default_factory=list)
+
+
+def _pm_weight(ratio: float) -> float:
+    """Pierson-Moskowitz spectral shape at omega/omega_peak (peak = 1)."""
+    return ratio ** -5 * math.exp(-1.25 * ratio ** -4)
+
+
+class Environment:
+    def __init__(self, params: EnvParams, base_dir: Path | None = None) -> None:
+        self.params = params
+        p = params
+        layers = sorted(p.current, key=lambda c: c.depth_m)
+        self._layers = [(c.depth_m, c.north_mps, c.east_mps, c.down_mps) for c in layers]
+        self.bathymetry = Bathymetry(p.bathymetry_ref, base_dir)
+        # seeded, fixed phases: the same seed gives the same sea everywhere
+        rng = random.Random(f"{p.seed}:env")
+        self._var_phase = rng.uniform(0.0, 2.0 * math.pi)
+        self._var_dir = rng.uniform(0.0, 2.0 * math.pi)
+        self._waves: list[tuple[float, float, float, float]] = []
+        if p.wave_height_m > 0.0 and p.wave_period_s > 0.0:
+            wp = 2.0 * math.pi / p.wave_period_s
+            weights = [_pm_weight(r) for r in WAVE_COMPONENTS]
+            total = sum(weights)
+            # sum a_i^2 = Hs^2 / 8, so 4 sqrt(m0) = Hs
+            for r, wgt in zip(WAVE_COMPONENTS, weights):
+                a = math.sqrt(p.wave_height_m ** 2 / 8.0 * wgt / total)
+                w = wp * r
+                self._waves.append((a, w, w * w / G, rng.uniform(0.0, 2.0 * math.pi)))
+        self._wave_cos = math.cos(p.wave_direction_rad)
+        self._wave_sin = math.sin(p.wave_direction_rad)
+
+    # ------------------------------------------------------------- currents
+    def current_profile(self, depth: float) -> tuple[float, float, float]:
+        ls = self._layers
+        if not ls:
+            return 0.0, 0.0, 0.0
+        if depth <= ls[0][0]:
+            return ls[0][1], ls[0][2], ls[0][3]
+        for (d0, n0, e0, w0), (d1, n1, e1, w1) in zip(ls, ls[1:]):
+            if depth <= d1:
+                f = (depth - d0) / (d1 - d0) if d1 > d0 else 1.0
+                return n0 + f * (n1 - n0), e0 + f * (e1 - e0), w0 + f * (w1 - w0)
+        return ls[-1][1], ls[-1][2], ls[-1][3]
+
+    def current(self, t: float, north: float, east: float, depth: float) -> tuple[float, float, float]:
+        """Water velocity (NED) from the profile, the slow variation and the waves."""
+        cn, ce, cd = self.current_profile(depth)
+        p = self.params
+        if p.current_variation_mps != 0.0 and p.current_variation_period_s > 0.0:
+            s = north * math.cos(self._var_dir) + east * math.sin(self._var_dir)
+            amp = p.current_variation_mps * math.sin(
+                2.0 * math.pi * (t / p.current_variation_period_s + s / CURRENT_VARIATION_WAVELENGTH_M)
+                + self._var_phase)
+            cn += amp * math.cos(self._var_dir)
+            ce += amp * math.sin(self._var_dir)
+        if self._waves:
+            wh, wv = self.wave_orbital(t, north, east, depth)
+            cn += wh * self._wave_cos
+            ce += wh * self._wave_sin
+            cd += wv
+        return cn, ce, cd
+
+    # ---------------------------------------------------------------- waves
+    def wave_orbital(self, t: float, north: float, east: float, depth: float) -> tuple[float, float]:
+        """Deep-water orbital velocity: along the wave direction, and down [m/s]."""
+        s = north * self._wave_cos + east * self._wave_sin
+        d = max(depth, 0.0)
+        uh = uv = 0.0
+        for a, w, k, ph in self._waves:
+            decay = math.exp(-k * d)
+            if decay < 1e-4:
+                continue
+            th = k * s - w * t + ph
+            uh += a * w * decay * math.cos(th)
+            uv -= a * w * decay * math.sin(th)
+        return uh, uv
+
+    def wave_elevation(self, t: float, north: float, east: float) -> float:
+        """Sea-surface elevation, positive up [m]."""
+        s = north * self._wave_cos + east * self._wave_sin
+        return sum(a * math.cos(k * s - w * t + ph) for a, w, k, ph in self._waves)
+
+    # ------------------------------------------------------ seabed and sound
+    def water_depth(self, north: float, east: float) -> float:
+        return self.bathymetry.depth(north, east)
+
+    def sound_speed(self, depth: float) -> float:
+        p = self.params
+        return p.sound_speed_mps + p.sound_speed_gradient_per_m * depth
+
+    def mean_sound_speed(self, depth_a: float, depth_b: float) -> float:
+        """Mean speed along a straight path between two depths (linear profile)."""
+        return self.sound_speed(0.5 * (depth_a + depth_b))
+
+    # ------------------------------------------------------ env_model_t I/O
+    def to_env_model(self, utime: int, server_id: str = "", term: int = 0):
+        from auv import current_layer_t, env_model_t, lbl_transponder_t
+
+        p = self.params
+        m = env_model_t()
+        m.utime, m.server_id, m.term, m.world, m.seed = utime, server_id, term, p.world, p.seed
+        m.origin_latitude_deg, m.origin_longitude_deg = p.origin_latitude_deg, p.origin_longitude_deg
+        m.current = []
+        for c in p.current:
+            layer = current_layer_t()
+            layer.depth_m, layer.north_mps, layer.east_mps, layer.down_mps = (
+                c.depth_m, c.north_mps, c.east_mps, c.down_mps)
+            m.current.append(layer)
+        m.n_current_layers = len(m.current)
+        m.current_variation_mps = p.current_variation_mps
+        m.current_variation_period_s = p.current_variation_period_s
+        m.wave_height_m, m.wave_period_s, m.wave_direction_rad = (
+            p.wave_height_m, p.wave_period_s, p.wave_direction_rad)
+        m.bathymetry_ref, m.bathymetry_sha256 = p.bathymetry_ref, self.bathymetry.sha256
+        m.sound_speed_mps, m.sound_speed_gradient_per_m = (
+            p.sound_speed_mps, p.sound_speed_gradient_per_m)
+        m.transponders = []
+        for tr in p.transponders:
+            x = lbl_transponder_t()
+            x.id, x.north_m, x.east_m, x.depth_m, x.turnaround_s = (
+                tr.id, tr.north_m, tr.east_m, tr.depth_m, tr.turnaround_s)
+            m.transponders.append(x)
+        m.n_transponders = len(m.transponders)
+        return m
+
+    @staticmethod
+    def params_from_env_model(m) -> EnvParams:
+        return EnvParams(
+            world=m.world, seed=m.seed,
+            origin_latitude_deg=m.origin_latitude_deg, origin_longitude_deg=m.origin_longitude_deg,
+            current=[CurrentLayer(c.depth_m, c.north_mps, c.east_mps, c.down_mps) for c in m.current],
+            current_variation_mps=m.current_variation_mps,
+            current_variation_period_s=m.current_variation_period_s,
+            wave_height_m=m.wave_height_m, wave_period_s=m.wave_period_s,
+            wave_direction_rad=m.wave_direction_rad, bathymetry_ref=m.bathymetry_ref,
+            sound_speed_mps=m.sound_speed_mps,
+            sound_speed_gradient_per_m=m.sound_speed_gradient_per_m,
+            transponders=[Transponder(t.id, t.north_m, t.east_m, t.depth_m, t.turnaround_s)
+                          for t in m.transponders])
