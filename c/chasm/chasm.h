@@ -47,6 +47,8 @@ typedef struct {
     /* Messages from plugins and the engine (state entered, hot plug); may be NULL. */
     void (*log)(void *user, int64_t now_us, const char *state_path, const char *message);
     void *log_user;
+    /* chasm_load_string only: folder that relative `include`s start from. */
+    const char *base_dir;
 } chasm_options;
 
 /* Load: on any error returns NULL and, if errors != NULL, every error found. */

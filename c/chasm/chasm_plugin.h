@@ -47,7 +47,7 @@ typedef struct {
                                 the default variable name, e.g. "setpoint.heading" */
     int has_range;           /* 1: min <= value <= max is checked at load */
     double min, max;
-    const char *doc;         /* one line, shown by `chasm check --describe` */
+    const char *doc;         /* one line, shown by `chasm describe` */
 } chasm_param_spec;
 
 typedef struct chasm_ctx chasm_ctx;

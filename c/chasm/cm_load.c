@@ -76,7 +76,7 @@ static chasm_machine *load(const char *path, const char *name, const char *text,
     } else {
         pc.stack[0] = name;
         pc.depth = 1;
-        cm_parse_text(&pc, cm_strdup(&m->arena, name), "", text, len, NULL);
+        cm_parse_text(&pc, cm_strdup(&m->arena, name), opt && opt->base_dir ? opt->base_dir : "", text, len, NULL);
         pc.depth = 0;
         m->plan_name = cm_strdup(&m->arena, name);
     }

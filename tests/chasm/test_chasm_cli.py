@@ -130,3 +130,14 @@ def test_run_inputs_errors(chasm, tmp_path):
 def test_usage(chasm):
     p = chasm("frobnicate")
     assert p.returncode == 2 and "usage:" in p.stderr
+
+
+def test_describe_plugin(chasm):
+    p = chasm("describe", "-P", chasm.plugins, "test_basic")
+    assert p.returncode == 0, p.stderr
+    assert p.stdout.splitlines()[0].startswith("plugin test_basic 1.0.0 (")
+    assert "  behavior hold: hold a value" in p.stdout
+    assert "value          double m      required, range [-100, 100]  # depth to hold" in p.stdout
+    assert "  test handler above: x > limit" in p.stdout
+    p = chasm("describe", "-P", chasm.plugins, "test_nosym")
+    assert p.returncode == 1 and "does not export 'chasm_plugin'" in p.stderr

@@ -2,6 +2,7 @@
  *
  *   chasm check [-P DIR] [-D name=value] PLAN...
  *   chasm dot   [-P DIR] [-D name=value] PLAN
+ *   chasm describe [-P DIR] PLUGIN...
  *   chasm run   [-P DIR] [-D name=value] PLAN --inputs FILE [--dt T] [--until T]
  *               [--watch VAR]... [--hotplug T:FILE]... [--expect PATH] [--trace]
  *
@@ -11,6 +12,7 @@
 #include <string.h>
 
 #include "chasm/chasm.h"
+#include "chasm_describe.h"
 #include "chasm_inputs.h"
 
 #define MAXN 64
@@ -37,6 +39,7 @@ static int usage(void)
 {
     fputs("usage: chasm check [options] PLAN...\n"
           "       chasm dot [options] PLAN\n"
+          "       chasm describe [options] PLUGIN...   (behaviors and parameters of a plugin)\n"
           "       chasm run [options] PLAN --inputs FILE [--dt SECONDS] [--until SECONDS]\n"
           "                 [--watch VAR]... [--hotplug SECONDS:PLUGIN.so]... [--expect STATE/PATH] [--trace]\n"
           "options: -P, --plugin-path DIR   where plugins are found (also $CHASM_PLUGIN_PATH)\n"
@@ -284,6 +287,9 @@ int main(int argc, char **argv)
                 chasm_free(m);
             }
         }
+    } else if (!strcmp(argv[1], "describe")) {
+        if (!a.n_plans) rc = usage();
+        for (size_t i = 0; i < a.n_plans; i++) rc |= chasm_describe(a.dirs, a.n_dirs, a.plans[i]);
     } else if (!strcmp(argv[1], "run")) {
         rc = cmd_run(&a);
     } else rc = usage();
