@@ -1,0 +1,71 @@
+"""Command line: `python -m sim CONFIG.yaml [options]`, `python -m sim validate`."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+# run from a checkout without installing: python/ and the generated types
+_ROOT = Path(__file__).resolve().parents[2]
+_HERE = str(Path(__file__).resolve().parent)
+# `python python/sim ...` puts python/sim itself first on sys.path, where its
+# module names could shadow others: replace it by python/.
+sys.path[:] = [p for p in sys.path if str(Path(p or ".").resolve()) != _HERE]
+for _p in (_ROOT / "python",):
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+import auvlcm  # noqa: E402,F401  (puts build/gen/python on sys.path)
+
+
+def main(argv: list[str] | None = None) -> int:
+    argv = sys.argv[1:] if argv is None else argv
+    if argv and argv[0] == "validate":
+        from sim.validation import main as vmain
+        return vmain(argv[1:])
+    ap = argparse.ArgumentParser(prog="python -m sim",
+                                 description="CHASM-AUV vehicle simulator (one vehicle, over LCM). "
+                                 "`python -m sim validate` prints the validation report.")
+    ap.add_argument("config", help="simulator configuration (YAML), e.g. missions/sim/remus100.yaml")
+    ap.add_argument("--clock", choices=("realtime", "scaled", "stepped"), help="override simulation.clock")
+    ap.add_argument("--warp", type=float, help="override simulation.warp (scaled mode)")
+    ap.add_argument("--fast", action="store_true", help="scaled mode as fast as the CPU allows")
+    ap.add_argument("--duration", type=float, help="stop after this many sim seconds")
+    ap.add_argument("--lcm-url", help="override simulation.lcm_url (ttl=0 only)")
+    ap.add_argument("--check", action="store_true", help="check the configuration and exit")
+    args = ap.parse_args(argv)
+
+    from sim.config import ConfigError, load
+    try:
+        cfg = load(args.config)
+    except ConfigError as exc:
+        for line in exc.errors:
+            print(line, file=sys.stderr)
+        print(f"{args.config}: {len(exc.errors)} error(s)", file=sys.stderr)
+        return 2
+    if args.clock:
+        cfg.sim.clock = args.clock
+    if args.warp is not None:
+        if args.warp <= 0:
+            ap.error("--warp must be > 0")
+        cfg.sim.warp = args.warp
+    if args.fast:
+        cfg.sim.clock = "scaled"
+    if args.duration is not None:
+        cfg.sim.duration_s = args.duration
+    if args.lcm_url:
+        cfg.sim.lcm_url = args.lcm_url
+    if args.check:
+        print(f"{args.config}: ok (vehicle {cfg.vehicle_id}, {len(cfg.sensors)} sensors configured)")
+        return 0
+    from sim.hil import Simulator
+    try:
+        sim = Simulator(cfg, fast=args.fast)
+    except ValueError as exc:
+        print(f"sim: {exc}", file=sys.stderr)
+        return 2
+    return sim.run()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

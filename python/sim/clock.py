@@ -1,0 +1,48 @@
+"""Clock modes: real time, scaled (warp), stepped by an external global clock.
+
+The simulator never reads the wall clock for its physics: sim time is the
+count of physics steps times dt. The wall clock only paces those steps in
+real-time and scaled modes; in stepped mode the pace comes from SIM.CLOCK.
+"""
+
+from __future__ import annotations
+
+import time
+
+
+class Pacer:
+    """When the next physics step may run, in wall time (monotonic)."""
+
+    def __init__(self, mode: str, warp: float, dt: float, fast: bool = False) -> None:
+        self.mode = mode
+        self.warp = 1.0 if mode == "realtime" else warp
+        self.dt = dt
+        self.fast = fast            # scaled, as fast as the CPU allows
+        self.wall0 = time.monotonic()
+        self.sim0 = 0.0
+        self.target_t: float | None = None   # stepped: advance up to here
+        self.late_steps = 0         # steps that ran behind their wall deadline
+
+    def restart(self, sim_t: float) -> None:
+        self.wall0 = time.monotonic()
+        self.sim0 = sim_t
+
+    def wall_deadline(self, sim_t: float) -> float:
+        """Wall time (monotonic) at which sim time sim_t is due."""
+        return self.wall0 + (sim_t - self.sim0) / self.warp
+
+    def may_step(self, sim_t: float, now: float) -> bool:
+        """Whether the step that ends at sim_t + dt may run now."""
+        if self.mode == "stepped":
+            return self.target_t is not None and sim_t + 0.5 * self.dt <= self.target_t
+        if self.fast:
+            return True
+        return now >= self.wall_deadline(sim_t + self.dt)
+
+    def wait_s(self, sim_t: float, now: float) -> float:
+        """How long to wait for LCM traffic before the next step is due."""
+        if self.mode == "stepped":
+            return 0.1
+        if self.fast:
+            return 0.0
+        return max(0.0, self.wall_deadline(sim_t + self.dt) - now)
