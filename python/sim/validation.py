@@ -116,7 +116,7 @@ def steady_dive(vp: VehicleParams = REMUS100, pitch: float = math.radians(-10.0)
 def buoyant_ascent(vp: VehicleParams = REMUS100) -> dict:
     """Prop stopped at 20 m: the vehicle rises; terminal rate vs drag balance."""
     m = _model(vp, 20.0, 0.0, 0.0)
-    h = _fly(m, 60.0, rudder=0.0, rpm=0.0)
+    h = _fly(m, 120.0, rudder=0.0, rpm=0.0)
     mid = h[(h[:, 3] < 15.0) & (h[:, 3] > 5.0)]
     rate = float(-np.mean(np.gradient(mid[:, 3], mid[:, 0]))) if len(mid) > 2 else 0.0
     expected = math.sqrt((vp.buoyancy_n - vp.weight_n) / -vp.hydro["Zww"])

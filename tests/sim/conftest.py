@@ -1,0 +1,1 @@
+"""tests/sim shares the top-level fixtures (tests/conftest.py)."""
