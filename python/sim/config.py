@@ -402,7 +402,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
                             f"unknown environment variable {v!r}; one of {', '.join(ENV_VARIABLES)}")
     safe = _fill(doc, get("safe_command"), "safe_command", Command())
     if doc.errors:
-        raise ConfigError(sorted(doc.errors, key=_position))
+        raise ConfigError(sorted(dict.fromkeys(doc.errors), key=_position))
     if sim.seed < 0:
         sim.seed = env.seed
     if not mh.client_id:

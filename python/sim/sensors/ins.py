@@ -49,6 +49,8 @@ class Ins(Sensor):
         self.head_walk = 0.0
         self.last_t: float | None = None
         self.pos_var = cfg.gps_sigma_m ** 2
+        self.dist = 0.0          # distance travelled since the last fix [m]
+        self.t_since_fix = 0.0
 
     def measure(self, tr: Truth):
         c = self.cfg
@@ -69,12 +71,19 @@ class Ins(Sensor):
             rw = c.position_random_walk * math.sqrt(dt)
             self.err_n += dn + self.gauss(rw)
             self.err_e += de + self.gauss(rw)
-            self.pos_var += (dn * dn + de * de) + 2.0 * rw * rw + (
-                (math.hypot(vn, ve) * dt) ** 2 * (c.bias ** 2 + c.velocity_scale_error ** 2))
+            self.dist += math.hypot(vn, ve) * dt
+            self.t_since_fix += dt
         if surfaced and c.gps_aiding:
             self.err_n = self.gauss(c.gps_sigma_m)
             self.err_e = self.gauss(c.gps_sigma_m)
-            self.pos_var = c.gps_sigma_m ** 2
+            self.dist = 0.0
+            self.t_since_fix = 0.0
+        # the 1-sigma a real filter would claim: the fix's error plus the
+        # dead-reckoning drift since (heading and scale errors grow with
+        # distance, the random walk with time)
+        frac2 = c.bias ** 2 + c.velocity_scale_error ** 2 + c.heading_random_walk ** 2 * self.t_since_fix
+        self.pos_var = (c.gps_sigma_m ** 2 + frac2 * self.dist ** 2
+                        + c.position_random_walk ** 2 * self.t_since_fix)
         m = nav_solution_t()
         m.utime, m.vehicle, m.source = utime(tr.t), self.vehicle, nav_solution_t.SOURCE_SIM_INS
         status = nav_solution_t.STATUS_ALIGNED
