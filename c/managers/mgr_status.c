@@ -1,0 +1,46 @@
+#include "managers/mgr_status.h"
+
+#include <stdio.h>
+#include <string.h>
+
+#include "auv/auv_chasm_status_t.h"
+
+void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan)
+{
+    s->vehicle = vehicle;
+    s->manager = manager;
+    const char *slash = strrchr(plan, '/');
+    s->plan = slash ? slash + 1 : plan;
+    snprintf(s->channel, sizeof s->channel, "%s.CHASM.%s", vehicle, manager);
+}
+
+void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
+                        int64_t decode_errors, double cycle_cost_us)
+{
+    chasm_status st;
+    chasm_status_get(m, now_us, &st);
+    auv_chasm_status_t msg;
+    memset(&msg, 0, sizeof msg);
+    msg.utime = now_us;
+    msg.vehicle = (char *)s->vehicle;
+    msg.manager = (char *)s->manager;
+    msg.plan = (char *)s->plan;
+    msg.run_state = (int8_t)st.run_state;
+    msg.cycle = st.cycle;
+    msg.path_len = (int16_t)st.path_len;
+    msg.active_path = (char **)st.active_path;
+    msg.time_in_state_s = st.time_in_state_s;
+    msg.last_transition_utime = st.last_transition_us;
+    msg.last_from = (char *)(st.last_from ? st.last_from : "");
+    msg.last_to = (char *)(st.last_to ? st.last_to : "");
+    msg.last_condition = (char *)(st.last_condition ? st.last_condition : "");
+    msg.n_tests = (int16_t)st.n_tests;
+    msg.test_name = (char **)st.test_name;
+    int8_t values[CHASM_STATUS_MAX_TESTS];
+    for (int i = 0; i < st.n_tests; i++)
+        values[i] = st.test_value[i];
+    msg.test_value = values;
+    msg.decode_errors = (int32_t)decode_errors;
+    msg.cycle_cost_us = cycle_cost_us;
+    auv_chasm_status_t_publish(lcm, s->channel, &msg);
+}

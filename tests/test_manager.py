@@ -1,0 +1,214 @@
+"""The generic manager runs a CHASM over real LCM: inputs bound from messages,
+outputs published each cycle on the driven mission clock, status for lcm-spy,
+decode errors counted, mission commands and plugin uploads acknowledged, and a
+clean exit on SIGTERM."""
+
+from __future__ import annotations
+
+import hashlib
+import signal
+import subprocess
+from pathlib import Path
+
+import lcm
+import pytest
+
+from auv import (chasm_status_t, mission_ack_t, mission_command_t, nav_solution_t,
+                 plugin_upload_t, setpoint_t, sim_clock_t)
+from auvlcm.rx import Receiver
+from conftest import ROOT, c_program
+from lcm_proc import pump, stop
+
+HERE = ROOT / "tests" / "managers"
+
+
+class World:
+    """Drives SIM.CLOCK and AUV1.NAV, and records what the manager publishes."""
+
+    def __init__(self, url: str) -> None:
+        self.lc = lcm.LCM(url)
+        self.rx = Receiver(self.lc)
+        self.setpoints: list = []
+        self.status: list = []
+        self.acks: list = []
+        self.rx.subscribe("AUV1.SETPOINT", setpoint_t, lambda c, m: self.setpoints.append(m), 1000)
+        self.rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, lambda c, m: self.status.append(m), 1000)
+        self.rx.subscribe("AUV1.MISSION_ACK", mission_ack_t, lambda c, m: self.acks.append(m), 100)
+        self.utime = 0
+
+    def tick(self, dt_s: float, depth: float | None = None) -> None:
+        """Advance the global clock (and send a NAV fix valid at that time)."""
+        self.utime += int(dt_s * 1e6)
+        if depth is not None:
+            nav = nav_solution_t()
+            nav.utime, nav.vehicle, nav.depth_m = self.utime, "AUV1", depth
+            self.lc.publish("AUV1.NAV", nav.encode())
+        clock = sim_clock_t()
+        clock.utime, clock.server_id, clock.step_us = self.utime, "test", int(dt_s * 1e6)
+        self.lc.publish("SIM.CLOCK", clock.encode())
+        n = len(self.status)
+        due = not self.status or self.utime - self.status[-1].utime >= 100_000
+        pump(self.lc, lambda: len(self.status) > n, timeout=0.3 if due else 0.01)
+
+    def command(self, cmd: int, seq: int, **fields) -> mission_ack_t:
+        msg = mission_command_t()
+        msg.utime, msg.vehicle, msg.seq, msg.command = self.utime, "AUV1", seq, cmd
+        for k, v in fields.items():
+            setattr(msg, k, v)
+        self.lc.publish("AUV1.MISSION_CMD", msg.encode())
+        assert pump(self.lc, lambda: any(a.seq == seq for a in self.acks), timeout=5), f"no ack {seq}"
+        return next(a for a in self.acks if a.seq == seq)
+
+    def leaf(self) -> str:
+        return self.status[-1].active_path[-1]
+
+
+def start_manager(url, env, sanitized=False, plan="dive.chasm", extra=()):
+    return subprocess.Popen(
+        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / plan, "--bind", HERE / "vehicle.bind",
+         "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim", "--url", url, *extra],
+        env=env, stderr=subprocess.PIPE, text=True)
+
+
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_manager_flies_the_plan_on_the_driven_clock(lcm_url, child_env, sanitized):
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env, sanitized)
+    try:
+        for _ in range(50):  # the manager subscribes at start: wait for its first status
+            w.tick(0.05, depth=0.0)
+            if w.status:
+                break
+        assert w.status, "the manager never ran a cycle"
+        assert w.leaf() == "dive"
+        assert w.setpoints[-1].depth_m == 10.0 and w.setpoints[-1].speed_mps == 1.5
+        assert w.setpoints[-1].vehicle == "AUV1"
+        for i in range(20):
+            w.tick(0.05, depth=0.5 * i)
+        assert w.leaf() == "hold" and w.setpoints[-1].speed_mps == 1.0
+        last = w.status[-1]
+        assert last.last_condition == "deep" and last.last_from == "dive" and last.last_to == "hold"
+        assert dict(zip(last.test_name, last.test_value))["deep"] is True
+        # Cycles run every 0.1 s of mission time: every second 0.05 s tick.
+        times = [s.utime for s in w.status[-10:]]
+        assert all(b - a == 100_000 for a, b in zip(times, times[1:])), times
+        # A message that fails to decode is counted, and the mission goes on.
+        w.lc.publish("AUV1.NAV", b"\x00" * 12)
+        for _ in range(50):
+            w.tick(0.05, depth=9.0)
+        assert w.status[-1].decode_errors == 1
+        assert w.leaf() == "finish" and w.setpoints[-1].depth_m == 0.0
+        assert w.status[-1].time_in_state_s[-1] == pytest.approx(0.5 * 50 * 0.1 - 2.0, abs=0.31)
+    finally:
+        rc = stop(mgr, signal.SIGTERM)
+    err = mgr.stderr.read()
+    assert rc == 0, err
+    assert "NAVIGATOR: stopped" in err
+
+
+def test_stale_input_aborts_through_the_plan(lcm_url, child_env):
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env)
+    try:
+        for _ in range(50):
+            w.tick(0.05, depth=0.0)
+            if w.status:
+                break
+        for _ in range(80):  # 4 s with a clock but no navigation
+            w.tick(0.05)
+        assert w.leaf() == "surface"
+        assert w.status[-1].last_condition == "stale"
+        assert w.setpoints[-1].vertical_mode == setpoint_t.VERTICAL_PITCH
+    finally:
+        assert stop(mgr, signal.SIGINT) == 0
+
+
+def test_mission_commands_are_acknowledged(lcm_url, child_env):
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env)
+    try:
+        for _ in range(50):
+            w.tick(0.05, depth=0.0)
+            if w.status:
+                break
+        assert w.command(mission_command_t.CMD_PAUSE, 1).result == mission_ack_t.RESULT_OK
+        w.tick(0.1, depth=0.0)
+        assert w.status[-1].run_state == chasm_status_t.RUN_PAUSED
+        assert w.command(mission_command_t.CMD_RESUME, 2).message == "resumed"
+        w.tick(0.1, depth=0.0)
+        assert w.status[-1].run_state == chasm_status_t.RUN_RUNNING
+        assert w.command(mission_command_t.CMD_ABORT, 3, reason="test").message == "aborting"
+        w.tick(0.1, depth=0.0)
+        assert w.leaf() == "surface"
+        bad = (HERE / "dive.chasm").read_text().replace("nav.depth_m >", "nav.depht_m >")
+        ack = w.command(mission_command_t.CMD_LOAD_PLAN, 4, plan_name="bad.chasm", plan_text=bad)
+        assert ack.result == mission_ack_t.RESULT_REJECTED
+        w.tick(0.1, depth=0.0)
+        assert w.leaf() == "surface", "a rejected plan must leave the mission untouched"
+        good = (HERE / "dive.chasm").read_text()
+        assert w.command(mission_command_t.CMD_LOAD_PLAN, 5, plan_name="new.chasm",
+                         plan_text=good).result == mission_ack_t.RESULT_OK
+        w.tick(0.1, depth=0.0)
+        w.tick(0.1, depth=0.0)
+        assert w.leaf() == "dive"
+        assert w.command(mission_command_t.CMD_STOP, 6).message == "stopping"
+        assert mgr.wait(10) == 0
+    finally:
+        stop(mgr)
+
+
+def test_plugin_uploads_are_checked_before_anything_is_written(lcm_url, child_env, tmp_path):
+    plugin_dir = tmp_path / "plugins"
+    plugin_dir.mkdir()
+    allow = tmp_path / "allowlist"
+    data = b"\x7fELF not really a plugin"
+    allow.write_text(hashlib.sha256(data).hexdigest() + " fake\n")
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env, extra=["--plugin-dir", plugin_dir, "--allowlist", allow])
+    try:
+        for _ in range(50):
+            w.tick(0.05, depth=0.0)
+            if w.status:
+                break
+
+        def upload(seq: int, payload: bytes, digest: str) -> mission_ack_t:
+            up = plugin_upload_t()
+            up.utime, up.vehicle, up.seq, up.plugin_name, up.plugin_version = w.utime, "AUV1", seq, "fake", "1"
+            up.sha256_hex, up.n_bytes, up.data = digest, len(payload), payload
+            w.lc.publish("AUV1.PLUGIN_UPLOAD", up.encode())
+            assert pump(w.lc, lambda: any(a.seq == seq for a in w.acks), timeout=5)
+            return next(a for a in w.acks if a.seq == seq)
+
+        ack = upload(10, data, "0" * 64)
+        assert ack.result == mission_ack_t.RESULT_REJECTED and "does not match" in ack.message
+        other = b"another file"
+        ack = upload(11, other, hashlib.sha256(other).hexdigest())
+        assert ack.result == mission_ack_t.RESULT_REJECTED and "allowlist" in ack.message
+        assert list(plugin_dir.iterdir()) == []
+        ack = upload(12, data, hashlib.sha256(data).hexdigest())  # allowed, but not a plugin
+        assert ack.result == mission_ack_t.RESULT_FAILED and "mission unchanged" in ack.message
+        w.tick(0.1, depth=0.0)
+        assert w.leaf() == "dive"
+    finally:
+        assert stop(mgr, signal.SIGTERM) == 0
+
+
+@pytest.mark.parametrize("plan_edit,error", [
+    (("nav.depth_m > 5", "nav.depht_m > 5"), None),
+    (("input  nav.vehicle        : string", "input  nav.vehicle : string\ninput nav.depht_m : double m"),
+     "vehicle.bind:2:1: plan variable 'nav.depht_m': nav_solution_t has no field 'depht_m' (did you mean 'depth_m'?)"),
+    (("input  nav.vehicle        : string", "input  nav.vehicle : string\noutput gps.fix_m : double m"),
+     "plan output 'gps.fix_m' has no binding"),
+    (("input  nav.vehicle        : string", "input  nav.status        : string"),
+     "plan variable 'nav.status' is a string but the field is a number"),
+])
+def test_plans_and_bindings_that_do_not_fit_are_refused(tmp_path, lcm_url, child_env, plan_edit, error):
+    text = (HERE / "dive.chasm").read_text()
+    assert plan_edit[0] in text
+    plan = tmp_path / "p.chasm"
+    plan.write_text(text.replace(*plan_edit))
+    run = subprocess.run([c_program("bin/chasm-manager"), "--plan", plan, "--bind", HERE / "vehicle.bind",
+                          "--vehicle", "AUV1", "--name", "NAVIGATOR", "--url", lcm_url],
+                         env=child_env, capture_output=True, text=True, timeout=20)
+    assert run.returncode == 1
+    assert (error or "p.chasm:") in run.stderr
