@@ -117,6 +117,8 @@ class Simulator:
             self._next = {k: t for k in self._next}
             for sen in self.sensors:
                 sen.next_t = t + sen.cfg.phase_s
+            self._t_start = t
+            self._outputs()
         self.pacer.target_t = t
 
     # -------------------------------------------------------------- output
@@ -212,7 +214,8 @@ class Simulator:
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
               f"sensors={','.join(s.name for s in self.sensors)} "
               f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
-        self._outputs()
+        if cfg.sim.clock != "stepped":
+            self._outputs()   # stepped: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps

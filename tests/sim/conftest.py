@@ -1,1 +1,0 @@
-"""tests/sim shares the top-level fixtures (tests/conftest.py)."""
