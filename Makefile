@@ -153,7 +153,8 @@ spy: $(TYPES_JAR)
 	CLASSPATH=$(abspath $(TYPES_JAR)) $(LCM_BIN)/lcm-spy --lcm-url='$(LCM_URL)'
 
 bench: build
-	@for b in $(sort $(wildcard bench/*.py)); do echo "== $$b"; $(VPY) $$b || exit 1; done
+	@for b in $(sort $(wildcard bench/*.py)); do echo "== $$b"; \
+	  tests/isolated_net.sh --only-if-needed $(VPY) $$b || exit 1; done
 
 clean:
 	rm -rf $(BUILD)

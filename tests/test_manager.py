@@ -59,6 +59,14 @@ class World:
         assert pump(self.lc, lambda: any(a.seq == seq for a in self.acks), timeout=5), f"no ack {seq}"
         return next(a for a in self.acks if a.seq == seq)
 
+    def wait_for_first_cycle(self) -> None:
+        """Tick until the manager (which subscribes at start) runs its first cycle."""
+        for _ in range(50):
+            self.tick(0.05, depth=0.0)
+            if self.status:
+                return
+        raise AssertionError("the manager never ran a cycle")
+
     def leaf(self) -> str:
         return self.status[-1].active_path[-1]
 
@@ -75,11 +83,7 @@ def test_manager_flies_the_plan_on_the_driven_clock(lcm_url, child_env, sanitize
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env, sanitized)
     try:
-        for _ in range(50):  # the manager subscribes at start: wait for its first status
-            w.tick(0.05, depth=0.0)
-            if w.status:
-                break
-        assert w.status, "the manager never ran a cycle"
+        w.wait_for_first_cycle()
         assert w.leaf() == "dive"
         assert w.setpoints[-1].depth_m == 10.0 and w.setpoints[-1].speed_mps == 1.5
         assert w.setpoints[-1].vehicle == "AUV1"
@@ -110,10 +114,7 @@ def test_stale_input_aborts_through_the_plan(lcm_url, child_env):
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env)
     try:
-        for _ in range(50):
-            w.tick(0.05, depth=0.0)
-            if w.status:
-                break
+        w.wait_for_first_cycle()
         for _ in range(80):  # 4 s with a clock but no navigation
             w.tick(0.05)
         assert w.leaf() == "surface"
@@ -127,10 +128,7 @@ def test_mission_commands_are_acknowledged(lcm_url, child_env):
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env)
     try:
-        for _ in range(50):
-            w.tick(0.05, depth=0.0)
-            if w.status:
-                break
+        w.wait_for_first_cycle()
         assert w.command(mission_command_t.CMD_PAUSE, 1).result == mission_ack_t.RESULT_OK
         w.tick(0.1, depth=0.0)
         assert w.status[-1].run_state == chasm_status_t.RUN_PAUSED
@@ -166,10 +164,7 @@ def test_plugin_uploads_are_checked_before_anything_is_written(lcm_url, child_en
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env, extra=["--plugin-dir", plugin_dir, "--allowlist", allow])
     try:
-        for _ in range(50):
-            w.tick(0.05, depth=0.0)
-            if w.status:
-                break
+        w.wait_for_first_cycle()
 
         def upload(seq: int, payload: bytes, digest: str) -> mission_ack_t:
             up = plugin_upload_t()

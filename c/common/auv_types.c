@@ -35,3 +35,15 @@ int64_t auv_fingerprint_of(const void *data, size_t len)
         v = (v << 8) | b[i];
     return (int64_t)v;
 }
+
+size_t auv_field_elem_size(lcm_field_type_t t)
+{
+    switch (t) {
+    case LCM_FIELD_INT8_T: case LCM_FIELD_BYTE: case LCM_FIELD_BOOLEAN: return 1;
+    case LCM_FIELD_INT16_T: return 2;
+    case LCM_FIELD_INT32_T: case LCM_FIELD_FLOAT: return 4;
+    case LCM_FIELD_INT64_T: case LCM_FIELD_DOUBLE: return 8;
+    case LCM_FIELD_STRING: return sizeof(char *);
+    default: return 0;
+    }
+}

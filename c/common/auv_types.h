@@ -28,6 +28,10 @@ const auv_type_entry_t *auv_type_find(const char *name);
 /* By the 8-byte fingerprint that starts every encoded message; NULL if unknown. */
 const auv_type_entry_t *auv_type_by_fingerprint(int64_t fingerprint);
 
+/* Bytes one element of a primitive field occupies in the C struct (a string
+ * is its char *); 0 for nested types. */
+size_t auv_field_elem_size(lcm_field_type_t t);
+
 /* The fingerprint at the start of an encoded message; 0 if len < 8. */
 int64_t auv_fingerprint_of(const void *data, size_t len);
 

@@ -32,18 +32,6 @@ size_t edit_distance(const char *a, const char *b)
     return row[lb];
 }
 
-static size_t elem_size(lcm_field_type_t t)
-{
-    switch (t) {
-    case LCM_FIELD_INT8_T: case LCM_FIELD_BYTE: case LCM_FIELD_BOOLEAN: return 1;
-    case LCM_FIELD_INT16_T: return 2;
-    case LCM_FIELD_INT32_T: case LCM_FIELD_FLOAT: return 4;
-    case LCM_FIELD_INT64_T: case LCM_FIELD_DOUBLE: return 8;
-    case LCM_FIELD_STRING: return sizeof(char *);
-    default: return 0;
-    }
-}
-
 int field_path_resolve(const auv_type_entry_t *type, const char *path, field_ref_t *out,
                        char *err, size_t errlen)
 {
@@ -107,7 +95,7 @@ int field_path_resolve(const auv_type_entry_t *type, const char *path, field_ref
                 snprintf(err, errlen, "'%s': index %ld out of range [0, %d)", path, idx, f.dim_size[d]);
                 rc = -1;
             } else {
-                size_t stride = elem_size(f.type);
+                size_t stride = auv_field_elem_size(f.type);
                 for (int k = d + 1; k < f.num_dim; k++)
                     stride *= (size_t)f.dim_size[k];
                 offset += (size_t)idx * stride;

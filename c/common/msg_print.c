@@ -3,18 +3,6 @@
 #include <inttypes.h>
 #include <string.h>
 
-static size_t prim_size(lcm_field_type_t t)
-{
-    switch (t) {
-    case LCM_FIELD_INT8_T: case LCM_FIELD_BYTE: case LCM_FIELD_BOOLEAN: return 1;
-    case LCM_FIELD_INT16_T: return 2;
-    case LCM_FIELD_INT32_T: case LCM_FIELD_FLOAT: return 4;
-    case LCM_FIELD_INT64_T: case LCM_FIELD_DOUBLE: return 8;
-    case LCM_FIELD_STRING: return sizeof(char *);
-    default: return 0;
-    }
-}
-
 static void print_prim(FILE *out, lcm_field_type_t t, const void *p)
 {
     switch (t) {
@@ -72,7 +60,7 @@ static void print_field(FILE *out, const char *prefix, const lcm_field_t *f, int
     }
     fprintf(out, "%s%s%s=", *first ? "" : " ", prefix, f->name);
     *first = 0;
-    size_t sz = prim_size(f->type);
+    size_t sz = auv_field_elem_size(f->type);
     for (size_t i = 0; i < n && base; i++) {
         if (i)
             fputc(',', out);
