@@ -80,9 +80,10 @@ def test_reader_counts_undecodable_events(tmp_path):
     log.write_event(1, "AUV1.DEPTH", good.encode())
     log.write_event(2, "AUV1.DEPTH", good.encode()[:-2])
     log.write_event(3, "OTHER", b"not an lcm message")
+    log.write_event(4, "LCM_SELF_TEST", b"lcm self test")  # liblcm's own: skipped
     log.close()
     stats = LogStats()
     events = list(read_events(path, stats))
     assert [e.msg is not None for e in events] == [True, False, False]
-    assert (stats.decoded, stats.undecodable) == (1, 2)
+    assert (stats.decoded, stats.undecodable, stats.internal) == (1, 2, 1)
     assert events[2].error == "unknown fingerprint"

@@ -21,9 +21,15 @@ class Event:
     error: str = ""
 
 
+# liblcm's udpm provider publishes this to itself when it starts; a logger on
+# the same URL may record it. It is not one of our messages: skip it.
+LCM_INTERNAL_CHANNELS = frozenset({"LCM_SELF_TEST"})
+
+
 @dataclass
 class LogStats:
     events: int = 0
+    internal: int = 0   # liblcm's own traffic, skipped
     decoded: int = 0
     undecodable: int = 0
     per_channel: Counter = field(default_factory=Counter)
@@ -34,6 +40,10 @@ def read_events(path: str | Path, stats: LogStats | None = None) -> Iterator[Eve
     log = lcm.EventLog(str(path), "r")
     try:
         for ev in log:
+            if ev.channel in LCM_INTERNAL_CHANNELS:
+                if stats is not None:
+                    stats.internal += 1
+                continue
             if stats is not None:
                 stats.events += 1
                 stats.per_channel[ev.channel] += 1
