@@ -9,23 +9,12 @@
 
 static int walk(const auv_type_entry_t *type, const uint8_t *buf, int len, int depth);
 
-static int prim_wire_size(lcm_field_type_t t)
-{
-    switch (t) {
-    case LCM_FIELD_INT8_T: case LCM_FIELD_BYTE: case LCM_FIELD_BOOLEAN: return 1;
-    case LCM_FIELD_INT16_T: return 2;
-    case LCM_FIELD_INT32_T: case LCM_FIELD_FLOAT: return 4;
-    case LCM_FIELD_INT64_T: case LCM_FIELD_DOUBLE: return 8;
-    default: return 0;
-    }
-}
-
 /* Store a decoded scalar integer in the scratch struct: later variable-length
  * arrays take their size from it through get_field(). */
 static void store_int(lcm_field_type_t t, const uint8_t *p, void *dst)
 {
     uint64_t v = 0;
-    int n = prim_wire_size(t);
+    int n = (int)auv_field_elem_size(t);
     for (int i = 0; i < n; i++)
         v = (v << 8) | p[i];
     switch (t) {
@@ -63,7 +52,9 @@ static int walk_elements(const lcm_field_t *f, int64_t count, const uint8_t *buf
         }
         return pos;
     }
-    int64_t bytes = count * prim_wire_size(f->type);
+    /* Strings and nested types were walked above: only primitives here, whose
+     * wire size equals their C size. */
+    int64_t bytes = count * (int64_t)auv_field_elem_size(f->type);
     if (bytes > len - pos)
         return -1;
     if (f->num_dim == 0 && f->type != LCM_FIELD_FLOAT && f->type != LCM_FIELD_DOUBLE &&

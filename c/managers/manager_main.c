@@ -137,6 +137,11 @@ static double cpu_us(void)
     return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
 }
 
+static int64_t decode_errors(const manager_t *mg)
+{
+    return (int64_t)(mgr_bindings_decode_errors(&mg->b) + mgr_commands_decode_errors(mg));
+}
+
 static int run(manager_t *mg)
 {
     const int64_t period_us = (int64_t)(1e6 / mg->opt.rate_hz);
@@ -163,8 +168,7 @@ static int run(manager_t *mg)
             continue;
         if (!mg->started && !mgr_bindings_inputs_ready(&mg->b)) {
             if (mg->now_us >= next_cycle) { /* say so at the cycle rate: lcm-spy shows LOADING */
-                mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us,
-                                   (int64_t)(mgr_bindings_decode_errors(&mg->b) + mgr_commands_decode_errors(mg)), 0);
+                mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us, decode_errors(mg), 0);
                 next_cycle = mg->now_us + period_us;
             }
             continue;
@@ -180,8 +184,7 @@ static int run(manager_t *mg)
         rs = chasm_step(mg->m, mg->now_us);
         double cost = cpu_us() - t0;
         mgr_bindings_publish(&mg->b, mg->lcm, mg->now_us);
-        mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us,
-                           (int64_t)(mgr_bindings_decode_errors(&mg->b) + mgr_commands_decode_errors(mg)), cost);
+        mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us, decode_errors(mg), cost);
         /* Skip missed cycles instead of running a burst after a stall. */
         next_cycle += period_us;
         if (next_cycle <= mg->now_us)

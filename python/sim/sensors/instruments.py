@@ -172,8 +172,7 @@ class Altimeter(Sensor):
         alt = tr.altitude_m
         slant = alt / tilt if tilt > 0.05 else float("inf")
         if alt <= 0.0 or slant > c.max_range_m:
-            m.valid, m.range_m, m.altitude_m = False, -1.0, -1.0
-            return m
+            return self.dropout_message(tr)
         m.range_m = slant + c.bias + self.gauss(c.noise)
         m.altitude_m = m.range_m * tilt
         m.valid = True
