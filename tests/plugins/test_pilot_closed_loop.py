@@ -97,3 +97,39 @@ def test_altitude_mode_finds_the_seabed_and_follows_it_up(tmp_path, lcm_url, chi
     assert mean_err < 0.3 and worst < 1.0
     assert min(x.altitude for x in s) > 6.0         # never closer to the seabed than 2 m below the setpoint
     assert w.leaf() == "fly/mps/altitude"
+
+
+def test_modes_switch_and_a_stale_setpoint_stops_the_vehicle(tmp_path, lcm_url, child_env):
+    """Pitch mode (a climb) with open-loop rpm, back to depth and speed; then the
+    navigator goes quiet: prop 0, fins 0 within the 1 s timeout; then it
+    comes back and the pilot flies again."""
+    def script(t: float) -> Setpoint | None:
+        if t < 10.0:
+            return Setpoint(depth=10.0, speed=1.5)
+        if t < 30.0:
+            return Setpoint(vertical_mode=2, pitch=5 * DEG, speed_mode=1, rpm=1300.0)
+        if t < 40.0:
+            return Setpoint(depth=10.0, speed=1.5)
+        if t < 45.0:
+            return None
+        return Setpoint(depth=10.0, speed=1.5)
+
+    leaves = {}
+    with world(tmp_path, lcm_url, child_env, initial=dict(depth_m=10.0, speed_mps=1.5, prop_rpm=1500)) as w:
+        for until in (9.0, 29.0, 39.0, 44.0, 50.0):
+            w.run(until, script)
+            leaves[until] = (w.leaf(), w.commands[-1])
+    s = w.samples
+    pitch_mean, _ = mean_abs(s, "pitch", 15.0, 29.0, 5 * DEG)
+    print(f"\nmodes: {[(t, leaf) for t, (leaf, _) in leaves.items()]}; pitch mode +5 deg: "
+          f"mean |error| {pitch_mean / DEG:.2f} deg (waves on)")
+    assert leaves[9.0][0] == "fly/mps/depth"
+    assert leaves[29.0][0] == "fly/rpm/pitch" and leaves[29.0][1].prop_rpm == 1300.0
+    assert pitch_mean < 2.5 * DEG                   # waves on, climbing from 10 m towards 6 m
+    assert leaves[39.0][0] == "fly/mps/depth"
+    stopped = leaves[44.0][1]
+    assert leaves[44.0][0] == "idle"
+    assert (stopped.prop_rpm, stopped.rudder_rad, stopped.stern_plane_rad) == (0.0, 0.0, 0.0)
+    went_idle = next(c.utime for c in w.commands if c.utime > 40e6 and c.prop_rpm == 0.0) / 1e6
+    assert 41.0 <= went_idle <= 41.2, went_idle        # the last setpoint (39.95 s) + 1 s, next cycle
+    assert leaves[50.0][0] == "fly/mps/depth" and w.commands[-1].prop_rpm > 0.0
