@@ -28,9 +28,9 @@
 /* ---- pitch loop: pitch command -> stern plane */
 enum { PL_KP, PL_KI, PL_KD, PL_MAX_PLANE, PL_PLANE_SLEW, PL_I_LIMIT, PL_COUNT };
 #define PILOT_PITCH_LOOP_PARAMS                                                                                  \
-    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 2.5, NULL, 1, 0, 50,                                          \
+    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1.5, NULL, 1, 0, 50,                                          \
      "stern plane per pitch error [rad/rad]"},                                                                  \
-    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.3, NULL, 1, 0, 20,                                         \
+    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.6, NULL, 1, 0, 20,                                         \
      "stern plane per integrated pitch error [rad/(rad s)]"},                                                   \
     {"pitch_kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 5.0, NULL, 1, 0, 50,                                         \
      "stern plane per pitch rate: the damping [rad/(rad/s)]"},                                                  \

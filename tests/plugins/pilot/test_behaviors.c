@@ -7,6 +7,7 @@
 #include "pilot_tests.h"
 
 #define DEG (3.14159265358979323846 / 180.0)
+#define PITCH_KP 1.5 /* the default stern plane per pitch error */
 
 
 static const char *IO =
@@ -198,16 +199,16 @@ void pilot_depth_cascade_signs(void)
     pt_set(m, "nav.depth_m", 2, 0);
     pt_set(m, "setpoint.depth_m", 10, 0);
     run(m, 2, 0.05);
-    /* too shallow: bow down: pitch command -15 deg (clamped), plane +2.5 * 15 deg */
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), 2.5 * 15 * DEG, 1e-9);
+    /* too shallow: bow down: pitch command -15 deg (clamped), plane PITCH_KP * 15 deg */
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), PITCH_KP * 15 * DEG, 1e-9);
     pt_set(m, "nav.depth_m", 10.2, t_now);                    /* 0.2 m too deep: bow up */
     run(m, 1, 0.05);
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -2.5 * 0.25 * 0.2, 1e-9);
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -PITCH_KP * 0.25 * 0.2, 1e-9);
     pt_set(m, "nav.depth_m", 10, t_now);
     pt_set(m, "nav.pitch_rad", -5 * DEG, t_now);              /* on depth but bow down: raise it */
     pt_set(m, "nav.q_radps", -2 * DEG, t_now);                /* and still pitching down: damp */
     run(m, 1, 0.05);
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -(2.5 * 5 * DEG + 5 * 2 * DEG), 1e-9);
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -(PITCH_KP * 5 * DEG + 5 * 2 * DEG), 1e-9);
     pt_set(m, "setpoint.depth_m", 500, t_now);                /* beyond max_depth (100 m) */
     pt_set(m, "nav.depth_m", 100, t_now);
     pt_set(m, "nav.pitch_rad", 0, t_now);
@@ -238,7 +239,7 @@ void pilot_depth_anti_windup(void)
 void pilot_depth_pitch_slew(void)
 {
     /* the pitch command ramps at pitch_slew (5 deg/s by default): with a
-     * level vehicle the plane (pitch_kp 2.5, no I) follows the ramp */
+     * level vehicle the plane (PITCH_KP, no I) follows the ramp */
     chasm_machine *m = machine("depth_control(ki = 0, pitch_ki = 0, plane_slew = 0 deg/s)");
     if (!m)
         return;
@@ -247,7 +248,7 @@ void pilot_depth_pitch_slew(void)
     run(m, 1, 0.05);                                          /* first cycle: dt 0, holds the start pitch */
     CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), 0.0, 1e-12);
     run(m, 20, 0.05);                                         /* 1 s: -5 deg of pitch command */
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), 2.5 * 5 * DEG, 1e-9);
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), PITCH_KP * 5 * DEG, 1e-9);
     chasm_free(m);
 }
 
@@ -258,10 +259,10 @@ void pilot_pitch_control(void)
         return;
     pt_set(m, "setpoint.pitch_rad", 30 * DEG, 0);             /* clamped to 10 deg, bow up */
     run(m, 2, 0.05);
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -2.5 * 10 * DEG, 1e-9);
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -PITCH_KP * 10 * DEG, 1e-9);
     pt_set(m, "setpoint.pitch_rad", -30 * DEG, t_now);        /* and bow down */
     run(m, 1, 0.05);
-    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), 2.5 * 10 * DEG, 1e-9);
+    CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), PITCH_KP * 10 * DEG, 1e-9);
     chasm_free(m);
 }
 
@@ -276,7 +277,7 @@ void pilot_altitude_target_and_search(void)
     pt_set(m, "nav.altitude_m", 12, 0);                       /* seabed at 32 m */
     pt_set(m, "setpoint.altitude_m", 8, 0);                   /* target: 24 m, 4 m deeper */
     run(m, 2, 0.05);
-    const double per_m = 2.5 * 0.01;                          /* plane per metre of depth error */
+    const double per_m = PITCH_KP * 0.01;                     /* plane per metre of depth error */
     CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), per_m * 4, 1e-9);
     /* the altitude goes unknown (-1): the target moves down at 0.5 m/s from
      * where it was (24 m), never more than 2 m below the vehicle (20 m) */
