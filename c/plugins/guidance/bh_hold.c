@@ -5,6 +5,7 @@
 
 #include "gd_behaviors.h"
 #include "gd_slots.h"
+#include "plugins/lib/pu_angle.h"
 
 #define RPM_TO_RADPS (2.0 * M_PI / 60.0)
 
@@ -73,7 +74,7 @@ chasm_status_code gd_hold_altitude_step(chasm_ctx *c, void *state)
 int gd_hold_heading_start(chasm_ctx *c, void *state)
 {
     (void)state;
-    chasm_write_double(c, HHEAD_OUT_HEADING, gd_wrap_2pi(chasm_param_double(c, HHEAD_HEADING)));
+    chasm_write_double(c, HHEAD_OUT_HEADING, pu_wrap_2pi(chasm_param_double(c, HHEAD_HEADING)));
     return 0;
 }
 chasm_status_code gd_hold_heading_step(chasm_ctx *c, void *state)

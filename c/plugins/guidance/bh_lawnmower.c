@@ -67,7 +67,7 @@ gd_line gd_mow_path(const gd_mow_state *s, int k)
 }
 
 /* The area from the parameters: a polygon, or a box; not both. */
-static int area_of(chasm_ctx *c, gd_polygon *area)
+static int area_of(chasm_ctx *c, pu_polygon *area)
 {
     const char *poly = chasm_param_string(c, MOW_POLYGON);
     static const char *const box_names[] = {"north", "east", "length", "width"};
@@ -84,13 +84,13 @@ static int area_of(chasm_ctx *c, gd_polygon *area)
         if (given)
             return gd_refuse(c, "lawnmower", "give a polygon or a box (north, east, length, width), not both");
         char err[160];
-        if (gd_polygon_parse(poly, area, err, sizeof err) != 0)
-            return gd_refuse(c, "lawnmower", "%s", err);
+        if (pu_polygon_parse(poly, area, err, sizeof err) != 0)
+            return gd_refuse(c, "lawnmower", "polygon: %s", err);
         return 0;
     }
     if (given < 4)
         return gd_refuse(c, "lawnmower", "the box needs %s (or give a polygon)", missing);
-    gd_polygon_box(area, (gd_point){chasm_param_double(c, MOW_NORTH), chasm_param_double(c, MOW_EAST)},
+    gd_box_polygon(area, (gd_point){chasm_param_double(c, MOW_NORTH), chasm_param_double(c, MOW_EAST)},
                    chasm_param_double(c, MOW_HEADING), chasm_param_double(c, MOW_LENGTH),
                    chasm_param_double(c, MOW_WIDTH));
     return 0;
@@ -106,7 +106,7 @@ static void begin_line(chasm_ctx *c, gd_mow_state *s)
 int gd_lawnmower_start(chasm_ctx *c, void *state)
 {
     gd_mow_state *s = state;
-    gd_polygon area;
+    pu_polygon area;
     if (area_of(c, &area) != 0)
         return -1;
     char err[160];

@@ -1,6 +1,7 @@
 /* The behaviors of plugin `guidance`: schema slots, per-instance state and
  * entry points, collected by guidance_plugin.c into the plugin descriptor.
- * Slot enums follow each schema's order (see chasm_plugin.h). */
+ * Slot enums follow each schema's order (see chasm_plugin.h). Only the
+ * descriptor is exported: two plugins (or versions) never share these symbols. */
 #ifndef GD_BEHAVIORS_H
 #define GD_BEHAVIORS_H
 
@@ -9,10 +10,10 @@
 #include "gd_survey.h"
 
 /* Declares one behavior's schema and entry points. */
-#define GD_DECLARE(id, nparams)                                  \
-    extern const chasm_param_spec gd_##id##_params[nparams];     \
-    int gd_##id##_start(chasm_ctx *c, void *state);              \
-    chasm_status_code gd_##id##_step(chasm_ctx *c, void *state)
+#define GD_DECLARE(id, nparams)                                            \
+    PU_HIDDEN extern const chasm_param_spec gd_##id##_params[nparams];     \
+    PU_HIDDEN int gd_##id##_start(chasm_ctx *c, void *state);              \
+    PU_HIDDEN chasm_status_code gd_##id##_step(chasm_ctx *c, void *state)
 
 /* ---- goto, track (bh_los.c): ILOS along a straight line */
 enum { GOTO_NORTH, GOTO_EAST, GOTO_SPEED, GOTO_RADIUS, GOTO_LOOKAHEAD, GOTO_INTEGRAL, GOTO_IN_NORTH, GOTO_IN_EAST,
@@ -48,7 +49,7 @@ GD_DECLARE(lawnmower, MOW_NPARAMS);
 /* The flown path of line k of s: the survey line extended so that it starts
  * and ends `lead` beyond both its own ends and its neighbours' (exposed for the
  * unit tests). */
-gd_line gd_mow_path(const gd_mow_state *s, int k);
+PU_HIDDEN gd_line gd_mow_path(const gd_mow_state *s, int k);
 
 /* ---- hold_depth, hold_altitude, hold_heading, set_speed (bh_hold.c) */
 enum { HDEPTH_DEPTH, HDEPTH_OUT_VERTICAL_MODE, HDEPTH_OUT_DEPTH, HDEPTH_NPARAMS };

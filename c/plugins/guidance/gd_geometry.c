@@ -2,24 +2,7 @@
 
 #include <math.h>
 
-double gd_wrap_pi(double a)
-{
-    a = fmod(a, 2.0 * M_PI);
-    if (a <= -M_PI)
-        a += 2.0 * M_PI;
-    else if (a > M_PI)
-        a -= 2.0 * M_PI;
-    return a;
-}
-
-double gd_wrap_2pi(double a)
-{
-    a = fmod(a, 2.0 * M_PI);
-    if (a < 0.0)
-        a += 2.0 * M_PI;
-    /* fmod of a tiny negative number can round up to exactly 2 pi */
-    return a >= 2.0 * M_PI ? 0.0 : a;
-}
+#include "plugins/lib/pu_angle.h"
 
 void gd_line_make(gd_line *l, gd_point a, gd_point b)
 {
@@ -34,7 +17,7 @@ void gd_line_make(gd_line *l, gd_point a, gd_point b)
         l->tn = 1.0;
         l->te = 0.0;
     }
-    l->course = gd_wrap_2pi(atan2(l->te, l->tn));
+    l->course = pu_wrap_2pi(atan2(l->te, l->tn));
 }
 
 void gd_line_frame(const gd_line *l, gd_point p, double *along, double *cross)
@@ -61,7 +44,7 @@ double gd_los_heading(gd_los *g, const gd_line *l, gd_point p, double dt, double
         *along = s;
     if (cross)
         *cross = e;
-    return gd_wrap_2pi(l->course - atan((e + g->b) / L));
+    return pu_wrap_2pi(l->course - atan((e + g->b) / L));
 }
 
 double gd_circle_heading(gd_point c, double r, int cw, double lookahead, gd_point p)
@@ -70,5 +53,5 @@ double gd_circle_heading(gd_point c, double r, int cw, double lookahead, gd_poin
     double d = hypot(dn, de);
     double bearing = atan2(de, dn); /* from the centre out to p */
     double turn = M_PI / 2.0 + atan((d - r) / lookahead);
-    return gd_wrap_2pi(cw ? bearing + turn : bearing - turn);
+    return pu_wrap_2pi(cw ? bearing + turn : bearing - turn);
 }

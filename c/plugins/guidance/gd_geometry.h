@@ -1,16 +1,16 @@
 /* Horizontal guidance geometry in the local NED plane (metres, radians,
- * headings clockwise from north): angle wrapping, a path line's frame, the
- * integral line-of-sight (ILOS) law and circle following. Pure functions and
+ * headings clockwise from north): a path line's frame, the
+ * integral line-of-sight (ILOS) law and circle following (angles wrap with
+ * plugins/lib/pu_angle.h). Pure functions and
  * small state structs, so the unit tests can drive them without an engine. */
 #ifndef GD_GEOMETRY_H
 #define GD_GEOMETRY_H
 
+#include "plugins/lib/pu_visibility.h"
+
 typedef struct {
     double n, e;
 } gd_point;
-
-double gd_wrap_pi(double a);    /* to (-pi, pi] */
-double gd_wrap_2pi(double a);   /* to [0, 2pi) */
 
 /* A directed straight path from a to b. */
 typedef struct {
@@ -20,10 +20,10 @@ typedef struct {
     double tn, te;   /* unit vector a -> b (north if a == b) */
 } gd_line;
 
-void gd_line_make(gd_line *l, gd_point a, gd_point b);
+PU_HIDDEN void gd_line_make(gd_line *l, gd_point a, gd_point b);
 /* Position of p in the line's frame: along-track from a (positive towards b)
  * and cross-track (positive to the right of the direction of travel). */
-void gd_line_frame(const gd_line *l, gd_point p, double *along, double *cross);
+PU_HIDDEN void gd_line_frame(const gd_line *l, gd_point p, double *along, double *cross);
 
 /* Integral line-of-sight guidance (after Borhaug, Pavlov and Pettersen 2008):
  *
@@ -42,7 +42,7 @@ typedef struct {
 
 /* Desired heading [0, 2pi) for position p on line l; advances the integral by
  * dt seconds. along/cross (may be NULL) receive p's position in the frame. */
-double gd_los_heading(gd_los *g, const gd_line *l, gd_point p, double dt, double *along, double *cross);
+PU_HIDDEN double gd_los_heading(gd_los *g, const gd_line *l, gd_point p, double dt, double *along, double *cross);
 
 /* Circle following: the heading that converges onto the circle of radius r
  * around c and runs along it (clockwise seen from above when cw != 0):
@@ -51,6 +51,6 @@ double gd_los_heading(gd_los *g, const gd_line *l, gd_point p, double dt, double
  *
  * d is p's distance from c; far outside it points at the centre, on the circle
  * along the tangent, at the centre across it. */
-double gd_circle_heading(gd_point c, double r, int cw, double lookahead, gd_point p);
+PU_HIDDEN double gd_circle_heading(gd_point c, double r, int cw, double lookahead, gd_point p);
 
 #endif

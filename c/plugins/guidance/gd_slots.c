@@ -1,4 +1,5 @@
 #include "gd_slots.h"
+#include "plugins/lib/pu_angle.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -22,7 +23,7 @@ gd_point gd_position(const chasm_ctx *c, const gd_horizontal *h)
 
 void gd_command(chasm_ctx *c, const gd_horizontal *h, double heading)
 {
-    chasm_write_double(c, h->out_heading, gd_wrap_2pi(heading));
+    chasm_write_double(c, h->out_heading, pu_wrap_2pi(heading));
     chasm_write_double(c, h->out_speed, chasm_param_double(c, h->speed));
     chasm_write_int(c, h->out_speed_mode, GD_SPEED_MPS);
 }

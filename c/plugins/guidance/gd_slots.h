@@ -55,12 +55,12 @@ typedef struct {
     int in_north, in_east, speed, out_heading, out_speed, out_speed_mode;
 } gd_horizontal;
 
-gd_point gd_position(const chasm_ctx *c, const gd_horizontal *h);
+PU_HIDDEN gd_point gd_position(const chasm_ctx *c, const gd_horizontal *h);
 /* Writes the heading setpoint (wrapped to [0, 2pi)) and the speed in m/s. */
-void gd_command(chasm_ctx *c, const gd_horizontal *h, double heading);
+PU_HIDDEN void gd_command(chasm_ctx *c, const gd_horizontal *h, double heading);
 
 /* Reports a parameter problem found at state entry (the loader checked each
  * value; this is for combinations) and makes start() fail. */
-int gd_refuse(chasm_ctx *c, const char *behavior, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+PU_HIDDEN int gd_refuse(chasm_ctx *c, const char *behavior, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 
 #endif

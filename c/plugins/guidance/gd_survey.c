@@ -1,72 +1,19 @@
 #include "gd_survey.h"
 
-#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 
-int gd_polygon_parse(const char *text, gd_polygon *out, char *err, size_t errlen)
-{
-    out->n = 0;
-    const char *p = text;
-    for (int k = 1;; k++) {
-        char *end;
-        double n = strtod(p, &end);
-        const char *q = end;
-        while (isspace((unsigned char)*q))
-            q++;
-        if (end == p || *q != ',') {
-            snprintf(err, errlen, "polygon vertex %d: expected 'north,east' in metres at \"%.20s\"", k, p);
-            return -1;
-        }
-        p = q + 1;
-        double e = strtod(p, &end);
-        if (end == p) {
-            snprintf(err, errlen, "polygon vertex %d: expected a number after ',' at \"%.20s\"", k, p);
-            return -1;
-        }
-        if (!isfinite(n) || !isfinite(e)) {
-            snprintf(err, errlen, "polygon vertex %d is not finite", k);
-            return -1;
-        }
-        if (out->n == GD_MAX_VERTICES) {
-            snprintf(err, errlen, "polygon has more than %d vertices", GD_MAX_VERTICES);
-            return -1;
-        }
-        out->v[out->n++] = (gd_point){n, e};
-        p = end;
-        while (isspace((unsigned char)*p))
-            p++;
-        if (*p == '\0')
-            break;
-        if (*p != ';') {
-            snprintf(err, errlen, "polygon vertex %d: expected ';' before the next vertex at \"%.20s\"", k, p);
-            return -1;
-        }
-        p++;
-        while (isspace((unsigned char)*p))
-            p++;
-        if (*p == '\0')
-            break; /* a trailing ';' */
-    }
-    if (out->n > 1 && out->v[0].n == out->v[out->n - 1].n && out->v[0].e == out->v[out->n - 1].e)
-        out->n--;
-    if (out->n < 3) {
-        snprintf(err, errlen, "a polygon needs at least 3 vertices, got %d", out->n);
-        return -1;
-    }
-    return 0;
-}
-
-void gd_polygon_box(gd_polygon *out, gd_point c, double heading, double length, double width)
+void gd_box_polygon(pu_polygon *out, gd_point c, double heading, double length, double width)
 {
     double tn = cos(heading), te = sin(heading); /* along the heading */
     double rn = -te, re = tn;                    /* to its right */
+    const double n[4] = {c.n, c.n + length * tn, c.n + length * tn + width * rn, c.n + width * rn};
+    const double e[4] = {c.e, c.e + length * te, c.e + length * te + width * re, c.e + width * re};
     out->n = 4;
-    out->v[0] = c;
-    out->v[1] = (gd_point){c.n + length * tn, c.e + length * te};
-    out->v[2] = (gd_point){c.n + length * tn + width * rn, c.e + length * te + width * re};
-    out->v[3] = (gd_point){c.n + width * rn, c.e + width * re};
+    for (int i = 0; i < 4; i++) {
+        out->north[i] = n[i];
+        out->east[i] = e[i];
+    }
 }
 
 /* The survey frame: x along the heading, y to its right. */
@@ -81,13 +28,13 @@ static gd_point from_frame(double x, double y, double heading)
     return (gd_point){x * cos(heading) - y * sin(heading), x * sin(heading) + y * cos(heading)};
 }
 
-int gd_survey_lines(const gd_polygon *area, double heading, double spacing, gd_track *lines, int max, char *err,
+int gd_survey_lines(const pu_polygon *area, double heading, double spacing, gd_track *lines, int max, char *err,
                     size_t errlen)
 {
-    double x[GD_MAX_VERTICES], y[GD_MAX_VERTICES];
+    double x[PU_POLYGON_MAX], y[PU_POLYGON_MAX];
     double ymin = INFINITY, ymax = -INFINITY, xmin = INFINITY, xmax = -INFINITY;
     for (int i = 0; i < area->n; i++) {
-        to_frame(area->v[i], heading, &x[i], &y[i]);
+        to_frame((gd_point){area->north[i], area->east[i]}, heading, &x[i], &y[i]);
         ymin = fmin(ymin, y[i]);
         ymax = fmax(ymax, y[i]);
         xmin = fmin(xmin, x[i]);

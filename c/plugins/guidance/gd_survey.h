@@ -1,7 +1,7 @@
 /* Survey areas and their track lines, for the lawnmower behavior.
  *
- * An area is a polygon, given as text "n,e; n,e; ..." (metres in the local
- * NED frame) or as a box: corner, length along the line heading, width to the
+ * An area is a polygon (plugins/lib/pu_polygon.h: text "n,e; n,e; ...", metres
+ * in the local NED frame) or a box: corner, length along the line heading, width to the
  * right of it (starboard looking along the heading). Lines run parallel to
  * the heading. The area's extent across the lines is cut into the fewest
  * equal strips no wider than the spacing, and one line runs down the middle
@@ -14,19 +14,12 @@
 #include <stddef.h>
 
 #include "gd_geometry.h"
+#include "plugins/lib/pu_polygon.h"
 
-#define GD_MAX_VERTICES 64
 #define GD_MAX_LINES 500
 
-typedef struct {
-    gd_point v[GD_MAX_VERTICES];
-    int n;
-} gd_polygon;
-
-/* Parses "n,e; n,e; ...": at least 3 vertices, a closing repeat of the first
- * vertex is allowed. Returns 0, or -1 with a message in err. */
-int gd_polygon_parse(const char *text, gd_polygon *out, char *err, size_t errlen);
-void gd_polygon_box(gd_polygon *out, gd_point corner, double heading, double length, double width);
+/* A box as a polygon: corner c, `length` along `heading`, `width` to its right. */
+PU_HIDDEN void gd_box_polygon(pu_polygon *out, gd_point c, double heading, double length, double width);
 
 /* One track line: flown from start to end (the part inside the area). */
 typedef struct {
@@ -35,7 +28,7 @@ typedef struct {
 
 /* Fills lines (at most max) and returns their number, or -1 with a message in
  * err (more lines than max). spacing > 0. */
-int gd_survey_lines(const gd_polygon *area, double heading, double spacing, gd_track *lines, int max, char *err,
+PU_HIDDEN int gd_survey_lines(const pu_polygon *area, double heading, double spacing, gd_track *lines, int max, char *err,
                     size_t errlen);
 
 #endif

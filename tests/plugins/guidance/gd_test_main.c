@@ -3,6 +3,7 @@
 
 #include "gd_test.h"
 #include "plugins/guidance/gd_geometry.h"
+#include "plugins/lib/pu_angle.h"
 
 int failures;
 char logbuf[8192];
@@ -115,9 +116,9 @@ chasm_run_state fly(chasm_machine *m, kin_vehicle *v, double t, double dt)
     set_var_d(m, "nav.depth_m", v->depth, t);
     set_var_d(m, "nav.u_mps", v->u, t);
     chasm_run_state rs = chasm_step(m, (int64_t)llround(t * 1e6));
-    double err = gd_wrap_pi(var_d(m, "setpoint.heading_rad") - v->psi);
+    double err = pu_wrap_pi(var_d(m, "setpoint.heading_rad") - v->psi);
     double rate = fmax(-v->max_rate, fmin(v->max_rate, 0.8 * err));
-    v->psi = gd_wrap_2pi(v->psi + rate * dt);
+    v->psi = pu_wrap_2pi(v->psi + rate * dt);
     v->n += (v->u * cos(v->psi) + v->cur_n) * dt;
     v->e += (v->u * sin(v->psi) + v->cur_e) * dt;
     return rs;

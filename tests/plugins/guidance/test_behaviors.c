@@ -6,6 +6,7 @@
 
 #include "gd_test.h"
 #include "plugins/guidance/gd_geometry.h"
+#include "plugins/lib/pu_angle.h"
 
 #define DEG (M_PI / 180.0)
 #define DT 0.1
@@ -241,7 +242,7 @@ static void bad_combinations_fail_at_entry(void)
         {"lawnmower(north = 0 m, length = 100 m, heading = 0 deg, spacing = 10 m)",
          "lawnmower: the box needs east, width (or give a polygon)"},
         {"lawnmower(polygon = \"0,0; 1,0\", heading = 0 deg, spacing = 10 m)",
-         "lawnmower: a polygon needs at least 3 vertices"},
+         "lawnmower: polygon: a polygon needs at least 3 vertices, 2 given"},
         {"yoyo(min_depth = 2 m, max_altitude = 10 m, pitch = 10 deg)",
          "yoyo: give min_depth and max_depth, or min_altitude and max_altitude"},
         {"yoyo(min_depth = 12 m, max_depth = 10 m, pitch = 10 deg)", "yoyo: the band is empty"},
@@ -431,7 +432,7 @@ static void loiter_circles_the_point(void)
         double b = atan2(v.e, v.n - 200);
         if (t > 600) {
             worst = fmax(worst, fabs(hypot(v.n - 200, v.e) - 40));
-            turned += gd_wrap_pi(b - last);
+            turned += pu_wrap_pi(b - last);
         }
         last = b;
     }

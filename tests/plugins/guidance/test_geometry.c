@@ -1,4 +1,4 @@
-/* Geometry of plugin `guidance`: angle wrapping, line frames, the ILOS law
+/* Geometry of plugin `guidance`: line frames, the ILOS law
  * (cross-track error decays, with and without a cross current), circle
  * following and survey line generation for boxes and polygons. */
 #include <math.h>
@@ -6,20 +6,9 @@
 #include "gd_test.h"
 #include "plugins/guidance/gd_geometry.h"
 #include "plugins/guidance/gd_survey.h"
+#include "plugins/lib/pu_angle.h"
 
 #define DEG (M_PI / 180.0)
-
-static void wrap_angles(void)
-{
-    CHECK_NEAR(gd_wrap_pi(1.5 * M_PI), -0.5 * M_PI, 1e-12);
-    CHECK_NEAR(gd_wrap_pi(-1.5 * M_PI), 0.5 * M_PI, 1e-12);
-    CHECK_NEAR(gd_wrap_pi(M_PI), M_PI, 1e-12);
-    CHECK_NEAR(gd_wrap_pi(7 * M_PI), M_PI, 1e-9);
-    CHECK_NEAR(gd_wrap_2pi(-0.1), 2 * M_PI - 0.1, 1e-12);
-    CHECK_NEAR(gd_wrap_2pi(4 * M_PI + 0.25), 0.25, 1e-9);
-    double tiny = gd_wrap_2pi(-1e-18); /* rounds to 2 pi before the guard */
-    CHECK(tiny >= 0.0 && tiny < 2 * M_PI);
-}
 
 static void line_frame(void)
 {
@@ -60,7 +49,7 @@ static double fly_line(gd_los *g, const gd_line *l, gd_point p, double psi, doub
     *worst_after = 0;
     for (double t = 0; t < T; t += 0.1) {
         double psi_d = gd_los_heading(g, l, p, 0.1, NULL, &e);
-        double rate = fmax(-0.2, fmin(0.2, 0.8 * gd_wrap_pi(psi_d - psi)));
+        double rate = fmax(-0.2, fmin(0.2, 0.8 * pu_wrap_pi(psi_d - psi)));
         psi += rate * 0.1;
         p.n += 1.5 * cos(psi) * 0.1;
         p.e += (1.5 * sin(psi) + cur_e) * 0.1;
@@ -114,7 +103,7 @@ static void circle_following(void)
     double psi = 0, worst = 0;
     for (double t = 0; t < 600; t += 0.1) {
         double psi_d = gd_circle_heading(c, 50, 1, 10, p);
-        psi += fmax(-0.2, fmin(0.2, 0.8 * gd_wrap_pi(psi_d - psi))) * 0.1;
+        psi += fmax(-0.2, fmin(0.2, 0.8 * pu_wrap_pi(psi_d - psi))) * 0.1;
         p.n += 1.5 * cos(psi) * 0.1;
         p.e += 1.5 * sin(psi) * 0.1;
         if (t > 300)
@@ -125,9 +114,9 @@ static void circle_following(void)
 
 static int lines_of(const char *poly, double heading, double spacing, gd_track *lines)
 {
-    gd_polygon a;
+    pu_polygon a;
     char err[160];
-    if (gd_polygon_parse(poly, &a, err, sizeof err) != 0) {
+    if (pu_polygon_parse(poly, &a, err, sizeof err) != 0) {
         fprintf(stderr, "%s\n", err);
         return -1;
     }
@@ -142,11 +131,11 @@ static int lines_of(const char *poly, double heading, double spacing, gd_track *
 
 static void survey_lines_box(void)
 {
-    gd_polygon box;
+    pu_polygon box;
     gd_track l[GD_MAX_LINES];
     char err[160];
     /* 100 m north by 50 m east at 20 m: 3 strips of 16.67 m, lines down their middles */
-    gd_polygon_box(&box, (gd_point){0, 0}, 0, 100, 50);
+    gd_box_polygon(&box, (gd_point){0, 0}, 0, 100, 50);
     CHECK(gd_survey_lines(&box, 0, 20, l, GD_MAX_LINES, err, sizeof err) == 3);
     CHECK_POINT(l[0].start, 0, 50.0 / 6);
     CHECK_POINT(l[0].end, 100, 50.0 / 6);
@@ -154,18 +143,18 @@ static void survey_lines_box(void)
     CHECK_POINT(l[1].end, 0, 25);
     CHECK_POINT(l[2].start, 0, 250.0 / 6);
     /* heading east: the width lies to the south; 40 m at 20 m is 2 lines, not 3 */
-    gd_polygon_box(&box, (gd_point){0, 0}, M_PI / 2, 100, 40);
+    gd_box_polygon(&box, (gd_point){0, 0}, M_PI / 2, 100, 40);
     CHECK(gd_survey_lines(&box, M_PI / 2, 20, l, GD_MAX_LINES, err, sizeof err) == 2);
     CHECK_POINT(l[0].start, -10, 0);
     CHECK_POINT(l[0].end, -10, 100);
     CHECK_POINT(l[1].start, -30, 100);
     /* a box of no width is one line along it */
-    gd_polygon_box(&box, (gd_point){5, 5}, M_PI / 4, 100, 0);
+    gd_box_polygon(&box, (gd_point){5, 5}, M_PI / 4, 100, 0);
     CHECK(gd_survey_lines(&box, M_PI / 4, 20, l, GD_MAX_LINES, err, sizeof err) == 1);
     CHECK_POINT(l[0].start, 5, 5);
     CHECK_POINT(l[0].end, 5 + 100 / sqrt(2), 5 + 100 / sqrt(2));
     /* too many lines is an error, not a truncated survey */
-    gd_polygon_box(&box, (gd_point){0, 0}, 0, 100, 1e5);
+    gd_box_polygon(&box, (gd_point){0, 0}, 0, 100, 1e5);
     CHECK(gd_survey_lines(&box, 0, 1, l, GD_MAX_LINES, err, sizeof err) == -1);
     CHECK_CONTAINS(err, "more than the 500 allowed");
 }
@@ -180,8 +169,8 @@ static void survey_lines_polygon(void)
     CHECK_POINT(l[1].start, 62.5, 37.5);
     CHECK_POINT(l[1].end, 0, 37.5);
     CHECK_POINT(l[3].start, 12.5, 87.5);
-    /* lines east-west (heading 90 deg) over the same triangle, closed and with a trailing ';' */
-    CHECK(lines_of(" 0,0 ; 100,0; 0,100; 0,0;", M_PI / 2, 50, l) == 2);
+    /* lines east-west (heading 90 deg) over the same triangle, wound the other way */
+    CHECK(lines_of(" 0,0 ; 0,100; 100,0;", M_PI / 2, 50, l) == 2);
     CHECK_POINT(l[0].start, 75, 0); /* left of an eastward heading is north */
     CHECK_POINT(l[0].end, 75, 25);
     CHECK_POINT(l[1].start, 25, 75);
@@ -195,23 +184,7 @@ static void survey_lines_polygon(void)
     CHECK_POINT(l[9].end, 5, 0);
 }
 
-static void polygon_text_errors(void)
-{
-    gd_polygon a;
-    char err[160];
-    CHECK(gd_polygon_parse("0,0; 10,0", &a, err, sizeof err) == -1);
-    CHECK_CONTAINS(err, "at least 3 vertices, got 2");
-    CHECK(gd_polygon_parse("0,0; 10;0; 5,5", &a, err, sizeof err) == -1);
-    CHECK_CONTAINS(err, "polygon vertex 2: expected 'north,east'");
-    CHECK(gd_polygon_parse("0,0; 10,0 5,5", &a, err, sizeof err) == -1);
-    CHECK_CONTAINS(err, "vertex 2: expected ';'");
-    CHECK(gd_polygon_parse("", &a, err, sizeof err) == -1);
-    CHECK(gd_polygon_parse("0,0; 1e400,0; 5,5", &a, err, sizeof err) == -1);
-    CHECK_CONTAINS(err, "not finite");
-}
-
 const unit_test geometry_tests[] = {
-    {"wrap_angles", wrap_angles},
     {"line_frame", line_frame},
     {"los_heading_wraps", los_heading_wraps},
     {"los_cross_track_decays", los_cross_track_decays},
@@ -219,6 +192,5 @@ const unit_test geometry_tests[] = {
     {"circle_following", circle_following},
     {"survey_lines_box", survey_lines_box},
     {"survey_lines_polygon", survey_lines_polygon},
-    {"polygon_text_errors", polygon_text_errors},
     {NULL, NULL},
 };
