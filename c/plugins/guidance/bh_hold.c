@@ -35,53 +35,40 @@ const chasm_param_spec gd_set_speed_params[] = {
 };
 _Static_assert(CHASM_COUNT(gd_set_speed_params) == SPEED_NPARAMS, "set_speed schema and slots disagree");
 
+/* A behavior that writes its setpoints at entry and every cycle, never done. */
+#define CONSTANT_SETPOINT(id, write)                              \
+    int gd_##id##_start(chasm_ctx *c, void *state)                \
+    {                                                             \
+        (void)state;                                              \
+        write(c);                                                 \
+        return 0;                                                 \
+    }                                                             \
+    chasm_status_code gd_##id##_step(chasm_ctx *c, void *state)   \
+    {                                                             \
+        (void)state;                                              \
+        write(c);                                                 \
+        return CHASM_RUNNING;                                     \
+    }
+
 static void write_depth(chasm_ctx *c)
 {
     chasm_write_int(c, HDEPTH_OUT_VERTICAL_MODE, GD_VERTICAL_DEPTH);
     chasm_write_double(c, HDEPTH_OUT_DEPTH, chasm_param_double(c, HDEPTH_DEPTH));
 }
-int gd_hold_depth_start(chasm_ctx *c, void *state)
-{
-    (void)state;
-    write_depth(c);
-    return 0;
-}
-chasm_status_code gd_hold_depth_step(chasm_ctx *c, void *state)
-{
-    (void)state;
-    write_depth(c);
-    return CHASM_RUNNING;
-}
+CONSTANT_SETPOINT(hold_depth, write_depth)
 
 static void write_altitude(chasm_ctx *c)
 {
     chasm_write_int(c, HALT_OUT_VERTICAL_MODE, GD_VERTICAL_ALTITUDE);
     chasm_write_double(c, HALT_OUT_ALTITUDE, chasm_param_double(c, HALT_ALTITUDE));
 }
-int gd_hold_altitude_start(chasm_ctx *c, void *state)
-{
-    (void)state;
-    write_altitude(c);
-    return 0;
-}
-chasm_status_code gd_hold_altitude_step(chasm_ctx *c, void *state)
-{
-    (void)state;
-    write_altitude(c);
-    return CHASM_RUNNING;
-}
+CONSTANT_SETPOINT(hold_altitude, write_altitude)
 
-int gd_hold_heading_start(chasm_ctx *c, void *state)
+static void write_heading(chasm_ctx *c)
 {
-    (void)state;
     chasm_write_double(c, HHEAD_OUT_HEADING, pu_wrap_2pi(chasm_param_double(c, HHEAD_HEADING)));
-    return 0;
 }
-chasm_status_code gd_hold_heading_step(chasm_ctx *c, void *state)
-{
-    gd_hold_heading_start(c, state);
-    return CHASM_RUNNING;
-}
+CONSTANT_SETPOINT(hold_heading, write_heading)
 
 static void write_speed(chasm_ctx *c)
 {

@@ -31,7 +31,7 @@ const chasm_param_spec gd_lawnmower_params[] = {
     {"polygon", CHASM_PARAM, CHASM_STRING, "", 0, 0, "", 0, 0, 0, "area as \"n,e; n,e; ...\" in metres (polygon form)"},
     {"heading", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, -2 * M_PI, 2 * M_PI, "direction of the lines"},
     {"spacing", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 1, 10000, "largest distance between lines"},
-    {"turn_radius", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 10, NULL, 1, 1, 1000, "radius of the turns between lines"},
+    {"turn_radius", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 20, NULL, 1, 1, 1000, "radius of the turns between lines"},
     {"lead", CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, 0, 1000,
      "run-in/run-out beyond the area (default max(lookahead, 2 turn_radius))"},
     GD_SPEED_PARAM,
