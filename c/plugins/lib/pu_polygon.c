@@ -40,21 +40,37 @@ static double cross(double an, double ae, double bn, double be, double cn, doubl
     return (be - ae) * (cn - an) - (bn - an) * (ce - ae);
 }
 
-static int segments_cross(const pu_polygon *p, int i, int j)
+/* c lies on segment a-b (given that a, b, c are collinear). */
+static int on_segment(double an, double ae, double bn, double be, double cn, double ce)
+{
+    return fmin(an, bn) <= cn && cn <= fmax(an, bn) && fmin(ae, be) <= ce && ce <= fmax(ae, be);
+}
+
+/* Edges i and j (not neighbours) cross or touch: either way the outline has
+ * no clear inside. */
+static int edges_meet(const pu_polygon *p, int i, int j)
 {
     int i2 = (i + 1) % p->n, j2 = (j + 1) % p->n;
-    double d1 = cross(p->north[i], p->east[i], p->north[i2], p->east[i2], p->north[j], p->east[j]);
-    double d2 = cross(p->north[i], p->east[i], p->north[i2], p->east[i2], p->north[j2], p->east[j2]);
-    double d3 = cross(p->north[j], p->east[j], p->north[j2], p->east[j2], p->north[i], p->east[i]);
-    double d4 = cross(p->north[j], p->east[j], p->north[j2], p->east[j2], p->north[i2], p->east[i2]);
+    const double *N = p->north, *E = p->east;
+    double d1 = cross(N[i], E[i], N[i2], E[i2], N[j], E[j]);
+    double d2 = cross(N[i], E[i], N[i2], E[i2], N[j2], E[j2]);
+    double d3 = cross(N[j], E[j], N[j2], E[j2], N[i], E[i]);
+    double d4 = cross(N[j], E[j], N[j2], E[j2], N[i2], E[i2]);
     if (((d1 > 0 && d2 < 0) || (d1 < 0 && d2 > 0)) && ((d3 > 0 && d4 < 0) || (d3 < 0 && d4 > 0)))
         return 1;
-    /* touching or overlapping collinear edges also make the outline ambiguous */
-    return d1 == 0 && d2 == 0 && d3 == 0 && d4 == 0 &&
-           fmax(fmin(p->north[i], p->north[i2]), fmin(p->north[j], p->north[j2])) <=
-               fmin(fmax(p->north[i], p->north[i2]), fmax(p->north[j], p->north[j2])) &&
-           fmax(fmin(p->east[i], p->east[i2]), fmin(p->east[j], p->east[j2])) <=
-               fmin(fmax(p->east[i], p->east[i2]), fmax(p->east[j], p->east[j2]));
+    return (d1 == 0 && on_segment(N[i], E[i], N[i2], E[i2], N[j], E[j])) ||
+           (d2 == 0 && on_segment(N[i], E[i], N[i2], E[i2], N[j2], E[j2])) ||
+           (d3 == 0 && on_segment(N[j], E[j], N[j2], E[j2], N[i], E[i])) ||
+           (d4 == 0 && on_segment(N[j], E[j], N[j2], E[j2], N[i2], E[i2]));
+}
+
+/* Edge i and the next one turn back onto each other (a spike). */
+static int folds_back(const pu_polygon *p, int i)
+{
+    int b = (i + 1) % p->n, c = (i + 2) % p->n;
+    const double *N = p->north, *E = p->east;
+    double dot = (N[b] - N[i]) * (N[c] - N[b]) + (E[b] - E[i]) * (E[c] - E[b]);
+    return cross(N[i], E[i], N[b], E[b], N[c], E[c]) == 0 && dot < 0;
 }
 
 int pu_polygon_parse(const char *text, pu_polygon *out, char *err, size_t el)
@@ -112,16 +128,29 @@ int pu_polygon_parse(const char *text, pu_polygon *out, char *err, size_t el)
             return -1;
         }
     }
-    for (int i = 0; i < out->n; i++)
-        for (int j = i + 1; j < out->n; j++) {
-            if (j == i + 1 || (i == 0 && j == out->n - 1))
+    int collinear = 1;
+    for (int i = 2; i < out->n && collinear; i++)
+        collinear = cross(out->north[0], out->east[0], out->north[1], out->east[1], out->north[i], out->east[i]) == 0;
+    if (collinear) {
+        snprintf(err, el, "the polygon has no area (its vertices are on one line)");
+        return -1;
+    }
+    for (int i = 0; i < out->n; i++) {
+        if (folds_back(out, i)) {
+            snprintf(err, el, "edges %d-%d and %d-%d fold back onto each other", i + 1, (i + 1) % out->n + 1,
+                     (i + 1) % out->n + 1, (i + 2) % out->n + 1);
+            return -1;
+        }
+        for (int j = i + 2; j < out->n; j++) {
+            if (i == 0 && j == out->n - 1)
                 continue; /* neighbours share a vertex */
-            if (segments_cross(out, i, j)) {
-                snprintf(err, el, "edges %d-%d and %d-%d cross: the outline must not intersect itself", i + 1,
+            if (edges_meet(out, i, j)) {
+                snprintf(err, el, "edges %d-%d and %d-%d cross: the outline must not touch or cross itself", i + 1,
                          (i + 1) % out->n + 1, j + 1, (j + 1) % out->n + 1);
                 return -1;
             }
         }
+    }
     if (fabs(pu_polygon_signed_area(out)) < 1e-9) {
         snprintf(err, el, "the polygon has no area (its vertices are on one line)");
         return -1;

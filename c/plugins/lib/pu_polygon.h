@@ -6,8 +6,9 @@
  * At least 3 and at most PU_POLYGON_MAX vertices, in either winding order;
  * the last vertex joins the first (do not repeat it). Whitespace is free.
  * Rejected: anything not a number, missing commas, non-finite values, fewer
- * than 3 vertices, repeated consecutive vertices, zero area, and edges that
- * cross each other (a self-intersecting outline has no clear inside). */
+ * than 3 vertices, repeated consecutive vertices, zero area, edges that
+ * cross or touch each other, and spikes (an edge folding back onto the one
+ * before): such an outline has no clear inside. */
 #ifndef PU_POLYGON_H
 #define PU_POLYGON_H
 
@@ -33,8 +34,8 @@ PU_HIDDEN void pu_polygon_box(pu_polygon *out, double north, double east, double
 PU_HIDDEN int pu_polygon_contains(const pu_polygon *p, double north, double east);
 /* Distance [m] from (north, east) to the nearest edge (>= 0, inside or out). */
 PU_HIDDEN double pu_polygon_edge_distance(const pu_polygon *p, double north, double east);
-/* Signed area [m^2]: positive when the vertices run counter-clockwise in the
- * (east, north) plane seen from above, i.e. north->west->south->east. */
+/* Signed area [m^2]: positive when the outline runs counter-clockwise on a
+ * map (north up, east right), e.g. east, then north, then west. */
 PU_HIDDEN double pu_polygon_signed_area(const pu_polygon *p);
 
 #endif

@@ -3,14 +3,14 @@
  * following and survey line generation for boxes and polygons. */
 #include <math.h>
 
-#include "gd_test.h"
+#include "gd_tests.h"
 #include "plugins/guidance/gd_geometry.h"
 #include "plugins/guidance/gd_survey.h"
 #include "plugins/lib/pu_angle.h"
 
 #define DEG (M_PI / 180.0)
 
-static void line_frame(void)
+void line_frame(void)
 {
     gd_line l;
     gd_line_make(&l, (gd_point){0, 0}, (gd_point){0, 100}); /* due east */
@@ -25,7 +25,7 @@ static void line_frame(void)
     CHECK_NEAR(e, 3, 1e-12);
 }
 
-static void los_heading_wraps(void)
+void los_heading_wraps(void)
 {
     gd_line l;
     gd_line_make(&l, (gd_point){0, 0}, (gd_point){100, 0}); /* due north: course 0 */
@@ -59,7 +59,7 @@ static double fly_line(gd_los *g, const gd_line *l, gd_point p, double psi, doub
     return fabs(e);
 }
 
-static void los_cross_track_decays(void)
+void los_cross_track_decays(void)
 {
     gd_line l;
     gd_line_make(&l, (gd_point){0, 0}, (gd_point){5000, 0});
@@ -75,7 +75,7 @@ static void los_cross_track_decays(void)
     CHECK(fly_line(&g3, &l, (gd_point){100, -40}, M_PI, 0, 150, &worst, 0) < 0.5);
 }
 
-static void ilos_removes_the_current_offset(void)
+void ilos_removes_the_current_offset(void)
 {
     gd_line l;
     gd_line_make(&l, (gd_point){0, 0}, (gd_point){20000, 0});
@@ -91,7 +91,7 @@ static void ilos_removes_the_current_offset(void)
     CHECK_NEAR(ilos.b, 10 * tan(asin(0.2)), 0.1); /* the learnt offset is the crab */
 }
 
-static void circle_following(void)
+void circle_following(void)
 {
     gd_point c = {100, 100};
     /* far outside: towards the centre; on the circle: along the tangent */
@@ -129,7 +129,7 @@ static int lines_of(const char *poly, double heading, double spacing, gd_track *
         CHECK_NEAR((p).e, E, 1e-9);       \
     } while (0)
 
-static void survey_lines_box(void)
+void survey_lines_box(void)
 {
     pu_polygon box;
     gd_track l[GD_MAX_LINES];
@@ -156,10 +156,10 @@ static void survey_lines_box(void)
     /* too many lines is an error, not a truncated survey */
     gd_box_polygon(&box, (gd_point){0, 0}, 0, 100, 1e5);
     CHECK(gd_survey_lines(&box, 0, 1, l, GD_MAX_LINES, err, sizeof err) == -1);
-    CHECK_CONTAINS(err, "more than the 500 allowed");
+    CHECK_HAS(err, "more than the 500 allowed");
 }
 
-static void survey_lines_polygon(void)
+void survey_lines_polygon(void)
 {
     gd_track l[GD_MAX_LINES];
     /* a right triangle, lines north-south: each runs from the south edge to the hypotenuse */
@@ -183,14 +183,3 @@ static void survey_lines_polygon(void)
     CHECK_POINT(l[1].start, 85, 30);
     CHECK_POINT(l[9].end, 5, 0);
 }
-
-const unit_test geometry_tests[] = {
-    {"line_frame", line_frame},
-    {"los_heading_wraps", los_heading_wraps},
-    {"los_cross_track_decays", los_cross_track_decays},
-    {"ilos_removes_the_current_offset", ilos_removes_the_current_offset},
-    {"circle_following", circle_following},
-    {"survey_lines_box", survey_lines_box},
-    {"survey_lines_polygon", survey_lines_polygon},
-    {NULL, NULL},
-};
