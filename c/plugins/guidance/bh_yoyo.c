@@ -2,9 +2,11 @@
  * profiling sensors. The depth (altitude) setpoint ramps between the limits at
  * U sin(pitch), U the measured surge speed, so the vehicle climbs and dives
  * at the given flight-path angle while the pilot's own depth (altitude) loop
- * keeps it on the ramp; the setpoint never leaves the band. At a limit the
- * setpoint waits there until the vehicle is within min(0.5 m, band / 5) of it,
- * then ramps back: every profile spans the whole band. Never done. */
+ * keeps it on the ramp; the setpoint never leaves the band. Over the last
+ * min(2 m, band / 4) before a limit the ramp slows down (to a tenth), so the
+ * vehicle arrives with little vertical speed instead of overshooting; at the
+ * limit the setpoint waits until the vehicle is within min(0.5 m, band / 5)
+ * of it, then ramps back: every profile spans the whole band. Never done. */
 #include <math.h>
 
 #include "gd_behaviors.h"
@@ -12,6 +14,8 @@
 
 #define BAND(name, lo, hi, doc) {name, CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, lo, hi, doc}
 #define MIN_RAMP_SPEED 0.3 /* m/s: keeps the ramp moving while the vehicle is slow or stopped */
+#define EASE_M 2.0          /* the ramp slows down over this distance before a limit ... */
+#define MIN_EASE 0.1        /* ... to this fraction of its rate */
 
 const chasm_param_spec gd_yoyo_params[] = {
     BAND("min_depth", 0, 6000, "shallow limit (depth form)"),
@@ -68,7 +72,10 @@ chasm_status_code gd_yoyo_step(chasm_ctx *c, void *state)
     int up_band = s->altitude_mode ? !s->down : s->down;
     double limit = up_band ? s->hi : s->lo;
     double rate = fmax(MIN_RAMP_SPEED, chasm_read_double(c, YOYO_IN_SPEED)) * sin(chasm_param_double(c, YOYO_PITCH));
-    double step = rate * c->dt_s;
+    /* slow down over the last `ease` metres: the vehicle arrives at the limit
+     * with little vertical speed instead of overshooting it */
+    double ease = fmin(EASE_M, 0.25 * (s->hi - s->lo));
+    double step = rate * fmax(MIN_EASE, fmin(1.0, fabs(limit - s->target) / ease)) * c->dt_s;
     s->target = up_band ? fmin(limit, s->target + step) : fmax(limit, s->target - step);
     double z = measured(c, s);
     double tol = fmin(0.5, 0.2 * (s->hi - s->lo));

@@ -35,7 +35,9 @@ double gd_los_heading(gd_los *g, const gd_line *l, gd_point p, double dt, double
     double s, e;
     gd_line_frame(l, p, &s, &e);
     double L = g->lookahead;
-    if (g->ki > 0.0 && dt > 0.0) {
+    /* conditional integration: only near the line, so the transient of a
+     * turn or a re-acquisition does not wind the offset up */
+    if (g->ki > 0.0 && dt > 0.0 && fabs(e) < 0.5 * L) {
         double q = e + g->b;
         g->b += dt * g->ki * e * L * L / (L * L + q * q);
         g->b = fmax(-L, fmin(L, g->b));

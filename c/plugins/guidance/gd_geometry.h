@@ -32,8 +32,9 @@ PU_HIDDEN void gd_line_frame(const gd_line *l, gd_point p, double *along, double
  *
  * e is the cross-track error, L the lookahead distance and b an integral
  * offset that learns the crab angle a steady cross current needs (plain LOS,
- * ki = 0, leaves e = L tan(crab) in a current). The integration slows down far
- * from the line, and |b| <= L bounds the crab it can learn to 45 degrees. */
+ * ki = 0, leaves e = L tan(crab) in a current). The offset integrates only
+ * within L/2 of the line (a turn or a re-acquisition does not wind it up) and
+ * slows down further out; |b| <= L bounds the crab it can learn to 45 degrees. */
 typedef struct {
     double lookahead;   /* L [m], > 0 */
     double ki;          /* integral rate [1/s], >= 0 */

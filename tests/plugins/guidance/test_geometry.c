@@ -89,6 +89,12 @@ void ilos_removes_the_current_offset(void)
     fly_line(&ilos, &l, (gd_point){0, 0}, 0, 0.3, 400, &worst, 200);
     CHECK(worst < 0.1);
     CHECK_NEAR(ilos.b, 10 * tan(asin(0.2)), 0.1); /* the learnt offset is the crab */
+    /* far from the line (a turn, an approach) the offset does not integrate */
+    gd_los g = {10, 0.04, 0};
+    gd_los_heading(&g, &l, (gd_point){0, 8}, 1.0, NULL, NULL);
+    CHECK(g.b == 0.0);
+    gd_los_heading(&g, &l, (gd_point){0, 2}, 1.0, NULL, NULL);
+    CHECK(g.b > 0.0);
 }
 
 void circle_following(void)
