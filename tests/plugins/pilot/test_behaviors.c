@@ -36,16 +36,23 @@ static const char *plan_with(const char *action)
     return buf;
 }
 
+static double t_now;
+
+/* The plan running `action`, started at t = 0 with the vehicle level, on
+ * heading 0 and not turning. */
 static chasm_machine *machine(const char *action)
 {
     chasm_machine *m = pt_load(plan_with(action));
-    if (m)
-        pt_start(m, 0.0);
+    if (!m)
+        return NULL;
+    static const char *still[] = {"nav.heading_rad", "nav.r_radps", "nav.pitch_rad", "nav.q_radps"};
+    for (size_t i = 0; i < sizeof still / sizeof still[0]; i++)
+        pt_set(m, still[i], 0, 0);
+    pt_start(m, 0.0);
     return m;
 }
 
-/* Steps at `dt` from t0 for n cycles, with the named input held. */
-static double t_now;
+/* Steps n cycles of dt from t_now, inputs held. */
 static void run(chasm_machine *m, int n, double dt)
 {
     for (int i = 0; i < n; i++) {
@@ -84,9 +91,7 @@ static double rudder_for(double heading_deg, double setpoint_deg)
     chasm_machine *m = machine("heading_control(kp = 2, ki = 0, kd = 4, rudder_slew = 0 deg/s)");
     if (!m)
         return NAN;
-    t_now = 0;
     pt_set(m, "nav.heading_rad", heading_deg * DEG, 0);
-    pt_set(m, "nav.r_radps", 0, 0);
     pt_set(m, "setpoint.heading_rad", setpoint_deg * DEG, 0);
     run(m, 3, 0.05);
     double r = pt_get(m, "actuators.rudder_rad");
@@ -113,10 +118,7 @@ void pilot_heading_limits_and_slew(void)
                                "max_rudder = 15 deg, rudder_slew = 20 deg/s)");
     if (!m)
         return;
-    t_now = 0;
     pt_set(m, "actuators.rudder_rad", 0, 0);
-    pt_set(m, "nav.heading_rad", 0, 0);
-    pt_set(m, "nav.r_radps", 0, 0);
     pt_set(m, "setpoint.heading_rad", 90 * DEG, 0);
     double prev = 0;
     int cycles = 0;
@@ -142,10 +144,7 @@ void pilot_heading_turn_rate_limit(void)
                                "rudder_slew = 0 deg/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.heading_rad", 0, 0);
     pt_set(m, "setpoint.heading_rad", 90 * DEG, 0);
-    pt_set(m, "nav.r_radps", 0, 0);
     run(m, 2, 0.05);
     CHECK_NEAR(pt_get(m, "actuators.rudder_rad"), 4 * 5 * DEG, 1e-9);
     pt_set(m, "nav.r_radps", 5 * DEG, t_now);                 /* turning at the limit: no more rudder */
@@ -169,9 +168,6 @@ void pilot_heading_trim_integrator(void)
                                "rudder_slew = 0 deg/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.r_radps", 0, 0);
-    pt_set(m, "nav.heading_rad", 0, 0);
     pt_set(m, "setpoint.heading_rad", 1 * DEG, 0);
     run(m, 201, 0.05);                                        /* 10 s after the first (dt = 0) cycle */
     CHECK_NEAR(pt_get(m, "actuators.rudder_rad"), 0.001 * DEG + 0.1 * 1 * DEG * 10, 1e-9);
@@ -180,27 +176,18 @@ void pilot_heading_trim_integrator(void)
                 "rudder_slew = 0 deg/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.r_radps", 0, 0);
-    pt_set(m, "nav.heading_rad", 0, 0);
     pt_set(m, "setpoint.heading_rad", 45 * DEG, 0);
     run(m, 200, 0.05);
     CHECK_NEAR(pt_get(m, "actuators.rudder_rad"), 4 * 3 * DEG, 1e-9); /* kd * max_turn_rate, no I */
     chasm_free(m);
 }
 
-/* depth_control with the vehicle level at `depth`, asked for `target`. */
+/* depth_control without slew limits, with `extra` parameters (", kp = 1"). */
 static chasm_machine *depth_machine(const char *extra)
 {
     char action[512];
     snprintf(action, sizeof action, "depth_control(pitch_slew = 0 deg/s, plane_slew = 0 deg/s%s)", extra);
-    chasm_machine *m = machine(action);
-    if (m) {
-        t_now = 0;
-        pt_set(m, "nav.pitch_rad", 0, 0);
-        pt_set(m, "nav.q_radps", 0, 0);
-    }
-    return m;
+    return machine(action);
 }
 
 void pilot_depth_cascade_signs(void)
@@ -255,9 +242,6 @@ void pilot_depth_pitch_slew(void)
     chasm_machine *m = machine("depth_control(ki = 0, pitch_ki = 0, plane_slew = 0 deg/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.pitch_rad", 0, 0);
-    pt_set(m, "nav.q_radps", 0, 0);
     pt_set(m, "nav.depth_m", 2, 0);
     pt_set(m, "setpoint.depth_m", 10, 0);
     run(m, 1, 0.05);                                          /* first cycle: dt 0, holds the start pitch */
@@ -272,9 +256,6 @@ void pilot_pitch_control(void)
     chasm_machine *m = machine("pitch_control(max_pitch = 10 deg, pitch_ki = 0, plane_slew = 0 deg/s, max_plane = 45 deg)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.pitch_rad", 0, 0);
-    pt_set(m, "nav.q_radps", 0, 0);
     pt_set(m, "setpoint.pitch_rad", 30 * DEG, 0);             /* clamped to 10 deg, bow up */
     run(m, 2, 0.05);
     CHECK_NEAR(pt_get(m, "actuators.stern_plane_rad"), -2.5 * 10 * DEG, 1e-9);
@@ -291,9 +272,6 @@ void pilot_altitude_target_and_search(void)
                                "pitch_slew = 0 deg/s, plane_slew = 0 deg/s, search_rate = 0.5 m/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.pitch_rad", 0, 0);
-    pt_set(m, "nav.q_radps", 0, 0);
     pt_set(m, "nav.depth_m", 20, 0);
     pt_set(m, "nav.altitude_m", 12, 0);                       /* seabed at 32 m */
     pt_set(m, "setpoint.altitude_m", 8, 0);                   /* target: 24 m, 4 m deeper */
@@ -310,9 +288,6 @@ void pilot_altitude_target_and_search(void)
                 "pitch_slew = 0 deg/s, plane_slew = 0 deg/s, search_rate = 0.5 m/s)");
     if (!m)
         return;
-    t_now = 0;
-    pt_set(m, "nav.pitch_rad", 0, 0);
-    pt_set(m, "nav.q_radps", 0, 0);
     pt_set(m, "nav.depth_m", 5, 0);
     pt_set(m, "nav.altitude_m", -1, 0);                       /* no bottom lock from the start */
     pt_set(m, "setpoint.altitude_m", 8, 0);
@@ -333,7 +308,6 @@ void pilot_speed_feed_forward_and_stop(void)
     chasm_machine *m = machine("speed_control(rpm_slew = 0)");
     if (!m)
         return;
-    t_now = 0;
     pt_set(m, "nav.u_mps", 1.5, 0);
     pt_set(m, "setpoint.speed_mps", 1.5, 0);
     run(m, 2, 0.05);
@@ -352,7 +326,6 @@ void pilot_speed_feed_forward_and_stop(void)
     m = machine("speed_control()");
     if (!m)
         return;
-    t_now = 0;
     pt_set(m, "nav.u_mps", 0, 0);
     pt_set(m, "setpoint.speed_mps", 1.5, 0);
     run(m, 21, 0.05);
@@ -365,7 +338,6 @@ void pilot_rpm_limits(void)
     chasm_machine *m = machine("rpm_control(min_rpm = -500, max_rpm = 1800, rpm_slew = 1000)");
     if (!m)
         return;
-    t_now = 0;
     pt_set(m, "actuators.prop_rpm", 0, 0);
     pt_set(m, "setpoint.prop_rpm", 1200, 0);
     run(m, 11, 0.05);                                         /* 0.5 s at 1000 rpm/s */
