@@ -82,16 +82,21 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
     lines = planned_lines()
     entered_lines = [t for t, path, _ in rec.states if path == "survey/lines"]
     # on a line: in the box's along-track span, heading along the line (not
-    # turning), more than 20 s after the lines were (re-)entered (the dive and
-    # the re-acquisition after a fix, from where the vehicle drifted)
+    # turning), more than 30 s after the lines were (re-)entered (the dive and
+    # the re-acquisition after a fix, from where the vehicle drifted: about
+    # the 40 m run-in a turn gets)
     def on_line(p: Pose, k: int) -> bool:
         east, direction = lines[k]
         course = 0.0 if direction > 0 else math.pi
         return (rec.state_at(p.t) == "survey/lines" and BOX["north"] <= p.n <= BOX["north"] + BOX["length"]
                 and abs(p.e - east) < BOX["spacing"] / 2
                 and abs(math.remainder(p.heading - course, 2 * math.pi)) < math.radians(30)
-                and min(p.t - t for t in entered_lines if t <= p.t) > 20.0)
+                and min(p.t - t for t in entered_lines if t <= p.t) > 30.0)
 
+    for k, (east, _) in enumerate(lines):   # every 10 m of each line was flown (within 5 m of it)
+        bins = {int((p.n - BOX["north"]) // 10) for p in rec.truth
+                if abs(p.e - east) < 5 and BOX["north"] <= p.n < BOX["north"] + BOX["length"]}
+        assert bins == set(range(int(BOX["length"] // 10))), f"line {k}: gaps at {sorted(set(range(20)) - bins)}"
     order = []
     for source, name in ((rec.truth, "truth"), (rec.nav, "nav")):
         print(f"cross-track from the planned lines, {name}:")
@@ -102,11 +107,10 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
             span = max(p.n for p in pts) - min(p.n for p in pts)
             rms = math.sqrt(sum(e * e for e in err) / len(err))
             print(f"  line {k} (east {east:5.1f} m): max {max(err):.2f} m, rms {rms:.2f} m over {span:.0f} m")
-            assert span > 0.8 * BOX["length"], f"line {k}: only {span:.0f} m flown"
-            if name == "nav":
-                assert max(err) < 1.0, f"guidance: line {k} {max(err):.2f} m off"   # what the vehicle steers by
-            else:
-                assert max(err) < 1.5, f"truth: line {k} {max(err):.2f} m off"      # + the navigation's error
+            assert span > 0.7 * BOX["length"], f"line {k}: measured over {span:.0f} m only"
+            worst = max(pts, key=lambda p: abs(p.e - east))
+            where = f"line {k} {max(err):.2f} m off at {worst.t:.1f} s, north {worst.n:.0f} m"
+            assert max(err) < (1.0 if name == "nav" else 1.5), f"{name}: {where}"   # truth: + the navigation's error
             if name == "truth":
                 order += [(p.t, k) for p in pts]
     order.sort()
