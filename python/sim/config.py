@@ -46,7 +46,7 @@ class SimSettings:
     clock_rate_hz: float = 10.0      # SIM.CLOCK rate when this process publishes it
     truth_rate_hz: float = 10.0
     actuator_state_rate_hz: float = 10.0
-    health_period_s: float = 1.0     # wall seconds between process_health_t
+    health_period_s: float = 1.0     # sim seconds between process_health_t
     command_timeout_s: float = 1.0
     on_stale: str = "hold"           # hold | safe
     duration_s: float = 0.0          # 0 = until stopped

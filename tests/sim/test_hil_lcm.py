@@ -177,10 +177,34 @@ def test_bad_messages_are_counted_dropped_and_reported(tmp_path, child_env, lcm_
                     timeout=10)
         n = len(rec.msgs["AUV1.TRUTH"])
         assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) > n + 5, timeout=5)  # still running
+        assert pump(lc, lambda: len(rec.msgs["AUV1.HEALTH"]) >= 3, timeout=10)
     finally:
         assert stop(proc) == 0
     h = rec.msgs["AUV1.HEALTH"][-1]
     assert h.process == "sim" and h.vehicle == "AUV1" and h.pid == proc.pid
+    # paced by sim time, like every other output: one per health_period_s (1 s)
+    times = [m.utime for m in rec.msgs["AUV1.HEALTH"]]
+    assert len(times) >= 3 and all(b - a == 1_000_000 for a, b in zip(times, times[1:]))
+
+
+def test_gaps_in_the_command_sequence_are_counted_as_overflows(tmp_path, child_env, lcm_url):
+    """queue_overflows counts the commands we never saw (seq gaps), not a constant 0."""
+    lc = lcm.LCM(lcm_url)
+    rec = Recorder(lc)
+    rec.sub("AUV1.HEALTH", process_health_t)
+    proc = start_sim(tmp_path, child_env, lcm_url, warp=5.0)
+    try:
+        cmd = actuators_t()
+        cmd.vehicle, cmd.prop_rpm = "AUV1", 1000.0
+        for seq in (1, 2, 5, 6, 10, 3):   # 3+3 missing; 3 after 10 is a pilot restart
+            cmd.seq = seq
+            lc.publish("AUV1.ACTUATORS", cmd.encode())
+            time.sleep(0.02)
+        assert pump(lc, lambda: any(h.queue_overflows == 5 and h.messages_received >= 6
+                                    for h in rec.msgs["AUV1.HEALTH"]), timeout=10)
+    finally:
+        assert stop(proc) == 0
+    assert max(h.queue_overflows for h in rec.msgs["AUV1.HEALTH"]) == 5
 
 
 def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
