@@ -43,7 +43,7 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
     out = []
     names = cfg.sensors or {name: REGISTRY[name][0]() for name in REGISTRY}
     for name, scfg in names.items():
-        if not scfg.enabled:
+        if not scfg.enabled or getattr(scfg, "channel", "") == "off":
             continue
         cls = REGISTRY[name][1]
         if name in ("gps", "ins"):
