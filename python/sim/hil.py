@@ -55,6 +55,14 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
     return out
 
 
+def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
+    """Outputs beyond the instruments: the sidescan sonar when configured."""
+    if cfg.sonar is None:
+        return []
+    from sim.sonar.publisher import SonarOutputs
+    return [SonarOutputs(cfg, sensors, publish_world)]
+
+
 def build_model(cfg: SimConfig) -> VehicleModel:
     env = Environment(cfg.env, cfg.path.parent)
     model = VehicleModel(cfg.vehicle, env, 1.0 / cfg.sim.physics_rate_hz)
@@ -102,6 +110,8 @@ class Simulator:
                          1.0 / s.clock_rate_hz, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
+        # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
+        self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
         self._ch_health = f"{self.vid}.HEALTH"
         self._encoders: dict[type, Encoder | None] = {}
@@ -140,6 +150,8 @@ class Simulator:
             self._next_due = t
             for sen in self.sensors:
                 sen.next_t = t + sen.cfg.phase_s
+            for extra in self.extras:
+                extra.restart(t)
             self._t_start = t
             self._outputs()
         self.pacer.target_t = t
@@ -190,6 +202,9 @@ class Simulator:
             msg = sen.poll(tr)
             if msg is not None:
                 publish(channel, self._encode(msg))
+        for extra in self.extras:
+            for channel, data in extra.poll(tr):
+                publish(channel, data)
         nx = self._next
         if t >= nx[0] - 1e-9:
             nx[0] = _next_slot(nx[0], self._periods[0], t)
@@ -211,6 +226,7 @@ class Simulator:
             nx[3] = _next_slot(nx[3], self._periods[3], t)
             self._health()
         self._next_due = min(min((s.next_due() for s, _ in self._sensor_channels), default=math.inf),
+                             min((x.next_due() for x in self.extras), default=math.inf),
                              nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
 
     def _health(self) -> None:
