@@ -13,7 +13,6 @@ import math
 import os
 import select
 import signal
-import sys
 import time
 
 import lcm

@@ -13,8 +13,9 @@ from pathlib import Path
 
 import lcm
 
-from auv import actuators_t, nav_solution_t, sidescan_contact_t, sim_clock_t, target_field_t
-from lcm_proc import pump, stop, wait_for_line
+from auv import sidescan_contact_t, target_field_t
+from lcm_proc import stop, wait_for_line
+from lockstep import LockstepPilot
 from test_hil_lcm import Recorder
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -35,7 +36,6 @@ TARGETS = [(1, 20.0, 15.0), (2, 25.0, -15.0), (3, 30.0, 25.0), (4, 35.0, -25.0),
 
 
 def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
-    from sim.autopilot import Autopilot
     (tmp_path / "targets.csv").write_text("id,north_m,east_m,kind,length_m\n" + "".join(
         f"{i},{n},{e},mine_like,1.5\n" for i, n, e in TARGETS))
     cfg = tmp_path / "sim.yaml"
@@ -44,28 +44,13 @@ def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
     rec = Recorder(lc)
     rec.sub("AUV2.CONTACTS", sidescan_contact_t)
     rec.sub("SIM.TARGETS", target_field_t)
-    ap = Autopilot()
-    navs: list = []
-
-    def on_nav(_ch, nav):
-        navs.append(nav)
-        cmd = actuators_t()
-        cmd.utime, cmd.vehicle, cmd.seq, cmd.prop_rpm = nav.utime, "AUV2", len(navs), 1500.0
-        cmd.rudder_rad = ap.rudder(0.0, nav.heading_rad, nav.r_radps)
-        cmd.stern_plane_rad = ap.stern_for_depth(5.0, nav.depth_m, nav.pitch_rad, nav.q_radps)
-        lc.publish("AUV2.ACTUATORS", cmd.encode())
-    rec.rx.subscribe("AUV2.NAV", nav_solution_t, on_nav, queue_capacity=1000)
+    pilot = LockstepPilot(lc, "AUV2", depth_m=5.0)
     proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=child_env)
-    clock = sim_clock_t()
-    clock.server_id, clock.mode, clock.step_us = "test", sim_clock_t.MODE_LOCKSTEP, 40_000
     try:
         wait_for_line(proc, "running", timeout=20)
-        for k in range(0, 1126):                 # 45 s: past the last target at 55 m
-            clock.utime, clock.step = k * 40_000, k
-            lc.publish("SIM.CLOCK", clock.encode())
-            assert pump(lc, lambda: navs and navs[-1].utime == clock.utime, timeout=20)
+        pilot.fly(45.0)                          # past the last target at 55 m north
         lc.handle_timeout(100)
     finally:
         assert stop(proc) == 0
