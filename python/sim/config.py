@@ -85,6 +85,7 @@ class SimConfig:
     sensors: dict[str, Any]
     multihil: MultiHil
     safe_command: Command
+    modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
 
 
 # ------------------------------------------------------------------ reading
@@ -371,7 +372,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     doc = _Doc(path, text)
     top = doc.mapping(doc.root, "")
     sections = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-                "safe_command")
+                "safe_command", "modem")
     doc.unknown(top, sections, "")
     get = lambda name: top[name][1] if name in top else None  # noqa: E731
     vid, vp = _vehicle(doc, get("vehicle"))
@@ -401,10 +402,14 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
                     doc.err(m["needs"][1].value[i], f"multihil.needs[{i}]",
                             f"unknown environment variable {v!r}; one of {', '.join(ENV_VARIABLES)}")
     safe = _fill(doc, get("safe_command"), "safe_command", Command())
+    from sim.modem.config import parse as parse_modem
+    modem = parse_modem(doc, get("modem"))
     if doc.errors:
         raise ConfigError(sorted(dict.fromkeys(doc.errors), key=_position))
     if sim.seed < 0:
         sim.seed = env.seed
     if not mh.client_id:
         mh.client_id = f"{vid}-sim"
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe)
+    if modem is not None and modem.seed < 0:
+        modem.seed = env.seed        # the world's: the same for every simulator in it
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, modem)

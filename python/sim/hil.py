@@ -25,6 +25,7 @@ from sim.actuators import Command
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
+from sim.modem.node import make_modem
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 
@@ -80,6 +81,7 @@ class Simulator:
                           queue_capacity=200)
         if s.clock == "stepped":
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
+        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
         self.last_cmd_t: float | None = None     # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
@@ -148,6 +150,8 @@ class Simulator:
             msg = sen.poll(tr)
             if msg is not None:
                 self._publish(f"{vid}.{sen.topic}", msg)
+        if self.modem is not None:
+            self.modem.step(t, (tr.eta[0], tr.eta[1], tr.eta[2]))
         nx, per = self._next, self._periods
         if t >= nx["truth"] - 1e-9:
             nx["truth"] += per["truth"] * max(1, math.floor((t - nx["truth"]) / per["truth"]) + 1)
@@ -240,4 +244,6 @@ class Simulator:
               f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
               f"{self.rejected_commands} commands rejected, {self.stale_events} stale events",
               flush=True)
+        if self.modem is not None:
+            print(self.modem.summary(), flush=True)
         return 0
