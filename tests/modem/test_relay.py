@@ -63,15 +63,21 @@ def start_relay(env, a, b, *args):
     return proc
 
 
-def run_traffic(env, urls, n, *relay_args, channel="AUV1.DATA", both_sides=None):
+def send_one(a: Side, b: Side, seq: int) -> None:
+    a.send("AUV1.DATA", seq)
+
+
+def run_traffic(env, urls, n, *relay_args, send=send_one):
+    """n rounds of send(a, b, seq) about 1 ms apart through a relay; (a, b, its output)."""
     a, b = Side(urls[0]), Side(urls[1])
     relay = start_relay(env, urls[0], urls[1], *relay_args)
     try:
         for seq in range(n):
-            a.send(channel, seq)
+            send(a, b, seq)
             a.pump(0.001)
             b.pump(0.0)
         b.pump(0.5)
+        a.pump(0.3)
     finally:
         assert stop(relay) == 0
     out = relay.stdout.read()
@@ -116,34 +122,18 @@ def test_loss_duplication_reordering_statistics_and_repeatability(child_env, url
 
 
 def test_channel_filter(child_env, urls):
-    a, b = Side(urls[0]), Side(urls[1])
-    relay = start_relay(child_env, urls[0], urls[1], "--channel", r"AUV1\..*")
-    try:
-        for seq in range(20):
-            a.send("AUV1.NAV", seq)
-            a.send("AUV2.NAV", seq)
-            a.send("XAUV1.NAV", seq)
-            a.pump(0.002)
-        b.pump(0.3)
-    finally:
-        assert stop(relay) == 0
+    def send(a, b, seq):
+        for channel in ("AUV1.NAV", "AUV2.NAV", "XAUV1.NAV"):
+            a.send(channel, seq)
+    _, b, _ = run_traffic(child_env, urls, 20, "--channel", r"AUV1\..*", send=send)
     assert {ch for ch, *_ in b.got} == {"AUV1.NAV"} and len(b.got) == 20
 
 
 def test_both_directions_without_loops(child_env, urls):
-    a, b = Side(urls[0]), Side(urls[1])
-    relay = start_relay(child_env, urls[0], urls[1], "--both", "--delay-ms", "1")
-    try:
-        for seq in range(50):
-            a.send("AUV1.DATA", seq)
-            b.send("AUV2.DATA", 1000 + seq)
-            a.pump(0.002)
-            b.pump(0.0)
-        a.pump(0.3)
-        b.pump(0.3)
-    finally:
-        assert stop(relay) == 0
-    out = relay.stdout.read()
+    def send(a, b, seq):
+        a.send("AUV1.DATA", seq)
+        b.send("AUV2.DATA", 1000 + seq)
+    a, b, out = run_traffic(child_env, urls, 50, "--both", "--delay-ms", "1", send=send)
     by = lambda side, ch: sorted(s for c, s, _, _ in side.got if c == ch)   # noqa: E731
     # each side hears its own 50 once (no echo back) and the other side's 50 once
     assert by(a, "AUV1.DATA") == list(range(50)) and by(b, "AUV1.DATA") == list(range(50))
