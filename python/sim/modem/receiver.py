@@ -20,6 +20,11 @@ from sim.modem.config import ModemConfig
 from sim.sensors.base import utime
 
 EPS_M = 1e-6
+# A frame whose wavefront is a gap g short of us cannot arrive within
+# g / (2 c): the sound speed along the path and the receiver's speed would
+# have to double the closing rate. Frames are looked at again only then, so
+# a frame in flight costs a few checks instead of one per physics step.
+CLOSING_MARGIN = 2.0
 
 
 class Receiver:
@@ -31,6 +36,7 @@ class Receiver:
         self.env = env
         self.status = status
         self.pending: list[acoustic_frame_t] = []
+        self._next_check: dict[int, float] = {}  # id(frame) -> sim time to look again
         self.bad_frames = 0             # from no valid vehicle id: dropped
 
     def hear(self, frame: acoustic_frame_t) -> None:
@@ -48,13 +54,19 @@ class Receiver:
         """Frames whose wavefront reached us by sim time t, lost ones left out."""
         arrived, waiting = [], []
         for f in self.pending:
+            if t < self._next_check.get(id(f), t):
+                waiting.append(f)
+                continue
             tx_pos = (f.tx_north_m, f.tx_east_m, f.tx_depth_m)
             c = self.env.mean_sound_speed(f.tx_depth_m, position[2])
             d = distance_3d(tx_pos, position)
-            if c * (t - f.utime / 1e6) >= d - EPS_M:
+            gap = d - c * (t - f.utime / 1e6)
+            if gap <= EPS_M:
                 arrived.append((f.utime / 1e6 + d / c, f, d))
+                self._next_check.pop(id(f), None)
             else:
                 waiting.append(f)
+                self._next_check[id(f)] = t + gap / (CLOSING_MARGIN * c)
         self.pending = waiting
         out = []
         for t_arr, f, d in sorted(arrived, key=lambda a: (a[0], a[1].src_vehicle, a[1].seq)):
