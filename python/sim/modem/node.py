@@ -13,7 +13,7 @@ the simulator's current time.
 
 from __future__ import annotations
 
-from typing import Any, Callable
+from typing import Callable
 
 from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
 
@@ -31,7 +31,7 @@ REPORT_FIRST = 3     # refusals printed; the rest are only counted
 
 class ModemNode:
     def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment,
-                 rx: LcmReceiver, publish: Callable[[str, Any], None]) -> None:
+                 rx: LcmReceiver, publish: Callable[[str, bytes], None]) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.status = modem_status_t()
@@ -78,7 +78,7 @@ class ModemNode:
         if isinstance(out, str):
             self._refused(out)
         else:
-            self._publish("SIM.ACOUSTIC", out)
+            self._publish("SIM.ACOUSTIC", out.encode())
             self._publish_status()
 
     def _refused(self, reason: str) -> None:
@@ -95,7 +95,7 @@ class ModemNode:
         st = self.status
         before = st.received + st.lost + st.out_of_range
         for m in self.rx.step(t, position):
-            self._publish(f"{self.vehicle}.MODEM_RX", m)
+            self._publish(f"{self.vehicle}.MODEM_RX", m.encode())
             if self.cfg.peer_reports and m.kind == modem_tx_t.KIND_NAV_REPORT:
                 try:
                     report = heard_report(m)
@@ -106,7 +106,7 @@ class ModemNode:
                               f"dropped: {exc}", flush=True)
                     continue
                 self.reports_heard += 1
-                self._publish(f"{self.vehicle}.PEER.{m.src_vehicle}", report)
+                self._publish(f"{self.vehicle}.PEER.{m.src_vehicle}", report.encode())
         if t >= self._next_status - 1e-9 or st.received + st.lost + st.out_of_range != before:
             if t >= self._next_status - 1e-9:
                 self._next_status = t + self.cfg.status_period_s
@@ -114,7 +114,7 @@ class ModemNode:
 
     def _publish_status(self) -> None:
         self.status.utime = utime(self._t or 0.0)
-        self._publish(f"{self.vehicle}.MODEM_STATUS", self.status)
+        self._publish(f"{self.vehicle}.MODEM_STATUS", self.status.encode())
 
     def summary(self) -> str:
         s = self.status
@@ -126,7 +126,7 @@ class ModemNode:
 
 
 def make_modem(cfg, env: Environment, rx: LcmReceiver,
-               publish: Callable[[str, Any], None]) -> ModemNode | None:
+               publish: Callable[[str, bytes], None]) -> ModemNode | None:
     """The modem of a simulator configuration (sim.config.SimConfig), if it has one."""
     m = cfg.modem
     if m is None or not m.enabled:
