@@ -9,13 +9,14 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import time
 from collections import defaultdict
 from pathlib import Path
 
 import lcm
 
-from auv import (ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, peer_report_t,
-                 sim_clock_t)
+from auv import (chasm_status_t, ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t,
+                 peer_report_t, sim_clock_t)
 from auvlcm.rx import Receiver
 from conftest import ROOT
 from lcm_proc import pump, stop, wait_for_line
@@ -51,6 +52,7 @@ class World:
         self.rx = Receiver(self.lc)
         self.procs: dict[str, subprocess.Popen] = {}
         self.sims: list[str] = []
+        self.managers: dict[str, int] = {}       # status channel -> last status utime
         self.truth: dict[str, dict[int, tuple]] = defaultdict(dict)
         self.msgs: dict[str, list] = defaultdict(list)
         self.arrived_at: dict[str, list[tuple[int, object]]] = defaultdict(list)
@@ -76,6 +78,26 @@ class World:
 
     def add_process(self, name: str, proc: subprocess.Popen) -> None:
         self.procs[name] = proc
+
+    def add_manager(self, vehicle: str, name: str, proc: subprocess.Popen,
+                    period_us: int = 100_000) -> None:
+        """A manager taking part in the lockstep: ticks wait for each of its
+        cycles (its status), so it never falls behind on a loaded machine."""
+        self.procs[f"{vehicle}.{name}"] = proc
+        self.period_us = period_us
+        channel = f"{vehicle}.CHASM.{name}"
+        self.watch(channel, chasm_status_t)
+        self.managers[channel] = -1
+
+    def wait_for_managers(self, timeout_s: float = 60.0) -> None:
+        """Tick until every manager has run its first cycle (it subscribes late)."""
+        deadline = time.monotonic() + timeout_s
+        while not all(self.msgs[ch] for ch in self.managers):
+            assert time.monotonic() < deadline, "a manager never ran a cycle"
+            for proc in self.procs.values():
+                assert proc.poll() is None, f"a process exited: {proc.args}"
+            self.tick()
+            pump(self.lc, lambda: all(self.msgs[ch] for ch in self.managers), timeout=0.05)
 
     def watch(self, channel: str, typ: type) -> None:
         def on_msg(ch, m):
@@ -106,6 +128,12 @@ class World:
             self.lc.publish("SIM.CLOCK", c.encode())
             ok = pump(self.lc, lambda: all(self.utime in self.truth[v] for v in sims), timeout=20)
             assert ok, f"a simulator did not finish step {self.utime}"
+            for ch in self.managers:
+                msgs = self.msgs[ch]
+                if msgs and self.utime >= msgs[-1].utime + self.period_us:
+                    due = msgs[-1].utime + self.period_us
+                    ok = pump(self.lc, lambda: msgs[-1].utime >= due, timeout=20)
+                    assert ok, f"{ch} did not run its cycle at {due}"
 
     def run_for(self, seconds: float) -> None:
         self.tick(int(round(seconds * 1e6 / STEP_US)))
