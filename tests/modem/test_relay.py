@@ -5,6 +5,7 @@ time, so timing checks have a strict lower bound and a generous upper one."""
 
 from __future__ import annotations
 
+import re
 import statistics
 import struct
 import subprocess
@@ -55,6 +56,13 @@ class Side:
                 break
 
 
+def relay_received(out: str, direction: str = "AB") -> int:
+    """Messages the relay took in (the kernel may drop some before it, under load)."""
+    m = re.search(rf"relay LINK\.{direction}: (\d+) received", out)
+    assert m, out
+    return int(m.group(1))
+
+
 def start_relay(env, a, b, *args):
     proc = subprocess.Popen([sys.executable, str(RELAY), "--in", a, "--out", b, "--name", "LINK",
                              *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
@@ -88,26 +96,30 @@ def run_traffic(env, urls, n, *relay_args, send=send_one):
 def test_delay_and_jitter(child_env, urls):
     a, b, out = run_traffic(child_env, urls, 300, "--delay-ms", "20", "--jitter-ms", "5")
     seqs = [s for _, s, _, _ in b.got]
-    assert sorted(seqs) == list(range(300))                    # nothing lost or added
+    received = relay_received(out)
+    assert received >= 270                                     # the rest: kernel drops
+    assert len(seqs) == len(set(seqs)) == received             # nothing lost or added
     delays_ms = [(rx - tx) * 1e3 for _, _, tx, rx in b.got]
     assert min(delays_ms) >= 15.0 - 0.5                        # never earlier than asked
     assert statistics.median(delays_ms) < 25.0 + 200.0         # a loaded machine adds, only
     st = a.stats["SIM.LINK_STATS.LINK.AB"]
-    assert st.forwarded == 300 and st.dropped == st.duplicated == 0
+    assert st.forwarded == received and st.dropped == st.duplicated == 0
     # the scheduled delays: uniform on [15, 25] ms, mean 20 +- 4 sigma of the mean
-    assert abs(st.mean_delay_ms - 20.0) < 4 * (10 / 12 ** 0.5) / 300 ** 0.5
-    assert "300 forwarded" in out
+    assert abs(st.mean_delay_ms - 20.0) < 4 * (10 / 12 ** 0.5) / received ** 0.5
+    assert f"{received} forwarded" in out
 
 
 def test_loss_duplication_reordering_statistics_and_repeatability(child_env, urls):
     n, loss, dup, reorder = 600, 0.2, 0.1, 0.1
     args = ("--delay-ms", "2", "--jitter-ms", "1", "--loss", str(loss), "--duplicate", str(dup),
             "--reorder", str(reorder), "--reorder-delay-ms", "15", "--seed", "7")
-    a, b, _ = run_traffic(child_env, urls, n, *args)
+    a, b, out = run_traffic(child_env, urls, n, *args)
     st = a.stats["SIM.LINK_STATS.LINK.AB"]
     sigma = lambda p, m: 4 * (m * p * (1 - p)) ** 0.5        # noqa: E731
-    assert abs(st.dropped - n * loss) < sigma(loss, n)
-    kept = n - st.dropped
+    received = relay_received(out)
+    assert received >= 0.9 * n
+    assert abs(st.dropped - received * loss) < sigma(loss, received)
+    kept = received - st.dropped
     assert abs(st.duplicated - kept * dup) < sigma(dup, kept)
     assert st.forwarded == kept + st.duplicated == len(b.got)
     seqs = [s for _, s, _, _ in b.got]
@@ -116,9 +128,16 @@ def test_loss_duplication_reordering_statistics_and_repeatability(child_env, url
     # reordered as the relay counts it: sent after something that arrived later
     out_of_order = sum(1 for i, s in enumerate(seqs) if i and s < max(seqs[:i]))
     assert out_of_order == st.reordered > kept * reorder * 0.5
-    # the same seed and input: the same messages lost
-    a2, b2, _ = run_traffic(child_env, urls, n, *args)
-    assert {s for _, s, _, _ in b2.got} == set(seqs)
+
+
+def test_the_same_seed_loses_the_same_messages(child_env, urls):
+    args = ("--loss", "0.3", "--duplicate", "0.1", "--seed", "11")
+    runs = [run_traffic(child_env, urls, 300, *args) for _ in range(2)]
+    if any(relay_received(out) < 300 for _, _, out in runs):
+        pytest.skip("the kernel dropped messages before the relay (machine overloaded): "
+                    "the two runs had different inputs")
+    delivered = [sorted(s for _, s, _, _ in b.got) for _, b, _ in runs]
+    assert delivered[0] == delivered[1] and 180 < len(set(delivered[0])) < 240
 
 
 def test_channel_filter(child_env, urls):
