@@ -9,10 +9,11 @@ machines do not have). Every message whose channel matches --channel (a
 regex, whole name) is dropped with probability --loss, or else sent after
 --delay-ms +- --jitter-ms (uniform), plus --reorder-delay-ms with probability
 --reorder (so later messages overtake it), and with probability --duplicate
-a second copy follows with its own delay. The decisions come from a
-generator seeded by --seed and drawn in a fixed pattern per message, so the
-same input sequence is impaired the same way on every run. Delays are wall
-time: this is a network, not a simulation.
+a second copy follows with its own delay. The decisions are drawn from a
+hash of --seed, the direction, the channel and the message's own bytes (and
+how many identical messages came before it), so a message meets the same fate
+on every run, whatever else was on the link. Delays are wall time: this is a
+network, not a simulation.
 
 --both relays B -> A as well, with the same impairment. Loop prevention: a
 relay hears what it publishes (LCM loops multicast back), so every message it
@@ -28,13 +29,12 @@ from __future__ import annotations
 import argparse
 import hashlib
 import heapq
-import random
 import re
 import select
 import signal
 import sys
 import time
-from collections import deque
+from collections import OrderedDict, deque
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,6 +45,7 @@ import lcm  # noqa: E402
 from auvlcm.url import check_local  # noqa: E402
 
 ECHO_MEMORY_S = 5.0
+OCCURRENCE_MEMORY = 100_000   # identical messages remembered, to vary their fate
 QUEUE_CAPACITY = 100_000
 
 
@@ -92,24 +93,44 @@ class Echoes:
             self.count[k] = n - 1
 
 
+def message_digest(channel: str, data: bytes) -> bytes:
+    return hashlib.blake2b(channel.encode() + b"\0" + data, digest_size=16).digest()
+
+
+def draws(seed: int, direction: str, channel: str, digest: bytes, occurrence: int) -> list[float]:
+    """Five numbers in [0, 1) fixed by the message itself (and how many identical
+    ones came before it): its fate does not depend on what else the link carried,
+    so a message is impaired the same way on every run even if others were lost
+    before they reached the relay."""
+    key = f"{seed}|{direction}|{channel}|{occurrence}|".encode() + digest
+    h = hashlib.blake2b(key, digest_size=40).digest()
+    return [int.from_bytes(h[8 * i:8 * i + 8], "big") / 2.0 ** 64 for i in range(5)]
+
+
 class Direction:
     """One way through the relay: decisions, the send queue, statistics."""
 
     def __init__(self, name: str, imp: Impairment, seed: int) -> None:
         self.name = name
         self.imp = imp
-        self.rng = random.Random(f"{seed}:{name}")
+        self.seed = seed
+        self.occurrences: OrderedDict[bytes, int] = OrderedDict()   # of identical messages
         self.arrivals = 0
         self.max_sent_index = -1
         self.received = self.forwarded = self.dropped = self.duplicated = 0
         self.reordered = self.echoes = 0
         self.delay_sum_ms = 0.0
 
-    def decide(self) -> list[float]:
-        """Delays [ms] of the copies to send of the next message (none: lost)."""
-        imp, r = self.imp, self.rng
-        u_loss, u_dup, u_reorder = r.random(), r.random(), r.random()
-        jitters = (r.uniform(-1.0, 1.0), r.uniform(-1.0, 1.0))   # always drawn: fixed pattern
+    def decide(self, channel: str, data: bytes) -> list[float]:
+        """Delays [ms] of the copies to send of this message (none: lost)."""
+        imp = self.imp
+        digest = message_digest(channel, data)
+        n = self.occurrences.pop(digest, 0)
+        self.occurrences[digest] = n + 1
+        if len(self.occurrences) > OCCURRENCE_MEMORY:
+            self.occurrences.popitem(last=False)
+        u_loss, u_dup, u_reorder, j0, j1 = draws(self.seed, self.name, channel, digest, n)
+        jitters = (2.0 * j0 - 1.0, 2.0 * j1 - 1.0)
         if u_loss < imp.loss:
             self.dropped += 1
             return []
@@ -169,7 +190,7 @@ class Relay:
         direction.received += 1
         index = direction.arrivals
         direction.arrivals += 1
-        for delay_ms in direction.decide():
+        for delay_ms in direction.decide(channel, data):
             self.order += 1
             heapq.heappush(self.queue, (now + delay_ms / 1e3, self.order, d, channel, data, index,
                                         delay_ms))
