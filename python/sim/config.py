@@ -24,6 +24,7 @@ from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
 from sim.environment import CurrentLayer, EnvParams, Transponder
 from sim.sensors import REGISTRY
+from sim.sonar.config import SonarConfig
 from sim.vehicle import REMUS100, VehicleParams
 
 ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
@@ -89,6 +90,7 @@ class SimConfig:
     sensors: dict[str, Any]
     multihil: MultiHil
     safe_command: Command
+    sonar: SonarConfig | None = None     # None: no sonar section
     modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
 
 
@@ -168,6 +170,8 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
         doc.err(node, key, f"expected {_typename(want)}")
         return dataclasses.MISSING
     value = doc.scalar(node)
+    if want is str and isinstance(value, bool):
+        value = node.value      # YAML 1.1 reads yes/no/on/off as booleans: keep the word
     if name == "channel":
         return _check_channel(doc, node, key, value)
     if want is float and isinstance(value, int) and not isinstance(value, bool):
@@ -189,8 +193,8 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
 
 
 def _check_channel(doc: _Doc, node, key: str, value: Any) -> Any:
-    """A channel suffix such as NAV or NAV_INS, or off (YAML reads a bare off as false)."""
-    if value is False or value == "off":
+    """A channel suffix such as NAV or NAV_INS, or off."""
+    if value == "off":
         return "off"
     if not isinstance(value, str) or not CHANNEL_SUFFIX.fullmatch(value):
         doc.err(node, key, f"expected a channel name (upper-case letters, digits, '_', e.g. "
@@ -206,6 +210,9 @@ def _fill(doc: _Doc, node, key: str, obj) -> Any:
     doc.unknown(items, names, key)
     for name, (_, vnode) in items.items():
         if name not in names:
+            continue
+        if dataclasses.is_dataclass(getattr(obj, name)):     # a nested section
+            _fill(doc, vnode, _join(key, name), getattr(obj, name))
             continue
         v = _check_value(doc, vnode, _join(key, name), name, getattr(obj, name))
         if v is not dataclasses.MISSING:
@@ -394,7 +401,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     doc = _Doc(path, text)
     top = doc.mapping(doc.root, "")
     sections = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-                "safe_command", "modem")
+                "safe_command", "sonar", "modem")
     doc.unknown(top, sections, "")
     get = lambda name: top[name][1] if name in top else None  # noqa: E731
     vid, vp = _vehicle(doc, get("vehicle"))
@@ -424,14 +431,20 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
                     doc.err(m["needs"][1].value[i], f"multihil.needs[{i}]",
                             f"unknown environment variable {v!r}; one of {', '.join(ENV_VARIABLES)}")
     safe = _fill(doc, get("safe_command"), "safe_command", Command())
+    sonar = None
+    if "sonar" in top:
+        from sim.sonar.config_check import check_sonar
+        sonar = check_sonar(doc, get("sonar"), path.parent, _fill)
     from sim.modem.config import parse as parse_modem
     modem = parse_modem(doc, get("modem"))
     if doc.errors:
         raise ConfigError(sorted(dict.fromkeys(doc.errors), key=_position))
     if sim.seed < 0:
         sim.seed = env.seed
+    if sonar is not None and sonar.targets.seed < 0:
+        sonar.targets.seed = env.seed    # one world, one field: every vehicle's sim agrees
     if not mh.client_id:
         mh.client_id = f"{vid}-sim"
     if modem is not None and modem.seed < 0:
         modem.seed = env.seed        # the world's: the same for every simulator in it
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, modem)
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem)

@@ -13,7 +13,6 @@ import math
 import os
 import select
 import signal
-import sys
 import time
 
 import lcm
@@ -54,6 +53,14 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
         else:
             out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id))
     return out
+
+
+def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
+    """Outputs beyond the instruments: the sidescan sonar when configured."""
+    if cfg.sonar is None:
+        return []
+    from sim.sonar.publisher import SonarOutputs
+    return [SonarOutputs(cfg, sensors, publish_world)]
 
 
 def build_model(cfg: SimConfig) -> VehicleModel:
@@ -104,6 +111,8 @@ class Simulator:
                          1.0 / s.clock_rate_hz, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
+        # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
+        self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
         self._ch_health = f"{self.vid}.HEALTH"
         self._encoders: dict[type, Encoder | None] = {}
@@ -142,6 +151,8 @@ class Simulator:
             self._next_due = t
             for sen in self.sensors:
                 sen.next_t = t + sen.cfg.phase_s
+            for extra in self.extras:
+                extra.restart(t)
             self._t_start = t
             self._outputs()
         self.pacer.target_t = t
@@ -194,6 +205,9 @@ class Simulator:
             msg = sen.poll(tr)
             if msg is not None:
                 publish(channel, self._encode(msg))
+        for extra in self.extras:
+            for channel, data in extra.poll(tr):
+                publish(channel, data)
         nx = self._next
         if t >= nx[0] - 1e-9:
             nx[0] = _next_slot(nx[0], self._periods[0], t)
@@ -215,6 +229,7 @@ class Simulator:
             nx[3] = _next_slot(nx[3], self._periods[3], t)
             self._health()
         self._next_due = min(min((s.next_due() for s, _ in self._sensor_channels), default=math.inf),
+                             min((x.next_due() for x in self.extras), default=math.inf),
                              nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
 
     def _health(self) -> None:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
@@ -152,3 +151,10 @@ def test_bad_ins_channel_names_key_and_line(value, message):
     errs = errors(f"sensors:\n  ins:\n    channel: {value}\n")
     assert len(errs) == 1 and errs[0].startswith("cfg.yaml:3:14: sensors.ins.channel: ")
     assert message in errs[0]
+
+
+def test_yes_no_words_stay_words_for_string_keys():
+    cfg = loads("simulation: {publish_clock: yes}\nsonar: {publish_targets: no}\n")
+    assert cfg.sim.publish_clock == "yes" and cfg.sonar.publish_targets == "no"
+    errs = errors("simulation:\n  publish_clock: true\n")
+    assert errs == ["cfg.yaml:2:18: simulation.publish_clock: one of auto, yes, no"]

@@ -19,6 +19,7 @@ from auvlcm.rx import Receiver
 
 ROOT = Path(__file__).resolve().parents[2]
 from lcm_proc import pump, stop, wait_for_line
+from lockstep import LockstepPilot
 
 CONFIG = """
 vehicle: {{id: AUV1}}
@@ -69,36 +70,16 @@ class Recorder:
 
 def test_closed_loop_holds_heading_and_depth(tmp_path, child_env, lcm_url):
     """A scripted controller steers by NAV and commands ACTUATORS over LCM: holds
-    heading and changes depth from 5 m to 8 m. The test is the global clock
-    (stepped mode, 0.04 s steps; INS at 25 Hz) and answers each step's NAV before the next, so
-    the loop is exact however loaded the machine is: the table REMUS 100 is
-    open-loop unstable in yaw (doubling in 0.7 s), and a late controller loses it."""
-    from sim.autopilot import Autopilot
+    heading and changes depth from 5 m to 8 m. The test is the global clock and the
+    pilot (tests/sim/lockstep.py: 0.04 s steps, INS at 25 Hz), exact under load."""
     lc = lcm.LCM(lcm_url)
     rec = Recorder(lc)
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("AUV1.ACTUATOR_STATE", actuator_state_t)
-    ap = Autopilot()
-    navs: list = []
-
-    def on_nav(_ch, nav):
-        navs.append(nav)
-        cmd = actuators_t()
-        cmd.utime, cmd.vehicle, cmd.seq = nav.utime, "AUV1", len(navs)
-        cmd.rudder_rad = ap.rudder(0.0, nav.heading_rad, nav.r_radps)
-        cmd.stern_plane_rad = ap.stern_for_depth(8.0, nav.depth_m, nav.pitch_rad, nav.q_radps)
-        cmd.prop_rpm = 1500.0
-        lc.publish("AUV1.ACTUATORS", cmd.encode())
-    rec.rx.subscribe("AUV1.NAV", nav_solution_t, on_nav, queue_capacity=1000)
+    pilot = LockstepPilot(lc, "AUV1", depth_m=8.0)
     proc = start_sim(tmp_path, child_env, lcm_url, clock="stepped", ins_rate=25)
-    clock = sim_clock_t()
-    clock.server_id, clock.mode, clock.step_us = "test", sim_clock_t.MODE_LOCKSTEP, 40_000
     try:
-        for k in range(0, 1501):                 # 60 s of sim time
-            clock.utime, clock.step = k * 40_000, k
-            lc.publish("SIM.CLOCK", clock.encode())
-            assert pump(lc, lambda: navs and navs[-1].utime == clock.utime, timeout=20), (
-                f"no NAV for t={clock.utime / 1e6:.2f}s")
+        pilot.fly(60.0)
     finally:
         assert stop(proc) == 0
     out = proc.stdout.read()
