@@ -91,6 +91,7 @@ class SimConfig:
     multihil: MultiHil
     safe_command: Command
     sonar: SonarConfig | None = None     # None: no sonar section
+    modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
 
 
 # ------------------------------------------------------------------ reading
@@ -400,7 +401,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     doc = _Doc(path, text)
     top = doc.mapping(doc.root, "")
     sections = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-                "safe_command", "sonar")
+                "safe_command", "sonar", "modem")
     doc.unknown(top, sections, "")
     get = lambda name: top[name][1] if name in top else None  # noqa: E731
     vid, vp = _vehicle(doc, get("vehicle"))
@@ -434,6 +435,8 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     if "sonar" in top:
         from sim.sonar.config_check import check_sonar
         sonar = check_sonar(doc, get("sonar"), path.parent, _fill)
+    from sim.modem.config import parse as parse_modem
+    modem = parse_modem(doc, get("modem"))
     if doc.errors:
         raise ConfigError(sorted(dict.fromkeys(doc.errors), key=_position))
     if sim.seed < 0:
@@ -442,4 +445,6 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
         sonar.targets.seed = env.seed    # one world, one field: every vehicle's sim agrees
     if not mh.client_id:
         mh.client_id = f"{vid}-sim"
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar)
+    if modem is not None and modem.seed < 0:
+        modem.seed = env.seed        # the world's: the same for every simulator in it
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem)

@@ -24,6 +24,7 @@ from sim.actuators import Command
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
+from sim.modem.node import make_modem
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder, fixed_layout
@@ -93,6 +94,7 @@ class Simulator:
                           queue_capacity=200)
         if s.clock == "stepped":
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
+        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
         self.last_cmd_t: float | None = None     # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
@@ -193,6 +195,8 @@ class Simulator:
         taken when something will read it.
         """
         t = self.model.t
+        if self.modem is not None:      # every step: a frame may arrive at any step
+            self.modem.step(t, tuple(self.model.dyn.x[0:3]))
         if t < self._next_due - 1e-9:
             return
         tr = self.model.truth(self.truth)
@@ -288,4 +292,6 @@ class Simulator:
               f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
               f"{self.rejected_commands} commands rejected, {self.stale_events} stale events",
               flush=True)
+        if self.modem is not None:
+            print(self.modem.summary(), flush=True)
         return 0
