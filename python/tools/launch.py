@@ -114,6 +114,8 @@ class Launcher:
     def annotate(self) -> None:
         from auv import log_annotation_t as A
         self.notes.note(A.KIND_SCENARIO, self.sc.path.name, self.sc.text)
+        if self.sc.survey is not None:
+            self.notes.note(A.KIND_NOTE, self.sc.survey.name, self.sc.survey.read_text())
         for v in self.sc.vehicles:
             if v.id in self.sim_configs:
                 cfg = self.sim_configs[v.id]

@@ -68,6 +68,7 @@ class Scenario:
     hosts: list[str]
     vehicles: list[Vehicle]
     text: str = ""
+    survey: Path | None = None            # the planner's survey.json, for reports and plots
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -125,7 +126,7 @@ class _Checker:
             return None
         p = (self.base / v).resolve()
         if not p.is_file():
-            self.err(where(m, k), f"{key}.{k}", f"no such file: {p}")
+            self.err(where(m, k), f"{key}.{k}" if k != key else k, f"no such file: {p}")
         return p
 
 
@@ -214,7 +215,7 @@ def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:
     return ts
 
 
-TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles")
+TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey")
 
 
 def load_scenario(path: str | Path) -> Scenario:
@@ -254,7 +255,7 @@ def load_scenario(path: str | Path) -> Scenario:
         log_enabled=c.get(lg, "enabled", "logging", bool, True),
         log_file=c.get(lg, "file", "logging", str, "run.lcmlog"),
         log_host=c.get(lg, "host", "logging", str, hosts[0]),
-        hosts=hosts, vehicles=vehicles, text=path.read_text())
+        hosts=hosts, vehicles=vehicles, text=path.read_text(), survey=c.file(doc, "survey", "survey"))
     if sc.log_host not in hosts:
         c.err(where(lg, "host"), "logging.host", f"unknown host '{sc.log_host}'")
     if c.errors:

@@ -175,7 +175,7 @@ def convex_hull(pts: list[Point]) -> list[Point]:
     return lower[:-1] + upper[:-1]
 
 
-def buffer_convex(hull: list[Point], margin: float, segments: int = 4) -> list[Point]:
+def buffer_convex(hull: list[Point], margin: float, segments: int = 3) -> list[Point]:
     """A convex polygon grown by `margin` (corners rounded with a few vertices)."""
     out: list[Point] = []
     n = len(hull)
@@ -188,5 +188,7 @@ def buffer_convex(hull: list[Point], margin: float, segments: int = 4) -> list[P
         d = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
         for k in range(segments + 1):
             a = a0 + d * k / segments
-            out.append((cur[0] + margin * math.cos(a), cur[1] + margin * math.sin(a)))
-    return out
+            q = (cur[0] + margin * math.cos(a), cur[1] + margin * math.sin(a))
+            if not out or math.dist(out[-1], q) > 0.5:   # a straight corner adds one point, not several
+                out.append(q)
+    return out if math.dist(out[0], out[-1]) > 0.5 else out[:-1]
