@@ -9,7 +9,8 @@
  * --clock sim the mission clock is SIM.CLOCK (nothing runs until it ticks);
  * with --clock system it is the host's clock. SIGINT/SIGTERM end the process
  * after the current cycle. A plan starts once every input channel it binds
- * has delivered a message (until then its status says LOADING). Exit status: 0 done or stopped, 1 load error,
+ * has delivered a message, except inputs bound `optional` (until then its
+ * status says LOADING). Exit status: 0 done or stopped, 1 load error,
  * 3 aborted, 4 failed (with --exit-on-end). */
 #include <errno.h>
 #include <signal.h>
