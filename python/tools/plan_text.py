@@ -3,8 +3,10 @@
 Shape (the vehicle software contract): dive to the first line, then one
 state per line (`track` + `hold_altitude`) and per turn between lines; a GPS
 fix (`surface_fix`) every `fix_every` of survey, resuming the same line;
-safety as root `abort when` rules to a surfacing state: max depth, min
-altitude, stale navigation, leaving the operating area, mission timeout.
+safety from the shared rules (missions/common/safety.chasm, root `abort
+when` transitions to `emergency`, which surfaces): max depth, min altitude,
+stale navigation, leaving the operating area, mission timeout, with this
+survey's limits as parameters.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ from tools.survey_plan import Survey, VehicleSurvey
 
 ROOT = Path(__file__).resolve().parents[2]
 NAVIGATOR_IO = ROOT / "missions" / "common" / "navigator_io.chasm"
+SAFETY = ROOT / "missions" / "common" / "safety.chasm"     # the shared `abort when` rules
 
 
 @dataclass
@@ -48,6 +51,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
     est = estimated_duration_s(v, start, lim)
     timeout = lim.timeout_s or 1.5 * est + 600
     include = os.path.relpath(NAVIGATOR_IO, plan_path.parent)
+    safety = os.path.relpath(SAFETY, plan_path.parent)
     s = survey.sonar
     out = [
         f"# {vid}: share {v.index + 1} of {len(survey.vehicles)} of a sidescan survey, written by",
@@ -58,27 +62,23 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         f"(sonar range {s.range_m:g} m, nadir gap {s.nadir_gap_m:g} m, overlap {survey.overlap:g}).",
         f"# survey polygon: {format_polygon(survey.polygon)}",
         f'mission "{vid} survey"',
-        "use guidance",
-        "use checks",
+        "",
         f'include "{include}"',
+        "use guidance",
         "",
         f"param speed        = {lim.speed_mps:g} m/s",
         f"param altitude     = {lim.altitude_m:g} m",
         f"param fix_every    = {lim.fix_every_min:g} min",
         f"param fix_timeout  = {lim.fix_timeout_s:g} s",
-        f"param max_depth    = {lim.max_depth_m:g} m",
-        f"param min_altitude = {lim.min_altitude_m:g} m",
-        f"param nav_timeout  = {lim.nav_timeout_s:g} s",
-        f"param timeout      = {timeout / 60:.0f} min",
         "",
-        "# Safety: checked every cycle, whatever the mission is doing.",
-        "test too_deep   : nav.depth_m > $max_depth",
-        "test alt_known  : nav.altitude_m >= 0 m",
-        "test too_low    : nav.altitude_m < $min_altitude for 2 s",
-        "test nav_stale  : age nav.depth_m > $nav_timeout",
-        f'test outside   : outside_area(polygon = "{format_polygon(survey.operating_area)}")',
-        "abort when too_deep or (too_low and alt_known) or nav_stale or outside -> emergency",
-        "abort when elapsed > $timeout -> emergency",
+        "# Limits of the shared safety rules (included at the end).",
+        f"param max_depth       = {lim.max_depth_m:g} m",
+        f"param min_altitude    = {lim.min_altitude_m:g} m",
+        f"param nav_timeout     = {lim.nav_timeout_s:g} s",
+        f"param mission_timeout = {timeout / 60:.0f} min",
+        f'param area            = "{format_polygon(survey.operating_area)}"',
+        "",
+        "start mission",
         "",
         "state mission {",
         "    state dive {",
@@ -117,9 +117,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         "    }",
         "}",
         "",
-        "state emergency {",
-        "    do surface()",
-        "}",
+        f'include "{safety}"',
         "",
     ]
     return "\n".join(out)

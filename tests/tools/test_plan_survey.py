@@ -52,11 +52,11 @@ def test_plans_have_the_contract_shape_and_follow_the_geometry(tmp_path):
             assert nxt == following[0]
         assert "do surface_fix(timeout = $fix_timeout)" in text and "when done -> resume deep survey" in text
         assert "when fix_due -> gps_fix" in text and "test fix_due : elapsed > $fix_every" in text
-        aborts = re.findall(r"^abort when (.*) -> emergency$", text, re.M)
-        assert aborts == ["too_deep or (too_low and alt_known) or nav_stale or outside", "elapsed > $timeout"]
-        area = re.search(r'outside_area\(polygon = "([^"]+)"\)', text).group(1)
+        assert "start mission" in text and re.search(r'include "[./]*.*missions/common/safety.chasm"', text)
+        for param in ("max_depth", "min_altitude", "nav_timeout", "mission_timeout", "area"):
+            assert re.search(rf"^param {param} +=", text, re.M), param
+        area = re.search(r'^param area += "([^"]+)"', text, re.M).group(1)
         assert len(area.split(";")) == len(survey["operating_area"])
-        assert re.search(r"state emergency \{\n\s+do surface\(\)", text)
 
 
 def test_scenario_names_the_plans_and_starts(tmp_path):
@@ -80,16 +80,23 @@ def test_scenario_names_the_plans_and_starts(tmp_path):
 
 
 def test_plans_pass_chasm_check(tmp_path):
-    needed = [BUILD / "plugins" / "chasm_guidance.so", BUILD / "plugins" / "chasm_checks.so",
-              ROOT / "missions" / "common" / "navigator_io.chasm"]
+    needed = [BUILD / "plugins" / "chasm_guidance.so", ROOT / "missions" / "common" / "navigator_io.chasm",
+              ROOT / "missions" / "common" / "safety.chasm"]
     missing = [str(p) for p in needed if not p.exists()]
     if missing:
-        pytest.skip(f"chasm check needs the guidance and checks plugins: missing {missing}")
+        pytest.skip(f"chasm check needs the guidance plugin and the shared plan files: missing {missing}")
     assert run_planner(tmp_path / "s").returncode == 0
     plans = sorted((tmp_path / "s").glob("*.chasm"))
     check = subprocess.run([str(BUILD / "bin" / "chasm"), "check", "-P", str(BUILD / "plugins"), *map(str, plans)],
                            capture_output=True, text=True, timeout=60)
-    assert check.returncode == 0, check.stdout + check.stderr
+    if (BUILD / "plugins" / "chasm_checks.so").exists():
+        assert check.returncode == 0, check.stdout + check.stderr
+        return
+    # Without the checks plugin only the shared safety rules' test handler can fail to load:
+    # everything the planner wrote (guidance behaviors, parameters, units, states) must.
+    errors = [ln for ln in (check.stdout + check.stderr).splitlines() if ": error: " in ln]
+    assert errors and all("safety.chasm" in ln and ("checks" in ln or "outside_area" in ln) for ln in errors), errors
+    pytest.skip("the checks plugin (outside_area) is not built yet: only the guidance part was checked")
 
 
 @pytest.mark.parametrize("args,msg", [
