@@ -76,7 +76,7 @@ class Launcher:
         self.lc = lcm.LCM(url)
         self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT)
         self.mine = sc.vehicles_on(self.host)
-        self.own_clock = self.host is None or self.host == sc.time.host
+        self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
         self.own_log = sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
         self.clock = WorldClock(self.lc, sc.time.mode, args.warp or sc.time.warp, sc.time.step_s) \
@@ -126,8 +126,9 @@ class Launcher:
         self.notes.types()
 
     def sim_cmd(self, vid: str) -> list[str]:
-        return [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--clock", "stepped",
-                "--lcm-url", self.url]
+        cmd = [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--lcm-url", self.url]
+        # On the launcher's clock every simulator is stepped; otherwise their configuration decides.
+        return cmd + (["--clock", "stepped"] if self.sc.time.source == "launcher" else [])
 
     def manager_cmd(self, vid: str, m) -> list[str]:
         cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),

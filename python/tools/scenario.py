@@ -19,6 +19,7 @@ VEHICLE_ID = re.compile(r"[A-Z][A-Z0-9]{0,15}")
 MANAGER_NAME = re.compile(r"[A-Z][A-Z0-9_]{0,23}")
 HOST_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}")
 TIME_MODES = ("realtime", "scaled", "fast")
+CLOCK_SOURCES = ("launcher", "simulators")
 DEFAULT_HOST = "local"
 
 
@@ -52,6 +53,7 @@ class TimeSettings:
     limit_s: float = 3600.0               # mission time limit [sim s]
     wall_limit_s: float = 0.0             # 0 = none [wall s]
     host: str = DEFAULT_HOST              # the host that runs the clock
+    source: str = "launcher"              # or "simulators": their multi-HIL nodes keep the time
 
 
 @dataclass
@@ -203,7 +205,7 @@ def _vehicle(c: _Checker, v: Any, pos: str, key: str, hosts: list[str]) -> Vehic
 
 
 def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:
-    t = c.mapping(t, pos, "time", ("mode", "warp", "step", "limit", "wall_limit", "host"))
+    t = c.mapping(t, pos, "time", ("mode", "warp", "step", "limit", "wall_limit", "host", "source"))
     ts = TimeSettings(host=hosts[0])
     ts.mode = c.get(t, "mode", "time", str, ts.mode, lambda v: "" if v in TIME_MODES else
                     f"expected one of: {', '.join(TIME_MODES)}")
@@ -212,6 +214,8 @@ def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:
     ts.limit_s = c.get(t, "limit", "time", float, ts.limit_s, _positive)
     ts.wall_limit_s = c.get(t, "wall_limit", "time", float, ts.wall_limit_s, _nonneg)
     ts.host = c.get(t, "host", "time", str, ts.host, lambda h: "" if h in hosts else f"unknown host '{h}'")
+    ts.source = c.get(t, "source", "time", str, ts.source, lambda v: "" if v in CLOCK_SOURCES else
+                      f"expected one of: {', '.join(CLOCK_SOURCES)}")
     return ts
 
 
