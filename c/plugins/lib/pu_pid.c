@@ -42,7 +42,7 @@ double pu_pid_step(pu_pid *p, const pu_pid_config *c, double error, double deriv
         de = 0.0;
 
     double ilim = c->i_limit > 0.0 ? c->i_limit : fmax(fabs(c->out_min), fabs(c->out_max));
-    double step_i = c->ki * error * dt;
+    double step_i = c->i_zone > 0.0 && fabs(error) > c->i_zone ? 0.0 : c->ki * error * dt;
     double i_new = pu_clamp_sym(p->integral + step_i, ilim);
     double unlimited = feedforward + c->kp * error + i_new + c->kd * de;
     double u = pu_clamp(unlimited, c->out_min, c->out_max);
@@ -65,7 +65,7 @@ double pu_pid_step(pu_pid *p, const pu_pid_config *c, double error, double deriv
 
 int pu_pid_config_check(const pu_pid_config *c, char *err, size_t errlen)
 {
-    const double v[] = {c->kp, c->ki, c->kd, c->out_min, c->out_max, c->rate_max, c->i_limit};
+    const double v[] = {c->kp, c->ki, c->kd, c->out_min, c->out_max, c->rate_max, c->i_limit, c->i_zone};
     for (size_t i = 0; i < sizeof v / sizeof v[0]; i++)
         if (!isfinite(v[i])) {
             snprintf(err, errlen, "PID settings must be finite numbers");

@@ -11,7 +11,10 @@
  * or slew-limited does not integrate an error that pushes further into that
  * limit; it still integrates an error that pulls the output back. So after a
  * long saturation the controller leaves the limit as soon as the error
- * changes sign, with no stored-up overshoot.
+ * changes sign, with no stored-up overshoot. Integral separation: with
+ * i_zone > 0 the integrator only runs while |error| <= i_zone, so a large
+ * transient (a 90 degree turn under a turn-rate limit, whose output is not
+ * saturated) does not load it.
  *
  * The derivative is the caller's: pass a measured rate where there is one
  * (for a heading error e = psi_cmd - psi, e' = -r from the gyro: no
@@ -36,6 +39,7 @@ typedef struct {
     double out_min, out_max; /* output limits, out_min <= out_max */
     double rate_max;         /* output slew limit per second; <= 0: none */
     double i_limit;          /* |I| <= i_limit; <= 0: I is bounded by the output range only */
+    double i_zone;           /* integrate only while |error| <= i_zone; <= 0: always */
 } pu_pid_config;
 
 typedef struct {
