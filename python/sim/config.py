@@ -29,6 +29,10 @@ from sim.vehicle import REMUS100, VehicleParams
 ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
 CLOCK_MODES = ("realtime", "scaled", "stepped")
 VEHICLE_ID = re.compile(r"[A-Z][A-Z0-9]{0,15}")
+CHANNEL_SUFFIX = re.compile(r"[A-Z][A-Z0-9_]{0,31}")
+# <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's
+RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "ACTUATOR_STATE",
+                   "ACTUATORS", "HEALTH", "CONTACTS", "SETPOINT"}
 
 
 class ConfigError(Exception):
@@ -46,7 +50,7 @@ class SimSettings:
     clock_rate_hz: float = 10.0      # SIM.CLOCK rate when this process publishes it
     truth_rate_hz: float = 10.0
     actuator_state_rate_hz: float = 10.0
-    health_period_s: float = 1.0     # wall seconds between process_health_t
+    health_period_s: float = 1.0     # sim seconds between process_health_t
     command_timeout_s: float = 1.0
     on_stale: str = "hold"           # hold | safe
     duration_s: float = 0.0          # 0 = until stopped
@@ -163,6 +167,8 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
         doc.err(node, key, f"expected {_typename(want)}")
         return dataclasses.MISSING
     value = doc.scalar(node)
+    if name == "channel":
+        return _check_channel(doc, node, key, value)
     if want is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if type(value) is not want:
@@ -178,6 +184,17 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
             doc.err(node, key, "must be a probability in [0, 1)")
         elif _NONNEG.search(name) and name not in ("bias", "prop_nominal_torque_nm") and value < 0:
             doc.err(node, key, "must be >= 0")
+    return value
+
+
+def _check_channel(doc: _Doc, node, key: str, value: Any) -> Any:
+    """A channel suffix such as NAV or NAV_INS, or off (YAML reads a bare off as false)."""
+    if value is False or value == "off":
+        return "off"
+    if not isinstance(value, str) or not CHANNEL_SUFFIX.fullmatch(value):
+        doc.err(node, key, f"expected a channel name (upper-case letters, digits, '_', e.g. "
+                f"NAV or NAV_INS) or off, got {node.value!r}")
+        return dataclasses.MISSING
     return value
 
 
@@ -354,6 +371,11 @@ def _sensors(doc: _Doc, node) -> dict[str, Any]:
             else:
                 cfg = _fill(doc, snode, f"sensors.{name}", cfg_cls())
             out[name] = cfg
+    ins = out.get("ins")
+    if ins is not None and ins.channel in RESERVED_TOPICS:
+        cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
+        doc.err(cnode, "sensors.ins.channel", f"{ins.channel} is another channel of this "
+                "vehicle's simulator or pilot (one writer per channel)")
     return out
 
 
