@@ -15,6 +15,7 @@ import argparse
 import json
 import math
 import os
+import shlex
 import sys
 from pathlib import Path
 
@@ -134,7 +135,10 @@ def main(argv: list[str] | None = None) -> int:
     (out / "survey.json").write_text(json.dumps(survey_json(sv, ids, starts, lim), indent=1))
     sc = scenario_dict(name, out, ids, sv, starts, args, lim)
     sc["survey"] = "survey.json"
+    command = " ".join(shlex.quote(_rel(Path(a).resolve(), ROOT) if "/" in a and Path(a).exists() else a)
+                       for a in (argv if argv is not None else sys.argv[1:]))
     (out / f"{name}.yaml").write_text(f"# Written by python/tools/plan_survey.py; polygon {format_polygon(polygon)}\n"
+                                      f"# Regenerate (from the repository root): python/tools/plan_survey.py {command}\n"
                                       + yaml.safe_dump(sc, sort_keys=False))
     print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(ids)} shares, lines {sv.spacing_m:.1f} m apart "
           f"(tolerates {sv.margin_m:.1f} m off track)")

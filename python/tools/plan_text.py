@@ -28,7 +28,7 @@ class Limits:
     speed_mps: float = 1.5
     altitude_m: float = 8.0
     fix_every_min: float = 20.0
-    fix_timeout_s: float = 180.0
+    fix_timeout_s: float = 300.0    # floating up from survey altitude takes minutes
     max_depth_m: float = 60.0
     min_altitude_m: float = 2.0
     nav_timeout_s: float = 5.0
@@ -80,11 +80,13 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         "",
         "start mission",
         "",
+        "# Legs follow each other by `next`: a finished leaf without one would",
+        "# complete `mission` itself, ending the plan.",
         "state mission {",
         "    state dive {",
         f"        do goto(north = {_f(v.legs[0].start[0])} m, east = {_f(v.legs[0].start[1])} m, speed = $speed)",
         "        do hold_altitude(altitude = $altitude)",
-        "        when done -> survey",
+        "        next survey",
         "    }",
         "    state survey {",
         "        test fix_due : elapsed > $fix_every",
@@ -102,19 +104,23 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
             f"            do track(from_north = {_f(leg.start[0])} m, from_east = {_f(leg.start[1])} m, "
             f"to_north = {_f(leg.end[0])} m, to_east = {_f(leg.end[1])} m, speed = $speed)",
             "            do hold_altitude(altitude = $altitude)",
-            f"            when done -> {nxt}",
+            f"            next {nxt}",
             "        }",
         ]
     out += [
         "    }",
-        "    state gps_fix {",
-        "        do surface_fix(timeout = $fix_timeout)",
-        "        when done -> resume deep survey",
-        "        when failed -> resume deep survey     # no fix this time: carry on, try again later",
-        "    }",
         "    state recover {",
         "        do surface()",
         "    }",
+        "}",
+        "",
+        "# A root of its own: a missed fix marks only this state failed, and the",
+        "# survey's states are entered afresh on the way back. (Inside `mission`,",
+        "# the failure flag would stay on `mission` after being caught.)",
+        "state gps_fix {",
+        "    do surface_fix(timeout = $fix_timeout)",
+        "    when done -> resume deep survey       # the interrupted leg, from where the vehicle is",
+        "    when failed -> resume deep survey     # no fix this time: carry on, try again later",
         "}",
         "",
         f'include "{safety}"',

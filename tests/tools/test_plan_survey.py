@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import json
 import re
+import shlex
 import subprocess
 import sys
 
@@ -39,18 +40,19 @@ def test_plans_have_the_contract_shape_and_follow_the_geometry(tmp_path):
         assert text.count("{") == text.count("}")
         names = states_of(text)
         assert len(names) == len(set(names))
-        for target in re.findall(r"->\s*(?:resume\s+(?:deep\s+)?)?(\w+)", text):
+        for target in re.findall(r"(?:->\s*(?:resume\s+(?:deep\s+)?)?|\bnext\s+)(\w+)", text):
             assert target in names, target
         # one state per leg, in order, each a track of that leg at survey altitude
         legs = re.findall(r"state (\w+) \{\n\s+do track\(from_north = (\S+) m, from_east = (\S+) m, "
                           r"to_north = (\S+) m, to_east = (\S+) m, speed = \$speed\)\n"
-                          r"\s+do hold_altitude\(altitude = \$altitude\)\n\s+when done -> (\w+)", text)
+                          r"\s+do hold_altitude\(altitude = \$altitude\)\n\s+next (\w+)", text)
         assert len(legs) == len(v["legs"])
         for (name, fn, fe, tn, te, nxt), leg, following in zip(legs, v["legs"], legs[1:] + [("recover",)]):
             assert name.startswith(leg["kind"])
             assert [float(fn), float(fe), float(tn), float(te)] == pytest.approx(leg["start"] + leg["end"], abs=0.051)
             assert nxt == following[0]
-        assert "do surface_fix(timeout = $fix_timeout)" in text and "when done -> resume deep survey" in text
+        assert re.search(r"^state gps_fix \{\n    do surface_fix\(timeout = \$fix_timeout\)\n"
+                         r"    when done -> resume deep survey.*\n    when failed -> resume deep survey", text, re.M)
         assert "when fix_due -> gps_fix" in text and "test fix_due : elapsed > $fix_every" in text
         assert "start mission" in text and re.search(r'include "[./]*.*missions/common/safety.chasm"', text)
         for param in ("max_depth", "min_altitude", "nav_timeout", "mission_timeout", "area"):
@@ -109,3 +111,20 @@ def test_plans_pass_chasm_check(tmp_path):
 def test_bad_input_exits_2(tmp_path, args, msg):
     run = subprocess.run(PLAN + args + ["--out", str(tmp_path / "x")], capture_output=True, text=True, timeout=60)
     assert run.returncode == 2 and msg in run.stderr, run.stderr
+
+
+def test_the_committed_demo_scenario_is_what_the_planner_writes(tmp_path):
+    """missions/scenarios/mcm_demo/ must not drift from the planner: regenerate it
+    with the command recorded in its header and compare."""
+    demo = ROOT / "missions" / "scenarios" / "mcm_demo"
+    header = (demo / "mcm_demo.yaml").read_text().splitlines()[1]
+    command = header.split("python/tools/plan_survey.py ", 1)[1]
+    args = shlex.split(command)
+    args[args.index("--out") + 1] = str(tmp_path / "mcm_demo")
+    run = subprocess.run(PLAN + args, capture_output=True, text=True, timeout=60, cwd=ROOT)
+    assert run.returncode == 0, run.stderr
+    assert json.loads((tmp_path / "mcm_demo" / "survey.json").read_text()) == json.loads(
+        (demo / "survey.json").read_text())
+    for plan in demo.glob("AUV*.chasm"):
+        body = lambda p: p.read_text().split("start mission", 1)[1].rsplit("include", 1)[0]  # noqa: E731
+        assert body(plan) == body(tmp_path / "mcm_demo" / plan.name), plan.name
