@@ -61,6 +61,7 @@ def tracks(run: RunData, out: Path) -> list[Path]:
         ee, nn = np.meshgrid(np.linspace(e0, e1, 120), np.linspace(n0, n1, 120))
         zz = np.vectorize(depth)(nn, ee)
         cs = ax.contourf(ee, nn, zz, levels=14, cmap="Blues")
+        cs.set_rasterized(True)
         fig.colorbar(cs, ax=ax, label="water depth [m]")
     _area(ax, run)
     for vid in run.vehicles:
@@ -80,7 +81,8 @@ def coverage(run: RunData, grid, out: Path) -> list[Path]:
     n, e = grid.centres()
     top = max(3, int(grid.looks.max()))
     im = ax.pcolormesh(e, n, np.ma.masked_equal(grid.looks, 0), cmap=plt.get_cmap("viridis", top),
-                       vmin=0.5, vmax=top + 0.5, shading="nearest")
+                       vmin=0.5, vmax=top + 0.5, shading="nearest",
+                       rasterized=True)   # an image inside the SVG, not one path per cell
     fig.colorbar(im, ax=ax, label="looks per cell", ticks=range(1, top + 1))
     _area(ax, run)
     once = grid.area_with(1) / max(1.0, float(np.count_nonzero(grid.inside)) * grid.cell ** 2)

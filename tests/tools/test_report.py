@@ -78,8 +78,8 @@ def synthetic_log(path):
 
 def test_report_figures_on_a_known_geometry(tmp_path):
     synthetic_log(tmp_path / "s.lcmlog")
-    run = subprocess.run(REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "1", "--out", str(tmp_path / "r")],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "1", "--out", str(tmp_path / "r"),
+                                   "--no-plots"], capture_output=True, text=True, timeout=120)
     assert run.returncode == 0, run.stderr
     rep = json.loads((tmp_path / "r" / "report.json").read_text())
     assert rep["outcome"] == "done" and rep["vehicle_outcomes"] == {"AUV1": "done"}
@@ -98,11 +98,22 @@ def test_report_figures_on_a_known_geometry(tmp_path):
     assert (d["contacts"], d["contacts_on_clutter"], d["false_alarms"]) == (3, 1, 1)
     e = rep["navigation_error"]["AUV1"]
     assert e["mean_m"] == pytest.approx(5.0) and e["max_m"] == pytest.approx(5.0)
-    for name in ("tracks", "coverage", "contacts", "depth", "states"):
-        for ext in ("png", "svg"):
-            assert (tmp_path / "r" / f"{name}.{ext}").stat().st_size > 1000
     text = (tmp_path / "r" / "report.txt").read_text()
     assert "PD 0.333" in text and "false alarms 1" in text
+
+
+def test_plots_are_written_as_png_and_svg(tmp_path):
+    synthetic_log(tmp_path / "s.lcmlog")
+    run = subprocess.run(REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "4", "--out", str(tmp_path / "r")],
+                         capture_output=True, text=True, timeout=180)
+    assert run.returncode == 0, run.stderr
+    listed = set(json.loads((tmp_path / "r" / "report.json").read_text())["plots"])
+    for name in ("tracks", "coverage", "contacts", "depth", "states"):
+        for ext in ("png", "svg"):
+            path = tmp_path / "r" / f"{name}.{ext}"
+            assert str(path) in listed and path.stat().st_size > 1000
+            head = path.read_bytes()[:200]
+            assert head.startswith(b"\x89PNG") if ext == "png" else b"<svg" in path.read_bytes()[:2000]
 
 
 def test_report_on_a_real_launcher_run(tmp_path, lcm_url, child_env):
