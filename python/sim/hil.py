@@ -93,6 +93,10 @@ class Simulator:
                          "clock": 1.0 / s.clock_rate_hz}
         self._cpu0 = os.times()
         self._wall_health = time.monotonic()
+        self.mh = None      # multi-HIL: shared world, global clock (docs/multihil.md)
+        if cfg.multihil.enabled:
+            from sim.multihil.hook import SimHook
+            self.mh = SimHook(self)
 
     # ------------------------------------------------------------ handlers
     def _on_actuators(self, _channel: str, msg) -> None:
@@ -110,16 +114,19 @@ class Simulator:
     def _on_clock(self, _channel: str, msg) -> None:
         t = msg.utime / 1e6
         if not self._clock_started:
-            # join the world at its current time instead of replaying from 0
-            self._clock_started = True
-            self.model.dyn.t = t
-            self.last_cmd_t = None
-            self._next = {k: t for k in self._next}
-            for sen in self.sensors:
-                sen.next_t = t + sen.cfg.phase_s
-            self._t_start = t
-            self._outputs()
+            self.join_at(t)
         self.pacer.target_t = t
+
+    def join_at(self, t: float) -> None:
+        """Join the world at its current time instead of replaying from 0."""
+        self._clock_started = True
+        self.model.dyn.t = t
+        self.last_cmd_t = None
+        self._next = {k: t for k in self._next}
+        for sen in self.sensors:
+            sen.next_t = t + sen.cfg.phase_s
+        self._t_start = t
+        self._outputs()
 
     # -------------------------------------------------------------- output
     def _publish(self, channel: str, msg) -> None:
@@ -214,13 +221,15 @@ class Simulator:
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
               f"sensors={','.join(s.name for s in self.sensors)} "
               f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
-        if cfg.sim.clock != "stepped":
-            self._outputs()   # stepped: nothing until the global clock says when
+        if cfg.sim.clock != "stepped" and self.mh is None:
+            self._outputs()   # stepped, multi-HIL: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
         health_period = cfg.sim.health_period_s
         while not self.stop_requested:
+            if self.mh is not None:
+                self.mh.poll()
             now = time.monotonic()
             if now - self._wall_health >= health_period:
                 self._health(now)
@@ -233,6 +242,8 @@ class Simulator:
                 self._outputs()
             else:
                 self._drain(min(self.pacer.wait_s(self.model.t, now), 0.1))
+        if self.mh is not None:
+            self.mh.close()
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
