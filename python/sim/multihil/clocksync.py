@@ -25,6 +25,7 @@ class Sample:
 
 
 class SyncEstimator:
+    DELAY_FLOOR_US = 30.0     # delay excess below this counts as equally good
     def __init__(self, warp: float = 1.0, window: int = 160, bin_s: float = 1.0,
                  bins: int = 12) -> None:
         self.warp = warp
@@ -69,20 +70,25 @@ class SyncEstimator:
 
     def _fit(self) -> None:
         good = self.good()
-        self.best_delay_us = min(s.delay_us for s in good)
+        dmin = min(s.delay_us for s in good)
+        self.best_delay_us = dmin
         if len(good) >= 3:
             xs = [s.local_mid_us for s in good]
-            span = max(xs) - min(xs)
-            if span >= 1.5 * self.bin_us:   # drift needs a baseline to mean anything
-                mx = sum(xs) / len(xs)
-                my = sum(s.offset_us for s in good) / len(good)
-                sxx = sum((x - mx) ** 2 for x in xs)
-                sxy = sum((x - mx) * (s.offset_us - my) for x, s in zip(xs, good))
-                self.drift = sxy / sxx
-                self.local_ref, self.offset_c = mx, my
-                return
-        # too few bins or too short a baseline: the latest bin's best, drift as before
-        best = good[-1]
+            if max(xs) - min(xs) >= 1.5 * self.bin_us:   # drift needs a baseline
+                # A sample's offset error is at most half its delay beyond the true
+                # minimum: weigh by that bound, so a late partial bin cannot tilt the line.
+                ws = [1.0 / (s.delay_us - dmin + self.DELAY_FLOOR_US) ** 2 for s in good]
+                sw = sum(ws)
+                mx = sum(w * x for w, x in zip(ws, xs)) / sw
+                my = sum(w * s.offset_us for w, s in zip(ws, good)) / sw
+                sxx = sum(w * (x - mx) ** 2 for w, x in zip(ws, xs))
+                sxy = sum(w * (x - mx) * (s.offset_us - my) for w, x, s in zip(ws, xs, good))
+                if sxx > 0.0:
+                    self.drift = sxy / sxx
+                    self.local_ref, self.offset_c = mx, my
+                    return
+        # too few bins or too short a baseline: the best recent sample, drift as before
+        best = min(good[-2:], key=lambda s: s.delay_us)
         self.local_ref, self.offset_c = best.local_mid_us, best.offset_us
 
     def offset_at(self, local_us: float) -> float:

@@ -32,8 +32,8 @@ class Peer:
 
 
 def rank(priority: int, node_id: str) -> tuple:
-    """Sort key: larger is better (priority up, then id down)."""
-    return (priority, tuple(-ord(c) for c in node_id))
+    """Sort key: larger is better (priority up, then the lexicographically smaller id)."""
+    return (priority, tuple(-ord(c) for c in node_id) + (1,))   # 1: a prefix beats longer ids
 
 
 @dataclass

@@ -176,7 +176,7 @@ class EnvNode:
         loc = self.local.now_us()
         m.utime, m.client_id = int(self.clock.at(loc)), self.cfg.client_id
         m.offset_us = self.clock.at(loc) - loc
-        m.drift_ppm = self.sync.drift_ppm
+        m.drift_ppm = -self.sync.drift_ppm      # how fast the local clock runs against global
         m.round_trip_us = self.sync.best_delay_us
         m.samples = self.sync.count
         m.synchronised = self.sync.count >= 3 and abs(
