@@ -125,6 +125,30 @@ class Listener:
         return [(t, m.utime, m.server_id) for t, m in self.msgs["SIM.CLOCK"]]
 
 
+class Recorder:
+    """Every message on a URL, raw, from a thread with a deep queue: a lossless
+    record for byte comparisons (lcm-logger's default subscription queue drops
+    messages when it is descheduled on a loaded machine)."""
+
+    def __init__(self, url: str) -> None:
+        self.lc = lcm.LCM(url)
+        self.events: list[tuple[str, bytes]] = []
+        sub = self.lc.subscribe(".*", lambda ch, data: self.events.append((ch, data)))
+        sub.set_queue_capacity(1_000_000)
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, daemon=True)
+        self._thread.start()
+
+    def _run(self) -> None:
+        while not self._stop:
+            self.lc.handle_timeout(20)
+
+    def close(self) -> None:
+        time.sleep(0.3)
+        self._stop = True
+        self._thread.join(2.0)
+
+
 def load_probe(path: Path) -> list[tuple[float, float, str]]:
     rows = []
     for line in path.read_text().splitlines():

@@ -315,9 +315,9 @@ class EnvNode:
     def _on_sync(self, _ch: str, m: clock_sync_t) -> None:
         if m.kind == clock_sync_t.KIND_REQUEST:
             self.election.heard(m.client_id)
-            if self.role == "server" and self.joined:
+            t2 = self.global_now_us()
+            if self.role == "server" and t2 is not None:      # lockstep: none before step 0
                 self.clients[m.client_id] = time.monotonic()
-                t2 = self.global_now_us()
                 m.kind, m.server_id = clock_sync_t.KIND_REPLY, self.cfg.client_id
                 m.t2_server_recv_us = int(t2)
                 m.t3_server_send_us = int(self.global_now_us())
