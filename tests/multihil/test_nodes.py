@@ -44,10 +44,13 @@ def test_one_server_at_start_whatever_the_order(procs, tmp_path, child_env, lcm_
     prios = {"N1-sim": 1, "N2-sim": 2, "N3-sim": 3}
     names = sorted(prios, key=prios.get)
     for name in names:
-        start(procs, tmp_path, child_env, name, lcm_url, prios[name])
+        p = start(procs, tmp_path, child_env, name, lcm_url, prios[name])
         if order != "together":
-            lst.pump(1.6)            # beyond the join window: the first one serves alone
-    lst.pump(1.0)
+            p.wait_text("joined at global" if lst.servers() else "server for term")
+    for p in procs:
+        p.wait_text("multihil: node")
+    assert lst.pump(20.0, until=lst.servers)
+    lst.pump(1.5)               # past every join window
     servers = settled_server(lst, 1.0)
     assert len(servers) == 1, servers
     expected = "N3-sim" if order == "together" else "N1-sim"   # the first one keeps it

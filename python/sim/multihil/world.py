@@ -32,6 +32,7 @@ class VehicleSpec:
     clock_offset_us: float = 0.0
     clock_drift_ppm: float = 0.0
     managers: list[str] = field(default_factory=lambda: ["NAVIGATOR"])
+    edits: list[tuple[str, str]] = field(default_factory=list)   # (old, new) in its config
 
 
 def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BASE_CONFIG) -> Path:
@@ -43,6 +44,9 @@ def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BA
           "clock_drift_ppm": spec.clock_drift_ppm, **multihil}
     text += "\nmultihil:\n" + "".join(f"  {k}: {v}\n" for k, v in mh.items())
     text = text.replace("initial: {depth_m: 0.0}", f"initial: {{depth_m: 0.0, east_m: {spec.east_m}}}")
+    for old, new in spec.edits:
+        assert old in text, f"{base}: no {old!r} to edit"
+        text = text.replace(old, new)
     path = out / f"{spec.vehicle}.yaml"
     path.write_text(text)
     return path
