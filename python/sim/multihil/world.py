@@ -69,10 +69,10 @@ class World:
         self.procs[name] = p
         return p
 
-    def logger(self, log: Path) -> None:
+    def logger(self, log: Path, prefix: list[str] | None = None) -> None:
         import lcm
         binary = Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"
-        self._start("logger", [binary, f"--lcm-url={self.url}", "-f", log])
+        self._start("logger", [binary, f"--lcm-url={self.url}", "-f", log], prefix)
         time.sleep(0.3)
 
     def simulator(self, spec: VehicleSpec, clock: str, multihil: dict, warp: float = 1.0,
