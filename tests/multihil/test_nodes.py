@@ -10,10 +10,12 @@ benchmark measures how fast.
 
 from __future__ import annotations
 
+import sys
 import time
 
 import pytest
 
+from conftest import ROOT
 from mh_util import Listener, Proc, load_probe, node_cmd, percentile, probe_errors
 
 
@@ -155,3 +157,29 @@ def test_clocks_converge_under_injected_offset_and_drift(procs, tmp_path, child_
     offsets = [m for _, m in lst.msgs["SIM.CLOCK_OFFSET.C-sim"]]
     assert offsets and offsets[-1].synchronised
     assert abs(offsets[-1].drift_ppm - 160.0) < 40.0, offsets[-1].drift_ppm   # 120 - (-40)
+
+
+def test_clocks_converge_through_an_impaired_link(procs, tmp_path, child_env, lcm_url):
+    """Server and client on two LCM networks joined by the link-impairment relay
+    (2 ms +- 1 ms each way, 5 % loss): the least-delay filter keeps the error far
+    below the jitter."""
+    side_b = lcm_url.replace(lcm_url.split(":")[-1].split("?")[0],
+                             str(int(lcm_url.split(":")[-1].split("?")[0]) + 1000))
+    relay = Proc([sys.executable, ROOT / "python" / "tools" / "lcm_relay.py", "--in", lcm_url,
+                  "--out", side_b, "--channel", r"SIM\..*", "--both", "--delay-ms", "2",
+                  "--jitter-ms", "1", "--loss", "0.05"], tmp_path / "relay.out", child_env)
+    procs.append(relay)
+    start(procs, tmp_path, child_env, "S-sim", lcm_url, 9, "--probe", tmp_path / "s.probe")
+    c = start(procs, tmp_path, child_env, "C-sim", side_b, 1, "--probe", tmp_path / "c.probe",
+              "--offset-us", "-70000", "--drift-ppm", "60")
+    c.wait_text("joined at global", timeout=30.0)
+    joined = time.monotonic()
+    time.sleep(11.0)
+    for p in procs:
+        p.stop()
+    assert "client of S-sim" in c.text()
+    errs = probe_errors(load_probe(tmp_path / "s.probe"), load_probe(tmp_path / "c.probe"),
+                        after_us=(joined + 6.0) * 1e6)
+    assert len(errs) > 100
+    assert percentile([abs(e) for e in errs], 0.5) < 1000.0, sorted(errs)[::20]
+    assert percentile([abs(e) for e in errs], 0.9) < 3000.0
