@@ -77,6 +77,17 @@ class MultiHil:
     priority: int = 0                # higher wins the env-server role on failover
     needs: list = field(default_factory=lambda: list(ENV_VARIABLES))
     sample_rate_hz: float = 1.0
+    # the rest is docs/multihil.md: joining a world shared by several simulators
+    enabled: bool = False            # join a multi-HIL world (server or client)
+    step_s: float = 0.1              # lockstep step (simulation.clock: stepped)
+    lockstep_participants: int = 0   # wait for this many participants before step 0
+    lockstep_timeout_s: float = 5.0  # drop a participant silent this long
+    heartbeat_hz: float = 10.0
+    failover_timeout_s: float = 0.5
+    join_window_s: float = 1.0
+    sync_hz: float = 10.0
+    clock_offset_us: float = 0.0     # tests: inject an offset into this process's clock
+    clock_drift_ppm: float = 0.0     # tests: inject a drift into this process's clock
 
 
 @dataclass

@@ -87,6 +87,7 @@ class Simulator:
         self.pacer = Pacer(s.clock, s.warp, self.dt, fast=fast)
         self.publish_clock = (s.publish_clock == "yes"
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
+        self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
         self.lc = lc or lcm.LCM(url)
         self.rx = Receiver(self.lc)
@@ -123,6 +124,10 @@ class Simulator:
         self._step_us = utime(self.dt)
         self._cpu0 = os.times()
         self._wall_health = time.monotonic()
+        self.mh = None      # multi-HIL: shared world, global clock (docs/multihil.md)
+        if cfg.multihil.enabled:
+            from sim.multihil.hook import SimHook
+            self.mh = SimHook(self)
 
     # ------------------------------------------------------------ handlers
     def _on_actuators(self, _channel: str, msg) -> None:
@@ -143,19 +148,22 @@ class Simulator:
     def _on_clock(self, _channel: str, msg) -> None:
         t = msg.utime / 1e6
         if not self._clock_started:
-            # join the world at its current time instead of replaying from 0
-            self._clock_started = True
-            self.model.dyn.t = t
-            self.last_cmd_t = None
-            self._next = [t, t, t, t + self._periods[3]]
-            self._next_due = t
-            for sen in self.sensors:
-                sen.next_t = t + sen.cfg.phase_s
-            for extra in self.extras:
-                extra.restart(t)
-            self._t_start = t
-            self._outputs()
+            self.join_at(t)
         self.pacer.target_t = t
+
+    def join_at(self, t: float) -> None:
+        """Join the world at its current time instead of replaying from 0."""
+        self._clock_started = True
+        self.model.dyn.t = t
+        self.last_cmd_t = None
+        self._next = [t, t, t, t + self._periods[3]]
+        self._next_due = t
+        for sen in self.sensors:
+            sen.next_t = t + sen.cfg.phase_s
+        for extra in self.extras:
+            extra.restart(t)
+        self._t_start = t
+        self._outputs()
 
     # -------------------------------------------------------------- output
     def _publish(self, channel: str, data: bytes) -> None:
@@ -266,14 +274,16 @@ class Simulator:
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
               f"sensors={','.join(s.name for s in self.sensors)} "
               f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
-        if cfg.sim.clock != "stepped":
-            self._outputs()   # stepped: nothing until the global clock says when
+        if cfg.sim.clock != "stepped" and self.mh is None:
+            self._outputs()   # stepped, multi-HIL: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
         model, pacer, monotonic = self.model, self.pacer, time.monotonic
         duration = duration if duration > 0 else math.inf
         while not self.stop_requested:
+            if self.mh is not None:
+                self.mh.poll()
             # _t_start moves when a stepped run joins the global clock
             if model.t - self._t_start >= duration - 1e-9:
                 break
@@ -285,6 +295,8 @@ class Simulator:
                 self._outputs()
             else:
                 self._drain(min(pacer.wait_s(model.t, now), 0.1))
+        if self.mh is not None:
+            self.mh.close()
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "

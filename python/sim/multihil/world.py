@@ -1,0 +1,116 @@
+"""Start a multi-HIL world on one machine: N vehicles, each a simulator with
+its managers, in one environment, optionally recorded by lcm-logger.
+
+Used by the tests, the benchmark and `python -m sim.multihil world`. Each
+vehicle gets its own configuration (the base one with its vehicle id, start
+position and priority) and, until the pilot and guidance plugins are merged
+into a scenario, one navigator manager flying missions/demo/depth_band.chasm
+straight onto the actuators.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[3]
+BASE_CONFIG = ROOT / "missions" / "sim" / "remus100_alt_damping.yaml"
+PLAN = ROOT / "missions" / "demo" / "depth_band.chasm"
+BIND = ROOT / "missions" / "bindings" / "direct_actuators.bind"
+
+
+@dataclass
+class VehicleSpec:
+    vehicle: str
+    priority: int = 0
+    east_m: float = 0.0
+    clock_offset_us: float = 0.0
+    clock_drift_ppm: float = 0.0
+    managers: list[str] = field(default_factory=lambda: ["NAVIGATOR"])
+    edits: list[tuple[str, str]] = field(default_factory=list)   # (old, new) in its config
+
+
+def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BASE_CONFIG) -> Path:
+    """The base configuration with this vehicle's id, start and multihil section."""
+    text = base.read_text()
+    assert "id: AUV1" in text and "multihil:" not in text, f"{base}: not a usable base"
+    text = text.replace("id: AUV1", f"id: {spec.vehicle}")
+    mh = {"priority": spec.priority, "clock_offset_us": spec.clock_offset_us,
+          "clock_drift_ppm": spec.clock_drift_ppm, **multihil}
+    text += "\nmultihil:\n" + "".join(f"  {k}: {v}\n" for k, v in mh.items())
+    text = text.replace("initial: {depth_m: 0.0}", f"initial: {{depth_m: 0.0, east_m: {spec.east_m}}}")
+    for old, new in spec.edits:
+        assert old in text, f"{base}: no {old!r} to edit"
+        text = text.replace(old, new)
+    path = out / f"{spec.vehicle}.yaml"
+    path.write_text(text)
+    return path
+
+
+class World:
+    def __init__(self, out: Path, url: str, build: Path = ROOT / "build", env: dict | None = None,
+                 python: str = sys.executable) -> None:
+        self.out, self.url, self.build, self.python = out, url, build, python
+        self.env = dict(env or os.environ)
+        self.env.setdefault("PYTHONPATH", os.pathsep.join(
+            [str(ROOT / "python"), str(build / "gen" / "python")]))
+        self.procs: dict[str, subprocess.Popen] = {}
+        out.mkdir(parents=True, exist_ok=True)
+
+    def _start(self, name: str, cmd: list, prefix: list[str] | None = None) -> subprocess.Popen:
+        p = subprocess.Popen([*(prefix or []), *map(str, cmd)],
+                             stdout=open(self.out / f"{name}.out", "w"),
+                             stderr=subprocess.STDOUT, env=self.env, start_new_session=True)
+        self.procs[name] = p
+        return p
+
+    def logger(self, log: Path, prefix: list[str] | None = None) -> None:
+        import lcm
+        binary = Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"
+        self._start("logger", [binary, f"--lcm-url={self.url}", "-f", log], prefix)
+        time.sleep(0.3)
+
+    def simulator(self, spec: VehicleSpec, clock: str, multihil: dict, warp: float = 1.0,
+                  duration: float = 0.0, prefix: list[str] | None = None,
+                  name: str | None = None) -> subprocess.Popen:
+        cfg = vehicle_config(self.out, spec, {"enabled": "true", **multihil})
+        cmd = [self.python, ROOT / "python" / "sim", cfg, "--lcm-url", self.url, "--clock", clock]
+        if clock == "scaled":
+            cmd += ["--warp", warp]
+        if duration:
+            cmd += ["--duration", duration]
+        return self._start(name or f"{spec.vehicle}.sim", cmd, prefix)
+
+    def managers(self, spec: VehicleSpec, prefix: list[str] | None = None, plan: Path = PLAN,
+                 bind: Path = BIND, extra: list[str] | None = None) -> None:
+        for name in spec.managers:
+            self._start(f"{spec.vehicle}.{name}",
+                        [self.build / "bin" / "chasm-manager", "--plan", plan, "--bind", bind,
+                         "--vehicle", spec.vehicle, "--name", name, "--rate", "10",
+                         "--clock", "sim", "--url", self.url, *(extra or [])], prefix)
+
+    def kill(self, name: str) -> None:
+        p = self.procs[name]
+        if p.poll() is None:
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+
+    def stop(self, timeout: float = 10.0) -> None:
+        """SIGINT everything (logger last, so it records the ends), SIGKILL stragglers."""
+        order = [n for n in self.procs if n != "logger"] + (["logger"] if "logger" in self.procs else [])
+        for name in order:
+            p = self.procs[name]
+            if p.poll() is None:
+                os.killpg(p.pid, signal.SIGINT)
+            try:
+                p.wait(timeout)
+            except subprocess.TimeoutExpired:
+                self.kill(name)
+
+    def output(self, name: str) -> str:
+        return (self.out / f"{name}.out").read_text()
