@@ -157,7 +157,7 @@ static int run(manager_t *mg)
             mg->now_us = system_now_us();
             mg->have_time = 1;
             if (next_cycle > mg->now_us)
-                wait_ms = (next_cycle - mg->now_us) / 1000;
+                wait_ms = (next_cycle - mg->now_us + 999) / 1000; /* round up: never spin */
         }
         /* A signal interrupts the wait: that is how a stop arrives. */
         if (lcm_handle_timeout(mg->lcm, (int)(wait_ms > 0 ? wait_ms : 0)) < 0 && !mg->stop) {

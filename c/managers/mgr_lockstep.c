@@ -1,5 +1,6 @@
 #include "managers/mgr_lockstep.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 #include <time.h>
@@ -30,6 +31,7 @@ void mgr_lockstep_init(mgr_lockstep *ls, const char *vehicle, const char *name)
     snprintf(ls->name, sizeof ls->name, "%s.%s", vehicle, name);
     ls->pending_step = -1;
     ls->last_done = -1;
+    ls->last_done_utime = INT64_MIN;
 }
 
 void mgr_lockstep_on_clock(mgr_lockstep *ls, lcm_t *lcm, const auv_sim_clock_t *c)
@@ -38,7 +40,9 @@ void mgr_lockstep_on_clock(mgr_lockstep *ls, lcm_t *lcm, const auv_sim_clock_t *
     ls->lockstep = c->mode == AUV_SIM_CLOCK_T_MODE_LOCKSTEP;
     if (!ls->lockstep)
         return;
-    if (c->step <= ls->last_done) {
+    /* A step already done (a repeated clock message) is acknowledged again.
+     * Drivers that leave `step` at 0 still advance utime: either counts. */
+    if (c->step <= ls->last_done && c->utime <= ls->last_done_utime) {
         send(ls, lcm, AUV_LOCKSTEP_T_KIND_STEP_DONE, c->step, c->utime);
         return;
     }
@@ -64,6 +68,7 @@ void mgr_lockstep_poll(mgr_lockstep *ls, lcm_t *lcm)
     if (ls->pending_step >= 0) {
         send(ls, lcm, AUV_LOCKSTEP_T_KIND_STEP_DONE, ls->pending_step, ls->pending_utime);
         ls->last_done = ls->pending_step;
+        ls->last_done_utime = ls->pending_utime;
         ls->pending_step = -1;
     }
 }

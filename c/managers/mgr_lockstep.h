@@ -23,6 +23,7 @@ typedef struct {
     int64_t pending_step;       /* step whose cycle is under way, -1: none */
     int64_t pending_utime;
     int64_t last_done;          /* last step reported, -1: none */
+    int64_t last_done_utime;    /* its global time */
     int64_t next_register_ms;   /* monotonic */
 } mgr_lockstep;
 

@@ -11,12 +11,14 @@ supervisor events (KIND_EVENT: process start/exit, mission end).
 from __future__ import annotations
 
 import re
+import time
 from pathlib import Path
 
 import lcm
 from auv import log_annotation_t
 
 CHANNEL = "SIM.ANNOTATION"
+PACE_S = 0.003  # between annotations
 _INCLUDE = re.compile(r'^\s*include\s+"([^"]+)"', re.M)
 
 
@@ -50,6 +52,9 @@ class Annotator:
         a.utime, a.vehicle, a.source, a.kind, a.name, a.text = utime, vehicle, self.source, kind, name, text
         self.lc.publish(CHANNEL, a.encode())
         self.count += 1
+        # A burst of ~60 files at start overran lcm-logger on a loaded 2-core
+        # machine (half the type definitions went missing): pace them.
+        time.sleep(PACE_S)
 
     def file(self, kind: int, path: Path, vehicle: str = "") -> None:
         self.note(kind, display_name(path, self.root), path.read_text(), vehicle)
