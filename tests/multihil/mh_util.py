@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import bisect
 import os
 import signal
 import subprocess
@@ -17,6 +16,7 @@ import lcm
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
 from conftest import ROOT
+from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: F401  (for the tests)
 
 
 class Proc:
@@ -147,31 +147,3 @@ class Recorder:
         time.sleep(0.3)
         self._stop = True
         self._thread.join(2.0)
-
-
-def load_probe(path: Path) -> list[tuple[float, float, str]]:
-    rows = []
-    for line in path.read_text().splitlines():
-        mono, glob, role, _term = line.split()
-        rows.append((float(mono), float(glob), role))
-    return rows
-
-
-def probe_errors(server: list, client: list, after_us: float = 0.0) -> list[float]:
-    """Client's global estimate minus the server's global time at the same instant [us]."""
-    srv = [r for r in server if r[2] == "server"]
-    ts = [r[0] for r in srv]
-    out = []
-    for mono, g, _ in client:
-        if mono < after_us:
-            continue
-        k = bisect.bisect_left(ts, mono)
-        if 0 < k < len(srv) and srv[k][0] - srv[k - 1][0] < 1e5:
-            a, b = srv[k - 1], srv[k]
-            out.append(g - (a[1] + (b[1] - a[1]) * (mono - a[0]) / (b[0] - a[0])))
-    return out
-
-
-def percentile(values: list[float], q: float) -> float:
-    s = sorted(values)
-    return s[min(len(s) - 1, int(q * len(s)))]
