@@ -22,7 +22,7 @@ from sim.multihil.world import VehicleSpec, World
 # Free-running at 2x: a starved process (a loaded CI machine) lags the global
 # clock by wall time x warp, and the plan aborts on navigation older than 5 s.
 WARP = 2.0
-MISSION_S = 30.0        # the depth-band plan's time in the band before it surfaces
+MISSION_S = 20.0        # the depth-band plan's time in the band before it surfaces
 
 
 @pytest.fixture
@@ -72,7 +72,7 @@ def test_three_hosts_survive_the_loss_of_the_server(hosts, tmp_path, child_env, 
         while "server for term 1" not in out1.read_text() and time.monotonic() < deadline:
             time.sleep(0.1)
         assert "server for term 1" in out1.read_text(), out1.read_text()
-        time.sleep(10.0 / WARP + 1.0)              # well into the mission
+        time.sleep(8.0 / WARP + 1.0)               # well into the mission
         world.kill("AUV1.sim")
         time.sleep(MISSION_S / WARP + 3.0)         # past the end of the mission
     finally:
