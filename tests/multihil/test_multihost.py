@@ -65,7 +65,10 @@ def test_three_hosts_survive_the_loss_of_the_server(hosts, tmp_path, child_env, 
     specs = [VehicleSpec(f"AUV{i}", priority=40 - 10 * i, east_m=25.0 * i) for i in (1, 2, 3)]
     try:
         for i, s in enumerate(specs, 1):
-            world.managers(s, hosts.prefix(i), extra=["-D", f"duration={MISSION_S:g} s"])
+            # a mission of its own: each vehicle keeps to a different depth band
+            world.managers(s, hosts.prefix(i), extra=["-D", f"duration={MISSION_S:g} s",
+                                                      "-D", f"low={1 + 2 * i} m",
+                                                      "-D", f"high={3 + 2 * i} m"])
             world.simulator(s, "scaled", {}, warp=WARP, prefix=hosts.prefix(i))
         out1 = tmp_path / "AUV1.sim.out"
         deadline = time.monotonic() + 60

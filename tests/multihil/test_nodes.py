@@ -173,3 +173,25 @@ def test_clocks_converge_under_offset_and_drift_directly_and_through_an_impaired
     offsets = [m for _, m in lst.msgs["SIM.CLOCK_OFFSET.C-sim"]]
     assert offsets and offsets[-1].synchronised
     assert abs(offsets[-1].drift_ppm - 160.0) < 40.0, offsets[-1].drift_ppm   # 120 - (-40)
+
+
+def test_lockstep_failover_resumes_the_step_in_flight(procs, tmp_path, child_env, lcm_url):
+    """Three lockstep participants; the server dies: the next one repeats the step
+    it found in flight and goes on, one step at a time, without waiting for the
+    dead one."""
+    lst = Listener(lcm_url)
+    lock = ("--mode", "lockstep", "--expect", "3", "--step", "0.1")
+    a = start(procs, tmp_path, child_env, "A-sim", lcm_url, 30, *lock)
+    start(procs, tmp_path, child_env, "B-sim", lcm_url, 20, *lock)
+    start(procs, tmp_path, child_env, "C-sim", lcm_url, 10, *lock)
+    assert lst.pump(30.0, until=lambda: len(lst.msgs["SIM.CLOCK"]) > 100)
+    a.kill()
+    assert lst.pump(20.0, until=lambda: (lst.last_server() or ("",))[0] == "B-sim")
+    n = len(lst.msgs["SIM.CLOCK"])
+    assert lst.pump(20.0, until=lambda: len(lst.msgs["SIM.CLOCK"]) > n + 50)
+    clock = [m for _, m in lst.msgs["SIM.CLOCK"]]
+    steps = [m.step for m in clock]
+    assert all(0 <= b - a_ <= 1 for a_, b in zip(steps, steps[1:])), steps   # repeat or +1
+    assert all(m.utime == m.step * 100_000 for m in clock)                    # on the grid
+    assert {m.server_id for m in clock} == {"A-sim", "B-sim"}
+    assert all(m.mode == 2 for m in clock)
