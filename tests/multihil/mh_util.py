@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import bisect
 import os
 import signal
 import subprocess
@@ -17,6 +16,7 @@ import lcm
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
 from conftest import ROOT
+from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: F401  (for the tests)
 
 
 class Proc:
@@ -77,7 +77,25 @@ def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus1
     return path
 
 
-class Listener:
+class _Background:
+    """An LCM instance handled by a thread of its own."""
+
+    def __init__(self, url: str) -> None:
+        self.lc = lcm.LCM(url)
+        self._stop = False
+        self._thread = threading.Thread(target=self._run, daemon=True)
+
+    def _run(self) -> None:
+        while not self._stop:
+            self.lc.handle_timeout(20)
+
+    def close(self) -> None:
+        time.sleep(0.3)         # what is in flight
+        self._stop = True
+        self._thread.join(2.0)
+
+
+class Listener(_Background):
     """Records the world's shared channels with wall receive times, from a
     thread of its own, so that receive times are true while the test waits."""
 
@@ -85,22 +103,12 @@ class Listener:
                 "SIM.ENV_ELECTION": "env_election_t", "SIM.ENV": "env_model_t"}
 
     def __init__(self, url: str, extra: dict[str, str] | None = None) -> None:
-        self.lc = lcm.LCM(url)
+        super().__init__(url)
         self.rx = Receiver(self.lc)
         self.msgs: dict[str, list] = defaultdict(list)
         for ch, tname in {**self.CHANNELS, **(extra or {})}.items():
             self.rx.subscribe(ch, by_name(tname), self._on, queue_capacity=10000)
-        self._stop = False
-        self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
-
-    def _run(self) -> None:
-        while not self._stop:
-            self.lc.handle_timeout(20)
-
-    def close(self) -> None:
-        self._stop = True
-        self._thread.join(2.0)
 
     def _on(self, channel: str, msg) -> None:
         self.msgs[channel].append((time.monotonic(), msg))
@@ -125,53 +133,14 @@ class Listener:
         return [(t, m.utime, m.server_id) for t, m in self.msgs["SIM.CLOCK"]]
 
 
-class Recorder:
+class Recorder(_Background):
     """Every message on a URL, raw, from a thread with a deep queue: a lossless
     record for byte comparisons (lcm-logger's default subscription queue drops
     messages when it is descheduled on a loaded machine)."""
 
     def __init__(self, url: str) -> None:
-        self.lc = lcm.LCM(url)
+        super().__init__(url)
         self.events: list[tuple[str, bytes]] = []
         sub = self.lc.subscribe(".*", lambda ch, data: self.events.append((ch, data)))
         sub.set_queue_capacity(1_000_000)
-        self._stop = False
-        self._thread = threading.Thread(target=self._run, daemon=True)
         self._thread.start()
-
-    def _run(self) -> None:
-        while not self._stop:
-            self.lc.handle_timeout(20)
-
-    def close(self) -> None:
-        time.sleep(0.3)
-        self._stop = True
-        self._thread.join(2.0)
-
-
-def load_probe(path: Path) -> list[tuple[float, float, str]]:
-    rows = []
-    for line in path.read_text().splitlines():
-        mono, glob, role, _term = line.split()
-        rows.append((float(mono), float(glob), role))
-    return rows
-
-
-def probe_errors(server: list, client: list, after_us: float = 0.0) -> list[float]:
-    """Client's global estimate minus the server's global time at the same instant [us]."""
-    srv = [r for r in server if r[2] == "server"]
-    ts = [r[0] for r in srv]
-    out = []
-    for mono, g, _ in client:
-        if mono < after_us:
-            continue
-        k = bisect.bisect_left(ts, mono)
-        if 0 < k < len(srv) and srv[k][0] - srv[k - 1][0] < 1e5:
-            a, b = srv[k - 1], srv[k]
-            out.append(g - (a[1] + (b[1] - a[1]) * (mono - a[0]) / (b[0] - a[0])))
-    return out
-
-
-def percentile(values: list[float], q: float) -> float:
-    s = sorted(values)
-    return s[min(len(s) - 1, int(q * len(s)))]

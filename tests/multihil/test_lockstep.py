@@ -20,7 +20,6 @@ byte for byte.
 
 from __future__ import annotations
 
-import time
 from collections import defaultdict
 
 from auv import chasm_status_t, lockstep_t

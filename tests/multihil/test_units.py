@@ -143,3 +143,42 @@ def test_each_client_gets_only_what_it_asked_for_at_its_position():
     assert s.valid_mask == env_sample_t.HAS_BATHYMETRY | env_sample_t.HAS_SOUND_SPEED
     assert abs(s.water_depth_m - 41.0) < 1e-9 and abs(s.sound_speed_mps - 1500.2) < 1e-9
     assert s.current_ned_mps == [0.0, 0.0, 0.0] and s.utime == 5_000_000 and s.term == 3
+
+
+def memq_node(log: list, **kw):
+    import lcm
+
+    from sim.multihil.node import EnvNode, NodeConfig
+    lc = lcm.LCM("memq://")
+    return lc, EnvNode(NodeConfig("C-sim", "C", **kw), lc, Environment(EnvParams()), log=log.append)
+
+
+def test_bad_traffic_is_counted_and_a_world_it_cannot_build_is_refused():
+    log: list[str] = []
+    lc, node = memq_node(log)
+    lc.publish("SIM.ENV_HEARTBEAT", b"\x00" * 5)          # undecodable: counted, dropped
+    lc.handle_timeout(100)
+    assert node.rx.decode_errors == 1
+    node.election.on_heartbeat("S-sim", 1, 5)               # follow a server ...
+    world = Environment(EnvParams(bathymetry_ref="flat:depth=30")).to_env_model(0, "S-sim", 1)
+    world.bathymetry_ref = "grid:no/such/bay.npz"           # ... whose grid this host lacks
+    lc.publish("SIM.ENV", world.encode())
+    lc.handle_timeout(100)
+    assert node.env_adoptions == 0 and node.env.params.bathymetry_ref == "flat:depth=50"
+    assert any("cannot build the server's world" in line for line in log), log
+    world.bathymetry_ref = "flat:depth=30"                   # one it can build: adopted in place
+    lc.publish("SIM.ENV", world.encode())
+    lc.handle_timeout(100)
+    assert node.env_adoptions == 1 and node.env.water_depth(0.0, 0.0) == 30.0
+
+
+def test_a_clock_of_another_mode_is_refused_with_a_message():
+    from auv import sim_clock_t
+    log: list[str] = []
+    lc, node = memq_node(log, mode="lockstep")
+    c = sim_clock_t()
+    c.utime, c.server_id, c.term, c.mode, c.warp, c.step, c.step_us = 5, "S-sim", 1, 1, 4.0, 0, 0
+    lc.publish("SIM.CLOCK", c.encode())
+    lc.handle_timeout(100)
+    assert node.last_clock is None and node.mode_conflicts == 1
+    assert "every simulator of a world needs the same mode" in log[-1]

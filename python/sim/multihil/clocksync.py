@@ -26,8 +26,8 @@ class Sample:
 
 class SyncEstimator:
     DELAY_FLOOR_US = 30.0     # delay excess below this counts as equally good
-    def __init__(self, warp: float = 1.0, window: int = 160, bin_s: float = 1.0,
-                 bins: int = 12) -> None:
+    def __init__(self, warp: float = 1.0, window: int = 250, bin_s: float = 1.0,
+                 bins: int = 20) -> None:
         self.warp = warp
         self.samples: deque[Sample] = deque(maxlen=window)
         self.bin_us = bin_s * 1e6
@@ -76,8 +76,11 @@ class SyncEstimator:
             xs = [s.local_mid_us for s in good]
             if max(xs) - min(xs) >= 1.5 * self.bin_us:   # drift needs a baseline
                 # A sample's offset error is at most half its delay beyond the true
-                # minimum: weigh by that bound, so a late partial bin cannot tilt the line.
-                ws = [1.0 / (s.delay_us - dmin + self.DELAY_FLOOR_US) ** 2 for s in good]
+                # minimum: weigh by that bound, so a late partial bin cannot tilt the line;
+                # excesses below the bins' typical one count alike (a jittery link).
+                excess = sorted(s.delay_us - dmin for s in good)
+                floor = max(self.DELAY_FLOOR_US, excess[len(excess) // 2])
+                ws = [1.0 / (s.delay_us - dmin + floor) ** 2 for s in good]
                 sw = sum(ws)
                 mx = sum(w * x for w, x in zip(ws, xs)) / sw
                 my = sum(w * s.offset_us for w, s in zip(ws, good)) / sw

@@ -90,7 +90,7 @@ class SimHook:
         g = self.node.global_now_us()
         return None if g is None or not self.joined else g / 1e6
 
-    def _adopt(self, m) -> None:
+    def _adopt(self, m) -> bool:
         """The server's world replaces ours, in place: every part holding it sees the change."""
         params = Environment.params_from_env_model(m)
         model = self.sim.model
@@ -99,16 +99,17 @@ class SimHook:
         except (BathymetryError, OSError) as exc:
             self.env_errors += 1
             self.log(f"multihil: cannot build the server's world ({exc}); keeping this one")
-            return
+            return False
         if fresh.bathymetry.sha256 != m.bathymetry_sha256:
             self.env_errors += 1
             self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's "
                      "(SHA-256); keeping this one")
-            return
-        model.env.__init__(params, self.sim.cfg.path.parent)
+            return False
+        model.env.__dict__.update(fresh.__dict__)     # in place: sensors hold this object
         if (model.frame.lat0, model.frame.lon0) != (params.origin_latitude_deg,
                                                     params.origin_longitude_deg):
             model.frame.__init__(params.origin_latitude_deg, params.origin_longitude_deg)
+        return True
 
     def _hold_command(self, channel: str, msg) -> None:
         t = msg.utime / 1e6

@@ -54,7 +54,7 @@ class EnvNode:
     def __init__(self, cfg: NodeConfig, lc: lcm.LCM, env: Environment,
                  local: LocalClock | None = None,
                  position: Callable[[], tuple[float, float, float, float] | None] | None = None,
-                 on_env: Callable[[env_model_t], None] | None = None, log=print) -> None:
+                 on_env: Callable[[env_model_t], bool] | None = None, log=print) -> None:
         self.cfg = cfg
         self.lc = lc
         self.env = env
@@ -350,9 +350,16 @@ class EnvNode:
         if params == self.env.params:
             return
         if self.on_env is not None:
-            self.on_env(m)
+            if not self.on_env(m):  # the simulator rebuilds its world (sim.multihil.hook)
+                return
         else:
-            self.env.__init__(params, None)
+            try:
+                fresh = Environment(params, None)
+            except (ValueError, OSError) as exc:     # e.g. a grid file this host lacks
+                self.log(f"multihil: {self.cfg.client_id}: cannot build the server's world "
+                         f"({exc}); keeping this one")
+                return
+            self.env.__dict__.update(fresh.__dict__)
         self.env_adoptions += 1
         self.log(f"multihil: {self.cfg.client_id}: adopted world {m.world!r} (seed {m.seed}) "
                  f"from {m.server_id}")

@@ -114,3 +114,43 @@ class World:
 
     def output(self, name: str) -> str:
         return (self.out / f"{name}.out").read_text()
+
+
+def main(argv: list[str]) -> int:
+    """`python -m sim.multihil world`: N vehicles in one world on this machine."""
+    import argparse
+
+    from auvlcm.url import check_local, default_url
+    ap = argparse.ArgumentParser(prog="python -m sim.multihil world", description=main.__doc__)
+    ap.add_argument("--vehicles", type=int, default=3)
+    ap.add_argument("--clock", choices=("realtime", "scaled", "stepped"), default="scaled")
+    ap.add_argument("--warp", type=float, default=4.0)
+    ap.add_argument("--duration", type=float, default=60.0, help="sim seconds per simulator")
+    ap.add_argument("--out", type=Path, default=ROOT / "build" / "multihil")
+    ap.add_argument("--url", default=default_url())
+    a = ap.parse_args(argv)
+    if a.vehicles < 1 or a.duration <= 0:
+        ap.error("--vehicles and --duration must be positive")
+    try:
+        url = check_local(a.url)
+    except ValueError as exc:
+        ap.error(str(exc))
+    world = World(a.out, url)
+    log = a.out / "world.lcmlog"
+    world.logger(log)
+    specs = [VehicleSpec(f"AUV{i}", priority=a.vehicles - i, east_m=30.0 * (i - 1))
+             for i in range(1, a.vehicles + 1)]
+    lockstep = {"lockstep_participants": 2 * a.vehicles} if a.clock == "stepped" else {}
+    print(f"world: {a.vehicles} vehicles, {a.clock} clock, {a.duration:g} sim s, on {url}")
+    try:
+        for s in specs:
+            world.managers(s)
+            world.simulator(s, a.clock, lockstep, warp=a.warp, duration=a.duration)
+        for s in specs:
+            world.procs[f"{s.vehicle}.sim"].wait()
+    except KeyboardInterrupt:
+        pass
+    finally:
+        world.stop()
+    print(f"world: outputs in {a.out}/ (one .out per process), log {log}")
+    return 0
