@@ -183,7 +183,7 @@ class Launcher:
             if self._dead():
                 return "died"
             if self.clock:
-                self.clock.advance(self.watch.slowest_sim_us())
+                self.clock.advance(self.watch.clock_limit_us())
             self.watch.handle(self.clock.wait_s() if self.clock else 0.05)
             outcome = self.watch.outcome()
             if outcome:

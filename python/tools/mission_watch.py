@@ -2,7 +2,9 @@
 
 - ready: every simulator (ACTUATOR_STATE) and every manager (CHASM status)
   of the scenario has reported, on any host;
-- progress: each simulator's sim time, for the clock's gate;
+- gate: how far the clock may run, from each simulator's and each manager's
+  sim time (a control loop must see the time it acts in, or a stalled pilot
+  becomes sim time without control);
 - outcome: each vehicle's end manager (NAVIGATOR by default) is done,
   aborted or failed. A plan whose `abort when` rule fired and then ended
   normally (the surfacing state completed) counts as aborted: the plan's abort
@@ -51,6 +53,11 @@ class VehicleState:
         return "aborted" if o == "done" and self.entered_abort else o
 
 
+SIM_LEAD_US = 300_000       # a simulator may fall this far behind the clock
+MANAGER_LEAD_US = 100_000   # a manager this far plus its own period: the pilot's loops
+                            # tolerate about 100 ms of delay (docs/behaviors.md)
+
+
 class MissionWatch:
     def __init__(self, lc: lcm.LCM, sc: Scenario) -> None:
         self.lc = lc
@@ -59,7 +66,8 @@ class MissionWatch:
         self.seen: set[str] = set()
         self.expected: set[str] = set()
         self.sim_time_us = 0
-        self._startup_subs = []
+        self.manager_us: dict[str, int | None] = {}
+        self.manager_lead_us: dict[str, int] = {}
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
             self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
@@ -67,10 +75,9 @@ class MissionWatch:
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
-                sub = self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status,
-                                        queue_capacity=1000)
-                if m.name != v.end_manager:
-                    self._startup_subs.append(sub)
+                self.manager_us[f"{v.id}.{m.name}"] = None
+                self.manager_lead_us[f"{v.id}.{m.name}"] = MANAGER_LEAD_US + round(1e6 / m.rate_hz)
+                self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
     def _on_sim(self, _ch: str, m) -> None:
@@ -80,7 +87,10 @@ class MissionWatch:
             v.sim_us = m.utime
 
     def _on_status(self, ch: str, m) -> None:
-        self.seen.add(f"{m.vehicle}.{m.manager}")
+        key = f"{m.vehicle}.{m.manager}"
+        self.seen.add(key)
+        if key in self.manager_us:
+            self.manager_us[key] = m.utime
         v = self.vehicles.get(m.vehicle)
         if v is None or m.manager != v.end_manager:
             return
@@ -102,19 +112,17 @@ class MissionWatch:
             ready, _, _ = select.select([fd], [], [], 0.0)
 
     def all_ready(self) -> bool:
-        if self.expected - self.seen:
-            return False
-        for sub in self._startup_subs:   # only end managers matter from now on
-            self.rx.unsubscribe(sub)
-        self._startup_subs = []
-        return True
+        return not self.expected - self.seen
 
     def not_ready(self) -> list[str]:
         return sorted(self.expected - self.seen)
 
-    def slowest_sim_us(self) -> int | None:
-        times = [v.sim_us for v in self.vehicles.values()]
-        return None if any(t is None for t in times) else min(times)
+    def clock_limit_us(self) -> int | None:
+        """The latest time the clock may publish: no simulator more than SIM_LEAD_US
+        and no manager more than its lead behind it (None: someone has not reported)."""
+        limits = [None if v.sim_us is None else v.sim_us + SIM_LEAD_US for v in self.vehicles.values()]
+        limits += [None if t is None else t + self.manager_lead_us[k] for k, t in self.manager_us.items()]
+        return None if any(t is None for t in limits) else min(limits)
 
     def outcome(self) -> str | None:
         """None while any vehicle runs; else the worst vehicle outcome."""

@@ -31,8 +31,29 @@ def _absolute_grid(env: dict, base: Path) -> dict:
     return env
 
 
+def _has_sonar(v: Vehicle) -> bool:
+    base = yaml.safe_load(v.sim_config.read_text()) or {}
+    return "sonar" in base or "sonar" in v.sim_overrides
+
+
+def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
+    """On the launcher's clock no environment server publishes SIM.TARGETS and a
+    stepped simulator's `auto` does not either: left to `auto`, the first vehicle
+    with a sonar publishes the target field, the others not (one writer per channel)."""
+    if sc.time.source != "launcher" or "sonar" not in cfg:
+        return cfg
+    if cfg["sonar"].get("publish_targets", "auto") not in ("auto", None):
+        return cfg
+    first = next(o for o in sc.vehicles if _has_sonar(o))
+    return merge(cfg, {"sonar": {"publish_targets": "yes" if first is v else "no"}})
+
+
 def vehicle_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     """The merged simulator configuration of one vehicle (plain data)."""
+    return _targets_publisher(sc, v, _merged_config(sc, v, index))
+
+
+def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     base = yaml.safe_load(v.sim_config.read_text()) or {}
     if isinstance(base.get("environment"), dict):
         base["environment"] = _absolute_grid(base["environment"], v.sim_config.parent)

@@ -3,9 +3,10 @@
 Every simulator runs `--clock stepped` and every manager `--clock sim`, so one
 clock drives the whole world. It holds time at 0 until every process is up
 (a deterministic start), then advances by `step` at `warp` times real time
-(`fast`: as fast as the simulators go), never more than `lead` seconds of sim
-time ahead of the slowest simulator: an overloaded machine slows the clock
-down instead of leaving a vehicle behind.
+(`fast`: as fast as the simulators go), never past the limit the launcher's
+watch gives (a little ahead of the slowest simulator and manager,
+tools/mission_watch.py): an overloaded machine slows the clock down instead of
+leaving a vehicle or its pilot behind.
 """
 
 from __future__ import annotations
@@ -21,12 +22,11 @@ MODES = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALE
 
 
 class WorldClock:
-    def __init__(self, lc: lcm.LCM, mode: str, warp: float, step_s: float, lead_s: float = 0.3) -> None:
+    def __init__(self, lc: lcm.LCM, mode: str, warp: float, step_s: float) -> None:
         self.lc = lc
         self.mode = mode
         self.warp = 1.0 if mode == "realtime" else (math.inf if mode == "fast" else warp)
         self.step_us = max(1, round(step_s * 1e6))
-        self.lead_us = max(round(lead_s * 1e6), 2 * self.step_us)
         self.now_us = 0
         self.running = False
         self._wall0 = 0.0
@@ -53,13 +53,13 @@ class WorldClock:
     def _rebase(self, wall: float) -> None:
         self._wall0, self._sim0_us = wall, self.now_us
 
-    def advance(self, slowest_us: int | None) -> bool:
-        """Publish the ticks that are due; False when held back by a slow simulator."""
+    def advance(self, limit_us: int | None) -> bool:
+        """Publish the ticks that are due up to limit_us; False when held back by it."""
         if not self.running:
             return True
         wall = time.monotonic()
         due = math.inf if math.isinf(self.warp) else self._sim0_us + (wall - self._wall0) * self.warp * 1e6
-        limit = math.inf if slowest_us is None else slowest_us + self.lead_us
+        limit = math.inf if limit_us is None else limit_us
         gated = False
         while self.now_us + self.step_us <= due:
             if self.now_us + self.step_us > limit:
