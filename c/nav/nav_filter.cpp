@@ -1,0 +1,86 @@
+#include "nav/nav_filter.hpp"
+
+#include "nav/ekf_predict.hpp"
+
+namespace nav {
+
+NavFilter::NavFilter(const NavConfig &cfg, size_t history_capacity) : cfg_(cfg), hist_(history_capacity)
+{
+    init_state(cur_, cfg_);
+    if (cfg_.have_initial_position) {
+        const double v = cfg_.initial_position_sigma_m * cfg_.initial_position_sigma_m;
+        reset_state(cur_, PN, cfg_.initial_north_m, v);
+        reset_state(cur_, PE, cfg_.initial_east_m, v);
+        cur_.position_init = true;
+    }
+}
+
+void NavFilter::apply(FilterState &s, const Measurement &m, Outcome *o) const
+{
+    predict(s, m.utime, cfg_);
+    Outcome r;
+    switch (m.sensor) {
+    case SENSOR_AHRS: r = update_ahrs(s, m.ahrs, m.utime, cfg_); break;
+    case SENSOR_DEPTH: r = update_depth(s, m.depth, m.utime, cfg_); break;
+    case SENSOR_DVL: r = update_dvl(s, m.dvl, m.utime, cfg_); break;
+    case SENSOR_GPS: r = update_gps(s, m.gps, m.utime, cfg_); break;
+    case SENSOR_LBL: r = update_lbl(s, m.lbl, m.utime, cfg_); break;
+    }
+    if (o)
+        *o = r;
+}
+
+Outcome NavFilter::push(const Measurement &m)
+{
+    Outcome o;
+    if (m.sensor < 0 || m.sensor >= kSensors)
+        return o;
+    SensorStats &st = stats_.sensor[m.sensor];
+    st.measurements++;
+    if (cur_.utime < 0 || m.utime >= cur_.utime) {
+        apply(cur_, m, &o);
+        hist_.push_back(m, cur_);
+    } else {
+        stats_.out_of_order++;
+        size_t i = hist_.count_at_or_before(m.utime);
+        if (i == 0) {           // older than everything kept
+            st.too_old++;
+            return o;
+        }
+        FilterState s = hist_.at(i - 1).post;
+        apply(s, m, &o);
+        if (!hist_.insert(i, m, s)) {
+            st.too_old++;
+            return o;
+        }
+        for (size_t j = i + 1; j < hist_.size(); j++) {
+            HistoryEntry &e = hist_.at(j);
+            apply(s, e.m, nullptr);
+            e.post = s;
+            stats_.replayed++;
+        }
+        cur_ = s;
+    }
+    st.accepted += static_cast<uint64_t>(o.accepted);
+    st.rejected += static_cast<uint64_t>(o.rejected);
+    st.unknown += static_cast<uint64_t>(o.unknown);
+    st.resets += o.reset ? 1 : 0;
+    trim();
+    return o;
+}
+
+void NavFilter::trim()
+{
+    const int64_t keep_from = cur_.utime - static_cast<int64_t>(cfg_.history_s * 1e6);
+    while (hist_.size() > 1 && hist_.at(0).m.utime < keep_from)
+        hist_.pop_front();
+}
+
+void NavFilter::estimate_at(int64_t utime, FilterState &out) const
+{
+    out = cur_;
+    if (utime > out.utime)
+        predict(out, utime, cfg_);
+}
+
+}  // namespace nav

@@ -1,0 +1,192 @@
+"""Record an LCM log of a simulated survey: the navigation filter's test data.
+
+    survey_log.py --out run.lcmlog [--config missions/sim/remus100_survey.yaml]
+                  [--set sensors.dvl.dropout=0.2]... [--lines 4 --length 460 ...]
+
+Runs the real simulator (python/sim) in stepped mode with the real lcm-logger
+recording everything, and drives both from here: this script is the global
+clock (SIM.CLOCK, 0.1 s steps) and a scripted survey controller
+(survey_pilot.py) steering by the simulator's black-box INS (<V>.NAV). Each
+step waits for the simulator's output, so the run is deterministic (same
+config and seed, same sensor data) and as fast as the two processes allow.
+`--set key.path=value` overrides one key of the simulator configuration (the
+overridden file is written next to the log and annotated into it).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+for _p in (ROOT / "python", ROOT / "python" / "tools"):
+    if str(_p) not in sys.path:
+        sys.path.insert(0, str(_p))
+
+import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
+import lcm  # noqa: E402
+import yaml  # noqa: E402
+from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
+
+from auvlcm.rx import Receiver  # noqa: E402
+from auvlcm.url import check_local, default_url  # noqa: E402
+from survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
+
+DEFAULT_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
+STEP_S = 0.1
+
+
+def apply_overrides(text: str, sets: list[str]) -> str:
+    """The YAML text with each `a.b.c=value` set (value parsed as YAML)."""
+    doc = yaml.safe_load(text) or {}
+    for item in sets:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise ValueError(f"--set {item!r}: expected key.path=value")
+        node = doc
+        parts = key.split(".")
+        for p in parts[:-1]:
+            node = node.setdefault(p, {})
+            if not isinstance(node, dict):
+                raise ValueError(f"--set {item!r}: {p} is not a section")
+        node[parts[-1]] = yaml.safe_load(value)
+    return yaml.safe_dump(doc, sort_keys=False)
+
+
+class Stepper:
+    """The global clock plus the scripted controller, over LCM."""
+
+    def __init__(self, lc: lcm.LCM, vehicle: str, pilot: SurveyPilot) -> None:
+        self.lc, self.vehicle, self.pilot = lc, vehicle, pilot
+        self.rx = Receiver(lc)
+        self.nav = Nav()
+        self.have_nav = False
+        self.sim_utime = -1
+        self.seq = 0
+        self.rx.subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=200)
+        self.rx.subscribe(f"{vehicle}.ACTUATOR_STATE", actuator_state_t, self._on_state, queue_capacity=200)
+
+    def _on_nav(self, _ch: str, m) -> None:
+        self.nav = Nav(m.north_m, m.east_m, m.depth_m, m.heading_rad, m.pitch_rad, m.q_radps, m.r_radps)
+        self.have_nav = True
+
+    def _on_state(self, _ch: str, m) -> None:
+        self.sim_utime = max(self.sim_utime, m.utime)
+
+    def clock(self, utime: int) -> None:
+        c = sim_clock_t()
+        c.utime, c.server_id, c.mode, c.warp, c.step_us = utime, "survey_log", sim_clock_t.MODE_LOCKSTEP, 0.0, int(STEP_S * 1e6)
+        self.lc.publish("SIM.CLOCK", c.encode())
+
+    def step_to(self, utime: int, timeout_s: float) -> None:
+        """Release the simulator up to utime and wait until it got there."""
+        deadline = time.monotonic() + timeout_s
+        resend = 0.0
+        while self.sim_utime < utime:
+            now = time.monotonic()
+            if now > deadline:
+                raise TimeoutError(f"simulator did not reach t={utime / 1e6:.1f}s")
+            if now >= resend:           # the first ticks may come before it subscribed
+                self.clock(utime)
+                resend = now + 0.5
+            self.lc.handle_timeout(50)
+
+    def command(self, utime: int) -> None:
+        rudder, stern, rpm = self.pilot.command(utime / 1e6, self.nav)
+        a = actuators_t()
+        a.utime, a.vehicle = utime, self.vehicle
+        a.rudder_rad, a.stern_plane_rad, a.prop_rpm, a.seq = rudder, stern, rpm, self.seq
+        self.seq += 1
+        self.lc.publish(f"{self.vehicle}.ACTUATORS", a.encode())
+
+
+def annotate(lc: lcm.LCM, name: str, text: str, kind: int) -> None:
+    note = log_annotation_t()
+    note.source, note.kind, note.name, note.text = "survey_log", kind, name, text
+    lc.publish("SIM.ANNOTATION", note.encode())
+
+
+def start(cmd: list[str], out: Path) -> subprocess.Popen:
+    return subprocess.Popen(cmd, stdout=open(out, "w"), stderr=subprocess.STDOUT, start_new_session=True)
+
+
+def stop(proc: subprocess.Popen) -> None:
+    if proc.poll() is None:
+        proc.send_signal(signal.SIGINT)
+        try:
+            proc.wait(15)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
+
+
+def run(args: argparse.Namespace) -> int:
+    url = check_local(args.url)
+    out = Path(args.out)
+    out.parent.mkdir(parents=True, exist_ok=True)
+    cfg_text = apply_overrides(Path(args.config).read_text(), args.set)
+    cfg_path = out.with_suffix(".sim.yaml")
+    cfg_path.write_text(cfg_text)
+    vehicle = (yaml.safe_load(cfg_text).get("vehicle") or {}).get("id", "AUV1")
+    survey = Survey(length_m=args.length, spacing_m=args.spacing, lines=args.lines, depth_m=args.depth,
+                    surface_s=args.surface_s, final_surface=args.final_surface)
+    lc = lcm.LCM(url)
+    stepper = Stepper(lc, vehicle, SurveyPilot(survey))
+    logger = start([str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"), f"--lcm-url={url}", "-f", str(out)],
+                   out.with_suffix(".logger.out"))
+    sim = None
+    try:
+        time.sleep(0.5)                 # the logger is listening before anything is said
+        annotate(lc, cfg_path.name, cfg_text, log_annotation_t.KIND_SCENARIO)
+        annotate(lc, "survey", repr(survey), log_annotation_t.KIND_NOTE)
+        sim = start([sys.executable, str(ROOT / "python" / "sim"), str(cfg_path), "--clock", "stepped",
+                     "--lcm-url", url], out.with_suffix(".sim.out"))
+        t_us, end_us = 0, None
+        limit_us = int(min(args.max_s, 1e7) * 1e6)
+        stepper.step_to(0, timeout_s=30.0)
+        while t_us < limit_us:
+            stepper.command(t_us)
+            if stepper.pilot.done and end_us is None:
+                end_us = t_us + int(args.tail_s * 1e6)
+            if end_us is not None and t_us >= end_us:
+                break
+            t_us += int(STEP_S * 1e6)
+            stepper.step_to(t_us, timeout_s=10.0)
+        print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
+              f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}")
+        return 0 if stepper.pilot.done or math.isfinite(args.max_s) else 1
+    finally:
+        if sim is not None:
+            stop(sim)
+        time.sleep(0.3)                 # the last messages reach the logger
+        stop(logger)
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", required=True, help="log file to write")
+    ap.add_argument("--config", default=str(DEFAULT_CONFIG))
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
+    ap.add_argument("--url", default=default_url())
+    ap.add_argument("--lines", type=int, default=4)
+    ap.add_argument("--length", type=float, default=460.0)
+    ap.add_argument("--spacing", type=float, default=50.0)
+    ap.add_argument("--depth", type=float, default=12.0)
+    ap.add_argument("--surface-s", type=float, default=60.0)
+    ap.add_argument("--final-surface", action="store_true")
+    ap.add_argument("--tail-s", type=float, default=5.0, help="sim seconds recorded after the last line")
+    ap.add_argument("--max-s", type=float, default=math.inf, help="stop after this many sim seconds")
+    try:
+        return run(ap.parse_args(argv))
+    except (ValueError, TimeoutError, OSError) as exc:
+        print(f"survey_log: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())
