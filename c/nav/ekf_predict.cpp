@@ -11,7 +11,7 @@ namespace {
 constexpr double kGyroStaleS = 0.5;
 // Heading random walk while the gyro is silent: an unknown turn rate of
 // this order [rad/sqrt(s)], so the heading is not trusted for long.
-constexpr double kHeadingWalkNoGyro = 0.05;
+constexpr double kHeadingWalkNoGyro = 0.3;
 
 void predict_step(FilterState &s, double dt, bool gyro_fresh, const NavConfig &c)
 {

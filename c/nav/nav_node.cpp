@@ -57,6 +57,7 @@ bool NavNode::subscribe()
         clock_sub_ = rx_subscribe(lcm_, "SIM.CLOCK", auv_type_find("sim_clock_t"), on_clock, this);
         if (!clock_sub_)
             return false;
+        rx_set_queue_capacity(clock_sub_, 1000);
     }
     return true;
 }

@@ -3,12 +3,20 @@
     survey_log.py --out run.lcmlog [--config missions/sim/remus100_survey.yaml]
                   [--set sensors.dvl.dropout=0.2]... [--lines 4 --length 460 ...]
 
-Runs the real simulator (python/sim) in stepped mode with the real lcm-logger
-recording everything, and drives both from here: this script is the global
-clock (SIM.CLOCK, 0.1 s steps) and a scripted survey controller
-(survey_pilot.py) steering by the simulator's black-box INS (<V>.NAV). Each
-step waits for the simulator's output, so the run is deterministic (same
-config and seed, same sensor data) and as fast as the two processes allow.
+Runs the real simulator (python/sim) in stepped mode and drives it from here:
+this script is the global clock (SIM.CLOCK, 0.1 s steps) and a scripted survey
+controller (survey_pilot.py) steering by the simulator's black-box INS
+(<V>.NAV). Each step waits for the simulator's output, so the run is
+deterministic (same config and seed, same sensor data) and as fast as the
+processes allow.
+
+Everything on the URL is recorded into an LCM log (lcm-logger's format). By
+default this script records it itself, in the same loop that waits for each
+step: the simulator can never run ahead of the recording, so nothing is lost
+however busy the machine is. `--logger lcm-logger` uses the real lcm-logger
+instead; on a loaded machine it can fall behind a simulation running at 50x
+and drop messages (seen: 179 of 5115 truth samples lost with a 4 MB receive
+buffer), which this script detects and reports (exit 3).
 `--set key.path=value` overrides one key of the simulator configuration (the
 overridden file is written next to the log and annotated into it).
 """
@@ -44,6 +52,11 @@ STEP_S = 0.1
 def apply_overrides(text: str, sets: list[str]) -> str:
     """The YAML text with each `a.b.c=value` set (value parsed as YAML)."""
     doc = yaml.safe_load(text) or {}
+    if any(item.startswith("sensors.") for item in sets) and not doc.get("sensors"):
+        # an absent section means "every sensor at its defaults"; a listed one
+        # means "only these": list them all before changing one
+        from sim.sensors import REGISTRY
+        doc["sensors"] = {name: {} for name in REGISTRY}
     for item in sets:
         key, sep, value = item.partition("=")
         if not sep:
@@ -105,6 +118,37 @@ class Stepper:
         self.lc.publish(f"{self.vehicle}.ACTUATORS", a.encode())
 
 
+class Recorder:
+    """Every message on the URL into an LCM log, stamped with wall time as
+    lcm-logger does (sim time travels in the messages)."""
+
+    def __init__(self, lc: lcm.LCM, path: Path) -> None:
+        self.log = lcm.EventLog(str(path), "w", overwrite=True)
+        self.events = 0
+        lc.subscribe(".*", self._on_message).set_queue_capacity(10000)
+
+    def _on_message(self, channel: str, data: bytes) -> None:
+        self.log.write_event(int(time.time() * 1e6), channel, data)
+        self.events += 1
+
+    def close(self) -> None:
+        self.log.close()
+
+
+def with_receive_buffer(url: str, size: int = 4 << 20) -> str:
+    """The URL with a large socket receive buffer: the logger must not drop
+    messages when the machine is busy for a moment (the kernel caps the size
+    at net.core.rmem_max)."""
+    if not url.startswith("udpm://") or "recv_buf_size=" in url:
+        return url
+    return url + ("&" if "?" in url else "?") + f"recv_buf_size={size}"
+
+
+def count_truth(log: Path, vehicle: str) -> int:
+    from auvlcm.log import read_events
+    return sum(1 for ev in read_events(log) if ev.channel == f"{vehicle}.TRUTH")
+
+
 def annotate(lc: lcm.LCM, name: str, text: str, kind: int) -> None:
     note = log_annotation_t()
     note.source, note.kind, note.name, note.text = "survey_log", kind, name, text
@@ -137,11 +181,16 @@ def run(args: argparse.Namespace) -> int:
                     surface_s=args.surface_s, final_surface=args.final_surface)
     lc = lcm.LCM(url)
     stepper = Stepper(lc, vehicle, SurveyPilot(survey))
-    logger = start([str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"), f"--lcm-url={url}", "-f", str(out)],
-                   out.with_suffix(".logger.out"))
+    logger, recorder = None, None
+    if args.logger == "lcm-logger":
+        logger = start([str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"), f"--lcm-url={with_receive_buffer(url)}",
+                        "-f", str(out)], out.with_suffix(".logger.out"))
+    else:
+        recorder = Recorder(lc, out)
     sim = None
     try:
-        time.sleep(0.5)                 # the logger is listening before anything is said
+        if logger is not None:
+            time.sleep(0.5)             # the logger is listening before anything is said
         annotate(lc, cfg_path.name, cfg_text, log_annotation_t.KIND_SCENARIO)
         annotate(lc, "survey", repr(survey), log_annotation_t.KIND_NOTE)
         sim = start([sys.executable, str(ROOT / "python" / "sim"), str(cfg_path), "--clock", "stepped",
@@ -157,14 +206,25 @@ def run(args: argparse.Namespace) -> int:
                 break
             t_us += int(STEP_S * 1e6)
             stepper.step_to(t_us, timeout_s=10.0)
-        print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
-              f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}")
-        return 0 if stepper.pilot.done or math.isfinite(args.max_s) else 1
     finally:
         if sim is not None:
             stop(sim)
-        time.sleep(0.3)                 # the last messages reach the logger
-        stop(logger)
+        deadline = time.monotonic() + 0.5   # the last messages reach the log
+        while time.monotonic() < deadline:
+            lc.handle_timeout(50)
+        if logger is not None:
+            stop(logger)
+        if recorder is not None:
+            recorder.close()
+    print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
+          f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}")
+    # One truth message per 0.1 s step: fewer in the log means the recording
+    # lost messages (a starved logger), and the log is not the run.
+    logged, steps = count_truth(out, vehicle), t_us // int(STEP_S * 1e6) + 1
+    if logged < steps:
+        print(f"survey_log: {out}: the logger lost messages ({logged} of {steps} truth samples)", file=sys.stderr)
+        return 3
+    return 0 if stepper.pilot.done or math.isfinite(args.max_s) else 1
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -173,6 +233,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--config", default=str(DEFAULT_CONFIG))
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     ap.add_argument("--url", default=default_url())
+    ap.add_argument("--logger", choices=("self", "lcm-logger"), default="self",
+                    help="who records the log (default: this script, in step with the simulation)")
     ap.add_argument("--lines", type=int, default=4)
     ap.add_argument("--length", type=float, default=460.0)
     ap.add_argument("--spacing", type=float, default=50.0)
