@@ -7,12 +7,19 @@ namespace nav {
 NavFilter::NavFilter(const NavConfig &cfg, size_t history_capacity) : cfg_(cfg), hist_(history_capacity)
 {
     init_state(cur_, cfg_);
-    if (cfg_.have_initial_position) {
+    if (cfg_.have_initial_position) {   // the launch position: known before any fix
         const double v = cfg_.initial_position_sigma_m * cfg_.initial_position_sigma_m;
         reset_state(cur_, PN, cfg_.initial_north_m, v);
         reset_state(cur_, PE, cfg_.initial_east_m, v);
         cur_.position_init = true;
     }
+}
+
+void NavFilter::restart()
+{
+    const int64_t t = cur_.utime;
+    init_state(cur_, cfg_);
+    cur_.utime = t;
 }
 
 void NavFilter::apply(FilterState &s, const Measurement &m, Outcome *o) const
@@ -60,6 +67,15 @@ Outcome NavFilter::push(const Measurement &m)
             stats_.replayed++;
         }
         cur_ = s;
+    }
+    if (!cur_.x.allFinite() || !cur_.P.allFinite()) {
+        // Should never happen with plausible inputs; if it does, a filter
+        // stuck on NaN would be worse than one that aligns again.
+        stats_.numeric_resets++;
+        restart();
+        while (hist_.size() > 0)
+            hist_.pop_front();
+        return o;
     }
     st.accepted += static_cast<uint64_t>(o.accepted);
     st.rejected += static_cast<uint64_t>(o.rejected);

@@ -27,6 +27,7 @@ struct FilterStats {
     SensorStats sensor[kSensors];
     uint64_t out_of_order = 0;  // arrived after a younger measurement
     uint64_t replayed = 0;      // measurements processed again because of those
+    uint64_t numeric_resets = 0;        // state went non-finite: started again unaligned
 };
 
 class NavFilter {
@@ -48,6 +49,7 @@ public:
 private:
     void apply(FilterState &s, const Measurement &m, Outcome *o) const;
     void trim();
+    void restart();
 
     NavConfig cfg_;
     FilterState cur_;

@@ -33,10 +33,11 @@ const SensorChannel kSensorChannels[kSensors] = {
 
 namespace {
 
-bool finite(std::initializer_list<double> v)
+// Every value finite and within +-limit.
+bool plausible(std::initializer_list<double> v, double limit)
 {
     for (double x : v)
-        if (!std::isfinite(x))
+        if (!std::isfinite(x) || std::fabs(x) > limit)
             return false;
     return true;
 }
@@ -47,16 +48,20 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
 {
     std::memset(&out, 0, sizeof out);
     out.sensor = sensor;
-    // Every message type starts with utime and vehicle (lcm-gen struct
-    // layout follows the .lcm field order), checked per type below anyway.
+    // Every sensor message starts with int64_t utime (lcm-gen's structs follow
+    // the .lcm field order); a negative time is no time.
+    const int64_t utime = *static_cast<const int64_t *>(msg);
+    if (utime < 0)
+        return Convert::IMPLAUSIBLE;
     switch (sensor) {
     case SENSOR_AHRS: {
         const auto *m = static_cast<const auv_ahrs_t *>(msg);
         out.utime = m->utime;
         if (vehicle && std::strcmp(m->vehicle, vehicle) != 0) return Convert::WRONG_VEHICLE;
         if (!m->valid) return Convert::NOT_VALID;
-        if (!finite({m->roll_rad, m->pitch_rad, m->heading_rad, m->p_radps, m->q_radps, m->r_radps}))
-            return Convert::NOT_FINITE;
+        if (!plausible({m->roll_rad, m->pitch_rad, m->heading_rad}, 4 * M_PI) ||
+            !plausible({m->p_radps, m->q_radps, m->r_radps}, 20.0))
+            return Convert::IMPLAUSIBLE;
         out.ahrs = {m->roll_rad, m->pitch_rad, m->heading_rad, m->p_radps, m->q_radps, m->r_radps};
         return Convert::OK;
     }
@@ -65,7 +70,7 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
         out.utime = m->utime;
         if (vehicle && std::strcmp(m->vehicle, vehicle) != 0) return Convert::WRONG_VEHICLE;
         if (!m->valid) return Convert::NOT_VALID;
-        if (!finite({m->depth_m})) return Convert::NOT_FINITE;
+        if (!plausible({m->depth_m}, 12000.0)) return Convert::IMPLAUSIBLE;
         out.depth.depth_m = m->depth_m;
         return Convert::OK;
     }
@@ -74,8 +79,9 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
         out.utime = m->utime;
         if (vehicle && std::strcmp(m->vehicle, vehicle) != 0) return Convert::WRONG_VEHICLE;
         if (m->mode != AUV_DVL_T_MODE_BOTTOM_LOCK && m->mode != AUV_DVL_T_MODE_WATER_TRACK) return Convert::NOT_VALID;
-        if (!finite({m->velocity_mps[0], m->velocity_mps[1], m->velocity_mps[2], m->velocity_sigma_mps}))
-            return Convert::NOT_FINITE;
+        if (!plausible({m->velocity_mps[0], m->velocity_mps[1], m->velocity_mps[2]}, 20.0) ||
+            !plausible({m->velocity_sigma_mps}, 10.0))
+            return Convert::IMPLAUSIBLE;
         out.dvl.bottom_lock = m->mode == AUV_DVL_T_MODE_BOTTOM_LOCK;
         for (int i = 0; i < 3; i++)
             out.dvl.velocity_mps[i] = m->velocity_mps[i];
@@ -87,7 +93,8 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
         out.utime = m->utime;
         if (vehicle && std::strcmp(m->vehicle, vehicle) != 0) return Convert::WRONG_VEHICLE;
         if (m->fix_type == AUV_GPS_FIX_T_FIX_NONE) return Convert::NOT_VALID;
-        if (!finite({m->north_m, m->east_m, m->horizontal_sigma_m})) return Convert::NOT_FINITE;
+        if (!plausible({m->north_m, m->east_m}, 1e7) || !plausible({m->horizontal_sigma_m}, 1e4))
+            return Convert::IMPLAUSIBLE;
         out.gps = {m->north_m, m->east_m, m->horizontal_sigma_m};
         return Convert::OK;
     }
@@ -96,17 +103,17 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
         out.utime = m->utime;
         if (vehicle && std::strcmp(m->vehicle, vehicle) != 0) return Convert::WRONG_VEHICLE;
         if (m->n_replies <= 0) return Convert::NOT_VALID;
-        if (!finite({m->sound_speed_mps})) return Convert::NOT_FINITE;
+        if (!plausible({m->sound_speed_mps}, 2000.0)) return Convert::IMPLAUSIBLE;
         out.lbl.sound_speed_mps = m->sound_speed_mps;
         int n = 0;
         for (int i = 0; i < m->n_replies && n < kMaxReplies; i++) {
-            if (!std::isfinite(m->two_way_travel_s[i]))
-                continue;
+            if (!plausible({m->two_way_travel_s[i]}, 60.0) || m->two_way_travel_s[i] <= 0)
+                continue;           // no transponder is 45 km away
             out.lbl.id[n] = m->transponder_id[i];
             out.lbl.two_way_travel_s[n++] = m->two_way_travel_s[i];
         }
         out.lbl.n = n;
-        return n > 0 ? Convert::OK : Convert::NOT_FINITE;
+        return n > 0 ? Convert::OK : Convert::IMPLAUSIBLE;
     }
     }
     return Convert::NOT_VALID;

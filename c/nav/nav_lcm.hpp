@@ -27,7 +27,9 @@ struct SensorChannel {
 extern const SensorChannel kSensorChannels[kSensors];
 
 // What became of one decoded message.
-enum class Convert { OK, NOT_VALID, WRONG_VEHICLE, NOT_FINITE };
+// IMPLAUSIBLE: a non-finite number, or one outside what the instrument can
+// report (a depth of 1e300 m, a heading of 40 rad): a broken driver, never data.
+enum class Convert { OK, NOT_VALID, WRONG_VEHICLE, IMPLAUSIBLE };
 
 // msg is the decoded struct of kSensorChannels[sensor].type.
 Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Measurement &out);

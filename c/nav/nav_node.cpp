@@ -13,6 +13,10 @@ namespace nav {
 
 namespace {
 
+// How far ahead of the last clock tick a sensor may stamp its data (the
+// clock comes at 10 Hz or so, sensors in between).
+constexpr int64_t kMaxFutureUs = 5000000;
+
 double clock_s(clockid_t id)
 {
     struct timespec ts;
@@ -67,11 +71,17 @@ void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
     auto *ctx = static_cast<SubCtx *>(user);
     NavNode *n = ctx->node;
     Measurement m;
-    switch (to_measurement(ctx->sensor, msg, n->opt_.vehicle.c_str(), m)) {
+    Convert c = to_measurement(ctx->sensor, msg, n->opt_.vehicle.c_str(), m);
+    // A time of validity ahead of the mission clock is a broken stamp: taken
+    // as it is, it would move the filter into the future and make every
+    // honest measurement after it "too old".
+    if (c == Convert::OK && n->have_time_ && m.utime > n->now_us_ + kMaxFutureUs)
+        c = Convert::IMPLAUSIBLE;
+    switch (c) {
     case Convert::OK: n->filter_.push(m); break;
     case Convert::NOT_VALID: n->convert_.not_valid++; break;
     case Convert::WRONG_VEHICLE: n->convert_.wrong_vehicle++; break;
-    case Convert::NOT_FINITE: n->convert_.not_finite++; break;
+    case Convert::IMPLAUSIBLE: n->convert_.implausible++; break;
     }
 }
 
@@ -140,10 +150,11 @@ void NavNode::print_summary() const
 {
     const FilterStats &fs = filter_.stats();
     std::fprintf(stderr, "auv-nav: %llu solutions published; decode errors %llu; not valid %llu, wrong vehicle %llu, "
-                         "not finite %llu; out of order %llu\n",
+                         "implausible %llu; out of order %llu; numeric resets %llu\n",
                  (unsigned long long)published_, (unsigned long long)decode_errors(),
                  (unsigned long long)convert_.not_valid, (unsigned long long)convert_.wrong_vehicle,
-                 (unsigned long long)convert_.not_finite, (unsigned long long)fs.out_of_order);
+                 (unsigned long long)convert_.implausible, (unsigned long long)fs.out_of_order,
+                 (unsigned long long)fs.numeric_resets);
     for (int k = 0; k < kSensors; k++) {
         const SensorStats &s = fs.sensor[k];
         std::fprintf(stderr, "auv-nav:   %-5s %llu measurements, %llu accepted, %llu rejected, %llu resets, %llu too old\n",

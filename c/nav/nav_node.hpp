@@ -27,7 +27,7 @@ struct NodeOptions {
 };
 
 struct ConvertCounts {
-    uint64_t not_valid = 0, wrong_vehicle = 0, not_finite = 0;
+    uint64_t not_valid = 0, wrong_vehicle = 0, implausible = 0;
 };
 
 class NavNode {
