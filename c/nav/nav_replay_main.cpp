@@ -1,14 +1,15 @@
 // auv-nav-replay: run the navigation filter over a recorded LCM log.
 //
 //   auv-nav-replay --config FILE.nav --log RUN.lcmlog [--vehicle AUV1] [--csv OUT.csv]
-//                  [--drop SENSOR[:T0:T1]]... [--lbl-csv FILE] [--timing]
+//                  [--drop SENSOR[:T0:T1]]... [--score-from T] [--lbl-csv FILE] [--timing]
 //
 // The same filter code as auv-nav, fed the log's sensor messages in the order
 // they were recorded (so late LBL replies arrive late, as they did live),
 // scored against <VEHICLE>.TRUTH at every truth sample: a CSV of estimate vs
 // truth and a summary of `key value` lines on stdout. --drop ignores one
 // sensor's messages (all, or those with a time of validity in [T0, T1] sim
-// seconds): GPS loss, DVL dropouts. Undecodable messages are counted per
+// seconds): GPS loss, DVL dropouts. --score-from T scores only from sim time T
+// (errors, NEES and distance travelled: e.g. dead reckoning from the dive). Undecodable messages are counted per
 // channel and dropped. --lbl-csv writes every LBL reply's range, innovation,
 // NIS and fate (accepted 1, rejected 0, not used -1). --timing adds the CPU cost of each push per sensor
 // type, next to two baselines measured in the same run. Exit 0; 1 on a bad
@@ -42,6 +43,7 @@ struct Options {
     std::string config, log, vehicle = "AUV1", csv, lbl_csv;
     std::vector<Drop> drops;
     bool timing = false;
+    double score_from_s = -1e300;
 };
 
 int sensor_by_name(const std::string &s)
@@ -86,6 +88,14 @@ bool parse_args(int argc, char **argv, Options &o)
         else if (v && a == "--vehicle") o.vehicle = v;
         else if (v && a == "--csv") o.csv = v;
         else if (v && a == "--lbl-csv") o.lbl_csv = v;
+        else if (v && a == "--score-from") {
+            char *end = nullptr;
+            o.score_from_s = std::strtod(v, &end);
+            if (!end || *end) {
+                std::fprintf(stderr, "auv-nav-replay: --score-from takes sim seconds\n");
+                return false;
+            }
+        }
         else if (v && a == "--drop" && parse_drop(v, d)) o.drops.push_back(d);
         else {
             std::fprintf(stderr, "auv-nav-replay: bad or incomplete option '%s'%s\n", a.c_str(),
@@ -95,7 +105,7 @@ bool parse_args(int argc, char **argv, Options &o)
     }
     if (o.config.empty() || o.log.empty()) {
         std::fprintf(stderr, "usage: auv-nav-replay --config FILE.nav --log RUN.lcmlog [--vehicle ID] [--csv OUT]\n"
-                             "                      [--drop SENSOR[:T0:T1]]... [--lbl-csv FILE] [--timing]\n");
+                             "                      [--drop SENSOR[:T0:T1]]... [--score-from T] [--lbl-csv FILE] [--timing]\n");
         return false;
     }
     return true;
@@ -189,7 +199,7 @@ int main(int argc, char **argv)
         std::fprintf(lbl_csv, "t_s,id,two_way_travel_s,range_m,innovation_m,nis,accepted\n");
     }
     nav::NavFilter filter(cfg);
-    nav::Evaluator eval(csv);
+    nav::Evaluator eval(csv, o.score_from_s);
     std::vector<Decoder> dec;
     std::map<std::string, int> channel_sensor;          // channel -> sensor index, or kSensors for truth
     for (int k = 0; k < nav::kSensors; k++) {

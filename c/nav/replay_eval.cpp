@@ -6,12 +6,13 @@ namespace nav {
 
 namespace {
 
-// Distance below which a percentage of distance travelled means nothing.
-constexpr double kMinDistanceForPct = 100.0;
+// Distance below which a percentage of distance travelled means little: the
+// error of the fix the run starts from is still most of it.
+constexpr double kMinDistanceForPct = 200.0;
 
 }  // namespace
 
-Evaluator::Evaluator(FILE *csv) : csv_(csv)
+Evaluator::Evaluator(FILE *csv, double score_from_s) : csv_(csv), score_from_s_(score_from_s)
 {
     if (csv_)
         std::fprintf(csv_, "t_s,true_n,true_e,true_d,true_psi,true_u,true_v,true_w,true_cn,true_ce,"
@@ -25,7 +26,8 @@ void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const Na
     if (first_t_ < 0)
         first_t_ = t;
     last_t_ = t;
-    if (have_last_)
+    const bool scored = t >= score_from_s_;
+    if (have_last_ && scored)
         distance_m_ += std::hypot(tr.eta[0] - last_n_, tr.eta[1] - last_e_);
     last_n_ = tr.eta[0];
     last_e_ = tr.eta[1];
@@ -48,6 +50,16 @@ void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const Na
     const Vec3 ev(s.x(VU) - tr.nu[0], s.x(VV) - tr.nu[1], s.x(VW) - tr.nu[2]);
     const double nees_vel = ev.dot(s.P.block<3, 3>(VU, VU).ldlt().solve(ev));
     const double e_d = s.x(PD) - tr.eta[2];
+    if (csv_)
+        std::fprintf(csv_, "%.3f,%.3f,%.3f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.5f,%.4f,%.4f,%.4f,%.5f,%.4f,"
+                           "%.4f,%.3f,%.3f,%.3f,%.5f,%d,%d,%.3f,%.2f,%.3f,%.3f,%.3f\n",
+                     t, tr.eta[0], tr.eta[1], tr.eta[2], tr.eta[5], tr.nu[0], tr.nu[1], tr.nu[2],
+                     tr.current_ned_mps[0], tr.current_ned_mps[1], s.x(PN), s.x(PE), s.x(PD), s.x(PSI), s.x(VU),
+                     s.x(VV), s.x(VW), s.x(BIAS), s.x(CN), s.x(CE), std::sqrt(s.P(PN, PN)), std::sqrt(s.P(PE, PE)),
+                     std::sqrt(s.P(PD, PD)), std::sqrt(s.P(PSI, PSI)), st.bits, st.trusted ? 1 : 0, h_err,
+                     distance_m_, nees_pos, nees_psi, nees_vel);
+    if (!scored)
+        return;
     h_err_.add(h_err);
     psi_err_.add(std::fabs(e_psi));
     nees_pos_.add(nees_pos);
@@ -57,14 +69,6 @@ void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const Na
     final_h_err_ = h_err;
     if (distance_m_ >= kMinDistanceForPct)
         max_pct_ = std::max(max_pct_, 100.0 * h_err / distance_m_);
-    if (csv_)
-        std::fprintf(csv_, "%.3f,%.3f,%.3f,%.3f,%.5f,%.4f,%.4f,%.4f,%.4f,%.4f,%.3f,%.3f,%.3f,%.5f,%.4f,%.4f,%.4f,%.5f,%.4f,"
-                           "%.4f,%.3f,%.3f,%.3f,%.5f,%d,%d,%.3f,%.2f,%.3f,%.3f,%.3f\n",
-                     t, tr.eta[0], tr.eta[1], tr.eta[2], tr.eta[5], tr.nu[0], tr.nu[1], tr.nu[2],
-                     tr.current_ned_mps[0], tr.current_ned_mps[1], s.x(PN), s.x(PE), s.x(PD), s.x(PSI), s.x(VU),
-                     s.x(VV), s.x(VW), s.x(BIAS), s.x(CN), s.x(CE), std::sqrt(s.P(PN, PN)), std::sqrt(s.P(PE, PE)),
-                     std::sqrt(s.P(PD, PD)), std::sqrt(s.P(PSI, PSI)), st.bits, st.trusted ? 1 : 0, h_err,
-                     distance_m_, nees_pos, nees_psi, nees_vel);
 }
 
 void Evaluator::print_summary(FILE *out) const

@@ -31,13 +31,16 @@ struct Running {
 
 class Evaluator {
 public:
-    explicit Evaluator(FILE *csv);
+    // Samples before score_from_s [sim s] are written to the CSV but neither
+    // scored nor counted as distance travelled (e.g. the surface run before a dive).
+    Evaluator(FILE *csv, double score_from_s);
     // One truth sample against the estimate at the same time.
     void add(const auv_ground_truth_t &truth, const FilterState &est, const NavStatus &st);
     void print_summary(FILE *out) const;
 
 private:
     FILE *csv_;
+    double score_from_s_;
     bool have_last_ = false;
     double last_n_ = 0, last_e_ = 0;
     double distance_m_ = 0;

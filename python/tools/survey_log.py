@@ -178,7 +178,8 @@ def run(args: argparse.Namespace) -> int:
     cfg_path.write_text(cfg_text)
     vehicle = (yaml.safe_load(cfg_text).get("vehicle") or {}).get("id", "AUV1")
     survey = Survey(length_m=args.length, spacing_m=args.spacing, lines=args.lines, depth_m=args.depth,
-                    surface_s=args.surface_s, final_surface=args.final_surface)
+                    surface_s=args.surface_s, final_surface=args.final_surface,
+                    surface_crossovers=args.surface_crossovers)
     lc = lcm.LCM(url)
     stepper = Stepper(lc, vehicle, SurveyPilot(survey))
     logger, recorder = None, None
@@ -241,6 +242,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--depth", type=float, default=12.0)
     ap.add_argument("--surface-s", type=float, default=60.0)
     ap.add_argument("--final-surface", action="store_true")
+    ap.add_argument("--surface-crossovers", action="store_true", help="surface between lines (GPS fixes)")
     ap.add_argument("--tail-s", type=float, default=5.0, help="sim seconds recorded after the last line")
     ap.add_argument("--max-s", type=float, default=math.inf, help="stop after this many sim seconds")
     try:

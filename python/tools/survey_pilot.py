@@ -28,6 +28,8 @@ class Survey:
     speed_rpm: float = 1500.0
     surface_s: float = 60.0         # first part of line 1 on the surface (GPS)
     final_surface: bool = False     # come up after the last line (GPS again)
+    surface_crossovers: bool = False  # come up between lines for GPS fixes ...
+    fix_s: float = 30.0               # ... and stay this long on the surface
 
     def waypoints(self) -> list[tuple[float, float]]:
         h = math.radians(self.heading_deg)
@@ -65,6 +67,9 @@ class SurveyPilot:
     ap: Autopilot = field(default_factory=Autopilot)
     leg: int = 0                 # index of the waypoint the vehicle is heading to
     done: bool = False
+    fixing: bool = False         # surfacing or on the surface for fixes between lines
+    fix_time: float = 0.0        # time spent on the surface so far in this stop
+    last_t: float = 0.0
 
     def __post_init__(self) -> None:
         self.wps = self.survey.waypoints()
@@ -91,10 +96,23 @@ class SurveyPilot:
         bearing = math.atan2(de, dn)
         heading_cmd = bearing - math.atan2(cross, self.lookahead_m)
         rudder = self.ap.rudder(heading_cmd, nav.heading, nav.r)
-        surfaced = t < s.surface_s or (self.done and s.final_surface)
+        # legs 1, 3, 5... are the lines, 2, 4... the crossovers between them:
+        # come up on a crossover and stay until fix_s on the surface are done
+        dt, self.last_t = t - self.last_t, t
+        if s.surface_crossovers and self.leg % 2 == 0 and not self.done and not self.fixing and self.fix_time == 0:
+            self.fixing = True
+        if self.fixing:
+            self.fix_time += dt if nav.depth < 0.3 else 0.0
+            if self.fix_time >= s.fix_s and self.leg % 2 == 1:
+                self.fixing = False
+        if self.leg % 2 == 1 and not self.fixing:
+            self.fix_time = 0.0
+        surfaced = t < s.surface_s or (self.done and s.final_surface) or self.fixing
         if surfaced:
-            # bow up: the positively buoyant hull stays awash with the GPS antenna out
-            stern = self.ap.stern_for_pitch(math.radians(5.0), nav.pitch, nav.q)
+            # bow up, steeply on the way up; on top the positively buoyant hull
+            # stays awash with the GPS antenna out
+            pitch_cmd = math.radians(20.0 if nav.depth > 1.0 else 5.0)
+            stern = self.ap.stern_for_pitch(pitch_cmd, nav.pitch, nav.q)
         else:
             stern = self.ap.stern_for_depth(s.depth_m, nav.depth, nav.pitch, nav.q)
         rpm = 0.0 if self.done and not s.final_surface else s.speed_rpm
