@@ -13,7 +13,7 @@ from pathlib import Path
 import lcm
 import pytest
 
-from auv import (chasm_status_t, mission_ack_t, mission_command_t, nav_solution_t,
+from auv import (chasm_status_t, gps_fix_t, mission_ack_t, mission_command_t, nav_solution_t,
                  plugin_upload_t, setpoint_t, sim_clock_t)
 from auvlcm.rx import Receiver
 from conftest import ROOT, c_program
@@ -71,9 +71,9 @@ class World:
         return self.status[-1].active_path[-1]
 
 
-def start_manager(url, env, sanitized=False, plan="dive.chasm", extra=()):
+def start_manager(url, env, sanitized=False, plan="dive.chasm", extra=(), bind="vehicle.bind"):
     return subprocess.Popen(
-        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / plan, "--bind", HERE / "vehicle.bind",
+        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / plan, "--bind", HERE / bind,
          "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim", "--url", url, *extra],
         env=env, stderr=subprocess.PIPE, text=True)
 
@@ -207,3 +207,53 @@ def test_plans_and_bindings_that_do_not_fit_are_refused(tmp_path, lcm_url, child
                          env=child_env, capture_output=True, text=True, timeout=20)
     assert run.returncode == 1
     assert (error or "p.chasm:") in run.stderr
+
+
+def test_an_optional_input_does_not_hold_the_start(lcm_url, child_env):
+    """GPS only exists at the surface: a plan reading it starts on NAV alone,
+    and sees the first fix when it comes."""
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env, plan="gps_fix.chasm", bind="gps_optional.bind")
+    try:
+        w.wait_for_first_cycle()
+        assert w.status[-1].run_state == chasm_status_t.RUN_RUNNING and w.leaf() == "dive"
+        for _ in range(40):
+            w.tick(0.05, depth=0.0)
+        assert w.leaf() == "wait_fix", "no GPS yet: the fix test must be false"
+        fix = gps_fix_t()
+        fix.utime, fix.vehicle, fix.fix_type = w.utime, "AUV1", gps_fix_t.FIX_3D
+        w.lc.publish("AUV1.GPS", fix.encode())
+        for _ in range(6):
+            w.tick(0.05, depth=0.0)
+        assert w.leaf() == "on_top" and w.status[-1].last_condition == "fixed"
+    finally:
+        assert stop(mgr, signal.SIGTERM) == 0
+
+
+def test_a_required_input_holds_the_start(lcm_url, child_env, tmp_path):
+    """Without `optional`, the same plan waits (LOADING) for a GPS message."""
+    bind = tmp_path / "strict.bind"
+    bind.write_text((HERE / "gps_optional.bind").read_text().replace("optional", ""))
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env, plan="gps_fix.chasm", bind=bind)
+    try:
+        for _ in range(30):
+            w.tick(0.05, depth=0.0)
+        assert w.status, "the manager publishes LOADING status while it waits"
+        assert {s.run_state for s in w.status} == {chasm_status_t.RUN_LOADING}
+    finally:
+        assert stop(mgr, signal.SIGTERM) == 0
+
+
+@pytest.mark.parametrize("line,error", [
+    ("input gps ${VEHICLE}.GPS gps_fix_t maybe", "strict.bind:1:36: the only flag after the type is `optional`"),
+    ("output gps ${VEHICLE}.GPS gps_fix_t optional", "strict.bind:1:37: only an input can be optional"),
+])
+def test_bad_binding_flags_are_refused(tmp_path, lcm_url, child_env, line, error):
+    bind = tmp_path / "strict.bind"
+    bind.write_text(line + "\n" + (HERE / "vehicle.bind").read_text())
+    run = subprocess.run([c_program("bin/chasm-manager"), "--plan", HERE / "gps_fix.chasm", "--bind", bind,
+                          "--vehicle", "AUV1", "--name", "NAVIGATOR", "--url", lcm_url],
+                         env=child_env, capture_output=True, text=True, timeout=20)
+    assert run.returncode == 1
+    assert error in run.stderr, run.stderr

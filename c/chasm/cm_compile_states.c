@@ -206,6 +206,7 @@ static int compile_expr(cm_cc *cc, emitter *e, const cm_aexpr *x, cm_state *owne
                      x->kind == E_DONE ? "done" : "failed");
             return -1;
         }
+        if (x->kind == E_DONE) owner->handles_done = true;
         emit(cc, e, (cm_cop){(uint8_t)(x->kind == E_DONE ? CO_DONE : CO_FAILED), 0, owner->index, 0, NULL}, 1);
         return 0;
     case E_ELAPSED: {

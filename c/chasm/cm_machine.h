@@ -138,6 +138,7 @@ typedef struct cm_state {
     int index, depth;
     struct cm_state *parent, *first_child, *next_sibling, *default_child, *next;
     bool next_done;
+    bool handles_done;          /* a `when` of its own tests `done`: completion stays here */
     cm_test *tests;
     int n_tests;
     cm_action *actions;
@@ -149,7 +150,8 @@ typedef struct cm_state {
     /* runtime */
     int64_t entered_us;
     struct cm_state *history_child;
-    bool done, failed;
+    bool done, failed;         /* failed: its own action failed, or an active descendant's */
+    bool self_failed;          /* its own action failed (since entry) */
 } cm_state;
 
 struct chasm_machine {

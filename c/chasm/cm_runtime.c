@@ -33,6 +33,7 @@ static void ctx_init(cm_ext *x, chasm_machine *m, cm_binding *b, const cm_state 
 
 static void mark_failed(cm_state *s)
 {
+    s->self_failed = true;
     for (; s; s = s->parent) s->failed = true;
 }
 
@@ -69,7 +70,7 @@ static void run_action(chasm_machine *m, cm_action *a, int64_t now)
 static void enter_state(chasm_machine *m, cm_state *s, int64_t now)
 {
     s->entered_us = now;
-    s->done = s->failed = false;
+    s->done = s->failed = s->self_failed = false;
     if (s->parent) s->parent->history_child = s;
     m->path[s->depth] = s;
     m->path_len = s->depth + 1;
@@ -180,6 +181,10 @@ static void go(chasm_machine *m, cm_state *target, cm_history hist, const cm_tra
         enter_state(m, next, now);
         cur = next;
     }
+    /* A failure is handled once the failing state is left: ancestors that stay
+     * active keep `failed` only for their own actions or a still-active child. */
+    for (int d = m->path_len - 1; d >= 0; d--)
+        m->path[d]->failed = m->path[d]->self_failed || (d + 1 < m->path_len && m->path[d + 1]->failed);
     record(m, from, t, cond, now);
 }
 
@@ -326,10 +331,11 @@ chasm_run_state chasm_step(chasm_machine *m, int64_t now)
         cm_state *s = m->path[d];
         for (int i = 0; i < s->n_tests; i++) eval_test(m, &s->tests[i], now);
     }
-    /* completion bubbles up: a state that completes with no `next` completes its parent */
+    /* completion bubbles up: a state that completes with no `next` completes its
+     * parent, unless one of its own `when` tests `done` (then that handles it) */
     for (int d = len - 1; d >= 1; d--) {
         cm_state *s = m->path[d];
-        if (s->done && !s->next && !s->next_done) s->parent->done = true;
+        if (s->done && !s->next && !s->next_done && !s->handles_done) s->parent->done = true;
     }
     for (int i = 0; i < m->n_aborts; i++) {
         cm_trans *t = &m->aborts[i];

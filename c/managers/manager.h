@@ -8,6 +8,7 @@
 
 #include "chasm/chasm.h"
 #include "managers/mgr_bindings.h"
+#include "managers/mgr_lockstep.h"
 #include "managers/mgr_status.h"
 
 typedef struct {
@@ -36,6 +37,7 @@ typedef struct {
     int started;
     volatile int stop;
     rx_sub_t *cmd_sub, *upload_sub, *clock_sub;
+    mgr_lockstep lockstep;      /* lockstep participation (SIM.CLOCK mode) */
 } manager_t;
 
 int manager_parse_args(manager_options *o, int argc, char **argv);

@@ -9,7 +9,8 @@
  * --clock sim the mission clock is SIM.CLOCK (nothing runs until it ticks);
  * with --clock system it is the host's clock. SIGINT/SIGTERM end the process
  * after the current cycle. A plan starts once every input channel it binds
- * has delivered a message (until then its status says LOADING). Exit status: 0 done or stopped, 1 load error,
+ * has delivered a message, except inputs bound `optional` (until then its
+ * status says LOADING). Exit status: 0 done or stopped, 1 load error,
  * 3 aborted, 4 failed (with --exit-on-end). */
 #include <errno.h>
 #include <signal.h>
@@ -121,6 +122,7 @@ static void on_clock(const char *channel, const void *msg, int64_t recv_utime, v
     if (!mg->have_time || c->utime > mg->now_us)
         mg->now_us = c->utime;
     mg->have_time = 1;
+    mgr_lockstep_on_clock(&mg->lockstep, mg->lcm, c);
 }
 
 static int64_t system_now_us(void)
@@ -148,12 +150,14 @@ static int run(manager_t *mg)
     int64_t next_cycle = 0;
     chasm_run_state rs = CHASM_RUN_LOADED;
     while (!mg->stop) {
+        if (mg->opt.sim_clock)
+            mgr_lockstep_poll(&mg->lockstep, mg->lcm);
         int64_t wait_ms = 20;
         if (!mg->opt.sim_clock) {
             mg->now_us = system_now_us();
             mg->have_time = 1;
             if (next_cycle > mg->now_us)
-                wait_ms = (next_cycle - mg->now_us) / 1000;
+                wait_ms = (next_cycle - mg->now_us + 999) / 1000; /* round up: never spin */
         }
         /* A signal interrupts the wait: that is how a stop arrives. */
         if (lcm_handle_timeout(mg->lcm, (int)(wait_ms > 0 ? wait_ms : 0)) < 0 && !mg->stop) {
@@ -164,7 +168,7 @@ static int run(manager_t *mg)
             break;
         if (!mg->opt.sim_clock)
             mg->now_us = system_now_us();
-        if (!mg->have_time || mg->opt.wait_start)
+        if (!mg->have_time || mg->opt.wait_start || !mgr_lockstep_may_cycle(&mg->lockstep))
             continue;
         if (!mg->started && !mgr_bindings_inputs_ready(&mg->b)) {
             if (mg->now_us >= next_cycle) { /* say so at the cycle rate: lcm-spy shows LOADING */
@@ -192,6 +196,8 @@ static int run(manager_t *mg)
         if (mg->opt.exit_on_end && rs >= CHASM_RUN_DONE)
             break;
     }
+    if (mg->opt.sim_clock)
+        mgr_lockstep_leave(&mg->lockstep, mg->lcm);
     fprintf(stderr, "%s: %s (%s)\n", mg->opt.name, mg->stop ? "stopped" : "plan ended", chasm_run_state_name(rs));
     return rs == CHASM_RUN_ABORTED ? 3 : rs == CHASM_RUN_FAILED ? 4 : 0;
 }
@@ -219,6 +225,7 @@ int main(int argc, char **argv)
         return 1;
     }
     mgr_status_init(&mg.status, mg.opt.vehicle, mg.opt.name, mg.opt.plan_path);
+    mgr_lockstep_init(&mg.lockstep, mg.opt.vehicle, mg.opt.name);
     int rc = 2;
     if (mgr_bindings_subscribe(&mg.b, mg.lcm) == 0 && mgr_commands_subscribe(&mg) == 0 &&
         (!mg.opt.sim_clock ||

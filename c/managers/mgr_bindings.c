@@ -71,13 +71,23 @@ static int parse_file(mgr_bindings *b, const char *path, const char *vehicle)
         char *hash = strchr(line, '#');
         if (hash)
             *hash = '\0';
-        char dir[32], prefix[64], channel[128], type[96], extra[8];
-        int n = sscanf(line, "%31s %63s %127s %95s %7s", dir, prefix, channel, type, extra);
+        char dir[32], prefix[64], channel[128], type[96], flag[16], extra[8];
+        int n = sscanf(line, "%31s %63s %127s %95s %15s %7s", dir, prefix, channel, type, flag, extra);
         if (n <= 0)
             continue;
         int col = (int)(strspn(line, " \t") + 1);
-        if (n != 4 || (strcmp(dir, "input") && strcmp(dir, "output"))) {
-            fprintf(stderr, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE`\n", path, lineno, col);
+        if (n < 4 || n > 5 || (strcmp(dir, "input") && strcmp(dir, "output"))) {
+            fprintf(stderr, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE [optional]`\n", path, lineno, col);
+            errors++;
+            continue;
+        }
+        /* `optional`: an input that may be absent when the plan starts (GPS
+         * only exists at the surface); the plan sees its variables as never
+         * written until the first message. */
+        if (n == 5 && (strcmp(flag, "optional") || strcmp(dir, "input"))) {
+            fprintf(stderr, "%s:%d:%d: %s\n", path, lineno, (int)(strstr(line, flag) - line) + 1,
+                    strcmp(flag, "optional") ? "the only flag after the type is `optional`"
+                                             : "only an input can be optional");
             errors++;
             continue;
         }
@@ -95,6 +105,7 @@ static int parse_file(mgr_bindings *b, const char *path, const char *vehicle)
         mgr_message_binding *mb = &b->msgs[b->n_msgs++];
         memset(mb, 0, sizeof *mb);
         mb->is_output = !strcmp(dir, "output");
+        mb->optional = n == 5;
         snprintf(mb->prefix, sizeof mb->prefix, "%s", prefix);
         if (expand_vehicle(channel, vehicle, mb->channel, sizeof mb->channel) != 0 || strlen(mb->channel) > 62) {
             fprintf(stderr, "%s:%d:%d: channel name too long (LCM allows 63 characters)\n", path, lineno, col);
@@ -244,7 +255,7 @@ uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
 int mgr_bindings_inputs_ready(const mgr_bindings *b)
 {
     for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub && rx_stats(b->msgs[i].sub)->delivered == 0)
+        if (b->msgs[i].sub && !b->msgs[i].optional && rx_stats(b->msgs[i].sub)->delivered == 0)
             return 0;
     return 1;
 }

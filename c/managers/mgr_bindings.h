@@ -2,6 +2,7 @@
  *
  * A binding file has one line per message:
  *     input   nav       ${VEHICLE}.NAV        nav_solution_t
+ *     input   gps       ${VEHICLE}.GPS        gps_fix_t   optional
  *     output  setpoint  ${VEHICLE}.SETPOINT   setpoint_t
  * A plan variable `nav.depth_m` then reads field depth_m of every
  * nav_solution_t on AUV1.NAV; `setpoint.heading_rad` is written into the
@@ -24,6 +25,7 @@ typedef struct {
 
 typedef struct {
     int is_output;
+    int optional;           /* input the plan may start without (`optional`) */
     char prefix[64];
     char channel[128];
     const auv_type_entry_t *type;
@@ -56,8 +58,8 @@ int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm);
 /* Publish every output message with the current output variables. */
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us);
 uint64_t mgr_bindings_decode_errors(const mgr_bindings *b);
-/* True once every bound input channel has delivered a message: a plan does
- * not start on a blackboard it has never seen filled. */
+/* True once every bound input channel not marked `optional` has delivered a
+ * message: a plan does not start on a blackboard it has never seen filled. */
 int mgr_bindings_inputs_ready(const mgr_bindings *b);
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm);
 

@@ -4,12 +4,14 @@
 # become plugins/chasm_NAME.so, which plans load with `use NAME`.
 # c/plugins/lib/ holds code shared by plugins (angles, PID, geometry); it is
 # linked into each plugin, so a plugin still depends on nothing at run time.
-# Unit tests of plugin NAME are tests/plugins/NAME/*.c, linked with libchasm
-# and the plugin's own objects, as bin/test_plugin_NAME.
+# Unit tests of plugin NAME are tests/plugins/NAME/*.c, linked with libchasm,
+# the plugin's own objects and the shared test harness tests/plugins/common/*.c,
+# as bin/test_plugin_NAME.
 PLUGIN_DIRS := $(sort $(patsubst c/plugins/%/,%,$(dir $(wildcard c/plugins/*/*.c))))
 PLUGIN_NAMES := $(filter-out lib,$(PLUGIN_DIRS))
 PLUGIN_LIB_SRCS := $(sort $(wildcard c/plugins/lib/*.c))
 PLUGIN_TESTED := $(sort $(filter $(PLUGIN_NAMES),$(patsubst tests/plugins/%/,%,$(dir $(wildcard tests/plugins/*/*.c)))))
+PLUGIN_TEST_COMMON := $(sort $(wildcard tests/plugins/common/*.c))
 
 define plugin_lib_rules
 $(1)/lib/libchasm_plugin_util.a: $(patsubst %.c,$(1)/obj/%.o,$(PLUGIN_LIB_SRCS))
@@ -25,7 +27,7 @@ $(1)/plugins/chasm_$(2).so: $(patsubst %.c,$(1)/obj/%.o,$(sort $(wildcard c/plug
 endef
 
 define plugin_test_rules
-$(1)/bin/test_plugin_$(2): $(patsubst %.c,$(1)/obj/%.o,$(sort $(wildcard tests/plugins/$(2)/*.c))) $(patsubst %.c,$(1)/obj/%.o,$(sort $(wildcard c/plugins/$(2)/*.c))) $(1)/lib/libchasm_plugin_util.a $(1)/lib/libchasm.a
+$(1)/bin/test_plugin_$(2): $(patsubst %.c,$(1)/obj/%.o,$(sort $(wildcard tests/plugins/$(2)/*.c)) $(PLUGIN_TEST_COMMON)) $(patsubst %.c,$(1)/obj/%.o,$(sort $(wildcard c/plugins/$(2)/*.c))) $(1)/lib/libchasm_plugin_util.a $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
 endef

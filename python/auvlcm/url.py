@@ -18,8 +18,15 @@ def default_url() -> str:
     return os.environ.get("LCM_DEFAULT_URL") or DEFAULT_URL
 
 
-def check_local(url: str, inside_netns: bool = False) -> str:
+# Set by a test that runs processes inside network namespaces it created
+# (tests/multihil/netns.py): there, ttl=1 reaches only the test's own hosts.
+NETNS_ENV = "AUV_INSIDE_TEST_NETNS"
+
+
+def check_local(url: str, inside_netns: bool | None = None) -> str:
     """Return url if its traffic stays on this host, else raise ValueError."""
+    if inside_netns is None:
+        inside_netns = os.environ.get(NETNS_ENV) == "1"
     parsed = urlparse(url)
     if parsed.scheme != "udpm":
         return url  # memq://, file:// never touch the network

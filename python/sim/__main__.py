@@ -33,6 +33,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--duration", type=float, help="stop after this many sim seconds")
     ap.add_argument("--lcm-url", help="override simulation.lcm_url (ttl=0 only)")
     ap.add_argument("--check", action="store_true", help="check the configuration and exit")
+    ap.add_argument("--multihil", action="store_true", help="join a shared world (docs/multihil.md)")
+    ap.add_argument("--priority", type=int, help="override multihil.priority")
+    ap.add_argument("--clock-offset-us", type=float, help="multi-HIL tests: offset this clock")
+    ap.add_argument("--clock-drift-ppm", type=float, help="multi-HIL tests: drift this clock")
     args = ap.parse_args(argv)
 
     from sim.config import ConfigError, load
@@ -55,6 +59,8 @@ def main(argv: list[str] | None = None) -> int:
         cfg.sim.duration_s = args.duration
     if args.lcm_url:
         cfg.sim.lcm_url = args.lcm_url
+    from sim.multihil.hook import apply_cli
+    apply_cli(cfg, args)
     if args.check:
         print(f"{args.config}: ok (vehicle {cfg.vehicle_id}, {len(cfg.sensors)} sensors configured)")
         return 0

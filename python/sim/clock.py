@@ -8,6 +8,7 @@ real-time and scaled modes; in stepped mode the pace comes from SIM.CLOCK.
 from __future__ import annotations
 
 import time
+from typing import Callable
 
 
 class Pacer:
@@ -22,6 +23,9 @@ class Pacer:
         self.sim0 = 0.0
         self.target_t: float | None = None   # stepped: advance up to here
         self.late_steps = 0         # steps that ran behind their wall deadline
+        # multi-HIL free-running: the process's global clock [s] (None before it has one)
+        # paces the steps instead of this process's own wall clock
+        self.global_now: Callable[[], float | None] | None = None
 
     def restart(self, sim_t: float) -> None:
         self.wall0 = time.monotonic()
@@ -35,6 +39,9 @@ class Pacer:
         """Whether the step that ends at sim_t + dt may run now."""
         if self.mode == "stepped":
             return self.target_t is not None and sim_t + 0.5 * self.dt <= self.target_t
+        if self.global_now is not None:
+            g = self.global_now()
+            return g is not None and g >= sim_t + self.dt
         if self.fast:
             return True
         return now >= self.wall_deadline(sim_t + self.dt)
@@ -43,6 +50,9 @@ class Pacer:
         """How long to wait for LCM traffic before the next step is due."""
         if self.mode == "stepped":
             return 0.1
+        if self.global_now is not None:
+            g = self.global_now()
+            return 0.05 if g is None else max(0.0, (sim_t + self.dt - g) / self.warp)
         if self.fast:
             return 0.0
         return max(0.0, self.wall_deadline(sim_t + self.dt) - now)

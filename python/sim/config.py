@@ -24,11 +24,16 @@ from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
 from sim.environment import CurrentLayer, EnvParams, Transponder
 from sim.sensors import REGISTRY
+from sim.sonar.config import SonarConfig
 from sim.vehicle import REMUS100, VehicleParams
 
 ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
 CLOCK_MODES = ("realtime", "scaled", "stepped")
 VEHICLE_ID = re.compile(r"[A-Z][A-Z0-9]{0,15}")
+CHANNEL_SUFFIX = re.compile(r"[A-Z][A-Z0-9_]{0,31}")
+# <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's
+RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "ACTUATOR_STATE",
+                   "ACTUATORS", "HEALTH", "CONTACTS", "SETPOINT"}
 
 
 class ConfigError(Exception):
@@ -46,7 +51,7 @@ class SimSettings:
     clock_rate_hz: float = 10.0      # SIM.CLOCK rate when this process publishes it
     truth_rate_hz: float = 10.0
     actuator_state_rate_hz: float = 10.0
-    health_period_s: float = 1.0     # wall seconds between process_health_t
+    health_period_s: float = 1.0     # sim seconds between process_health_t
     command_timeout_s: float = 1.0
     on_stale: str = "hold"           # hold | safe
     duration_s: float = 0.0          # 0 = until stopped
@@ -72,6 +77,17 @@ class MultiHil:
     priority: int = 0                # higher wins the env-server role on failover
     needs: list = field(default_factory=lambda: list(ENV_VARIABLES))
     sample_rate_hz: float = 1.0
+    # the rest is docs/multihil.md: joining a world shared by several simulators
+    enabled: bool = False            # join a multi-HIL world (server or client)
+    step_s: float = 0.1              # lockstep step (simulation.clock: stepped)
+    lockstep_participants: int = 0   # wait for this many participants before step 0
+    lockstep_timeout_s: float = 5.0  # drop a participant silent this long
+    heartbeat_hz: float = 10.0
+    failover_timeout_s: float = 0.5
+    join_window_s: float = 1.0
+    sync_hz: float = 10.0
+    clock_offset_us: float = 0.0     # tests: inject an offset into this process's clock
+    clock_drift_ppm: float = 0.0     # tests: inject a drift into this process's clock
 
 
 @dataclass
@@ -85,6 +101,8 @@ class SimConfig:
     sensors: dict[str, Any]
     multihil: MultiHil
     safe_command: Command
+    sonar: SonarConfig | None = None     # None: no sonar section
+    modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
 
 
 # ------------------------------------------------------------------ reading
@@ -163,6 +181,10 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
         doc.err(node, key, f"expected {_typename(want)}")
         return dataclasses.MISSING
     value = doc.scalar(node)
+    if want is str and isinstance(value, bool):
+        value = node.value      # YAML 1.1 reads yes/no/on/off as booleans: keep the word
+    if name == "channel":
+        return _check_channel(doc, node, key, value)
     if want is float and isinstance(value, int) and not isinstance(value, bool):
         value = float(value)
     if type(value) is not want:
@@ -181,6 +203,17 @@ def _check_value(doc: _Doc, node, key: str, name: str, default: Any) -> Any:
     return value
 
 
+def _check_channel(doc: _Doc, node, key: str, value: Any) -> Any:
+    """A channel suffix such as NAV or NAV_INS, or off."""
+    if value == "off":
+        return "off"
+    if not isinstance(value, str) or not CHANNEL_SUFFIX.fullmatch(value):
+        doc.err(node, key, f"expected a channel name (upper-case letters, digits, '_', e.g. "
+                f"NAV or NAV_INS) or off, got {node.value!r}")
+        return dataclasses.MISSING
+    return value
+
+
 def _fill(doc: _Doc, node, key: str, obj) -> Any:
     """Update a dataclass instance from a mapping node, field by field."""
     items = doc.mapping(node, key)
@@ -188,6 +221,9 @@ def _fill(doc: _Doc, node, key: str, obj) -> Any:
     doc.unknown(items, names, key)
     for name, (_, vnode) in items.items():
         if name not in names:
+            continue
+        if dataclasses.is_dataclass(getattr(obj, name)):     # a nested section
+            _fill(doc, vnode, _join(key, name), getattr(obj, name))
             continue
         v = _check_value(doc, vnode, _join(key, name), name, getattr(obj, name))
         if v is not dataclasses.MISSING:
@@ -354,6 +390,11 @@ def _sensors(doc: _Doc, node) -> dict[str, Any]:
             else:
                 cfg = _fill(doc, snode, f"sensors.{name}", cfg_cls())
             out[name] = cfg
+    ins = out.get("ins")
+    if ins is not None and ins.channel in RESERVED_TOPICS:
+        cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
+        doc.err(cnode, "sensors.ins.channel", f"{ins.channel} is another channel of this "
+                "vehicle's simulator or pilot (one writer per channel)")
     return out
 
 
@@ -371,7 +412,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     doc = _Doc(path, text)
     top = doc.mapping(doc.root, "")
     sections = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-                "safe_command")
+                "safe_command", "sonar", "modem")
     doc.unknown(top, sections, "")
     get = lambda name: top[name][1] if name in top else None  # noqa: E731
     vid, vp = _vehicle(doc, get("vehicle"))
@@ -401,10 +442,20 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
                     doc.err(m["needs"][1].value[i], f"multihil.needs[{i}]",
                             f"unknown environment variable {v!r}; one of {', '.join(ENV_VARIABLES)}")
     safe = _fill(doc, get("safe_command"), "safe_command", Command())
+    sonar = None
+    if "sonar" in top:
+        from sim.sonar.config_check import check_sonar
+        sonar = check_sonar(doc, get("sonar"), path.parent, _fill)
+    from sim.modem.config import parse as parse_modem
+    modem = parse_modem(doc, get("modem"))
     if doc.errors:
         raise ConfigError(sorted(dict.fromkeys(doc.errors), key=_position))
     if sim.seed < 0:
         sim.seed = env.seed
+    if sonar is not None and sonar.targets.seed < 0:
+        sonar.targets.seed = env.seed    # one world, one field: every vehicle's sim agrees
     if not mh.client_id:
         mh.client_id = f"{vid}-sim"
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe)
+    if modem is not None and modem.seed < 0:
+        modem.seed = env.seed        # the world's: the same for every simulator in it
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem)

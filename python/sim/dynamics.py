@@ -22,12 +22,14 @@ from pitch = +-90 deg, which an AUV never reaches in service.
 from __future__ import annotations
 
 import math
+from math import cos, sin
 
 import numpy as np
 
 from sim.vehicle import VehicleParams
 
 ETA = ("north_m", "east_m", "down_m", "roll_rad", "pitch_rad", "yaw_rad")
+TWO_PI = 2.0 * math.pi
 NU = ("u_mps", "v_mps", "w_mps", "p_radps", "q_radps", "r_radps")
 
 
@@ -100,7 +102,7 @@ class Dynamics:
         self.thrust = 0.0
         self.torque = 0.0
         self.current_ned = (0.0, 0.0, 0.0)
-        self.external_tau = [0.0] * 6  # optional extra body forces (tests, tow)
+        self.external_tau: list[float] | None = None  # optional extra body forces (tests, tow)
 
     # ------------------------------------------------------------------ API
     @property
@@ -118,33 +120,36 @@ class Dynamics:
     def step(self) -> None:
         """Advance one fixed step with classic RK4 (inputs held)."""
         dt = self.dt
+        h = 0.5 * dt
         f = self._deriv
         x = self.x
         k1 = f(x)
-        x2 = [a + 0.5 * dt * b for a, b in zip(x, k1)]
-        k2 = f(x2)
-        x3 = [a + 0.5 * dt * b for a, b in zip(x, k2)]
-        k3 = f(x3)
-        x4 = [a + dt * b for a, b in zip(x, k3)]
-        k4 = f(x4)
+        k2 = f([a + h * b for a, b in zip(x, k1)])
+        k3 = f([a + h * b for a, b in zip(x, k2)])
+        k4 = f([a + dt * b for a, b in zip(x, k3)])
         c = dt / 6.0
-        self.x = [a + c * (b1 + 2.0 * b2 + 2.0 * b3 + b4)
-                  for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)]
+        x = [a + c * (b1 + 2.0 * (b2 + b3) + b4) for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)]
         # keep yaw in [0, 2pi) and roll in (-pi, pi]
-        yaw = self.x[5] % (2.0 * math.pi)
-        self.x[5] = yaw
-        roll = self.x[3]
+        x[5] %= TWO_PI
+        roll = x[3]
         if roll > math.pi or roll <= -math.pi:
-            self.x[3] = (roll + math.pi) % (2.0 * math.pi) - math.pi
-        self.nu_dot = list(k1[6:12])
+            x[3] = (roll + math.pi) % TWO_PI - math.pi
+        self.x = x
+        self.nu_dot = k1[6:12]
         self.t += dt
 
     def forces(self) -> list[float]:
-        """The generalised force vector (right-hand side) at the current state."""
-        return list(self._rhs(self.x)[0])
+        """The generalised force vector (right-hand side) at the current state: M nu_dot."""
+        nu_dot = self._deriv(self.x)[6:12]
+        return [float(v) for v in self.M @ np.array(nu_dot)]
 
     # ------------------------------------------------------------ internals
-    def _rhs(self, x):
+    def _deriv(self, x):
+        """x_dot for state x: the hot path (four calls per step).
+
+        Written as one function over locals: a call, a tuple and an
+        attribute look-up each cost as much as several multiplications.
+        """
         (m, xg, yg, zg, ixx, iyy, izz, W, B, rad,
          Xuu, Xwq, Xqq, Xvr, Xrr,
          Yvv, Yrr, Yuv, Ywp, Yur, Ypq, Yuudr,
@@ -154,9 +159,9 @@ class Dynamics:
          Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr,
          ma_u, ma_v, ma_w, ma_qw, ma_rv) = self._k
         _, _, z, phi, theta, psi, u, v, w, p, q, r = x
-        cphi, sphi = math.cos(phi), math.sin(phi)
-        cth, sth = math.cos(theta), math.sin(theta)
-        cpsi, spsi = math.cos(psi), math.sin(psi)
+        cphi, sphi = cos(phi), sin(phi)
+        cth, sth = cos(theta), sin(theta)
+        cpsi, spsi = cos(psi), sin(psi)
         # rotation body -> NED
         r00 = cpsi * cth
         r01 = cpsi * sth * sphi - spsi * cphi
@@ -169,66 +174,67 @@ class Dynamics:
         r22 = cth * cphi
 
         cn, ce, cd = self.current_ned
-        uc = r00 * cn + r10 * ce + r20 * cd
-        vc = r01 * cn + r11 * ce + r21 * cd
-        wc = r02 * cn + r12 * ce + r22 * cd
-        ur, vr, wr = u - uc, v - vc, w - wc
-        uau = ur * abs(ur)
+        if cn or ce or cd:
+            uc = r00 * cn + r10 * ce + r20 * cd
+            vc = r01 * cn + r11 * ce + r21 * cd
+            wc = r02 * cn + r12 * ce + r22 * cd
+            ur, vr, wr = u - uc, v - vc, w - wc
+        else:
+            uc = vc = wc = 0.0
+            ur, vr, wr = u, v, w
+        uau = ur * (ur if ur >= 0.0 else -ur)
+        vav = vr * (vr if vr >= 0.0 else -vr)
+        waw = wr * (wr if wr >= 0.0 else -wr)
         dr, ds = self.rudder, self.stern
 
         # hydrostatics: buoyancy falls as the hull breaks the surface
-        Bf = B if z >= rad else B * submerged_fraction(z, rad)
-        ex, ey, ez = -sth, cth * sphi, cth * cphi  # gravity direction, body frame
-        fw = W - Bf
-        # moment of weight about the CB: W (r_g x e)
-        kw = W * (yg * ez - zg * ey)
-        mw = W * (zg * ex - xg * ez)
-        nw = W * (xg * ey - yg * ex)
+        fw = W - (B if z >= rad else B * submerged_fraction(z, rad))
+        ex, ey, ez = -sth, r21, r22  # gravity direction, body frame
+        pp, qq, rr = p * p, q * q, r * r
+        aq = q if q >= 0.0 else -q
+        ar = r if r >= 0.0 else -r
+        ap = p if p >= 0.0 else -p
 
-        X = (Xuu * uau + Xwq * wr * q + Xqq * q * q + Xvr * vr * r + Xrr * r * r
-             + m * (v * r - w * q + xg * (q * q + r * r) - yg * p * q - zg * p * r)
+        X = (Xuu * uau + Xwq * wr * q + Xqq * qq + Xvr * vr * r + Xrr * rr
+             + m * (v * r - w * q + xg * (qq + rr) - yg * p * q - zg * p * r)
              + fw * ex + self.thrust)
-        Y = (Yvv * vr * abs(vr) + Yrr * r * abs(r) + Yuv * ur * vr + Ywp * wr * p + Yur * ur * r
+        Y = (Yvv * vav + Yrr * r * ar + Yuv * ur * vr + Ywp * wr * p + Yur * ur * r
              + Ypq * p * q + Yuudr * uau * dr
-             + m * (w * p - u * r + yg * (r * r + p * p) - zg * q * r - xg * q * p)
+             + m * (w * p - u * r + yg * (rr + pp) - zg * q * r - xg * q * p)
              + fw * ey)
-        Z = (Zww * wr * abs(wr) + Zqq * q * abs(q) + Zuw * ur * wr + Zuq * ur * q + Zvp * vr * p
+        Z = (Zww * waw + Zqq * q * aq + Zuw * ur * wr + Zuq * ur * q + Zvp * vr * p
              + Zrp * r * p + Zuuds * uau * ds
-             + m * (u * q - v * p + zg * (p * p + q * q) - xg * r * p - yg * r * q)
+             + m * (u * q - v * p + zg * (pp + qq) - xg * r * p - yg * r * q)
              + fw * ez)
-        K = (Kpp * p * abs(p) - (izz - iyy) * q * r
+        # moments of weight about the CB: W (r_g x e)
+        K = (Kpp * p * ap - (izz - iyy) * q * r
              - m * (yg * (v * p - u * q) - zg * (u * r - w * p))
-             + kw + self.torque)
-        Mm = (Mww * wr * abs(wr) + Mqq * q * abs(q) + Muw * ur * wr + Muq * ur * q + Mvp * vr * p
+             + W * (yg * ez - zg * ey) + self.torque)
+        Mm = (Mww * waw + Mqq * q * aq + Muw * ur * wr + Muq * ur * q + Mvp * vr * p
               + Mrp * r * p + Muuds * uau * ds
               - (ixx - izz) * r * p - m * (zg * (w * q - v * r) - xg * (v * p - u * q))
-              + mw)
-        N = (Nvv * vr * abs(vr) + Nrr * r * abs(r) + Nuv * ur * vr + Nur * ur * r + Nwp * wr * p
+              + W * (zg * ex - xg * ez))
+        N = (Nvv * vav + Nrr * r * ar + Nuv * ur * vr + Nur * ur * r + Nwp * wr * p
              + Npq * p * q + Nuudr * uau * dr
              - (iyy - ixx) * p * q - m * (xg * (u * r - w * p) - yg * (w * q - v * r))
-             + nw)
+             + W * (xg * ey - yg * ex))
         # added mass acts on the relative acceleration: + M_A nu_c_dot,
         # nu_c_dot = v_c^b x omega (current fixed in NED)
-        if uc != 0.0 or vc != 0.0 or wc != 0.0:
-            acu = vc * r - wc * q
+        if uc or vc or wc:
             acv = wc * p - uc * r
             acw = uc * q - vc * p
-            X += ma_u * acu
+            X += ma_u * (vc * r - wc * q)
             Y += ma_v * acv
             Z += ma_w * acw
             Mm += ma_qw * acw
             N += ma_rv * acv
         et = self.external_tau
-        tau = (X + et[0], Y + et[1], Z + et[2], K + et[3], Mm + et[4], N + et[5])
-        kin = (r00, r01, r02, r10, r11, r12, r20, r21, r22, cphi, sphi, cth, sth)
-        return tau, kin
-
-    def _deriv(self, x):
-        tau, kin = self._rhs(x)
-        r00, r01, r02, r10, r11, r12, r20, r21, r22, cphi, sphi, cth, sth = kin
-        t0, t1, t2, t3, t4, t5 = tau
-        mi = self._minv
-        u, v, w, p, q, r = x[6], x[7], x[8], x[9], x[10], x[11]
+        if et is not None:
+            X, Y, Z = X + et[0], Y + et[1], Z + et[2]
+            K, Mm, N = K + et[3], Mm + et[4], N + et[5]
+        (i00, i01, i02, i03, i04, i05, i10, i11, i12, i13, i14, i15,
+         i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
+         i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = self._minv
         tth = sth / cth
         return (
             r00 * u + r01 * v + r02 * w,
@@ -237,10 +243,10 @@ class Dynamics:
             p + sphi * tth * q + cphi * tth * r,
             cphi * q - sphi * r,
             (sphi * q + cphi * r) / cth,
-            mi[0] * t0 + mi[1] * t1 + mi[2] * t2 + mi[3] * t3 + mi[4] * t4 + mi[5] * t5,
-            mi[6] * t0 + mi[7] * t1 + mi[8] * t2 + mi[9] * t3 + mi[10] * t4 + mi[11] * t5,
-            mi[12] * t0 + mi[13] * t1 + mi[14] * t2 + mi[15] * t3 + mi[16] * t4 + mi[17] * t5,
-            mi[18] * t0 + mi[19] * t1 + mi[20] * t2 + mi[21] * t3 + mi[22] * t4 + mi[23] * t5,
-            mi[24] * t0 + mi[25] * t1 + mi[26] * t2 + mi[27] * t3 + mi[28] * t4 + mi[29] * t5,
-            mi[30] * t0 + mi[31] * t1 + mi[32] * t2 + mi[33] * t3 + mi[34] * t4 + mi[35] * t5,
+            i00 * X + i01 * Y + i02 * Z + i03 * K + i04 * Mm + i05 * N,
+            i10 * X + i11 * Y + i12 * Z + i13 * K + i14 * Mm + i15 * N,
+            i20 * X + i21 * Y + i22 * Z + i23 * K + i24 * Mm + i25 * N,
+            i30 * X + i31 * Y + i32 * Z + i33 * K + i34 * Mm + i35 * N,
+            i40 * X + i41 * Y + i42 * Z + i43 * K + i44 * Mm + i45 * N,
+            i50 * X + i51 * Y + i52 * Z + i53 * K + i54 * Mm + i55 * N,
         )

@@ -13,7 +13,6 @@ import math
 import os
 import select
 import signal
-import sys
 import time
 
 import lcm
@@ -25,8 +24,15 @@ from sim.actuators import Command
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
+from sim.modem.node import make_modem
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
+from sim.wire import Encoder, fixed_layout
+
+def _next_slot(due: float, period: float, t: float) -> float:
+    """The first slot of the grid due + k period after t (missed slots skipped)."""
+    return due + period * max(1, math.floor((t - due) / period) + 1)
+
 
 CLOCK_MODE = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
               "stepped": sim_clock_t.MODE_LOCKSTEP}
@@ -37,7 +43,7 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
     out = []
     names = cfg.sensors or {name: REGISTRY[name][0]() for name in REGISTRY}
     for name, scfg in names.items():
-        if not scfg.enabled:
+        if not scfg.enabled or getattr(scfg, "channel", "") == "off":
             continue
         cls = REGISTRY[name][1]
         if name in ("gps", "ins"):
@@ -47,6 +53,14 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
         else:
             out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id))
     return out
+
+
+def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
+    """Outputs beyond the instruments: the sidescan sonar when configured."""
+    if cfg.sonar is None:
+        return []
+    from sim.sonar.publisher import SonarOutputs
+    return [SonarOutputs(cfg, sensors, publish_world)]
 
 
 def build_model(cfg: SimConfig) -> VehicleModel:
@@ -73,6 +87,7 @@ class Simulator:
         self.pacer = Pacer(s.clock, s.warp, self.dt, fast=fast)
         self.publish_clock = (s.publish_clock == "yes"
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
+        self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
         self.lc = lc or lcm.LCM(url)
         self.rx = Receiver(self.lc)
@@ -80,19 +95,39 @@ class Simulator:
                           queue_capacity=200)
         if s.clock == "stepped":
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
+        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
         self.last_cmd_t: float | None = None     # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
         self.stale_events = 0
         self.rejected_commands = 0
+        self.missed_commands = 0     # gaps in actuators_t.seq
+        self._last_seq: int | None = None
         self.published = 0
         self.stop_requested = False
         self._clock_started = False
-        self._next = {"truth": 0.0, "act": 0.0, "clock": 0.0}
-        self._periods = {"truth": 1.0 / s.truth_rate_hz, "act": 1.0 / s.actuator_state_rate_hz,
-                         "clock": 1.0 / s.clock_rate_hz}
+        # next due time and period of TRUTH, ACTUATOR_STATE, SIM.CLOCK, HEALTH
+        self._next = [0.0, 0.0, 0.0, s.health_period_s]
+        self._periods = (1.0 / s.truth_rate_hz, 1.0 / s.actuator_state_rate_hz,
+                         1.0 / s.clock_rate_hz, s.health_period_s)
+        self._next_due = 0.0        # earliest of every output's next time
+        self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
+        # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
+        self.extras = build_extras(cfg, self.sensors, self.publish_clock)
+        self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
+        self._ch_health = f"{self.vid}.HEALTH"
+        self._encoders: dict[type, Encoder | None] = {}
+        self._enc_truth = Encoder(ground_truth_t, vehicle=self.vid)
+        self._enc_act = Encoder(actuator_state_t, vehicle=self.vid)
+        self._enc_clock = Encoder(sim_clock_t, server_id=cfg.multihil.client_id)
+        self._enc_health = Encoder(process_health_t, vehicle=self.vid, process="sim")
+        self._step_us = utime(self.dt)
         self._cpu0 = os.times()
         self._wall_health = time.monotonic()
+        self.mh = None      # multi-HIL: shared world, global clock (docs/multihil.md)
+        if cfg.multihil.enabled:
+            from sim.multihil.hook import SimHook
+            self.mh = SimHook(self)
 
     # ------------------------------------------------------------ handlers
     def _on_actuators(self, _channel: str, msg) -> None:
@@ -100,6 +135,9 @@ class Simulator:
         if msg.vehicle != self.vid or not all(math.isfinite(v) for v in vals):
             self.rejected_commands += 1
             return
+        if self._last_seq is not None and msg.seq > self._last_seq + 1:
+            self.missed_commands += msg.seq - self._last_seq - 1
+        self._last_seq = msg.seq     # a pilot restart (seq going back) just resyncs
         self.model.command = Command(*vals)
         self.last_cmd_t = self.model.t
         self.last_cmd_utime = msg.utime
@@ -110,21 +148,38 @@ class Simulator:
     def _on_clock(self, _channel: str, msg) -> None:
         t = msg.utime / 1e6
         if not self._clock_started:
-            # join the world at its current time instead of replaying from 0
-            self._clock_started = True
-            self.model.dyn.t = t
-            self.last_cmd_t = None
-            self._next = {k: t for k in self._next}
-            for sen in self.sensors:
-                sen.next_t = t + sen.cfg.phase_s
-            self._t_start = t
-            self._outputs()
+            self.join_at(t)
         self.pacer.target_t = t
 
+    def join_at(self, t: float) -> None:
+        """Join the world at its current time instead of replaying from 0."""
+        self._clock_started = True
+        self.model.dyn.t = t
+        self.last_cmd_t = None
+        self._next = [t, t, t, t + self._periods[3]]
+        self._next_due = t
+        for sen in self.sensors:
+            sen.next_t = t + sen.cfg.phase_s
+        for extra in self.extras:
+            extra.restart(t)
+        self._t_start = t
+        self._outputs()
+
     # -------------------------------------------------------------- output
-    def _publish(self, channel: str, msg) -> None:
-        self.lc.publish(channel, msg.encode())
+    def _publish(self, channel: str, data: bytes) -> None:
+        self.lc.publish(channel, data)
         self.published += 1
+
+    def _encode(self, msg) -> bytes:
+        """A sensor message as bytes: one precompiled struct where the layout is fixed."""
+        cls = type(msg)
+        enc = self._encoders.get(cls, False)
+        if enc is False:
+            strings = [n for n, tn in zip(cls.__slots__, cls.__typenames__) if tn == "string"]
+            enc = (Encoder(cls, vehicle=self.vid) if fixed_layout(cls) and strings == ["vehicle"]
+                   else None)
+            self._encoders[cls] = enc
+        return enc.encode(msg) if enc is not None else msg.encode()
 
     def _check_stale(self) -> None:
         t = self.model.t
@@ -141,60 +196,65 @@ class Simulator:
                   flush=True)
 
     def _outputs(self) -> None:
+        """Publish whatever is due at the current sim time.
+
+        Most physics steps have nothing due (50 Hz physics, sensors at 20 Hz
+        and less): those cost one comparison, and the truth snapshot is only
+        taken when something will read it.
+        """
         t = self.model.t
+        if self.modem is not None:      # every step: a frame may arrive at any step
+            self.modem.step(t, tuple(self.model.dyn.x[0:3]))
+        if t < self._next_due - 1e-9:
+            return
         tr = self.model.truth(self.truth)
-        vid = self.vid
-        for sen in self.sensors:
+        publish = self._publish
+        for sen, channel in self._sensor_channels:
             msg = sen.poll(tr)
             if msg is not None:
-                self._publish(f"{vid}.{sen.topic}", msg)
-        nx, per = self._next, self._periods
-        if t >= nx["truth"] - 1e-9:
-            nx["truth"] += per["truth"] * max(1, math.floor((t - nx["truth"]) / per["truth"]) + 1)
-            self._publish(f"{vid}.TRUTH", self._truth_msg(tr))
-        if t >= nx["act"] - 1e-9:
-            nx["act"] += per["act"] * max(1, math.floor((t - nx["act"]) / per["act"]) + 1)
-            self._publish(f"{vid}.ACTUATOR_STATE", self._actuator_msg())
-        if self.publish_clock and t >= nx["clock"] - 1e-9:
-            nx["clock"] += per["clock"] * max(1, math.floor((t - nx["clock"]) / per["clock"]) + 1)
-            c = sim_clock_t()
-            c.utime, c.server_id, c.term = utime(t), self.cfg.multihil.client_id, 0
-            c.mode = CLOCK_MODE[self.cfg.sim.clock]
-            c.warp = self.pacer.warp if not self.pacer.fast else 0.0
-            c.step, c.step_us = 0, utime(self.dt)
-            self._publish("SIM.CLOCK", c)
+                publish(channel, self._encode(msg))
+        for extra in self.extras:
+            for channel, data in extra.poll(tr):
+                publish(channel, data)
+        nx = self._next
+        if t >= nx[0] - 1e-9:
+            nx[0] = _next_slot(nx[0], self._periods[0], t)
+            publish(self._ch_truth, self._enc_truth.pack(
+                utime(tr.t), *tr.eta, *tr.nu, *tr.nu_dot, *tr.current_ned, tr.altitude_m,
+                tr.water_depth_m, tr.latitude_deg, tr.longitude_deg))
+        if t >= nx[1] - 1e-9:
+            nx[1] = _next_slot(nx[1], self._periods[1], t)
+            a = self.model.act
+            publish(self._ch_act, self._enc_act.pack(
+                utime(t), a.rudder, a.stern, a.rpm, a.thrust, a.torque, self.stale,
+                self.last_cmd_utime))
+        if self.publish_clock and t >= nx[2] - 1e-9:
+            nx[2] = _next_slot(nx[2], self._periods[2], t)
+            publish("SIM.CLOCK", self._enc_clock.pack(
+                utime(t), 0, CLOCK_MODE[self.cfg.sim.clock],
+                self.pacer.warp if not self.pacer.fast else 0.0, 0, self._step_us))
+        if t >= nx[3] - 1e-9:
+            nx[3] = _next_slot(nx[3], self._periods[3], t)
+            self._health()
+        self._next_due = min(min((s.next_due() for s, _ in self._sensor_channels), default=math.inf),
+                             min((x.next_due() for x in self.extras), default=math.inf),
+                             nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
 
-    def _truth_msg(self, tr: Truth):
-        m = ground_truth_t()
-        m.utime, m.vehicle = utime(tr.t), self.vid
-        m.eta, m.nu, m.nu_dot = list(tr.eta), list(tr.nu), list(tr.nu_dot)
-        m.current_ned_mps = list(tr.current_ned)
-        m.altitude_m, m.water_depth_m = tr.altitude_m, tr.water_depth_m
-        m.latitude_deg, m.longitude_deg = tr.latitude_deg, tr.longitude_deg
-        return m
+    def _health(self) -> None:
+        """process_health_t every health_period_s of sim time (like every other output).
 
-    def _actuator_msg(self):
-        a = self.model.act
-        m = actuator_state_t()
-        m.utime, m.vehicle = utime(self.model.t), self.vid
-        m.rudder_rad, m.stern_plane_rad, m.prop_rpm = a.rudder, a.stern, a.rpm
-        m.thrust_n, m.prop_torque_nm = a.thrust, a.torque
-        m.command_stale = self.stale
-        m.last_command_utime = self.last_cmd_utime
-        return m
-
-    def _health(self, now: float) -> None:
+        queue_overflows counts actuator commands we never saw: gaps in the
+        pilot's actuators_t.seq (lost on the network or in LCM's bounded
+        receive queue; liblcm itself does not expose its drops).
+        """
+        now = time.monotonic()
         cpu = os.times()
         wall = now - self._wall_health
         load = ((cpu.user + cpu.system) - (self._cpu0.user + self._cpu0.system)) / wall if wall > 0 else 0.0
         self._cpu0, self._wall_health = cpu, now
-        m = process_health_t()
-        m.utime, m.vehicle, m.process, m.pid = utime(self.model.t), self.vid, "sim", os.getpid()
-        m.messages_received = sum(s.stats.received for s in self.rx.subscriptions)
-        m.decode_errors = self.rx.decode_errors
-        m.queue_overflows = 0  # the Python LCM binding does not expose its drops
-        m.cpu_load = load
-        self._publish(f"{self.vid}.HEALTH", m)
+        self._publish(self._ch_health, self._enc_health.pack(
+            utime(self.model.t), os.getpid(), sum(s.stats.received for s in self.rx.subscriptions),
+            self.rx.decode_errors, self.missed_commands, load))
 
     # ---------------------------------------------------------------- loop
     def _drain(self, timeout_s: float) -> None:
@@ -214,25 +274,29 @@ class Simulator:
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
               f"sensors={','.join(s.name for s in self.sensors)} "
               f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
-        if cfg.sim.clock != "stepped":
-            self._outputs()   # stepped: nothing until the global clock says when
+        if cfg.sim.clock != "stepped" and self.mh is None:
+            self._outputs()   # stepped, multi-HIL: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
-        health_period = cfg.sim.health_period_s
+        model, pacer, monotonic = self.model, self.pacer, time.monotonic
+        duration = duration if duration > 0 else math.inf
         while not self.stop_requested:
-            now = time.monotonic()
-            if now - self._wall_health >= health_period:
-                self._health(now)
-            if duration > 0 and self.model.t - self._t_start >= duration - 1e-9:
+            if self.mh is not None:
+                self.mh.poll()
+            # _t_start moves when a stepped run joins the global clock
+            if model.t - self._t_start >= duration - 1e-9:
                 break
-            if self.pacer.may_step(self.model.t, now):
+            now = monotonic()
+            if pacer.may_step(model.t, now):
                 self._drain(0.0)
                 self._check_stale()
-                self.model.step()
+                model.step()
                 self._outputs()
             else:
-                self._drain(min(self.pacer.wait_s(self.model.t, now), 0.1))
+                self._drain(min(pacer.wait_s(model.t, now), 0.1))
+        if self.mh is not None:
+            self.mh.close()
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
@@ -240,4 +304,6 @@ class Simulator:
               f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
               f"{self.rejected_commands} commands rejected, {self.stale_events} stale events",
               flush=True)
+        if self.modem is not None:
+            print(self.modem.summary(), flush=True)
         return 0

@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import math
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -18,6 +19,7 @@ from sim.autopilot import Autopilot
 from sim.dynamics import Dynamics
 from sim.environment import EnvParams, Environment
 from sim.model import VehicleModel
+from sim.steady_turn import linear_turn, steady_turn
 from sim.vehicle import REMUS100, VehicleParams
 
 DT = 0.02
@@ -151,13 +153,29 @@ def linear_modes(vp: VehicleParams = REMUS100, speed: float = 1.5) -> dict:
             "sway_yaw_max_real": float(max(sway_yaw.real))}
 
 
-def report(vp: VehicleParams = REMUS100) -> list[Figure]:
+ALT_DAMPING = Path(__file__).resolve().parents[2] / "missions" / "sim" / "remus100_alt_damping.yaml"
+TURN_TOLERANCE = 0.10   # 6-DOF circle vs 3-DOF balance: roll and depth keeping differ
+
+
+def turning_figures(vp: VehicleParams, tc: dict | None = None, label: str = "") -> list[Figure]:
+    """The full-rudder circle against the steady-turn balance and its own kinematics."""
+    tc = tc or turning_circle(vp)
+    est = steady_turn(vp, tc["rudder_rad"])
+    tag = f" ({label})" if label else ""
+    return [
+        Figure(f"turning circle diameter, full rudder{tag}", tc["diameter_m"], est["diameter_m"],
+               TURN_TOLERANCE * est["diameter_m"], "m",
+               "3-DOF steady-turn balance of the same coefficients (none published)"),
+        Figure(f"turning circle: fitted vs U/r diameter{tag}", tc["diameter_m"],
+               tc["kinematic_diameter_m"], 0.05 * tc["kinematic_diameter_m"], "m",
+               "kinematic consistency of the track"),
+    ]
+
+
+def report(vp: VehicleParams = REMUS100, tc: dict | None = None) -> list[Figure]:
     figs = [Figure("steady speed at 1500 rpm", steady_speed(vp), 1.5, 0.075, "m/s",
                    "Prestero 2001: ~1.5 m/s at ~1500 rpm")]
-    tc = turning_circle(vp)
-    figs.append(Figure("turning circle: fitted vs U/r diameter", tc["diameter_m"],
-                       tc["kinematic_diameter_m"], 0.05 * tc["kinematic_diameter_m"], "m",
-                       "kinematic consistency (no published REMUS 100 turning circle in the reference)"))
+    figs += turning_figures(vp, tc)
     dv = steady_dive(vp)
     figs.append(Figure("steady dive rate, -10 deg pitch command", dv["dive_rate_mps"],
                        dv["kinematic_rate_mps"], 0.02, "m/s", "U sin(theta) - w cos(theta)"))
@@ -172,6 +190,23 @@ def report(vp: VehicleParams = REMUS100) -> list[Figure]:
     return figs
 
 
+def _table(figs: list[Figure]) -> None:
+    w = max(len(f.name) for f in figs)
+    print(f"{'case':<{w}}  {'measured':>9}  {'reference':>9}  {'tol':>7}  unit  ok   source")
+    for f in figs:
+        print(f"{f.name:<{w}}  {f.measured:9.3f}  {f.reference:9.3f}  {f.tolerance:7.3f}  "
+              f"{f.unit:<4}  {'yes' if f.ok else 'NO ':<3}  {f.source}")
+
+
+def _turn_line(vp: VehicleParams, tc: dict) -> str:
+    est = steady_turn(vp, tc["rudder_rad"])
+    return (f"turning circle at full rudder ({math.degrees(tc['rudder_rad']):.0f} deg): diameter "
+            f"{tc['diameter_m']:.2f} m ({tc['diameter_m'] / vp.length_m:.1f} L), speed "
+            f"{tc['speed_mps']:.2f} m/s, yaw rate {math.degrees(tc['yaw_rate_radps']):.1f} deg/s, "
+            f"depth {tc['depth_m']:.1f} m, roll {math.degrees(tc['roll_rad']):.1f} deg; "
+            f"3-DOF balance: {est['diameter_m']:.2f} m at {est['speed_mps']:.2f} m/s")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="python -m sim validate")
     ap.add_argument("--config", help="validate the vehicle of this simulator configuration")
@@ -181,19 +216,24 @@ def main(argv: list[str] | None = None) -> int:
         from sim.config import load
         vp = load(args.config).vehicle
     print(f"Validation of {vp.name} (RK4, dt = {DT} s)\n")
-    figs = report(vp)
-    w = max(len(f.name) for f in figs)
-    print(f"{'case':<{w}}  {'measured':>9}  {'reference':>9}  {'tol':>7}  unit  ok   source")
-    for f in figs:
-        print(f"{f.name:<{w}}  {f.measured:9.3f}  {f.reference:9.3f}  {f.tolerance:7.3f}  "
-              f"{f.unit:<4}  {'yes' if f.ok else 'NO ':<3}  {f.source}")
     tc = turning_circle(vp)
+    figs = report(vp, tc)
+    alt = None
+    if not args.config:
+        # the other coefficient set the reference mentions: its turning circle too
+        from sim.config import load
+        alt = load(ALT_DAMPING).vehicle
+        alt_tc = turning_circle(alt)
+        figs += turning_figures(alt, alt_tc, "alt. damping")
+    _table(figs)
     dv = steady_dive(vp)
     lm = linear_modes(vp)
-    print(f"\nturning circle at full rudder ({math.degrees(tc['rudder_rad']):.0f} deg): diameter "
-          f"{tc['diameter_m']:.2f} m ({tc['diameter_m'] / vp.length_m:.1f} L), speed "
-          f"{tc['speed_mps']:.2f} m/s, yaw rate {math.degrees(tc['yaw_rate_radps']):.1f} deg/s, "
-          f"depth {tc['depth_m']:.1f} m, roll {math.degrees(tc['roll_rad']):.1f} deg")
+    lin = linear_turn(vp)
+    print("\n" + _turn_line(vp, tc))
+    if alt is not None:
+        print(f"  alt. damping ({ALT_DAMPING.name}): " + _turn_line(alt, alt_tc))
+    print(f"  linear steady-turn solution: {lin['diameter_m']:.2f} m to "
+          f"{'starboard' if lin['turns_to_starboard'] else 'PORT (wrong way: C < 0)'}")
     print(f"steady dive: pitch {math.degrees(dv['pitch_rad']):.1f} deg, u {dv['u_mps']:.2f} m/s, "
           f"angle of attack {math.degrees(dv['alpha_rad']):.1f} deg, dive rate "
           f"{dv['dive_rate_mps']:.3f} m/s")

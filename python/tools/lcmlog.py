@@ -1,93 +1,185 @@
 """Inspect LCM logs with the project's types.
 
-    python python/tools/lcmlog.py summary LOG          channels, counts, types, sim-time span
-    python python/tools/lcmlog.py csv LOG CHANNEL OUT  one channel's scalar fields as CSV
+    lcmlog.py summary LOG                   channels, types, counts, sim-time span, undecodable
+    lcmlog.py csv LOG CHANNEL OUT.csv       one channel: every numeric and string field
+    lcmlog.py csv LOG --all OUTDIR          every channel, one CHANNEL.csv each
+    lcmlog.py npz LOG OUT.npz               every channel's columns, keys "CHANNEL/column"
+    lcmlog.py annotations LOG [--extract DIR]   what the log says about itself
+    lcmlog.py states LOG [CHANNEL_REGEX]    each CHASM's state timeline
 
-Exit status: 0 on success, 1 if the log holds events that do not decode
-(they are reported, never silently skipped), 2 on a usage or file error.
+Nested arrays are flattened into columns named as in C (position_cov_m2[0][1]);
+variable-length arrays go into one column, elements joined by ';' (arrays of
+structs are left out of CSV and named on stderr). Exit status: 0 on success,
+1 if the log holds events that do not decode (counted and reported, never
+fatal), 2 on a usage or file error.
 """
 
 from __future__ import annotations
 
 import argparse
 import csv
+import re
 import sys
-from collections import defaultdict
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from auvlcm.log import LogStats, read_events  # noqa: E402
+import numpy as np  # noqa: E402
+
+from auvlcm.arrays import ChannelArrays, LogArrays, load_log  # noqa: E402
+from auvlcm.log import read_events  # noqa: E402
+from tools.timeline import state_timeline  # noqa: E402
 
 
-def scalar_fields(msg) -> dict[str, object]:
-    """Flatten a message's scalar and fixed-array fields into columns."""
-    row: dict[str, object] = {}
-    for name in msg.__slots__:
-        value = getattr(msg, name)
-        if isinstance(value, (int, float, str, bool)):
-            row[name] = value
-        elif isinstance(value, (list, tuple)) and all(isinstance(v, (int, float)) for v in value):
-            for i, v in enumerate(value):
-                row[f"{name}[{i}]"] = v
-        elif isinstance(value, (list, tuple)) and value and isinstance(value[0], (list, tuple)):
-            for i, rowv in enumerate(value):
-                for j, v in enumerate(rowv):
-                    if isinstance(v, (int, float)):
-                        row[f"{name}[{i}][{j}]"] = v
-    return row
+def _report_bad(log: LogArrays) -> int:
+    for ch, n in sorted(log.undecodable.items()):
+        print(f"{log.path}: {n} undecodable event(s) on {ch}", file=sys.stderr)
+    for ch, n in sorted(log.type_conflicts.items()):
+        print(f"{log.path}: {n} event(s) of another type on {ch} (dropped)", file=sys.stderr)
+    return 1 if log.stats.undecodable else 0
 
 
-def summary(log: Path) -> int:
-    stats = LogStats()
-    types: dict[str, str] = {}
-    span: dict[str, list[int]] = defaultdict(list)
-    for ev in read_events(log, stats):
-        if ev.msg is None:
-            print(f"undecodable event on {ev.channel}: {ev.error}", file=sys.stderr)
-            continue
-        types[ev.channel] = type(ev.msg).__name__
-        utime = getattr(ev.msg, "utime", None)
-        if isinstance(utime, int):
-            span[ev.channel].append(utime)
-    print(f"{log}: {stats.events} events, {stats.decoded} decoded, {stats.undecodable} undecodable")
+def summary(path: Path) -> int:
+    log = load_log(path)
+    s = log.stats
+    print(f"{path}: {s.events} events, {s.decoded} decoded, {s.undecodable} undecodable"
+          + (f", {s.internal} liblcm self-test skipped" if s.internal else ""))
     print(f"{'channel':32} {'type':24} {'count':>7} {'sim time span [s]':>18}")
-    for ch in sorted(stats.per_channel):
-        t = span.get(ch) or [0]
-        print(f"{ch:32} {types.get(ch, '?'):24} {stats.per_channel[ch]:7d} "
-              f"{(max(t) - min(t)) / 1e6:18.3f}")
-    return 1 if stats.undecodable else 0
+    for ch in sorted(s.per_channel):
+        arr = log.channels.get(ch)
+        span = f"{arr.t.max() - arr.t.min():18.3f}" if arr is not None and len(arr) else f"{'-':>18}"
+        print(f"{ch:32} {arr.type_name if arr else '?':24} {s.per_channel[ch]:7d} {span}")
+    return _report_bad(log)
 
 
-def to_csv(log: Path, channel: str, out: Path) -> int:
-    rows = [scalar_fields(ev.msg) for ev in read_events(log) if ev.channel == channel and ev.msg]
-    if not rows:
-        print(f"{log}: no decodable events on {channel}", file=sys.stderr)
-        return 2
+def csv_rows(arr: ChannelArrays) -> tuple[list[str], list[list]]:
+    """Header and rows of one channel, ragged primitive arrays joined by ';'."""
+    ragged = [r for r, v in arr.ragged.items() if not any(x and hasattr(x[0], "__slots__") for x in v)]
+    skipped = [r for r in arr.ragged if r not in ragged]
+    if skipped:
+        print(f"{arr.channel}: not in CSV (variable-length arrays of structs): {', '.join(skipped)}",
+              file=sys.stderr)
+    header = ["log_time_us"] + list(arr.columns) + ragged
+    cols = [arr.log_time_us] + list(arr.columns.values())
+    rows = []
+    for i in range(len(arr)):
+        row = [c[i].item() if isinstance(c[i], np.generic) else c[i] for c in cols]
+        row += [";".join(str(x) for x in arr.ragged[r][i]) for r in ragged]
+        rows.append(row)
+    return header, rows
+
+
+def write_csv(arr: ChannelArrays, out: Path) -> None:
+    header, rows = csv_rows(arr)
     with open(out, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(rows[0]))
-        writer.writeheader()
-        writer.writerows(rows)
-    print(f"{out}: {len(rows)} rows of {channel}")
-    return 0
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(rows)
+    print(f"{out}: {len(rows)} rows of {arr.channel}")
+
+
+def to_csv(path: Path, channel: str | None, out: Path) -> int:
+    log = load_log(path, None if channel is None else [channel])
+    if channel is not None:
+        if channel not in log:
+            print(f"{path}: no decodable events on {channel}", file=sys.stderr)
+            return 2
+        write_csv(log[channel], out)
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        for ch, arr in log.channels.items():
+            write_csv(arr, out / f"{ch}.csv")
+    return _report_bad(log)
+
+
+def to_npz(path: Path, out: Path) -> int:
+    log = load_log(path)
+    data = {}
+    for ch, arr in log.channels.items():
+        data[f"{ch}/log_time_us"] = arr.log_time_us
+        for name, col in arr.columns.items():
+            data[f"{ch}/{name}"] = col.astype(str) if col.dtype == object else col
+    np.savez_compressed(out, **data)
+    print(f"{out}: {len(data)} arrays from {len(log.channels)} channels")
+    return _report_bad(log)
+
+
+KIND_NAMES = {0: "note", 1: "scenario", 2: "plan", 3: "lcmtype", 4: "event"}
+
+
+def is_file_annotation(a) -> bool:
+    """Scenario, plan and type files, and notes that carry a file (bindings, configs)."""
+    return a.kind in (1, 2, 3) or (a.kind == 0 and bool(re.search(r"\.\w+$", a.name)))
+
+
+def annotations(path: Path, extract: Path | None) -> int:
+    n = 0
+    for ev in read_events(path):
+        if ev.msg is None or type(ev.msg).__name__ != "log_annotation_t":
+            continue
+        a = ev.msg
+        n += 1
+        kind = KIND_NAMES.get(a.kind, str(a.kind))
+        first = a.text.splitlines()[0] if a.text else ""
+        print(f"{a.utime / 1e6:9.2f} s {ev.channel:16} {kind:9} {a.vehicle or '-':6} {a.name}"
+              + (f"  {first[:60]}" if a.kind in (0, 4) else f"  ({len(a.text)} chars)"))
+        if extract is not None and is_file_annotation(a):
+            dest = extract / (a.vehicle or "") / a.name.lstrip("/")
+            dest.parent.mkdir(parents=True, exist_ok=True)
+            dest.write_text(a.text)
+    if extract is not None:
+        print(f"extracted into {extract}/")
+    return 0 if n else 1
+
+
+def states(path: Path, pattern: str) -> int:
+    log = load_log(path, pattern)
+    if not log.channels:
+        print(f"{path}: no CHASM status channel matches {pattern!r}", file=sys.stderr)
+        return 2
+    for ch, arr in log.channels.items():
+        print(ch)
+        for seg in state_timeline(arr):
+            print(f"  {seg.start:9.2f} s .. {seg.end:9.2f} s  {seg.run:8} {seg.path:32} {seg.condition}")
+    return _report_bad(log)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = parser.add_subparsers(dest="cmd", required=True)
-    p = sub.add_parser("summary")
+    p = sub.add_parser("summary", help="channels, types, counts")
     p.add_argument("log", type=Path)
-    p = sub.add_parser("csv")
+    p = sub.add_parser("csv", help="export channels as CSV")
     p.add_argument("log", type=Path)
-    p.add_argument("channel")
+    p.add_argument("channel", nargs="?")
+    p.add_argument("out", type=Path, nargs="?")
+    p.add_argument("--all", type=Path, metavar="OUTDIR", help="every channel into OUTDIR")
+    p = sub.add_parser("npz", help="every channel's columns into one .npz")
+    p.add_argument("log", type=Path)
     p.add_argument("out", type=Path)
+    p = sub.add_parser("annotations", help="scenario, plans, types and events written into the log")
+    p.add_argument("log", type=Path)
+    p.add_argument("--extract", type=Path, metavar="DIR", help="write the annotated files into DIR")
+    p = sub.add_parser("states", help="state timeline of each CHASM")
+    p.add_argument("log", type=Path)
+    p.add_argument("pattern", nargs="?", default=r".*\.CHASM\..*")
     args = parser.parse_args(argv)
     if not args.log.is_file():
         print(f"lcmlog: {args.log}: no such log file", file=sys.stderr)
         return 2
     if args.cmd == "summary":
         return summary(args.log)
-    return to_csv(args.log, args.channel, args.out)
+    if args.cmd == "csv":
+        if args.all is not None:
+            return to_csv(args.log, None, args.all)
+        if not args.channel or not args.out:
+            parser.error("csv needs CHANNEL OUT.csv, or --all OUTDIR")
+        return to_csv(args.log, args.channel, args.out)
+    if args.cmd == "npz":
+        return to_npz(args.log, args.out)
+    if args.cmd == "annotations":
+        return annotations(args.log, args.extract)
+    return states(args.log, args.pattern)
 
 
 if __name__ == "__main__":

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
@@ -134,3 +133,28 @@ def test_bathymetry_shapes_and_grid(tmp_path):
     assert len(g.sha256) == 64
     with pytest.raises(BathymetryError, match="unknown parameter"):
         Bathymetry("flat:depht=3")
+
+
+@pytest.mark.parametrize("value,expected", [("NAV", "NAV"), ("NAV_INS", "NAV_INS"),
+                                            ("off", "off"), ('"off"', "off")])
+def test_ins_channel_is_configurable(value, expected):
+    cfg = loads(f"sensors:\n  ins: {{channel: {value}}}\n", Path("cfg.yaml"))
+    assert cfg.sensors["ins"].channel == expected
+    assert loads("sensors: {ins: {}}\n").sensors["ins"].channel == "NAV"
+
+
+@pytest.mark.parametrize("value,message", [
+    ("nav", "expected a channel name"), ("on", "expected a channel name"),
+    ("AUV1.NAV", "expected a channel name"), ("DVL", "one writer per channel"),
+    ("TRUTH", "one writer per channel")])
+def test_bad_ins_channel_names_key_and_line(value, message):
+    errs = errors(f"sensors:\n  ins:\n    channel: {value}\n")
+    assert len(errs) == 1 and errs[0].startswith("cfg.yaml:3:14: sensors.ins.channel: ")
+    assert message in errs[0]
+
+
+def test_yes_no_words_stay_words_for_string_keys():
+    cfg = loads("simulation: {publish_clock: yes}\nsonar: {publish_targets: no}\n")
+    assert cfg.sim.publish_clock == "yes" and cfg.sonar.publish_targets == "no"
+    errs = errors("simulation:\n  publish_clock: true\n")
+    assert errs == ["cfg.yaml:2:18: simulation.publish_clock: one of auto, yes, no"]

@@ -19,6 +19,7 @@ from auvlcm.rx import Receiver
 
 ROOT = Path(__file__).resolve().parents[2]
 from lcm_proc import pump, stop, wait_for_line
+from lockstep import LockstepPilot
 
 CONFIG = """
 vehicle: {{id: AUV1}}
@@ -41,15 +42,15 @@ sensors:
   dvl: {{rate_hz: 5}}
   altimeter: {{rate_hz: 5}}
   gps: {{rate_hz: 1}}
-  ins: {{rate_hz: 20, bias: 0.0}}
+  ins: {{rate_hz: {ins_rate}, bias: 0.0}}
 """
 
 
 def start_sim(tmp_path, child_env, url, clock="scaled", warp=10.0, timeout=1.0,
-              on_stale="hold", extra=()):
+              on_stale="hold", extra=(), ins_rate=20):
     cfg = tmp_path / "sim.yaml"
     cfg.write_text(CONFIG.format(clock=clock, warp=warp, timeout=timeout, on_stale=on_stale,
-                                 url=url))
+                                 url=url, ins_rate=ins_rate))
     proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg), *extra],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=child_env)
@@ -68,46 +69,28 @@ class Recorder:
 
 
 def test_closed_loop_holds_heading_and_depth(tmp_path, child_env, lcm_url):
-    """A scripted controller steers by NAV and commands ACTUATORS at warp 10:
-    holds heading and changes depth from 5 m to 8 m."""
-    from sim.autopilot import Autopilot
+    """A scripted controller steers by NAV and commands ACTUATORS over LCM: holds
+    heading and changes depth from 5 m to 8 m. The test is the global clock and the
+    pilot (tests/sim/lockstep.py: 0.04 s steps, INS at 25 Hz), exact under load."""
     lc = lcm.LCM(lcm_url)
     rec = Recorder(lc)
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("AUV1.ACTUATOR_STATE", actuator_state_t)
-    rec.sub("SIM.CLOCK", sim_clock_t)
-    ap = Autopilot()
-    seq = [0]
-
-    def on_nav(_ch, nav):
-        cmd = actuators_t()
-        cmd.utime, cmd.vehicle, cmd.seq = nav.utime, "AUV1", seq[0]
-        seq[0] += 1
-        cmd.rudder_rad = ap.rudder(0.0, nav.heading_rad, nav.r_radps)
-        cmd.stern_plane_rad = ap.stern_for_depth(8.0, nav.depth_m, nav.pitch_rad, nav.q_radps)
-        cmd.prop_rpm = 1500.0
-        lc.publish("AUV1.ACTUATORS", cmd.encode())
-    rec.rx.subscribe("AUV1.NAV", nav_solution_t, on_nav, queue_capacity=1000)
-    proc = start_sim(tmp_path, child_env, lcm_url, warp=10.0)
+    pilot = LockstepPilot(lc, "AUV1", depth_m=8.0)
+    proc = start_sim(tmp_path, child_env, lcm_url, clock="stepped", ins_rate=25)
     try:
-        ok = pump(lc, lambda: rec.msgs["AUV1.TRUTH"] and rec.msgs["AUV1.TRUTH"][-1].utime > 80e6,
-                  timeout=60)
-        assert ok, "the simulator did not reach 80 s of sim time"
+        pilot.fly(60.0)
     finally:
         assert stop(proc) == 0
     out = proc.stdout.read()
-    assert "stopped" in out
-    late = [m for m in rec.msgs["AUV1.TRUTH"] if m.utime > 60e6]
-    # heading held at 0 against the prop torque's roll coupling (the default
-    # REMUS 100 is open-loop unstable in yaw: without the loop it departs)
+    assert "stopped" in out and "no actuator command" not in out
+    late = [m for m in rec.msgs["AUV1.TRUTH"] if m.utime > 40e6]
+    # heading held at 0 against the prop torque's roll coupling
     heading_err = [abs((m.eta[5] + math.pi) % (2 * math.pi) - math.pi) for m in late]
     assert max(heading_err) < math.radians(5), max(heading_err)
     assert all(abs(m.eta[2] - 8.0) < 1.0 for m in late)
-    assert late[-1].eta[0] > 80.0                       # went north
+    assert late[-1].eta[0] > 60.0                       # went north
     assert not rec.msgs["AUV1.ACTUATOR_STATE"][-1].command_stale
-    clocks = rec.msgs["SIM.CLOCK"]
-    assert clocks and clocks[-1].mode == sim_clock_t.MODE_SCALED and clocks[-1].warp == 10.0
-    assert all(b.utime > a.utime for a, b in zip(clocks, clocks[1:]))
 
 
 def test_stale_commands_go_to_the_safe_command_and_are_reported(tmp_path, child_env, lcm_url):
@@ -177,10 +160,34 @@ def test_bad_messages_are_counted_dropped_and_reported(tmp_path, child_env, lcm_
                     timeout=10)
         n = len(rec.msgs["AUV1.TRUTH"])
         assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) > n + 5, timeout=5)  # still running
+        assert pump(lc, lambda: len(rec.msgs["AUV1.HEALTH"]) >= 3, timeout=10)
     finally:
         assert stop(proc) == 0
     h = rec.msgs["AUV1.HEALTH"][-1]
     assert h.process == "sim" and h.vehicle == "AUV1" and h.pid == proc.pid
+    # paced by sim time, like every other output: one per health_period_s (1 s)
+    times = [m.utime for m in rec.msgs["AUV1.HEALTH"]]
+    assert len(times) >= 3 and all(b - a == 1_000_000 for a, b in zip(times, times[1:]))
+
+
+def test_gaps_in_the_command_sequence_are_counted_as_overflows(tmp_path, child_env, lcm_url):
+    """queue_overflows counts the commands we never saw (seq gaps), not a constant 0."""
+    lc = lcm.LCM(lcm_url)
+    rec = Recorder(lc)
+    rec.sub("AUV1.HEALTH", process_health_t)
+    proc = start_sim(tmp_path, child_env, lcm_url, warp=5.0)
+    try:
+        cmd = actuators_t()
+        cmd.vehicle, cmd.prop_rpm = "AUV1", 1000.0
+        for seq in (1, 2, 5, 6, 10, 3):   # 3+3 missing; 3 after 10 is a pilot restart
+            cmd.seq = seq
+            lc.publish("AUV1.ACTUATORS", cmd.encode())
+            time.sleep(0.02)
+        assert pump(lc, lambda: any(h.queue_overflows == 5 and h.messages_received >= 6
+                                    for h in rec.msgs["AUV1.HEALTH"]), timeout=10)
+    finally:
+        assert stop(proc) == 0
+    assert max(h.queue_overflows for h in rec.msgs["AUV1.HEALTH"]) == 5
 
 
 def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
@@ -198,3 +205,36 @@ def test_non_local_url_is_refused(tmp_path, child_env):
     res = subprocess.run([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2 and "ttl=5" in res.stderr
+
+
+@pytest.mark.parametrize("channel", ["NAV_INS", "off"])
+def test_ins_output_channel_moves_or_goes_off(tmp_path, child_env, lcm_url, channel):
+    """sensors.ins.channel: the onboard filter can own <V>.NAV; the black-box INS
+    publishes beside it (or nothing), and the other sensors are unchanged."""
+    lc = lcm.LCM(lcm_url)
+    rec = Recorder(lc)
+    for ch in ("AUV1.NAV", "AUV1.NAV_INS"):
+        rec.sub(ch, nav_solution_t)
+    rec.sub("AUV1.TRUTH", ground_truth_t)
+    rec.sub("SIM.CLOCK", sim_clock_t)
+    cfg = tmp_path / "sim.yaml"
+    cfg.write_text(CONFIG.format(clock="scaled", warp=10.0, timeout=1.0, on_stale="hold",
+                                 url=lcm_url, ins_rate=20).replace("ins: {rate_hz: 20, bias: 0.0}",
+                                                      f"ins: {{rate_hz: 20, channel: {channel}}}"))
+    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                            env=child_env)
+    try:
+        wait_for_line(proc, "running", timeout=20)
+        assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) >= 30, timeout=20)   # 3 sim s
+    finally:
+        assert stop(proc) == 0
+    assert rec.msgs["AUV1.NAV"] == []
+    clocks = rec.msgs["SIM.CLOCK"]            # it runs the world alone: it is the clock
+    assert clocks and clocks[-1].mode == sim_clock_t.MODE_SCALED and clocks[-1].warp == 10.0
+    assert all(b.utime > a.utime for a, b in zip(clocks, clocks[1:]))
+    moved = rec.msgs["AUV1.NAV_INS"]
+    if channel == "off":
+        assert moved == []
+    else:
+        assert len(moved) >= 50 and all(m.source == nav_solution_t.SOURCE_SIM_INS for m in moved)

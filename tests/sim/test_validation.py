@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import math
 
 import pytest
 
 from sim import validation as v
+from sim.config import load
+from sim.steady_turn import equilibria, linear_turn, steady_turn
 from sim.vehicle import REMUS100
 
 
@@ -22,11 +23,33 @@ def test_steady_speed_scales_with_rpm():
     assert ratio == pytest.approx(0.8, abs=0.01)
 
 
-def test_turning_circle_full_rudder_is_a_consistent_starboard_circle():
-    tc = v.turning_circle()
-    assert tc["yaw_rate_radps"] > 0
+@pytest.mark.parametrize("coefficients", ["table", "alt_damping"])
+def test_turning_circle_full_rudder_matches_the_steady_turn_balance(coefficients):
+    """Both coefficient sets: the 6-DOF circle at full starboard rudder against the
+    stable root of the 3-DOF steady-turn equations (no published circle exists)."""
+    vp = REMUS100 if coefficients == "table" else load(v.ALT_DAMPING).vehicle
+    tc = v.turning_circle(vp)
+    est = steady_turn(vp)
+    assert tc["yaw_rate_radps"] > 0 and est["yaw_rate_radps"] > 0       # to starboard
+    assert tc["diameter_m"] == pytest.approx(est["diameter_m"], rel=v.TURN_TOLERANCE)
+    assert tc["speed_mps"] == pytest.approx(est["speed_mps"], rel=0.2)
     assert tc["diameter_m"] == pytest.approx(tc["kinematic_diameter_m"], rel=0.05)
-    assert 0.5 * REMUS100.length_m < tc["diameter_m"] < 30 * REMUS100.length_m
+
+
+def test_steady_turn_estimate_is_the_only_stable_root_and_linear_theory_fails():
+    assert sum(r["stable"] for r in equilibria(REMUS100, REMUS100.fin_max_rad)) == 1
+    # rudder amidships: the straight run is an unstable equilibrium, and two
+    # mirror-image spins are stable: the table hull's departure, algebraically
+    straight = [r for r in equilibria(REMUS100, 0.0) if abs(r["yaw_rate_radps"]) < 1e-9]
+    spins = [r for r in equilibria(REMUS100, 0.0) if r["stable"]]
+    assert len(straight) == 1 and not straight[0]["stable"]
+    assert len(spins) == 2 and spins[0]["yaw_rate_radps"] == pytest.approx(
+        -spins[1]["yaw_rate_radps"], rel=1e-6)
+    lin = linear_turn(REMUS100)
+    assert lin["index"] < 0 and not lin["turns_to_starboard"]
+    # the two sets differ only in cross-flow drag: the stiffer set turns wider, faster
+    alt = steady_turn(load(v.ALT_DAMPING).vehicle)
+    assert alt["diameter_m"] > 3 * steady_turn(REMUS100)["diameter_m"]
 
 
 def test_steady_dive_matches_its_kinematics():
@@ -51,5 +74,6 @@ def test_linearised_model_matches_coefficient_theory():
 def test_report_command_prints_every_case(capsys):
     assert v.main([]) == 0
     out = capsys.readouterr().out
-    for name in ("steady speed", "turning circle", "steady dive", "buoyant ascent"):
+    for name in ("steady speed", "turning circle", "steady dive", "buoyant ascent",
+                 "(alt. damping)", "3-DOF balance"):
         assert name in out

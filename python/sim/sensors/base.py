@@ -1,20 +1,19 @@
 """What every sensor shares: a rate, noise, bias, dropouts and its own RNG.
 
-Each sensor draws from its own random.Random seeded with the scenario seed
-and the sensor's name, so adding or removing one sensor does not change the
-noise of another, and the same seed gives the same measurements.
-(random.Random is used rather than numpy because one scalar draw costs a
-fraction of a microsecond, against about a microsecond through numpy.)
+Each sensor draws from its own stream (sim.noise.Noise) seeded with the
+scenario seed and the sensor's name, so adding or removing one sensor does
+not change the noise of another, and the same seed gives the same
+measurements.
 """
 
 from __future__ import annotations
 
 import math
-import random
 from dataclasses import dataclass
 from typing import Any
 
 from sim.model import Truth
+from sim.noise import Noise
 
 TWO_PI = 2.0 * math.pi
 
@@ -36,7 +35,8 @@ class Sensor:
     def __init__(self, cfg: SensorConfig, seed: int, vehicle: str) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
-        self.rng = random.Random(f"{seed}:{self.name}")
+        self.rng = Noise(f"{seed}:{self.name}")
+        self.gauss = self.rng.gauss     # gauss(sigma): N(0, sigma^2), 0 if sigma <= 0
         self.period = 1.0 / cfg.rate_hz
         self.next_t = cfg.phase_s
         self.samples = 0
@@ -44,6 +44,10 @@ class Sensor:
 
     def due(self, t: float) -> bool:
         return self.cfg.enabled and t >= self.next_t - 1e-9
+
+    def next_due(self) -> float:
+        """Sim time of the next poll() that can return something."""
+        return self.next_t if self.cfg.enabled else math.inf
 
     def poll(self, truth: Truth) -> Any | None:
         """A message if one is due at truth.t (and not dropped), else None."""
@@ -57,9 +61,6 @@ class Sensor:
             self.dropped += 1
             return self.dropout_message(truth)
         return self.measure(truth)
-
-    def gauss(self, sigma: float) -> float:
-        return self.rng.gauss(0.0, sigma) if sigma > 0.0 else 0.0
 
     def measure(self, truth: Truth) -> Any | None:  # pragma: no cover - abstract
         raise NotImplementedError

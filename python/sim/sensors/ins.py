@@ -1,7 +1,8 @@
 """A black-box INS: ground truth plus the errors a real aided INS makes.
 
 For vehicles whose navigation is a sealed unit, the simulator publishes its
-output on <VEHICLE>.NAV (nav_solution_t, SOURCE_SIM_INS). The position error
+output on <VEHICLE>.NAV (nav_solution_t, SOURCE_SIM_INS), or on the channel
+`sensors.ins.channel` names (e.g. NAV_INS beside an onboard filter on NAV). The position error
 grows like dead reckoning does: a heading error (constant bias plus a random
 walk) turns along-track speed into cross-track drift, a velocity scale error
 stretches along-track distance, and a position random walk covers the rest.
@@ -34,6 +35,9 @@ class InsConfig(SensorConfig):
     gps_sigma_m: float = 2.0              # position error after a surface fix
     surface_depth_m: float = 0.2
     dvl_max_altitude_m: float = 30.0      # bottom-lock aiding (status bits only)
+    # <VEHICLE>.<channel> it publishes on; "off" publishes nothing (the onboard
+    # filter then owns <VEHICLE>.NAV: one writer per channel)
+    channel: str = "NAV"
 
 
 class Ins(Sensor):
@@ -43,6 +47,7 @@ class Ins(Sensor):
 
     def __init__(self, cfg, seed, vehicle, frame) -> None:
         super().__init__(cfg, seed, vehicle)
+        self.topic = cfg.channel
         self.frame = frame
         self.err_n = 0.0
         self.err_e = 0.0

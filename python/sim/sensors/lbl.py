@@ -52,6 +52,10 @@ class Lbl(Sensor):
             self.pending.append(msg)
         return out
 
+    def next_due(self) -> float:
+        due = super().next_due()
+        return min(due, self.pending[0][0]) if self.pending else due
+
     def measure(self, tr: Truth):
         c = self.cfg
         env = self.env

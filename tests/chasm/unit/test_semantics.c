@@ -112,6 +112,24 @@ static void completion_bubbles_up(void)
     chasm_free(m);
 }
 
+/* A child's own `when done` handles its completion: it does not bubble up and
+ * end the parent (the survey-leg pattern `state line3 { ... when done -> line4 }`). */
+static void child_when_done_stays(void)
+{
+    chasm_machine *m = load_plan("use test_basic\nvar c : int\nvar d : int\n"
+                                 "state survey {\n"
+                                 " state line1 {\n  do count_to(n = 2, count = c)\n  when done -> line2\n }\n"
+                                 " state line2 {\n  do count_to(n = 2, count = d)\n }\n}\n");
+    if (!m) return;
+    chasm_start(m, 0);
+    run_until(m, 0.1, 0.2);
+    CHECK_STR(leaf(m), "survey/line2");
+    CHECK(chasm_run_state_of(m) == CHASM_RUN_RUNNING);
+    /* line2 has no `when done`: its completion bubbles up and ends the mission */
+    CHECK(run_until(m, 0.3, 0.4) == CHASM_RUN_DONE);
+    chasm_free(m);
+}
+
 /* A `when done` in the parent pre-empts the parent's `next`. */
 static void done_condition(void)
 {
@@ -251,6 +269,15 @@ static void failure_caught_and_uncaught(void)
     if (!m) return;
     chasm_start(m, 0);
     CHECK(run_until(m, 0.1, 1) == CHASM_RUN_FAILED);
+    chasm_free(m);
+    /* Caught inside its parent: the parent stays active and must not keep the
+     * failure (it used to, and the mission failed a cycle later). */
+    m = load_plan("use test_basic\nstate a {\n state b {\n  do fail_after(n = 1)\n  when failed -> c\n }\n"
+                  " state c {\n }\n}\n");
+    if (!m) return;
+    chasm_start(m, 0);
+    CHECK(run_until(m, 0.1, 1) == CHASM_RUN_RUNNING);
+    CHECK_STR(leaf(m), "a/c");
     chasm_free(m);
 }
 
@@ -465,6 +492,7 @@ const unit_test semantics_tests[] = {
     {"default_child_and_next", default_child_and_next},
     {"completion_bubbles_up", completion_bubbles_up},
     {"done_condition", done_condition},
+    {"child_when_done_stays", child_when_done_stays},
     {"history_none", history_none},
     {"history_shallow", history_shallow},
     {"history_deep", history_deep},

@@ -1,0 +1,86 @@
+/* yoyo: a vertical saw-tooth between two depths (or two altitudes) for
+ * profiling sensors. The depth (altitude) setpoint ramps between the limits at
+ * U sin(pitch), U the measured surge speed, so the vehicle climbs and dives
+ * at the given flight-path angle while the pilot's own depth (altitude) loop
+ * keeps it on the ramp; the setpoint never leaves the band. Over the last
+ * min(2 m, band / 4) before a limit the ramp slows down (to a tenth), so the
+ * vehicle arrives with little vertical speed instead of overshooting; at the
+ * limit the setpoint waits until the vehicle is within min(0.5 m, band / 5)
+ * of it, then ramps back: every profile spans the whole band. Never done. */
+#include <math.h>
+
+#include "gd_behaviors.h"
+#include "gd_slots.h"
+
+#define BAND(name, lo, hi, doc) {name, CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, lo, hi, doc}
+#define MIN_RAMP_SPEED 0.3 /* m/s: keeps the ramp moving while the vehicle is slow or stopped */
+#define EASE_M 2.0          /* the ramp slows down over this distance before a limit ... */
+#define MIN_EASE 0.1        /* ... to this fraction of its rate */
+
+const chasm_param_spec gd_yoyo_params[] = {
+    BAND("min_depth", 0, 6000, "shallow limit (depth form)"),
+    BAND("max_depth", 0, 6000, "deep limit (depth form)"),
+    BAND("min_altitude", 0.5, 1000, "low limit above the seabed (altitude form)"),
+    BAND("max_altitude", 0.5, 1000, "high limit above the seabed (altitude form)"),
+    {"pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 2 * M_PI / 180, 45 * M_PI / 180,
+     "flight-path angle of the climbs and dives"},
+    GD_IN_DEPTH, GD_IN_ALTITUDE, GD_IN_SPEED, GD_OUT_VERTICAL_MODE, GD_OUT_DEPTH, GD_OUT_ALTITUDE,
+};
+_Static_assert(CHASM_COUNT(gd_yoyo_params) == YOYO_NPARAMS, "yoyo schema and slots disagree");
+
+/* The band coordinate of the vehicle: depth, or altitude (< 0: unknown). */
+static double measured(const chasm_ctx *c, const gd_yoyo_state *s)
+{
+    return chasm_read_double(c, s->altitude_mode ? YOYO_IN_ALTITUDE : YOYO_IN_DEPTH);
+}
+
+static void write(chasm_ctx *c, const gd_yoyo_state *s)
+{
+    chasm_write_int(c, YOYO_OUT_VERTICAL_MODE, s->altitude_mode ? GD_VERTICAL_ALTITUDE : GD_VERTICAL_DEPTH);
+    chasm_write_double(c, s->altitude_mode ? YOYO_OUT_ALTITUDE : YOYO_OUT_DEPTH, s->target);
+}
+
+int gd_yoyo_start(chasm_ctx *c, void *state)
+{
+    gd_yoyo_state *s = state;
+    int depths = GD_GIVEN(c, YOYO_MIN_DEPTH) + GD_GIVEN(c, YOYO_MAX_DEPTH);
+    int alts = GD_GIVEN(c, YOYO_MIN_ALTITUDE) + GD_GIVEN(c, YOYO_MAX_ALTITUDE);
+    if (!((depths == 2 && alts == 0) || (depths == 0 && alts == 2)))
+        return gd_refuse(c, "yoyo", "give min_depth and max_depth, or min_altitude and max_altitude");
+    s->altitude_mode = alts == 2;
+    int lo = s->altitude_mode ? YOYO_MIN_ALTITUDE : YOYO_MIN_DEPTH;
+    s->lo = chasm_param_double(c, lo);
+    s->hi = chasm_param_double(c, lo + 1);
+    if (!(s->lo < s->hi))
+        return gd_refuse(c, "yoyo", "the band is empty: the minimum %g m is not below the maximum %g m", s->lo,
+                         s->hi);
+    double z = measured(c, s);
+    if (s->altitude_mode && z < 0.0)
+        z = s->hi; /* altitude unknown (too high for the altimeter): start from the top */
+    s->target = fmin(s->hi, fmax(s->lo, z));
+    /* head for the farther limit first */
+    int to_hi = z < 0.5 * (s->lo + s->hi);
+    s->down = s->altitude_mode ? !to_hi : to_hi;
+    write(c, s);
+    return 0;
+}
+
+chasm_status_code gd_yoyo_step(chasm_ctx *c, void *state)
+{
+    gd_yoyo_state *s = state;
+    /* in band coordinates, "up the band" is deeper in depth form, higher in altitude form */
+    int up_band = s->altitude_mode ? !s->down : s->down;
+    double limit = up_band ? s->hi : s->lo;
+    double rate = fmax(MIN_RAMP_SPEED, chasm_read_double(c, YOYO_IN_SPEED)) * sin(chasm_param_double(c, YOYO_PITCH));
+    /* slow down over the last `ease` metres: the vehicle arrives at the limit
+     * with little vertical speed instead of overshooting it */
+    double ease = fmin(EASE_M, 0.25 * (s->hi - s->lo));
+    double step = rate * fmax(MIN_EASE, fmin(1.0, fabs(limit - s->target) / ease)) * c->dt_s;
+    s->target = up_band ? fmin(limit, s->target + step) : fmax(limit, s->target - step);
+    double z = measured(c, s);
+    double tol = fmin(0.5, 0.2 * (s->hi - s->lo));
+    if (s->target == limit && fabs(z - limit) <= tol && !(s->altitude_mode && z < 0.0))
+        s->down = !s->down;
+    write(c, s);
+    return CHASM_RUNNING;
+}

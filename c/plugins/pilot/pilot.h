@@ -1,0 +1,105 @@
+/* The pilot plugin: PID behaviors that turn navigator setpoints into fin and
+ * propeller commands (docs/behaviors.md, "Pilot").
+ *
+ * Sign conventions are those of auv.actuators_t: positive rudder turns the
+ * bow to starboard; positive stern plane pitches the bow down. Pitch is
+ * positive bow up, depth positive down, headings [0, 2pi) clockwise from
+ * north. All values are SI (the plan loader converts).
+ *
+ * The vertical behaviors share two loops, whose parameters sit in each
+ * schema as one contiguous block (the *_PARAMS macros below) at an offset the
+ * behavior passes in:
+ *   depth loop:  depth error -> pitch command (PID, limited, slew-limited)
+ *   pitch loop:  pitch error -> stern plane (PID with pitch-rate damping)
+ */
+#ifndef PILOT_H
+#define PILOT_H
+
+#include "chasm/chasm_plugin.h"
+#include "plugins/lib/pu_limit.h"
+#include "plugins/lib/pu_pid.h"
+
+/* Everything the plugin's files share stays inside the plugin: only the
+ * descriptor (CHASM_PLUGIN_EXPORT) is visible to the loader. */
+#pragma GCC visibility push(hidden)
+
+#define PILOT_DEG (3.14159265358979323846 / 180.0)
+
+/* ---- pitch loop: pitch command -> stern plane */
+enum { PL_KP, PL_KI, PL_KD, PL_MAX_PLANE, PL_PLANE_SLEW, PL_I_LIMIT, PL_COUNT };
+#define PILOT_PITCH_LOOP_PARAMS                                                                                  \
+    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1.5, NULL, 1, 0, 50,                                          \
+     "stern plane per pitch error [rad/rad]"},                                                                  \
+    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.6, NULL, 1, 0, 20,                                         \
+     "stern plane per integrated pitch error [rad/(rad s)]"},                                                   \
+    {"pitch_kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 5.0, NULL, 1, 0, 50,                                         \
+     "stern plane per pitch rate: the damping [rad/(rad/s)]"},                                                  \
+    {"max_plane", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 20 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
+     "stern plane limit"},                                                                                      \
+    {"plane_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 30 * PILOT_DEG, NULL, 1, 0, 1000 * PILOT_DEG,         \
+     "stern plane slew limit (0: none)"},                                                                       \
+    {"plane_i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 10 * PILOT_DEG, NULL, 1, 0, 60 * PILOT_DEG,          \
+     "largest stern plane the pitch integrator may hold (trim)"}
+
+typedef struct {
+    pu_pid pid;
+} pilot_pitch_loop;
+
+/* Reads the pitch-loop block starting at slot base. */
+void pilot_pitch_config(const chasm_ctx *c, int base, pu_pid_config *out);
+/* Starts the loop so its first command continues from the current plane. */
+void pilot_pitch_start(pilot_pitch_loop *l, double current_plane);
+/* Stern plane for pitch_cmd given pitch and pitch rate q. */
+double pilot_pitch_step(pilot_pitch_loop *l, const pu_pid_config *cfg, double pitch_cmd, double pitch, double q,
+                        double dt);
+
+/* ---- depth loop: depth target -> pitch command (then the pitch loop) */
+enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_TAU, DL_COUNT };
+#define PILOT_DEPTH_LOOP_PARAMS                                                                                  \
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.25, NULL, 1, 0, 10, "pitch per metre of depth error [rad/m]"},    \
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.02, NULL, 1, 0, 5,                                               \
+     "pitch per integrated depth error [rad/(m s)]"},                                                          \
+    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.0, NULL, 1, 0, 20, "pitch per depth rate [rad/(m/s)]"},            \
+    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 15 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
+     "pitch command limit"},                                                                                    \
+    {"pitch_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 5 * PILOT_DEG, NULL, 1, 0, 1000 * PILOT_DEG,          \
+     "pitch command slew limit (0: none)"},                                                                     \
+    {"max_depth", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 100, NULL, 1, 0, 11000,                                    \
+     "depth targets are clamped to [0, max_depth]"},                                                            \
+    {"depth_rate_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 0, 1.0, NULL, 1, 0, 60,                                  \
+     "low-pass time constant of the depth rate used by kd"}
+
+typedef struct {
+    pu_pid pid;
+    pu_lowpass rate;            /* depth rate, differenced and filtered */
+    double last_depth;
+    int has_last_depth;
+    pilot_pitch_loop pitch;
+} pilot_depth_loop;
+
+typedef struct {
+    pu_pid_config depth, pitch;
+    double max_depth, rate_tau;
+} pilot_depth_config;
+
+void pilot_depth_config_read(const chasm_ctx *c, int depth_base, int pitch_base, pilot_depth_config *out);
+/* pitch0/plane0: the vehicle's pitch and the current plane command, so the
+ * loops take over without a jump. */
+void pilot_depth_start(pilot_depth_loop *l, double pitch0, double plane0);
+/* Stern plane that brings depth to target. */
+double pilot_depth_step(pilot_depth_loop *l, const pilot_depth_config *cfg, double target, double depth,
+                        double pitch, double q, double dt);
+
+/* ---- behaviors (one file each family) */
+extern const chasm_behavior_spec pilot_heading_behavior;
+extern const chasm_behavior_spec pilot_depth_behavior;
+extern const chasm_behavior_spec pilot_altitude_behavior;
+extern const chasm_behavior_spec pilot_pitch_behavior;
+extern const chasm_behavior_spec pilot_speed_behavior;
+extern const chasm_behavior_spec pilot_rpm_behavior;
+
+/* Fails a behavior's start with a message in the manager's log. */
+int pilot_reject(chasm_ctx *c, const char *behavior, const char *reason);
+
+#pragma GCC visibility pop
+#endif

@@ -1,0 +1,82 @@
+/* heading_control: heading -> rudder, with yaw-rate damping.
+ *
+ *   e      = wrap(setpoint - heading)                  (the short way round)
+ *   rudder = kd (clamp(kp/kd e, +-max_turn_rate) - r) + I
+ *
+ * which is kp e - kd r (a PD on heading with gyro damping) while the heading
+ * error is small, and a yaw-rate controller holding max_turn_rate during a
+ * large turn. Why both: the REMUS 100 table model is open-loop unstable in
+ * yaw (docs/simulator.md); the kd r term is what stabilises it, and limiting
+ * the turn rate keeps the sideslip small enough that the rudder never runs
+ * out of authority against the Munk moment. The integrator (trim: the hull
+ * needs about 1 degree of rudder to run straight) only runs within i_zone of
+ * the heading, so a long turn does not load it. */
+#include <math.h>
+
+#include "plugins/lib/pu_angle.h"
+#include "plugins/pilot/pilot.h"
+
+enum { HEADING, YAW_RATE, SETPOINT, RUDDER, KP, KI, KD, MAX_TURN_RATE, MAX_RUDDER, RUDDER_SLEW, I_LIMIT, I_ZONE };
+
+static const chasm_param_spec params[] = {
+    {"heading", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, "nav.heading_rad", 0, 0, 0, "vehicle heading"},
+    {"yaw_rate", CHASM_READS, CHASM_DOUBLE, "rad/s", 0, 0, "nav.r_radps", 0, 0, 0, "body yaw rate r"},
+    {"setpoint", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, "setpoint.heading_rad", 0, 0, 0, "desired heading"},
+    {"rudder", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "actuators.rudder_rad", 0, 0, 0, "rudder command"},
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 2.0, NULL, 1, 0, 20, "rudder per heading error [rad/rad]"},
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.1, NULL, 1, 0, 5, "rudder per integrated heading error [rad/(rad s)]"},
+    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 4.0, NULL, 1, 0.01, 50,
+     "rudder per yaw rate: the yaw damping [rad/(rad/s)]"},
+    {"max_turn_rate", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 6 * PILOT_DEG, NULL, 1, 0.1 * PILOT_DEG,
+     90 * PILOT_DEG, "largest turn rate a heading error asks for"},
+    {"max_rudder", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 20 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG,
+     "rudder limit"},
+    {"rudder_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 30 * PILOT_DEG, NULL, 1, 0, 1000 * PILOT_DEG,
+     "rudder slew limit (0: none)"},
+    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 5 * PILOT_DEG, NULL, 1, 0, 60 * PILOT_DEG,
+     "largest rudder the integrator may hold"},
+    {"i_zone", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 10 * PILOT_DEG, NULL, 1, 0, 180 * PILOT_DEG,
+     "integrate only within this heading error (0: always)"},
+};
+
+typedef struct {
+    pu_pid pid;
+} heading_state;
+
+static int start(chasm_ctx *c, void *st)
+{
+    heading_state *s = st;
+    pu_pid_reset(&s->pid);
+    pu_pid_preset_output(&s->pid, chasm_read_double(c, RUDDER));
+    return 0;
+}
+
+static chasm_status_code step(chasm_ctx *c, void *st)
+{
+    heading_state *s = st;
+    double kp = chasm_param_double(c, KP), kd = chasm_param_double(c, KD);
+    double max_rudder = chasm_param_double(c, MAX_RUDDER);
+    pu_pid_config cfg = {
+        .kp = kp,
+        .ki = chasm_param_double(c, KI),
+        .kd = kd,
+        .out_min = -max_rudder,
+        .out_max = max_rudder,
+        .rate_max = chasm_param_double(c, RUDDER_SLEW),
+        .i_limit = chasm_param_double(c, I_LIMIT),
+        .i_zone = chasm_param_double(c, I_ZONE),
+    };
+    double e = pu_angle_diff(chasm_read_double(c, SETPOINT), chasm_read_double(c, HEADING));
+    /* Limit the error the P term sees so kp e never asks for more than
+     * max_turn_rate: kp e_lim = kd max_turn_rate. */
+    double e_lim = kp > 0.0 ? pu_clamp_sym(e, kd * chasm_param_double(c, MAX_TURN_RATE) / kp) : e;
+    if (e_lim != e)
+        cfg.ki = 0.0; /* outside the linear region: never integrate (see i_zone) */
+    double r = chasm_read_double(c, YAW_RATE);
+    chasm_write_double(c, RUDDER, pu_pid_step(&s->pid, &cfg, e_lim, isfinite(r) ? -r : NAN, 0.0, c->dt_s));
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_heading_behavior = {
+    "heading_control", "hold setpoint heading with the rudder (PD with yaw-rate damping, turn-rate limit)",
+    params, CHASM_COUNT(params), sizeof(heading_state), start, step, NULL};

@@ -1,0 +1,114 @@
+/* The propeller behaviors: speed_control (closed loop on speed, setpoint_t
+ * SPEED_MPS) and rpm_control (open loop, SPEED_RPM).
+ *
+ *   rpm = rpm_per_mps * setpoint + kp e + I,     e = setpoint - speed
+ *
+ * The feed-forward term gives nearly the right rpm at once (REMUS 100: about
+ * 1000 rpm per m/s); the PI removes what is left (trim drag, a current). rpm
+ * values are plain numbers in rev/min, as in actuators_t.prop_rpm. */
+#include <stdio.h>
+
+#include "plugins/pilot/pilot.h"
+
+#define RPM_LIMIT_PARAMS                                                                                   \
+    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
+    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 2000, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
+    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 0, 500, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
+#define PROP_OUT {"prop", CHASM_WRITES, CHASM_DOUBLE, "", 0, 0, "actuators.prop_rpm", 0, 0, 0, "prop command [rpm]"}
+
+typedef struct {
+    pu_pid pid;
+} prop_state;
+
+/* min_rpm <= max_rpm is a relation between two parameters, which the loader
+ * cannot check: the behavior fails at start, with the reason in the log. */
+static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const char *name)
+{
+    prop_state *s = st;
+    double lo = chasm_param_double(c, min_slot), hi = chasm_param_double(c, min_slot + 1);
+    if (lo > hi) {
+        char why[96];
+        snprintf(why, sizeof why, "min_rpm (%g) is above max_rpm (%g)", lo, hi);
+        return pilot_reject(c, name, why);
+    }
+    pu_pid_reset(&s->pid);
+    pu_pid_preset_output(&s->pid, chasm_read_double(c, prop_slot));
+    return 0;
+}
+
+/* ------------------------------------------------------------ speed_control */
+
+enum { S_SPEED, S_SETPOINT, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW };
+
+static const chasm_param_spec speed_params[] = {
+    {"speed", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "nav.u_mps", 0, 0, 0, "measured surge speed"},
+    {"setpoint", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "setpoint.speed_mps", 0, 0, 0, "desired speed"},
+    PROP_OUT,
+    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000,
+     "feed-forward: prop rpm per m/s of setpoint"},
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 60, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
+    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 0, 300, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
+    RPM_LIMIT_PARAMS,
+};
+
+static int speed_start(chasm_ctx *c, void *st) { return prop_start(c, st, S_MIN_RPM, S_PROP, "speed_control"); }
+
+static chasm_status_code speed_step(chasm_ctx *c, void *st)
+{
+    prop_state *s = st;
+    double sp = chasm_read_double(c, S_SETPOINT);
+    pu_pid_config cfg = {
+        .kp = chasm_param_double(c, S_KP),
+        .ki = chasm_param_double(c, S_KI),
+        .out_min = chasm_param_double(c, S_MIN_RPM),
+        .out_max = chasm_param_double(c, S_MAX_RPM),
+        .rate_max = chasm_param_double(c, S_RPM_SLEW),
+        .i_limit = chasm_param_double(c, S_I_LIMIT),
+    };
+    double rpm;
+    if (!(sp > 0.0)) {
+        /* stop means stop: no PI fighting a drifting vehicle, no stored integral */
+        s->pid.integral = 0.0;
+        cfg.kp = cfg.ki = 0.0;
+        rpm = pu_pid_step(&s->pid, &cfg, 0.0, 0.0, 0.0, c->dt_s);
+    } else {
+        double e = sp - chasm_read_double(c, S_SPEED);
+        rpm = pu_pid_step(&s->pid, &cfg, e, 0.0, chasm_param_double(c, S_FF) * sp, c->dt_s);
+    }
+    chasm_write_double(c, S_PROP, rpm);
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_speed_behavior = {
+    "speed_control", "hold setpoint speed with the prop (feed-forward + PI)",
+    speed_params, CHASM_COUNT(speed_params), sizeof(prop_state), speed_start, speed_step, NULL};
+
+/* -------------------------------------------------------------- rpm_control */
+
+enum { R_SETPOINT, R_PROP, R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW };
+
+static const chasm_param_spec rpm_params[] = {
+    {"setpoint", CHASM_READS, CHASM_DOUBLE, "", 0, 0, "setpoint.prop_rpm", 0, 0, 0, "desired prop rpm"},
+    PROP_OUT,
+    RPM_LIMIT_PARAMS,
+};
+
+static int rpm_start(chasm_ctx *c, void *st) { return prop_start(c, st, R_MIN_RPM, R_PROP, "rpm_control"); }
+
+static chasm_status_code rpm_step(chasm_ctx *c, void *st)
+{
+    prop_state *s = st;
+    pu_pid_config cfg = {
+        .out_min = chasm_param_double(c, R_MIN_RPM),
+        .out_max = chasm_param_double(c, R_MAX_RPM),
+        .rate_max = chasm_param_double(c, R_RPM_SLEW),
+    };
+    /* a pure feed-forward PID: limits and slew only */
+    chasm_write_double(c, R_PROP, pu_pid_step(&s->pid, &cfg, 0.0, 0.0, chasm_read_double(c, R_SETPOINT), c->dt_s));
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_rpm_behavior = {
+    "rpm_control", "drive the prop at setpoint rpm (open loop, limited and slew-limited)",
+    rpm_params, CHASM_COUNT(rpm_params), sizeof(prop_state), rpm_start, rpm_step, NULL};

@@ -1,0 +1,164 @@
+/* The vertical behaviors: depth_control, altitude_control and pitch_control,
+ * all driving the stern plane through the shared loops of pilot_loops.c. */
+#include <math.h>
+
+#include "plugins/pilot/pilot.h"
+
+#define READ(name, unit, var, doc) {name, CHASM_READS, CHASM_DOUBLE, unit, 0, 0, var, 0, 0, 0, doc}
+#define PLANE_OUT {"stern_plane", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "actuators.stern_plane_rad", 0, 0, 0, \
+                   "stern plane command"}
+
+/* ------------------------------------------------------------ depth_control */
+
+enum { D_DEPTH, D_PITCH, D_Q, D_SETPOINT, D_PLANE, D_LOOP, D_PITCH_LOOP = D_LOOP + DL_COUNT };
+
+static const chasm_param_spec depth_params[] = {
+    READ("depth", "m", "nav.depth_m", "vehicle depth"),
+    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
+    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
+    READ("setpoint", "m", "setpoint.depth_m", "desired depth"),
+    PLANE_OUT,
+    PILOT_DEPTH_LOOP_PARAMS,
+    PILOT_PITCH_LOOP_PARAMS,
+};
+
+typedef struct {
+    pilot_depth_loop loop;
+} depth_state;
+
+static int depth_start(chasm_ctx *c, void *st)
+{
+    depth_state *s = st;
+    pilot_depth_start(&s->loop, chasm_read_double(c, D_PITCH), chasm_read_double(c, D_PLANE));
+    return 0;
+}
+
+static chasm_status_code depth_step(chasm_ctx *c, void *st)
+{
+    depth_state *s = st;
+    pilot_depth_config cfg;
+    pilot_depth_config_read(c, D_LOOP, D_PITCH_LOOP, &cfg);
+    double plane = pilot_depth_step(&s->loop, &cfg, chasm_read_double(c, D_SETPOINT), chasm_read_double(c, D_DEPTH),
+                                    chasm_read_double(c, D_PITCH), chasm_read_double(c, D_Q), c->dt_s);
+    chasm_write_double(c, D_PLANE, plane);
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_depth_behavior = {
+    "depth_control", "hold setpoint depth: depth error -> pitch command -> stern plane (cascade)",
+    depth_params, CHASM_COUNT(depth_params), sizeof(depth_state), depth_start, depth_step, NULL};
+
+/* --------------------------------------------------------- altitude_control
+ *
+ * Terrain following through the depth loop: the depth target is where the
+ * vehicle would be at the desired altitude, depth + (altitude - setpoint),
+ * low-pass filtered (altitude_tau) against altimeter noise and seabed
+ * roughness. With no valid altitude (negative: no bottom lock, or not a
+ * number) the target moves down at search_rate, at most SEARCH_LEAD_M below
+ * the vehicle, until the seabed comes into range (0: hold the last target). */
+
+#define SEARCH_LEAD_M 2.0
+
+enum { A_DEPTH, A_ALTITUDE, A_PITCH, A_Q, A_SETPOINT, A_PLANE, A_TAU, A_SEARCH, A_LOOP,
+       A_PITCH_LOOP = A_LOOP + DL_COUNT };
+
+static const chasm_param_spec altitude_params[] = {
+    READ("depth", "m", "nav.depth_m", "vehicle depth"),
+    READ("altitude", "m", "nav.altitude_m", "height above the seabed, negative if unknown"),
+    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
+    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
+    READ("setpoint", "m", "setpoint.altitude_m", "desired altitude"),
+    PLANE_OUT,
+    {"altitude_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 0, 1.0, NULL, 1, 0, 60,
+     "low-pass time constant of the depth target (0: none)"},
+    {"search_rate", CHASM_PARAM, CHASM_DOUBLE, "m/s", 0, 0.2, NULL, 1, 0, 2,
+     "descent rate of the target while the altitude is unknown (0: hold)"},
+    PILOT_DEPTH_LOOP_PARAMS,
+    PILOT_PITCH_LOOP_PARAMS,
+};
+
+typedef struct {
+    pilot_depth_loop loop;
+    pu_lowpass target;
+} altitude_state;
+
+static int altitude_start(chasm_ctx *c, void *st)
+{
+    altitude_state *s = st;
+    pilot_depth_start(&s->loop, chasm_read_double(c, A_PITCH), chasm_read_double(c, A_PLANE));
+    pu_lowpass_reset(&s->target);
+    return 0;
+}
+
+static chasm_status_code altitude_step(chasm_ctx *c, void *st)
+{
+    altitude_state *s = st;
+    pilot_depth_config cfg;
+    pilot_depth_config_read(c, A_LOOP, A_PITCH_LOOP, &cfg);
+    double depth = chasm_read_double(c, A_DEPTH), altitude = chasm_read_double(c, A_ALTITUDE);
+    double dt = c->dt_s;
+    if (isfinite(depth) && isfinite(altitude) && altitude >= 0.0) {
+        double raw = depth + altitude - chasm_read_double(c, A_SETPOINT);
+        pu_lowpass_step(&s->target, pu_clamp(raw, 0.0, cfg.max_depth), chasm_param_double(c, A_TAU), dt);
+    } else if (isfinite(depth)) {
+        /* searching: move the target down, never more than SEARCH_LEAD_M
+         * below the vehicle, so it is not far off when the seabed appears */
+        if (!s->target.primed)
+            pu_lowpass_step(&s->target, depth, 0.0, dt);
+        else if (dt > 0.0)
+            s->target.y = fmin(s->target.y + chasm_param_double(c, A_SEARCH) * dt,
+                               fmax(s->target.y, depth + SEARCH_LEAD_M));
+    }
+    if (s->target.primed)
+        s->target.y = pu_clamp(s->target.y, 0.0, cfg.max_depth);
+    double target = s->target.primed ? s->target.y : depth;
+    double plane = pilot_depth_step(&s->loop, &cfg, target, depth, chasm_read_double(c, A_PITCH),
+                                    chasm_read_double(c, A_Q), dt);
+    chasm_write_double(c, A_PLANE, plane);
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_altitude_behavior = {
+    "altitude_control", "hold setpoint altitude above the seabed (terrain following through the depth loop)",
+    altitude_params, CHASM_COUNT(altitude_params), sizeof(altitude_state), altitude_start, altitude_step, NULL};
+
+/* ------------------------------------------------------------ pitch_control */
+
+enum { P_PITCH, P_Q, P_SETPOINT, P_PLANE, P_MAX_PITCH, P_LOOP };
+
+static const chasm_param_spec pitch_params[] = {
+    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
+    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
+    READ("setpoint", "rad", "setpoint.pitch_rad", "desired pitch, positive bow up"),
+    PLANE_OUT,
+    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 30 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 80 * PILOT_DEG,
+     "the setpoint is clamped to +-max_pitch"},
+    PILOT_PITCH_LOOP_PARAMS,
+};
+
+typedef struct {
+    pilot_pitch_loop loop;
+} pitch_state;
+
+static int pitch_start(chasm_ctx *c, void *st)
+{
+    pitch_state *s = st;
+    pilot_pitch_start(&s->loop, chasm_read_double(c, P_PLANE));
+    return 0;
+}
+
+static chasm_status_code pitch_step(chasm_ctx *c, void *st)
+{
+    pitch_state *s = st;
+    pu_pid_config cfg;
+    pilot_pitch_config(c, P_LOOP, &cfg);
+    double cmd = pu_clamp_sym(chasm_read_double(c, P_SETPOINT), chasm_param_double(c, P_MAX_PITCH));
+    double plane = pilot_pitch_step(&s->loop, &cfg, cmd, chasm_read_double(c, P_PITCH), chasm_read_double(c, P_Q),
+                                    c->dt_s);
+    chasm_write_double(c, P_PLANE, plane);
+    return CHASM_RUNNING;
+}
+
+const chasm_behavior_spec pilot_pitch_behavior = {
+    "pitch_control", "hold setpoint pitch with the stern plane (PID with pitch-rate damping)",
+    pitch_params, CHASM_COUNT(pitch_params), sizeof(pitch_state), pitch_start, pitch_step, NULL};

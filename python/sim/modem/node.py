@@ -1,0 +1,134 @@
+"""One simulator's modem: LCM in and out around the transmitter and receiver.
+
+In:  <VEHICLE>.MODEM_TX (frames from the vehicle software),
+     <VEHICLE>.PEER_REPORT (the vehicle's report; a new seq is sent),
+     SIM.ACOUSTIC (frames other simulators put in the water).
+Out: SIM.ACOUSTIC (our accepted frames, with our true position),
+     <VEHICLE>.MODEM_RX, <VEHICLE>.PEER.<OTHER>, <VEHICLE>.MODEM_STATUS.
+
+The simulator calls step() after every physics step with the new truth; the
+handlers run between steps and use the truth of the latest step, which is
+the simulator's current time.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
+
+from auvlcm.decode import DecodeError
+from auvlcm.rx import Receiver as LcmReceiver
+from sim.environment import Environment
+from sim.modem.config import ModemConfig
+from sim.modem.peers import heard_report, report_frame
+from sim.modem.receiver import Receiver
+from sim.modem.transmitter import Transmitter
+from sim.sensors.base import utime
+
+REPORT_FIRST = 3     # refusals printed; the rest are only counted
+
+
+class ModemNode:
+    def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment,
+                 rx: LcmReceiver, publish: Callable[[str, bytes], None]) -> None:
+        self.cfg = cfg
+        self.vehicle = vehicle
+        self.status = modem_status_t()
+        self.status.vehicle = vehicle
+        self.tx = Transmitter(cfg, vehicle, self.status)
+        self.rx = Receiver(cfg, vehicle, seed if seed >= 0 else 0, env, self.status)
+        self._publish = publish
+        self._t: float | None = None
+        self._pos = (0.0, 0.0, 0.0)
+        self._next_status = 0.0
+        self.last_report_seq = 0
+        self.reports_heard = 0
+        self.bad_reports = 0
+        self.refusals_printed = 0
+        rx.subscribe(f"{vehicle}.MODEM_TX", modem_tx_t, self._on_tx, queue_capacity=200)
+        rx.subscribe("SIM.ACOUSTIC", acoustic_frame_t, self._on_frame, queue_capacity=2000)
+        if cfg.peer_reports:
+            rx.subscribe(f"{vehicle}.PEER_REPORT", peer_report_t, self._on_report,
+                         queue_capacity=200)
+
+    # ------------------------------------------------------------ handlers
+    def _on_tx(self, _channel: str, msg: modem_tx_t) -> None:
+        self._send(msg)
+
+    def _on_report(self, _channel: str, msg: peer_report_t) -> None:
+        if msg.seq <= 0 or msg.seq == self.last_report_seq:
+            return                       # not due: the behavior repeats it every cycle
+        self.last_report_seq = msg.seq
+        if msg.vehicle not in ("", self.vehicle):
+            self._refused(self.tx.refuse("refused_invalid", msg.seq, f"report of vehicle "
+                                          f"{msg.vehicle!r} on {self.vehicle}.PEER_REPORT"))
+            return
+        self._send(report_frame(msg, self.vehicle))
+
+    def _on_frame(self, _channel: str, frame: acoustic_frame_t) -> None:
+        self.rx.hear(frame)
+
+    def _send(self, msg: modem_tx_t) -> None:
+        if self._t is None:
+            self._refused(self.tx.refuse("refused_invalid", msg.seq,
+                                          "the simulator has not started its clock yet"))
+            return
+        out = self.tx.send(self._t, self._pos, msg)
+        if isinstance(out, str):
+            self._refused(out)
+        else:
+            self._publish("SIM.ACOUSTIC", out.encode())
+            self._publish_status()
+
+    def _refused(self, reason: str) -> None:
+        if self.refusals_printed < REPORT_FIRST:
+            self.refusals_printed += 1
+            print(f"sim: {self.vehicle}: modem refused frame {self.status.last_refused_seq}: "
+                  f"{reason}", flush=True)
+        self._publish_status()
+
+    # ---------------------------------------------------------------- step
+    def step(self, t: float, position: tuple[float, float, float]) -> None:
+        """Deliver what has arrived by sim time t at our true position."""
+        self._t, self._pos = t, position
+        st = self.status
+        before = st.received + st.lost + st.out_of_range
+        for m in self.rx.step(t, position):
+            self._publish(f"{self.vehicle}.MODEM_RX", m.encode())
+            if self.cfg.peer_reports and m.kind == modem_tx_t.KIND_NAV_REPORT:
+                try:
+                    report = heard_report(m)
+                except DecodeError as exc:
+                    self.bad_reports += 1
+                    if self.bad_reports <= REPORT_FIRST:
+                        print(f"sim: {self.vehicle}: undecodable report from {m.src_vehicle} "
+                              f"dropped: {exc}", flush=True)
+                    continue
+                self.reports_heard += 1
+                self._publish(f"{self.vehicle}.PEER.{m.src_vehicle}", report.encode())
+        if t >= self._next_status - 1e-9 or st.received + st.lost + st.out_of_range != before:
+            if t >= self._next_status - 1e-9:
+                self._next_status = t + self.cfg.status_period_s
+            self._publish_status()
+
+    def _publish_status(self) -> None:
+        self.status.utime = utime(self._t or 0.0)
+        self._publish(f"{self.vehicle}.MODEM_STATUS", self.status.encode())
+
+    def summary(self) -> str:
+        s = self.status
+        return (f"sim: {self.vehicle} modem: {s.sent} frames sent, "
+                f"{s.refused_size + s.refused_rate + s.refused_invalid} refused "
+                f"(size {s.refused_size}, rate {s.refused_rate}, invalid {s.refused_invalid}), "
+                f"{s.received} received, {s.lost} lost, {s.out_of_range} out of range, "
+                f"{self.reports_heard} peer reports heard")
+
+
+def make_modem(cfg, env: Environment, rx: LcmReceiver,
+               publish: Callable[[str, bytes], None]) -> ModemNode | None:
+    """The modem of a simulator configuration (sim.config.SimConfig), if it has one."""
+    m = cfg.modem
+    if m is None or not m.enabled:
+        return None
+    return ModemNode(m, cfg.vehicle_id, m.seed, env, rx, publish)

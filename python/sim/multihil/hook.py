@@ -1,0 +1,153 @@
+"""The environment node plugged into a simulator (sim.hil.Simulator).
+
+The simulator calls poll() once per loop and close() at the end; the rest is
+set up here so that hil.py carries only those lines:
+
+- free-running (realtime, scaled): the simulator's steps are paced by the
+  node's global clock, and it joins the world at the global time;
+- lockstep (simulation.clock: stepped): the simulator follows SIM.CLOCK as in
+  stepped mode, registers as participant `<VEHICLE>.sim`, reports each step
+  done once its physics reached it and its outputs are out, and holds every
+  actuator command until its time stamp (a command for t_n acts from t_n on,
+  whichever arrives first: the clock or the command).
+"""
+
+from __future__ import annotations
+
+import bisect
+import math
+
+from sim.bathymetry import BathymetryError
+from sim.environment import Environment
+from sim.multihil.clock import LocalClock
+from sim.multihil.election import Timing
+from sim.multihil.lockstep import Participation
+from sim.multihil.node import EnvNode, NodeConfig
+
+
+def apply_cli(cfg, args) -> None:
+    """Command-line overrides of the multihil section (python -m sim ...)."""
+    mh = cfg.multihil
+    if args.multihil:
+        mh.enabled = True
+    for name, attr in (("priority", "priority"), ("clock_offset_us", "clock_offset_us"),
+                       ("clock_drift_ppm", "clock_drift_ppm")):
+        if getattr(args, name) is not None:
+            setattr(mh, attr, getattr(args, name))
+
+
+def node_config(cfg) -> NodeConfig:
+    mh, s = cfg.multihil, cfg.sim
+    mode = "lockstep" if s.clock == "stepped" else s.clock
+    return NodeConfig(mh.client_id, cfg.vehicle_id, mh.priority, list(mh.needs), mh.sample_rate_hz,
+                      mode, s.warp if mode == "scaled" else 1.0, s.clock_rate_hz, mh.step_s,
+                      mh.lockstep_participants, mh.lockstep_timeout_s, mh.heartbeat_hz, mh.sync_hz,
+                      Timing(join_window_s=mh.join_window_s,
+                             failover_timeout_s=mh.failover_timeout_s))
+
+
+class SimHook:
+    def __init__(self, sim) -> None:
+        self.sim = sim
+        cfg = sim.cfg
+        ncfg = node_config(cfg)
+        self.lockstep = ncfg.mode == "lockstep"
+        if sim.pacer.fast:
+            raise ValueError("multihil: --fast has no clock to share; use scaled time or "
+                             "lockstep (--clock stepped)")
+        steps = ncfg.step_s / sim.dt
+        if self.lockstep and (steps < 0.999 or abs(steps - round(steps)) > 1e-6):
+            raise ValueError(f"multihil: step_s = {ncfg.step_s:g} s must be a whole number of "
+                             f"physics steps ({sim.dt:g} s)")
+        self.log = lambda line: print(line, flush=True)
+        self.node = EnvNode(ncfg, sim.lc, sim.model.env,
+                            LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
+                            position=self._position, on_env=self._adopt, log=self.log)
+        sim.publish_clock = False        # the world's server publishes SIM.CLOCK
+        self.joined = False
+        self.env_errors = 0
+        if self.lockstep:
+            self.part = Participation(f"{sim.vid}.sim",
+                                      lambda m: sim.lc.publish("SIM.LOCKSTEP", m.encode()))
+            self._seen_clocks = 0
+            self._held: list[tuple[float, int, tuple]] = []   # (t, seq, (channel, msg))
+            self._held_seq = 0
+            for sub in sim.rx.subscriptions:
+                if sub.channel == f"{sim.vid}.ACTUATORS":
+                    self._apply_command = sub.handler
+                    sub.handler = self._hold_command
+        else:
+            sim.pacer.global_now = self._global_now_s
+
+    # ------------------------------------------------------------ callbacks
+    def _position(self) -> tuple[float, float, float, float] | None:
+        if not (self.joined or self.sim._clock_started):
+            return None
+        x = self.sim.model.dyn.x
+        return self.sim.model.t, x[0], x[1], x[2]
+
+    def _global_now_s(self) -> float | None:
+        g = self.node.global_now_us()
+        return None if g is None or not self.joined else g / 1e6
+
+    def _adopt(self, m) -> bool:
+        """The server's world replaces ours, in place: every part holding it sees the change."""
+        params = Environment.params_from_env_model(m)
+        model = self.sim.model
+        try:
+            fresh = Environment(params, self.sim.cfg.path.parent)
+        except (BathymetryError, OSError) as exc:
+            self.env_errors += 1
+            self.log(f"multihil: cannot build the server's world ({exc}); keeping this one")
+            return False
+        if fresh.bathymetry.sha256 != m.bathymetry_sha256:
+            self.env_errors += 1
+            self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's "
+                     "(SHA-256); keeping this one")
+            return False
+        model.env.__dict__.update(fresh.__dict__)     # in place: sensors hold this object
+        if (model.frame.lat0, model.frame.lon0) != (params.origin_latitude_deg,
+                                                    params.origin_longitude_deg):
+            model.frame.__init__(params.origin_latitude_deg, params.origin_longitude_deg)
+        return True
+
+    def _hold_command(self, channel: str, msg) -> None:
+        t = msg.utime / 1e6
+        if t <= self.sim.model.t + 1e-9:
+            self._apply_command(channel, msg)
+        else:
+            self._held_seq += 1
+            bisect.insort(self._held, (t, self._held_seq, (channel, msg)))
+
+    # -------------------------------------------------------------- loop
+    def poll(self) -> None:
+        node, sim = self.node, self.sim
+        node.poll()
+        if not self.lockstep:
+            if not self.joined and node.joined:
+                self.joined = True
+                sim.join_at(math.floor(node.global_now_us() / 1e6 / sim.dt) * sim.dt)
+            return
+        self.joined = sim._clock_started
+        self.part.poll_register()
+        while self._held and self._held[0][0] <= sim.model.t + 1e-9:
+            _, _, (channel, msg) = self._held.pop(0)
+            self._apply_command(channel, msg)
+        c = node.last_clock
+        if c is not None and node.clock_messages != self._seen_clocks:
+            self._seen_clocks = node.clock_messages
+            self.part.on_clock(c.step, c.utime)
+        pend = self.part.pending
+        if pend is not None and sim._clock_started and sim.model.t >= pend[1] / 1e6 - 0.5 * sim.dt:
+            self.part.done()
+
+    def close(self) -> None:
+        if self.lockstep:
+            self.part.leave()
+        n = self.node
+        self.log(f"multihil: {n.cfg.client_id}: {n.role} (term {n.term}) at the end; "
+                 f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "
+                 f"{n.samples_received} env samples, {n.sample_mismatches} mismatches, "
+                 f"{n.election.elections_won} elections won, {n.election.step_downs} step-downs, "
+                 f"{n.rx.decode_errors} decode errors")
+        n.stop()

@@ -1,0 +1,111 @@
+"""Lockstep: global time advances one step when every participant is done.
+
+Every node tracks the participants it hears on SIM.LOCKSTEP (REGISTER,
+STEP_DONE, LEAVE), so whichever node becomes the server already knows whom
+to wait for. A STEP_DONE from an unknown participant registers it. A
+participant silent for `timeout_s` (wall) while the server waits is dropped
+with a message, so one dead process cannot stop the world.
+
+Order inside a step (what makes two runs identical): the server publishes
+SIM.CLOCK for step n; each participant does its work for time t_n using only
+what was published in earlier steps, publishes its outputs, then STEP_DONE n;
+the server publishes step n + 1 only after every STEP_DONE n. Messages of
+step n therefore always reach a process before the clock of step n + 1.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from auv import lockstep_t
+
+
+@dataclass
+class Participant:
+    name: str
+    last_done: int = -1
+    last_heard: float = field(default_factory=time.monotonic)
+
+
+class LockstepTracker:
+    """Who takes part, and what each reported; kept by every node."""
+
+    def __init__(self, timeout_s: float = 5.0, log=print) -> None:
+        self.parts: dict[str, Participant] = {}
+        self.timeout_s = timeout_s
+        self.dropped = 0
+        self.log = log
+
+    def on_message(self, msg) -> None:
+        if msg.kind == lockstep_t.KIND_LEAVE:
+            self.parts.pop(msg.participant, None)
+            return
+        p = self.parts.get(msg.participant)
+        if p is None:
+            p = self.parts[msg.participant] = Participant(msg.participant)
+        p.last_heard = time.monotonic()
+        if msg.kind == lockstep_t.KIND_STEP_DONE:
+            p.last_done = max(p.last_done, msg.step)
+
+    def remove(self, name: str) -> None:
+        self.parts.pop(name, None)
+
+    def waiting_for(self, step: int) -> list[str]:
+        return sorted(n for n, p in self.parts.items() if p.last_done < step)
+
+    def drop_silent(self, step: int, since: float) -> None:
+        """Drop participants that owe step and were not heard from for timeout_s."""
+        now = time.monotonic()
+        for name in self.waiting_for(step):
+            p = self.parts[name]
+            if now - max(p.last_heard, since) > self.timeout_s:
+                del self.parts[name]
+                self.dropped += 1
+                self.log(f"multihil: lockstep: dropped {name}: silent for {self.timeout_s:g} s "
+                         f"at step {step}")
+
+
+def lockstep_msg(participant: str, kind: int, step: int, utime: int) -> lockstep_t:
+    m = lockstep_t()
+    m.utime, m.participant, m.kind, m.step = utime, participant, kind, step
+    return m
+
+
+class Participation:
+    """One participant's side: register until a lockstep clock is seen, then
+    report each step once its work is done (re-reporting a repeated step)."""
+
+    REGISTER_PERIOD_S = 1.0
+
+    def __init__(self, name: str, publish) -> None:
+        self.name = name
+        self.publish = publish          # publish(lockstep_t)
+        self.pending: tuple[int, int] | None = None   # (step, utime) to report
+        self.last_done = -1
+        self.seen_clock = False
+        self._next_register = 0.0
+
+    def poll_register(self) -> None:
+        now = time.monotonic()
+        if not self.seen_clock and now >= self._next_register:
+            self._next_register = now + self.REGISTER_PERIOD_S
+            self.publish(lockstep_msg(self.name, lockstep_t.KIND_REGISTER, 0, 0))
+
+    def on_clock(self, step: int, utime: int) -> None:
+        self.seen_clock = True
+        if step <= self.last_done:
+            # a new server repeats the step it found in flight: just confirm
+            self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, step, utime))
+        else:
+            self.pending = (step, utime)
+
+    def done(self) -> None:
+        if self.pending is not None:
+            step, utime = self.pending
+            self.pending = None
+            self.last_done = step
+            self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, step, utime))
+
+    def leave(self) -> None:
+        self.publish(lockstep_msg(self.name, lockstep_t.KIND_LEAVE, self.last_done, 0))

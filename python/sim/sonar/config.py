@@ -1,0 +1,54 @@
+"""The `sonar:` section of the simulator configuration (checked in sim.config)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+
+@dataclass
+class TargetArea:
+    """An axis-aligned box: corner (north_m, east_m), extent north and east."""
+    north_m: float = 0.0
+    east_m: float = 0.0
+    length_m: float = 500.0     # along north
+    width_m: float = 500.0      # along east
+
+
+@dataclass
+class TargetsConfig:
+    file: str = ""              # CSV of targets (relative to the config); "" = place by seed
+    seed: int = -1              # -1 = environment.seed: every vehicle of a world sees one field
+    mines: int = 10
+    clutter: int = 30
+    min_separation_m: float = 10.0
+    mine_length_m: float = 1.5
+    clutter_length_m: float = 0.8
+    area: TargetArea = field(default_factory=TargetArea)
+
+
+@dataclass
+class SonarConfig:
+    enabled: bool = True
+    # lateral range curve (docs/simulator.md, "Seabed and sonar")
+    range_m: float = 50.0                    # range setting per side [m]
+    nadir_gap_per_altitude: float = 1.0      # blind ground range = this x altitude
+    min_grazing_rad: float = math.radians(5.0)  # far limit: altitude / tan(this)
+    knee_fraction: float = 0.6               # fall-off starts at this fraction of the far limit
+    pd_max: float = 0.9                      # detection probability on the plateau
+    clutter_pd_factor: float = 1.0           # clutter objects are detected like mines x this
+    min_altitude_m: float = 1.0              # imaging only between these altitudes
+    max_altitude_m: float = 30.0
+    max_attitude_rad: float = math.radians(15.0)  # roll or pitch beyond: no image
+    # detections
+    update_hz: float = 5.0                   # how often the beam's position is evaluated
+    along_track_sigma_m: float = 0.5         # contact position error, along track [m]
+    range_sigma_m: float = 0.3               # contact position error, across track [m]
+    p_classify: float = 0.8                  # a detected mine is called "mine_like"
+    clutter_as_mine: float = 0.15            # a detected clutter object is called "mine_like"
+    false_alarms_per_km2: float = 2.0        # seabed false alarms per km^2 imaged
+    relook_s: float = 10.0                   # one look per target per pass at most
+    # the true field, for evaluation
+    publish_targets: str = "auto"            # SIM.TARGETS: auto (like SIM.CLOCK) | yes | no
+    targets_period_s: float = 10.0           # republish period [sim s]; 0 = at start only
+    targets: TargetsConfig = field(default_factory=TargetsConfig)

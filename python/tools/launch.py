@@ -1,0 +1,284 @@
+"""Start and supervise a whole scenario with one command (docs/scenarios.md).
+
+    launch.py SCENARIO.yaml [--host NAME] [--out DIR] [--url URL]
+
+Order: lcm-logger, the files the run uses annotated into the log, the
+simulators, the managers; then the global clock starts. The mission ends when
+every vehicle's navigator is done, aborted or failed, or at the time limit;
+Ctrl-C, SIGTERM or any process dying ends it too. Everything is stopped in
+reverse order, the logger last, so the log holds the end.
+
+Exit status: 0 every vehicle done; 3 a vehicle aborted; 4 a vehicle failed;
+5 a process died; 6 time limit; 2 bad scenario or usage; 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+
+import lcm  # noqa: E402
+
+from auvlcm.url import check_local, default_url  # noqa: E402
+from tools.annotate import Annotator  # noqa: E402
+from tools.marked_yaml import YamlError  # noqa: E402
+from tools.mission_watch import MissionWatch  # noqa: E402
+from tools.procs import Child  # noqa: E402
+from tools.scenario import Scenario, load_scenario  # noqa: E402
+from tools.simconfig import write_configs  # noqa: E402
+from tools.worldclock import WorldClock  # noqa: E402
+
+EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
+STARTUP_TIMEOUT_S = 90.0
+
+
+def build_dir() -> Path:
+    b = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
+    return b if b.is_absolute() else ROOT / b
+
+
+def check_plans(sc: Scenario, build: Path) -> list[str]:
+    """`chasm check` every plan with its parameters before anything starts."""
+    errors, done = [], set()
+    for v in sc.vehicles:
+        for m in v.managers:
+            key = (m.plan, tuple(sorted(m.params.items())), tuple(m.plugin_path))
+            if key in done:
+                continue
+            done.add(key)
+            cmd = [str(build / "bin" / "chasm"), "check"]
+            for d in m.plugin_path or [build / "plugins"]:
+                cmd += ["-P", str(d)]
+            for k, val in m.params.items():
+                cmd += ["-D", f"{k}={val}"]
+            run = subprocess.run(cmd + [str(m.plan)], capture_output=True, text=True)
+            if run.returncode != 0:
+                errors.append(f"{m.where}: {v.id}.{m.name}: plan {m.plan} does not load:")
+                errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
+    return errors
+
+
+class Launcher:
+    def __init__(self, sc: Scenario, args, url: str, sim_configs: dict[str, Path]) -> None:
+        self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
+        self.host = args.host
+        self.out: Path = args.out
+        self.build = args.build
+        self.lc = lcm.LCM(url)
+        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT)
+        self.mine = sc.vehicles_on(self.host)
+        self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
+        self.own_log = sc.log_enabled and (self.host is None or self.host == sc.log_host)
+        self.watch = MissionWatch(self.lc, sc)
+        self.clock = WorldClock(self.lc, sc.time.mode, args.warp or sc.time.warp, sc.time.step_s) \
+            if self.own_clock else None
+        self.logger: Child | None = None
+        self.children: list[Child] = []
+        self.stop_reason = ""
+        self.log_path = self.out / sc.log_file
+
+    # ------------------------------------------------------------ start
+    def _start(self, child: Child) -> Child:
+        child.start()
+        self.children.append(child)
+        self.notes.event("start", f"{child.name} pid {child.pid}: {' '.join(child.cmd)}",
+                         utime=self.watch.sim_time_us)
+        return child
+
+    def start_logger(self) -> None:
+        lcm_bin = Path(lcm.LCM_BIN_DIR).resolve()
+        self.log_path.unlink(missing_ok=True)
+        self.logger = Child("logger", [str(lcm_bin / "lcm-logger"), f"--lcm-url={self.url}", "--quiet",
+                                       "--flush-interval=100", "-f", str(self.log_path)], self.out / "logger.out")
+        self.logger.start()
+        # Listening once its file exists; recording once our probe shows up in it.
+        deadline = time.monotonic() + 20
+        while time.monotonic() < deadline and self.logger.poll() is None:
+            if self.log_path.exists():
+                self.notes.event("logger", f"lcm-logger pid {self.logger.pid} recording {self.log_path.name}")
+                time.sleep(0.3)
+                if self.log_path.stat().st_size > 0:
+                    return
+            time.sleep(0.05)
+        raise RuntimeError(f"lcm-logger did not start recording: {self.logger.tail()}")
+
+    def annotate(self) -> None:
+        from auv import log_annotation_t as A
+        self.notes.note(A.KIND_SCENARIO, self.sc.path.name, self.sc.text)
+        if self.sc.survey is not None:
+            self.notes.note(A.KIND_NOTE, self.sc.survey.name, self.sc.survey.read_text())
+        for v in self.sc.vehicles:
+            if v.id in self.sim_configs:
+                cfg = self.sim_configs[v.id]
+                self.notes.note(A.KIND_SCENARIO, cfg.name, cfg.read_text(), v.id)
+            for m in v.managers:
+                self.notes.plan(m.plan, v.id)
+                self.notes.binding(m.bind, v.id)
+        self.notes.types()
+
+    def sim_cmd(self, vid: str) -> list[str]:
+        cmd = [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--lcm-url", self.url]
+        # On the launcher's clock every simulator is stepped; otherwise their configuration decides.
+        return cmd + (["--clock", "stepped"] if self.sc.time.source == "launcher" else [])
+
+    def manager_cmd(self, vid: str, m) -> list[str]:
+        cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),
+               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--url", self.url]
+        for d in m.plugin_path or [self.build / "plugins"]:
+            cmd += ["--plugin-path", str(d)]
+        for k, val in m.params.items():
+            cmd += ["-D", f"{k}={val}"]
+        return cmd
+
+    def start_all(self) -> None:
+        if self.own_log:
+            self.start_logger()
+            self.annotate()
+        for v in self.mine:
+            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out"))
+        for v in self.mine:
+            for m in v.managers:
+                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), self.out / f"{v.id}.{m.name}.out"))
+
+    # ------------------------------------------------------------ supervise
+    def _dead(self) -> Child | None:
+        return next((c for c in self.children if not c.stopping and c.poll() is not None), None)
+
+    def wait_ready(self, stop) -> str:
+        """Hold the clock at 0 until every simulator and manager of the world reports."""
+        deadline = time.monotonic() + STARTUP_TIMEOUT_S
+        next_hold = 0.0
+        while time.monotonic() < deadline:
+            if stop():
+                return "interrupted"
+            if self._dead():
+                return "died"
+            if self.clock and time.monotonic() >= next_hold:
+                self.clock.hold()
+                next_hold = time.monotonic() + 0.05
+            self.watch.handle(0.05)
+            if self.watch.all_ready():
+                return ""
+        self.stop_reason = f"not ready after {STARTUP_TIMEOUT_S:.0f} s: {', '.join(self.watch.not_ready())}"
+        return "died"
+
+    def supervise(self, stop) -> str:
+        t = self.sc.time
+        wall0 = time.monotonic()
+        next_progress = wall0 + self.args.progress
+        if self.clock:
+            self.clock.start()
+        while True:
+            if stop():
+                return "interrupted"
+            if self._dead():
+                return "died"
+            if self.clock:
+                self.clock.advance(self.watch.clock_limit_us())
+            self.watch.handle(self.clock.wait_s() if self.clock else 0.05)
+            outcome = self.watch.outcome()
+            if outcome:
+                return outcome
+            now = time.monotonic()
+            if self.watch.sim_time_us / 1e6 >= t.limit_s:
+                self.stop_reason = f"mission time limit {t.limit_s:g} s reached"
+                return "time limit"
+            if t.wall_limit_s and now - wall0 >= t.wall_limit_s:
+                self.stop_reason = f"wall-clock limit {t.wall_limit_s:g} s reached"
+                return "time limit"
+            if self.args.progress > 0 and now >= next_progress:
+                next_progress = now + self.args.progress
+                sim_s = self.watch.sim_time_us / 1e6
+                print(f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
+                      + "  ".join(self.watch.progress()), flush=True)
+
+    def stop_all(self, result: str) -> None:
+        dead = self._dead()
+        if dead is not None:
+            self.stop_reason = (f"{dead.name} (pid {dead.pid}) exited with status {dead.poll()}; "
+                                f"last output:\n{dead.tail()}")
+        for c in reversed(self.children):
+            rc = c.stop()
+            if c is not dead:
+                self.notes.event("exit", f"{c.name} pid {c.pid} stopped, status {rc}", utime=self.watch.sim_time_us)
+        self.notes.event("end", json.dumps(self.summary(result)), utime=self.watch.sim_time_us)
+        if self.logger is not None:
+            time.sleep(0.3)   # the logger flushes every 100 ms: let the end reach the file
+            self.logger.stop()
+
+    def summary(self, result: str) -> dict:
+        return {"scenario": self.sc.name, "host": self.host, "outcome": result, "exit_code": EXIT[result],
+                "reason": self.stop_reason, "sim_time_s": self.watch.sim_time_us / 1e6,
+                "vehicles": self.watch.vehicle_summary(), "log": str(self.log_path) if self.own_log else None}
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("scenario", type=Path)
+    ap.add_argument("--host", help="start only this host's part of the scenario")
+    ap.add_argument("--out", type=Path, help="run folder (default build/runs/<scenario name>)")
+    ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
+    ap.add_argument("--build", type=Path, default=build_dir())
+    ap.add_argument("--warp", type=float, help="override time.warp")
+    ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
+    ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
+                    "allows ttl=1 URLs")
+    args = ap.parse_args(argv)
+    try:
+        sc = load_scenario(args.scenario)
+        if args.host is not None and args.host not in sc.hosts:
+            raise YamlError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
+        url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
+    except YamlError as exc:
+        print("\n".join(exc.errors), file=sys.stderr)
+        print(f"launch: {args.scenario}: {len(exc.errors)} error(s)", file=sys.stderr)
+        return 2
+    except ValueError as exc:
+        print(f"launch: {exc}", file=sys.stderr)
+        return 2
+    args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
+    args.out.mkdir(parents=True, exist_ok=True)
+    mine = sc.vehicles_on(args.host)
+    sim_configs, errors = write_configs(sc, sc.vehicles, args.out)
+    errors += check_plans(Scenario(**{**sc.__dict__, "vehicles": mine}), args.build)
+    if errors:
+        print("\n".join(errors), file=sys.stderr)
+        print(f"launch: {args.scenario}: {len(errors)} error(s)", file=sys.stderr)
+        return 2
+
+    flag = {"stop": False}
+    for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+        signal.signal(sig, lambda *_: flag.update(stop=True))
+    run = Launcher(sc, args, url, sim_configs)
+    print(f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
+          f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
+          f"over {url}; run folder {args.out}", flush=True)
+    result = "died"
+    try:
+        run.start_all()
+        result = run.wait_ready(lambda: flag["stop"]) or run.supervise(lambda: flag["stop"])
+    except RuntimeError as exc:
+        run.stop_reason = str(exc)
+    finally:
+        run.stop_all(result)
+    s = run.summary(result)
+    (args.out / (f"outcome.{args.host}.json" if args.host else "outcome.json")).write_text(json.dumps(s, indent=2))
+    print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {run.stop_reason}" if run.stop_reason else ""))
+    for vid, v in s["vehicles"].items():
+        print(f"  {vid}: {v['outcome'] or 'unfinished'}  last state {v['path'] or '-'}  ({v['condition']})")
+    if run.own_log:
+        print(f"log: {run.log_path}")
+    return EXIT[result]
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,144 @@
+"""What the launcher knows about a running world, from LCM alone.
+
+- ready: every simulator (ACTUATOR_STATE) and every manager (CHASM status)
+  of the scenario has reported, on any host;
+- gate: how far the clock may run, from each simulator's and each manager's
+  sim time (a control loop must see the time it acts in, or a stalled pilot
+  becomes sim time without control);
+- outcome: each vehicle's end manager (NAVIGATOR by default) is done,
+  aborted or failed. A plan whose `abort when` rule fired and then ended
+  normally (the surfacing state completed) counts as aborted: the plan's abort
+  targets are read from its text.
+"""
+
+from __future__ import annotations
+
+import re
+import select
+from dataclasses import dataclass
+
+import lcm
+from auv import actuator_state_t, chasm_status_t, sim_clock_t
+
+from auvlcm.rx import Receiver
+from tools.annotate import plan_files
+from tools.scenario import Scenario
+
+_ABORT = re.compile(r"^\s*abort\s+when\b.*->\s*(?:resume\s+(?:deep\s+)?)?([A-Za-z_][\w/]*)", re.M)
+FINAL = {chasm_status_t.RUN_DONE: "done", chasm_status_t.RUN_ABORTED: "aborted",
+         chasm_status_t.RUN_FAILED: "failed"}
+
+
+def abort_targets(plan) -> set[str]:
+    """Names of the states `abort when` rules lead to, in a plan and its includes."""
+    out: set[str] = set()
+    for p in plan_files(plan):
+        out |= {t.rsplit("/", 1)[-1] for t in _ABORT.findall(p.read_text())}
+    return out
+
+
+@dataclass
+class VehicleState:
+    end_manager: str
+    abort_states: set
+    path: str = ""
+    condition: str = ""
+    run_state: int = -1
+    entered_abort: bool = False
+    sim_us: int | None = None
+
+    @property
+    def outcome(self) -> str | None:
+        o = FINAL.get(self.run_state)
+        return "aborted" if o == "done" and self.entered_abort else o
+
+
+SIM_LEAD_US = 300_000       # a simulator may fall this far behind the clock
+MANAGER_LEAD_US = 100_000   # a manager this far plus its own period: the pilot's loops
+                            # tolerate about 100 ms of delay (docs/behaviors.md)
+
+
+class MissionWatch:
+    def __init__(self, lc: lcm.LCM, sc: Scenario) -> None:
+        self.lc = lc
+        self.rx = Receiver(lc)
+        self.vehicles: dict[str, VehicleState] = {}
+        self.seen: set[str] = set()
+        self.expected: set[str] = set()
+        self.sim_time_us = 0
+        self.manager_us: dict[str, int | None] = {}
+        self.manager_lead_us: dict[str, int] = {}
+        for v in sc.vehicles:
+            end = next(m for m in v.managers if m.name == v.end_manager)
+            self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
+            self.expected.add(f"{v.id}.sim")
+            self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
+            for m in v.managers:
+                self.expected.add(f"{v.id}.{m.name}")
+                self.manager_us[f"{v.id}.{m.name}"] = None
+                self.manager_lead_us[f"{v.id}.{m.name}"] = MANAGER_LEAD_US + round(1e6 / m.rate_hz)
+                self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
+        self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
+
+    def _on_sim(self, _ch: str, m) -> None:
+        self.seen.add(f"{m.vehicle}.sim")
+        v = self.vehicles.get(m.vehicle)
+        if v is not None:
+            v.sim_us = m.utime
+
+    def _on_status(self, ch: str, m) -> None:
+        key = f"{m.vehicle}.{m.manager}"
+        self.seen.add(key)
+        if key in self.manager_us:
+            self.manager_us[key] = m.utime
+        v = self.vehicles.get(m.vehicle)
+        if v is None or m.manager != v.end_manager:
+            return
+        v.run_state = m.run_state
+        if m.path_len:
+            v.path = "/".join(m.active_path)
+            v.entered_abort |= any(s in v.abort_states for s in m.active_path)
+        v.condition = m.last_condition
+
+    def _on_clock(self, _ch: str, m) -> None:
+        self.sim_time_us = max(self.sim_time_us, m.utime)
+
+    def handle(self, timeout_s: float) -> None:
+        """Handle every message that is waiting, waiting up to timeout_s for the first."""
+        fd = self.lc.fileno()
+        ready, _, _ = select.select([fd], [], [], timeout_s)
+        while ready:
+            self.lc.handle()
+            ready, _, _ = select.select([fd], [], [], 0.0)
+
+    def all_ready(self) -> bool:
+        return not self.expected - self.seen
+
+    def not_ready(self) -> list[str]:
+        return sorted(self.expected - self.seen)
+
+    def clock_limit_us(self) -> int | None:
+        """The latest time the clock may publish: no simulator more than SIM_LEAD_US
+        and no manager more than its lead behind it (None: someone has not reported)."""
+        limits = [None if v.sim_us is None else v.sim_us + SIM_LEAD_US for v in self.vehicles.values()]
+        limits += [None if t is None else t + self.manager_lead_us[k] for k, t in self.manager_us.items()]
+        return None if any(t is None for t in limits) else min(limits)
+
+    def outcome(self) -> str | None:
+        """None while any vehicle runs; else the worst vehicle outcome."""
+        outs = [v.outcome for v in self.vehicles.values()]
+        if any(o is None for o in outs):
+            return None
+        for worst in ("failed", "aborted"):
+            if worst in outs:
+                return worst
+        return "done"
+
+    def progress(self) -> list[str]:
+        return [f"{vid} {v.path.split('/', 1)[-1] if v.path else '(loading)'}"
+                + (f" [{v.outcome}]" if v.outcome else "") for vid, v in self.vehicles.items()]
+
+    def vehicle_summary(self) -> dict:
+        return {vid: {"outcome": v.outcome, "path": v.path, "condition": v.condition,
+                      "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6}
+                for vid, v in self.vehicles.items()}

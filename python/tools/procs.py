@@ -1,0 +1,82 @@
+"""Child processes that can never outlive the launcher.
+
+Each child runs in its own session and process group (a stop reaches all of
+it, and a terminal's Ctrl-C reaches only the launcher, which then stops the
+children in order). Each also asks the kernel for SIGTERM when its parent
+dies (prctl PR_SET_PDEATHSIG), so even a SIGKILLed launcher leaves no logger
+or simulator behind.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import signal
+import subprocess
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+PR_SET_PDEATHSIG = 1
+_libc = ctypes.CDLL(None, use_errno=True)
+
+
+def _die_with(parent_pid: int):
+    def setup() -> None:  # runs in the child between fork and exec
+        _libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
+        if os.getppid() != parent_pid:   # the parent died before prctl took effect
+            os._exit(1)
+    return setup
+
+
+@dataclass
+class Child:
+    name: str                   # "logger", "AUV1.sim", "AUV1.NAVIGATOR"
+    cmd: list[str]
+    out: Path                   # stdout + stderr
+    proc: subprocess.Popen | None = None
+    stopping: bool = False      # we asked it to stop: its exit is not a death
+    started_wall: float = field(default_factory=time.monotonic)
+
+    @property
+    def pid(self) -> int:
+        return self.proc.pid if self.proc else -1
+
+    def start(self, env: dict[str, str] | None = None) -> "Child":
+        with open(self.out, "w") as f:
+            self.proc = subprocess.Popen(self.cmd, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                         start_new_session=True, preexec_fn=_die_with(os.getpid()), env=env)
+        self.started_wall = time.monotonic()
+        return self
+
+    def poll(self) -> int | None:
+        return self.proc.poll() if self.proc else None
+
+    def tail(self, lines: int = 5) -> str:
+        try:
+            return "\n".join(self.out.read_text(errors="replace").splitlines()[-lines:])
+        except OSError:
+            return ""
+
+    def stop(self, timeout: float = 10.0) -> int | None:
+        """SIGINT to the whole group, then SIGKILL if it does not end in time."""
+        if self.proc is None:
+            return None
+        self.stopping = True
+        if self.proc.poll() is None:
+            _signal_group(self.proc.pid, signal.SIGINT)
+            try:
+                self.proc.wait(timeout)
+            except subprocess.TimeoutExpired:
+                _signal_group(self.proc.pid, signal.SIGKILL)
+                self.proc.wait()
+        else:
+            _signal_group(self.proc.pid, signal.SIGKILL)   # anything it left in its group
+        return self.proc.returncode
+
+
+def _signal_group(pgid: int, sig: int) -> None:
+    try:
+        os.killpg(pgid, sig)
+    except ProcessLookupError:
+        pass

@@ -1,0 +1,186 @@
+"""Mission report from a run's log: text and JSON, and the plots.
+
+    report.py LOG [--survey survey.json] [--out DIR] [--radius 5] [--cell 2] [--no-plots]
+
+Outcome and duration; area covered once and twice (tools/coverage.py);
+probability of detection and false alarms, contacts (<V>.CONTACTS) against
+the true target field (SIM.TARGETS) with an association radius; navigation
+error (<V>.NAV against <V>.TRUTH). Writes report.txt, report.json and, unless
+--no-plots, the plots (PNG and SVG) into --out (default: beside the log).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "python"))
+
+import numpy as np  # noqa: E402
+
+from tools.coverage import coverage_grid, point_in_polygon  # noqa: E402
+from tools.run_data import RunData, interp_truth, load_run  # noqa: E402
+
+
+def detection_stats(run: RunData, radius: float, covered=None) -> dict | None:
+    """Each contact goes to the nearest true object within `radius`; a mine-like
+    target is detected if any contact went to it; a contact near no object is a
+    false alarm."""
+    targets = run.targets()
+    contacts = [(vid, c) for vid in run.vehicles for c in run.contacts(vid)]
+    if not targets and not contacts:
+        return None
+    tpos = np.array([(t.north_m, t.east_m) for t in targets]).reshape(-1, 2)
+    mine = np.array([t.kind == 0 for t in targets], bool)
+    hit = np.zeros(len(targets), bool)
+    false_alarms, on_clutter = 0, 0
+    per_vehicle = {vid: {"contacts": 0, "false_alarms": 0} for vid in run.vehicles}
+    for vid, c in contacts:
+        per_vehicle[vid]["contacts"] += 1
+        d = np.hypot(tpos[:, 0] - c.north_m, tpos[:, 1] - c.east_m) if len(tpos) else np.array([])
+        if len(d) and d.min() <= radius:
+            k = int(d.argmin())
+            hit[k] = True
+            on_clutter += int(not mine[k])
+        else:
+            false_alarms += 1
+            per_vehicle[vid]["false_alarms"] += 1
+    out = {"association_radius_m": radius, "mine_like_targets": int(mine.sum()), "clutter_objects": int((~mine).sum()),
+           "contacts": len(contacts), "mine_like_detected": int((hit & mine).sum()),
+           "pd": float((hit & mine).sum() / mine.sum()) if mine.any() else None,
+           "contacts_on_clutter": on_clutter, "false_alarms": false_alarms, "per_vehicle": per_vehicle}
+    if covered is not None and len(tpos):
+        inside = covered(tpos[:, 0], tpos[:, 1])
+        m_in = mine & inside
+        out["mine_like_in_covered_area"] = int(m_in.sum())
+        out["pd_in_covered_area"] = float((hit & m_in).sum() / m_in.sum()) if m_in.any() else None
+    return out
+
+
+def nav_error(run: RunData) -> dict:
+    out = {}
+    for vid in run.vehicles:
+        nav = run.nav(vid)
+        if nav is None or not len(nav):
+            continue
+        tn, te = interp_truth(run, vid, nav.t)
+        err = np.hypot(nav["north_m"] - tn, nav["east_m"] - te)
+        out[vid] = {"mean_m": float(err.mean()), "rms_m": float(np.sqrt(np.mean(err ** 2))),
+                    "max_m": float(err.max()), "final_m": float(err[-1]), "samples": int(len(err))}
+    return out
+
+
+def outcome_of(run: RunData) -> dict:
+    if run.outcome is not None:
+        return {"outcome": run.outcome.get("outcome"), "reason": run.outcome.get("reason", ""),
+                "vehicle_outcomes": {k: v.get("outcome") for k, v in run.outcome.get("vehicles", {}).items()}}
+    per = {}
+    for key, segs in run.timelines.items():
+        vid, mgr = key.split(".", 1)
+        if mgr == "NAVIGATOR" and segs:
+            per[vid] = segs[-1].run
+    return {"outcome": None, "reason": "no launcher end event in the log", "vehicle_outcomes": per}
+
+
+def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[dict, object]:
+    rep: dict = {"log": str(run.log.path), "vehicles": run.vehicles, **outcome_of(run),
+                 "duration_s": run.duration_s(),
+                 "log_events": run.log.stats.events, "undecodable_events": run.log.stats.undecodable}
+    grid = None
+    if run.survey:
+        sv = run.survey
+        grid = coverage_grid(run, sv["polygon"], sv["sonar"]["range_m"], sv["sonar"]["nadir_gap_m"], cell)
+        total = float(np.count_nonzero(grid.inside)) * cell ** 2
+        rep["coverage"] = {"survey_area_m2": sv["area_m2"], "raster_area_m2": total, "cell_m": cell,
+                           "covered_once_m2": grid.area_with(1), "covered_twice_m2": grid.area_with(2),
+                           "fraction_once": grid.area_with(1) / total if total else None,
+                           "fraction_twice": grid.area_with(2) / total if total else None}
+
+        def covered(n, e):
+            i = ((n - grid.north0) / cell).astype(int)
+            j = ((e - grid.east0) / cell).astype(int)
+            ok = (i >= 0) & (i < grid.looks.shape[0]) & (j >= 0) & (j < grid.looks.shape[1])
+            res = np.zeros(len(n), bool)
+            res[ok] = grid.looks[i[ok], j[ok]] >= 1
+            return res & point_in_polygon([tuple(p) for p in sv["polygon"]], n, e)
+    rep["detection"] = detection_stats(run, radius, covered if grid is not None else None)
+    rep["navigation_error"] = nav_error(run)
+    return rep, grid
+
+
+def _fmt(x, unit="", scale=1.0, digits=1) -> str:
+    return "-" if x is None else f"{x * scale:.{digits}f}{unit}"
+
+
+def report_text(rep: dict) -> str:
+    lines = [f"Mission report: {rep['log']}",
+             f"outcome   {rep['outcome'] or '-'}" + (f" ({rep['reason']})" if rep.get("reason") else ""),
+             f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
+             f"{rep['undecodable_events']} undecodable"]
+    for vid, o in rep["vehicle_outcomes"].items():
+        lines.append(f"  {vid}: {o or 'unfinished'}")
+    c = rep.get("coverage")
+    if c:
+        lines += [f"coverage  survey area {c['survey_area_m2'] / 1e6:.4f} km2 (raster {c['cell_m']:g} m cells)",
+                  f"  covered once  {c['covered_once_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_once'], ' %', 100)})",
+                  f"  covered twice {c['covered_twice_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_twice'], ' %', 100)})"]
+    else:
+        lines.append("coverage  - (no survey geometry in the log or given)")
+    d = rep.get("detection")
+    if d:
+        lines += [f"detection association radius {d['association_radius_m']:g} m",
+                  f"  mine-like targets {d['mine_like_targets']}, detected {d['mine_like_detected']}, "
+                  f"PD {_fmt(d['pd'], '', 1, 3)}"
+                  + (f"; in the covered area {d['mine_like_in_covered_area']}, PD {_fmt(d['pd_in_covered_area'], '', 1, 3)}"
+                     if "pd_in_covered_area" in d else ""),
+                  f"  contacts {d['contacts']}: on clutter {d['contacts_on_clutter']}, "
+                  f"false alarms {d['false_alarms']}"]
+    else:
+        lines.append("detection - (no targets or contacts in the log)")
+    lines.append("navigation error (NAV against TRUTH, horizontal)")
+    for vid, e in rep["navigation_error"].items():
+        lines.append(f"  {vid}: mean {e['mean_m']:.2f} m, rms {e['rms_m']:.2f} m, max {e['max_m']:.2f} m, "
+                     f"final {e['final_m']:.2f} m")
+    return "\n".join(lines) + "\n"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("log", type=Path)
+    ap.add_argument("--survey", type=Path, help="survey.json (default: the one annotated in the log)")
+    ap.add_argument("--out", type=Path)
+    ap.add_argument("--radius", type=float, default=5.0, help="contact-to-target association radius [m]")
+    ap.add_argument("--cell", type=float, default=2.0, help="coverage grid cell [m]")
+    ap.add_argument("--no-plots", action="store_true")
+    args = ap.parse_args(argv)
+    if not args.log.is_file():
+        print(f"report: {args.log}: no such log file", file=sys.stderr)
+        return 2
+    if args.radius <= 0 or args.cell <= 0 or not math.isfinite(args.radius + args.cell):
+        print("report: --radius and --cell must be > 0", file=sys.stderr)
+        return 2
+    run = load_run(args.log, args.survey)
+    if not run.vehicles:
+        print(f"report: {args.log}: no vehicle ground truth (<V>.TRUTH) in the log", file=sys.stderr)
+        return 2
+    out = args.out or args.log.parent
+    out.mkdir(parents=True, exist_ok=True)
+    rep, grid = build_report(run, args.radius, args.cell)
+    if not args.no_plots:
+        from tools.plots import make_plots
+        rep["plots"] = [str(p) for p in make_plots(run, grid, out)]
+    (out / "report.json").write_text(json.dumps(rep, indent=2))
+    text = report_text(rep)
+    (out / "report.txt").write_text(text)
+    print(text, end="")
+    print(f"report: {out / 'report.txt'}, {out / 'report.json'}"
+          + (f", {len(rep['plots'])} plot files" if "plots" in rep else ""))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

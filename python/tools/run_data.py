@@ -1,0 +1,86 @@
+"""Everything the report and the plots need from one run's log.
+
+The log describes itself (docs/scenarios.md): the survey geometry, each
+vehicle's simulator configuration and the launcher's outcome come from its
+annotations, so a log file alone is enough.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from auvlcm.arrays import ChannelArrays, LogArrays, load_log
+from tools.timeline import Segment, state_timeline
+
+KEEP = r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
+
+
+@dataclass
+class RunData:
+    log: LogArrays
+    vehicles: list[str]                         # ids with ground truth in the log
+    survey: dict | None = None                  # the planner's survey.json
+    outcome: dict | None = None                 # the launcher's end event
+    sim_configs: dict[str, str] = field(default_factory=dict)   # vehicle -> merged YAML text
+    timelines: dict[str, list[Segment]] = field(default_factory=dict)   # "AUV1.NAVIGATOR" -> segments
+
+    def truth(self, vid: str) -> ChannelArrays:
+        return self.log[f"{vid}.TRUTH"]
+
+    def nav(self, vid: str) -> ChannelArrays | None:
+        return self.log.channels.get(f"{vid}.NAV")
+
+    def targets(self) -> list[Any]:
+        msgs = self.log.messages.get("SIM.TARGETS", [])
+        return list(msgs[-1].targets) if msgs else []
+
+    def contacts(self, vid: str) -> list[Any]:
+        return self.log.messages.get(f"{vid}.CONTACTS", [])
+
+    def duration_s(self) -> float:
+        if "SIM.CLOCK" in self.log:
+            t = self.log["SIM.CLOCK"].t
+            return float(t[-1] - t[0]) if len(t) else 0.0
+        return max((float(self.truth(v).t[-1] - self.truth(v).t[0]) for v in self.vehicles), default=0.0)
+
+    def bathymetry(self):
+        """depth(north, east) of the world, from a vehicle's configuration; None if unknown."""
+        if not self.sim_configs:
+            return None
+        try:
+            from sim.bathymetry import Bathymetry
+            from sim.config import loads
+            cfg = loads(next(iter(self.sim_configs.values())))
+            return Bathymetry(cfg.env.bathymetry_ref, Path.cwd()).depth
+        except Exception:   # noqa: BLE001 - a plot without a seabed beats no plot
+            return None
+
+
+def load_run(log_path: str | Path, survey_path: str | Path | None = None) -> RunData:
+    log = load_log(log_path, keep_messages=KEEP)
+    vehicles = sorted(c.split(".")[0] for c in log.matching(r"[A-Z][A-Z0-9]*\.TRUTH"))
+    run = RunData(log, vehicles)
+    for a in log.messages.get("SIM.ANNOTATION", []):
+        if a.kind == 0 and a.name.endswith("survey.json") and run.survey is None:
+            run.survey = json.loads(a.text)
+        elif a.kind == 1 and a.vehicle and a.name.endswith(".sim.yaml"):
+            run.sim_configs[a.vehicle] = a.text
+        elif a.kind == 4 and a.name == "end":
+            run.outcome = json.loads(a.text)
+    if survey_path is not None:
+        run.survey = json.loads(Path(survey_path).read_text())
+    for ch in log.matching(r"[A-Z][A-Z0-9]*\.CHASM\.[A-Z0-9_]+"):
+        run.timelines[re.sub(r"\.CHASM\.", ".", ch)] = state_timeline(log[ch])
+    return run
+
+
+def interp_truth(run: RunData, vid: str, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """True north and east at the times t (linear between truth samples)."""
+    tr = run.truth(vid)
+    return np.interp(t, tr.t, tr["eta[0]"]), np.interp(t, tr.t, tr["eta[1]"])

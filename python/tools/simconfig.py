@@ -1,0 +1,104 @@
+"""Each vehicle's simulator configuration: its base file, the scenario's world
+and the vehicle's overrides merged into one file in the run folder, checked by
+the simulator's own loader with errors pointing back into the scenario."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from tools.marked_yaml import MDict, plain, where
+from tools.scenario import Scenario, Vehicle
+
+
+def merge(base: dict, over: dict) -> dict:
+    """base with over's keys replacing it, mappings merged recursively."""
+    out = dict(base)
+    for k, v in over.items():
+        out[k] = merge(out[k], v) if isinstance(v, dict) and isinstance(out.get(k), dict) else v
+    return out
+
+
+def _absolute_grid(env: dict, base: Path) -> dict:
+    """A bathymetry grid file named relative to its own YAML file, made absolute:
+    the merged file lives in the run folder."""
+    bathy = env.get("bathymetry")
+    if isinstance(bathy, dict) and isinstance(bathy.get("grid"), str):
+        env = dict(env, bathymetry=dict(bathy, grid=str((base / bathy["grid"]).resolve())))
+    return env
+
+
+def _has_sonar(v: Vehicle) -> bool:
+    base = yaml.safe_load(v.sim_config.read_text()) or {}
+    return "sonar" in base or "sonar" in v.sim_overrides
+
+
+def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
+    """On the launcher's clock no environment server publishes SIM.TARGETS and a
+    stepped simulator's `auto` does not either: left to `auto`, the first vehicle
+    with a sonar publishes the target field, the others not (one writer per channel)."""
+    if sc.time.source != "launcher" or "sonar" not in cfg:
+        return cfg
+    if cfg["sonar"].get("publish_targets", "auto") not in ("auto", None):
+        return cfg
+    first = next(o for o in sc.vehicles if _has_sonar(o))
+    return merge(cfg, {"sonar": {"publish_targets": "yes" if first is v else "no"}})
+
+
+def vehicle_config(sc: Scenario, v: Vehicle, index: int) -> dict:
+    """The merged simulator configuration of one vehicle (plain data)."""
+    return _targets_publisher(sc, v, _merged_config(sc, v, index))
+
+
+def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
+    base = yaml.safe_load(v.sim_config.read_text()) or {}
+    if isinstance(base.get("environment"), dict):
+        base["environment"] = _absolute_grid(base["environment"], v.sim_config.parent)
+    cfg = merge(base, {"environment": {"seed": sc.seed}})
+    cfg = merge(cfg, {"environment": _absolute_grid(plain(sc.world), sc.path.parent)})
+    # Every vehicle's sensors get their own noise: the world seed decides the
+    # environment, seed + index + 1 each vehicle's sensors (unless set).
+    cfg = merge(cfg, {"simulation": {"seed": sc.seed * 100 + index + 1}})
+    cfg = merge(cfg, plain(v.sim_overrides))
+    cfg = merge(cfg, {"vehicle": {"id": v.id}})
+    return cfg
+
+
+def _scenario_position(v: Vehicle, key: str, sc: Scenario) -> str:
+    """Where in the scenario the simulator key `a.b.c` came from, if it came from there."""
+    node: Any = v.sim_overrides
+    pos = v.sim_overrides.where
+    parts = key.split(".")
+    if parts and parts[0] == "environment" and parts[1:2] and parts[1] in sc.world:
+        node, pos, parts = sc.world, where(sc.world, parts[1]), parts[1:]
+    for part in parts:
+        if isinstance(node, MDict) and part in node:
+            pos, node = where(node, part), node[part]
+        else:
+            break
+    return pos
+
+
+def write_configs(sc: Scenario, vehicles: list[Vehicle], out_dir: Path) -> tuple[dict[str, Path], list[str]]:
+    """Write <ID>.sim.yaml per vehicle; return their paths and the scenario errors."""
+    from sim.config import ConfigError, load
+    paths, errors = {}, []
+    for v in vehicles:
+        index = sc.vehicles.index(v)
+        path = out_dir / f"{v.id}.sim.yaml"
+        text = (f"# {v.id}: {v.sim_config} merged with the scenario {sc.path.name} by the launcher\n"
+                + yaml.safe_dump(vehicle_config(sc, v, index), sort_keys=False))
+        path.write_text(text)
+        try:
+            cfg = load(path)
+        except ConfigError as exc:  # point each error at the scenario line it came from
+            for line in exc.errors:
+                m = re.match(r".*?:\d+:\d+: ([\w.\[\]]+): (.*)", line)
+                key, msg = (m.group(1), m.group(2)) if m else ("sim", line)
+                errors.append(f"{_scenario_position(v, key, sc)}: vehicles[{index}].sim: {key}: {msg}")
+            continue
+        paths[v.id] = path
+    return paths, errors

@@ -1,0 +1,184 @@
+"""The pure parts of multi-HIL: election rules, clock estimation and steering,
+the lockstep bookkeeping, the environment service. No LCM, no processes."""
+
+from __future__ import annotations
+
+import random
+import time
+
+from auv import env_needs_t, env_sample_t, lockstep_t
+
+from sim.environment import CurrentLayer, EnvParams, Environment
+from sim.multihil.clock import LocalClock, SteeredClock
+from sim.multihil.clocksync import SyncEstimator
+from sim.multihil.election import Election, Timing, rank
+from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
+from sim.multihil.server import LockstepServer, evaluate
+
+
+def test_rank_orders_by_priority_then_smaller_id():
+    assert rank(5, "B") > rank(3, "A")
+    assert rank(3, "A") > rank(3, "B")       # tie: the smaller id wins
+    assert rank(3, "AUV1") > rank(3, "AUV10")
+
+
+def fast_election(my_id: str, prio: int) -> Election:
+    return Election(my_id, prio, Timing(join_window_s=0.05, failover_timeout_s=0.05,
+                                        election_wait_s=0.05, peer_timeout_s=5.0))
+
+
+def test_the_best_candidate_wins_and_the_others_wait_for_it():
+    a, b = fast_election("A", 1), fast_election("B", 9)
+    a.heard("B", 9)
+    b.heard("A", 1)
+    time.sleep(0.06)
+    assert a.poll() == "" and a.role == "client"
+    assert b.poll() == "become_server" and b.server_term == 1
+
+
+def test_a_silent_better_candidate_is_suspected_and_the_next_takes_over():
+    a = fast_election("A", 1)
+    a.heard("B", 9)                       # B announced itself, then died
+    time.sleep(0.06)
+    assert a.poll() == ""                 # waits for B first
+    time.sleep(0.06)
+    a.poll()                              # B suspected
+    assert a.poll() == "become_server"
+
+
+def test_failover_goes_to_the_highest_live_priority_with_a_higher_term():
+    c = fast_election("C", 5)
+    c.heard("D", 2)
+    assert c.on_heartbeat("S", term=3, priority=10) == "follow"
+    assert c.server_id == "S"
+    time.sleep(0.06)
+    c.heard("D", 2)
+    assert c.poll() == "lost"
+    assert c.poll() == "become_server" and c.server_term == 4
+
+
+def test_a_server_steps_down_for_a_higher_term_or_a_better_node_only():
+    s = fast_election("S", 5)
+    time.sleep(0.06)
+    assert s.poll() == "become_server" and s.server_term == 1
+    assert s.on_heartbeat("X", term=1, priority=4) == "ignore"     # same term, lower priority
+    assert s.on_heartbeat("X", term=1, priority=5) == "ignore"     # same priority, "S" < "X"
+    assert s.role == "server"
+    assert s.on_heartbeat("Y", term=2, priority=0) == "step_down"   # higher term wins
+    assert s.role == "client" and s.server_id == "Y"
+
+
+def test_clock_estimate_converges_under_offset_drift_and_asymmetric_delay():
+    rng = random.Random(3)
+    offset, drift = 12_345.0, 80e-6           # global = (1 + drift) * local + offset
+    est = SyncEstimator()
+    true_global = lambda loc: (1 + drift) * loc + offset  # noqa: E731
+    loc = 1e6
+    for _ in range(200):                       # 10 Hz for 20 s
+        loc += 1e5
+        up, down = 100 + rng.expovariate(1 / 300), 100 + rng.expovariate(1 / 300)
+        t1, t4 = loc, loc + up + 20 + down
+        t2 = true_global(loc + up)
+        est.add(t1, t2, t2 + 20 * (1 + drift), t4)
+    err = est.global_at(loc) - true_global(loc)
+    assert abs(err) < 50.0, err
+    assert abs(est.drift_ppm - 80.0) < 5.0, est.drift_ppm
+
+
+def test_impossible_exchanges_are_rejected():
+    est = SyncEstimator()
+    assert est.add(100.0, 50.0, 40.0, 200.0) is None      # t3 before t2
+    assert est.add(100.0, 50.0, 60.0, 90.0) is None       # t4 before t1
+    assert est.rejected == 2 and est.count == 0
+
+
+def test_steered_clock_never_runs_backwards():
+    local = LocalClock()
+    clk = SteeredClock(local)
+    clk.set(5e6)
+    rng = random.Random(1)
+    last = clk.now()
+    for _ in range(2000):
+        clk.steer(rng.uniform(-1e6, 1e6), 1.0 + rng.uniform(-1e-3, 1e-3))
+        now = clk.now()
+        assert now >= last
+        last = now
+    clk.set(0.0)                               # a set behind the clock is refused
+    assert clk.now() >= last
+
+
+def test_lockstep_waits_for_every_participant_and_drops_the_silent():
+    tracker = LockstepTracker(timeout_s=0.05, log=lambda s: None)
+    srv = LockstepServer(tracker, step_us=100_000, expect=2)
+    tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_REGISTER, 0, 0))
+    assert srv.poll() is None                      # expects two participants
+    tracker.on_message(lockstep_msg("AUV1.NAV", lockstep_t.KIND_REGISTER, 0, 0))
+    assert srv.poll() == 0
+    tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_STEP_DONE, 0, 0))
+    assert srv.poll() is None                      # AUV1.NAV has not finished step 0
+    tracker.on_message(lockstep_msg("AUV1.NAV", lockstep_t.KIND_STEP_DONE, 0, 0))
+    assert srv.poll() == 1 and srv.utime(1) == 100_000
+    tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_STEP_DONE, 1, 100_000))
+    time.sleep(0.06)
+    assert srv.poll() == 2 and tracker.dropped == 1   # AUV1.NAV went silent: dropped
+
+
+def test_participant_confirms_a_repeated_step_without_redoing_it():
+    sent = []
+    p = Participation("AUV1.sim", sent.append)
+    p.on_clock(4, 400_000)
+    p.done()
+    p.on_clock(4, 400_000)                         # a new server repeats step 4
+    assert p.pending is None and [m.step for m in sent] == [4, 4]
+
+
+def test_each_client_gets_only_what_it_asked_for_at_its_position():
+    env = Environment(EnvParams(current=[CurrentLayer(0, 0.3, 0.1)], bathymetry_ref="slope:depth=40,dn=0.01,de=0",
+                                sound_speed_gradient_per_m=0.02))
+    needs = env_needs_t()
+    needs.utime, needs.client_id, needs.vehicle = 5_000_000, "AUV2-sim", "AUV2"
+    needs.variables, needs.n_variables = ["bathymetry", "sound_speed"], 2
+    needs.north_m, needs.east_m, needs.depth_m = 100.0, 0.0, 10.0
+    s = evaluate(env, needs, term=3)
+    assert s.valid_mask == env_sample_t.HAS_BATHYMETRY | env_sample_t.HAS_SOUND_SPEED
+    assert abs(s.water_depth_m - 41.0) < 1e-9 and abs(s.sound_speed_mps - 1500.2) < 1e-9
+    assert s.current_ned_mps == [0.0, 0.0, 0.0] and s.utime == 5_000_000 and s.term == 3
+
+
+def memq_node(log: list, **kw):
+    import lcm
+
+    from sim.multihil.node import EnvNode, NodeConfig
+    lc = lcm.LCM("memq://")
+    return lc, EnvNode(NodeConfig("C-sim", "C", **kw), lc, Environment(EnvParams()), log=log.append)
+
+
+def test_bad_traffic_is_counted_and_a_world_it_cannot_build_is_refused():
+    log: list[str] = []
+    lc, node = memq_node(log)
+    lc.publish("SIM.ENV_HEARTBEAT", b"\x00" * 5)          # undecodable: counted, dropped
+    lc.handle_timeout(100)
+    assert node.rx.decode_errors == 1
+    node.election.on_heartbeat("S-sim", 1, 5)               # follow a server ...
+    world = Environment(EnvParams(bathymetry_ref="flat:depth=30")).to_env_model(0, "S-sim", 1)
+    world.bathymetry_ref = "grid:no/such/bay.npz"           # ... whose grid this host lacks
+    lc.publish("SIM.ENV", world.encode())
+    lc.handle_timeout(100)
+    assert node.env_adoptions == 0 and node.env.params.bathymetry_ref == "flat:depth=50"
+    assert any("cannot build the server's world" in line for line in log), log
+    world.bathymetry_ref = "flat:depth=30"                   # one it can build: adopted in place
+    lc.publish("SIM.ENV", world.encode())
+    lc.handle_timeout(100)
+    assert node.env_adoptions == 1 and node.env.water_depth(0.0, 0.0) == 30.0
+
+
+def test_a_clock_of_another_mode_is_refused_with_a_message():
+    from auv import sim_clock_t
+    log: list[str] = []
+    lc, node = memq_node(log, mode="lockstep")
+    c = sim_clock_t()
+    c.utime, c.server_id, c.term, c.mode, c.warp, c.step, c.step_us = 5, "S-sim", 1, 1, 4.0, 0, 0
+    lc.publish("SIM.CLOCK", c.encode())
+    lc.handle_timeout(100)
+    assert node.last_clock is None and node.mode_conflicts == 1
+    assert "every simulator of a world needs the same mode" in log[-1]
