@@ -79,6 +79,7 @@ const Key kKeys[] = {
     DA("aid_window_lbl_s", aid_window_s, 4, 0, BIG),
     D(sound_speed_mps, 0, 2000),
     D(sound_speed_gradient_per_m, -10, 10),
+    D(altitude_timeout_s, 0, 600),
     D(history_s, 0.1, 600),
 };
 #undef D

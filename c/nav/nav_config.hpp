@@ -78,6 +78,9 @@ struct NavConfig {
     Transponder transponders[kMaxTransponders];
     int n_transponders = 0;
 
+    // altitude above the seabed: passed through from the altimeter or the DVL
+    double altitude_timeout_s = 2.0;              // older than this: unknown (-1)
+
     // time ordering
     double history_s = 10.0;                      // how late a measurement may arrive
 

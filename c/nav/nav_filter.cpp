@@ -44,6 +44,8 @@ Outcome NavFilter::push(const Measurement &m)
         return o;
     SensorStats &st = stats_.sensor[m.sensor];
     st.measurements++;
+    if (m.sensor == SENSOR_DVL && m.dvl.altitude_m > 0)
+        note_altitude(m.utime, m.dvl.altitude_m);
     if (cur_.utime < 0 || m.utime >= cur_.utime) {
         apply(cur_, m, &o);
         hist_.push_back(m, cur_);
@@ -90,6 +92,23 @@ void NavFilter::trim()
     const int64_t keep_from = cur_.utime - static_cast<int64_t>(cfg_.history_s * 1e6);
     while (hist_.size() > 1 && hist_.at(0).m.utime < keep_from)
         hist_.pop_front();
+}
+
+void NavFilter::note_altitude(int64_t utime, double altitude_m)
+{
+    if (!(altitude_m > 0) || utime < altitude_utime_)
+        return;
+    altitude_utime_ = utime;
+    altitude_m_ = altitude_m;
+    altitude_depth_m_ = cur_.depth_init ? cur_.x(PD) : 0.0;
+}
+
+double NavFilter::altitude_at(const FilterState &est) const
+{
+    if (altitude_utime_ < 0 || static_cast<double>(est.utime - altitude_utime_) * 1e-6 > cfg_.altitude_timeout_s)
+        return -1.0;
+    const double a = altitude_m_ - (est.depth_init ? est.x(PD) - altitude_depth_m_ : 0.0);
+    return a > 0 ? a : 0.0;
 }
 
 void NavFilter::estimate_at(int64_t utime, FilterState &out) const

@@ -46,6 +46,12 @@ public:
     // the newest measurement, else the current state as it is.
     void estimate_at(int64_t utime, FilterState &out) const;
 
+    // Height above the seabed is not a filter state (the seabed is not
+    // modelled): the newest altimeter or DVL range, moved by the vehicle's
+    // depth change since, while younger than altitude_timeout_s.
+    void note_altitude(int64_t utime, double altitude_m);
+    double altitude_at(const FilterState &est) const;      // -1: unknown
+
 private:
     void apply(FilterState &s, const Measurement &m, Outcome *o) const;
     void trim();
@@ -53,6 +59,8 @@ private:
 
     NavConfig cfg_;
     FilterState cur_;
+    int64_t altitude_utime_ = -1;
+    double altitude_m_ = -1, altitude_depth_m_ = 0;     // the reading, and the depth it was taken at
     History hist_;
     FilterStats stats_;
 };

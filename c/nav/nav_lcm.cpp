@@ -5,6 +5,7 @@
 
 extern "C" {
 #include "auv/auv_ahrs_t.h"
+#include "auv/auv_altimeter_t.h"
 #include "auv/auv_depth_t.h"
 #include "auv/auv_dvl_t.h"
 #include "auv/auv_gps_fix_t.h"
@@ -86,6 +87,7 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
         for (int i = 0; i < 3; i++)
             out.dvl.velocity_mps[i] = m->velocity_mps[i];
         out.dvl.sigma_mps = m->velocity_sigma_mps;
+        out.dvl.altitude_m = std::isfinite(m->altitude_m) && m->altitude_m < 12000 ? m->altitude_m : -1.0;
         return Convert::OK;
     }
     case SENSOR_GPS: {
@@ -119,6 +121,16 @@ Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Meas
     return Convert::NOT_VALID;
 }
 
+double altimeter_reading(const void *msg, const char *vehicle, int64_t *utime)
+{
+    const auto *m = static_cast<const auv_altimeter_t *>(msg);
+    *utime = m->utime;
+    if ((vehicle && std::strcmp(m->vehicle, vehicle) != 0) || !m->valid || m->utime < 0 ||
+        !plausible({m->altitude_m}, 12000.0) || !(m->altitude_m > 0))
+        return -1.0;
+    return m->altitude_m;
+}
+
 void local_to_latlon(const NavConfig &c, double north_m, double east_m, double &lat_deg, double &lon_deg)
 {
     // WGS-84 radii of curvature at the origin (as python/sim/geo.py)
@@ -130,8 +142,8 @@ void local_to_latlon(const NavConfig &c, double north_m, double east_m, double &
     lon_deg = c.origin_longitude_deg + east_m / (rn * std::cos(c.origin_latitude_deg * M_PI / 180.0)) * 180.0 / M_PI;
 }
 
-void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c, char *vehicle, int64_t utime,
-                   auv_nav_solution_t &out)
+void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c, double altitude_m, char *vehicle,
+                   int64_t utime, auv_nav_solution_t &out)
 {
     std::memset(&out, 0, sizeof out);
     out.utime = utime;
@@ -142,7 +154,7 @@ void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c
     out.east_m = s.x(PE);
     out.depth_m = s.x(PD);
     local_to_latlon(c, out.north_m, out.east_m, out.latitude_deg, out.longitude_deg);
-    out.altitude_m = -1;        // the altimeter is not fused (yet)
+    out.altitude_m = altitude_m;
     out.roll_rad = s.in.roll_rad;
     out.pitch_rad = s.in.pitch_rad;
     out.heading_rad = wrap_2pi(s.x(PSI));

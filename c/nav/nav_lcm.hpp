@@ -34,10 +34,13 @@ enum class Convert { OK, NOT_VALID, WRONG_VEHICLE, IMPLAUSIBLE };
 // msg is the decoded struct of kSensorChannels[sensor].type.
 Convert to_measurement(Sensor sensor, const void *msg, const char *vehicle, Measurement &out);
 
-// The estimate s (already at utime) as a nav_solution_t. Strings point into
-// vehicle, which must outlive out.
-void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c, char *vehicle, int64_t utime,
-                   auv_nav_solution_t &out);
+// An altimeter_t's altitude, or a negative value if it has none to give.
+double altimeter_reading(const void *msg, const char *vehicle, int64_t *utime);
+
+// The estimate s (already at utime) as a nav_solution_t, with altitude_m
+// (-1: unknown). Strings point into vehicle, which must outlive out.
+void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c, double altitude_m, char *vehicle,
+                   int64_t utime, auv_nav_solution_t &out);
 void fill_filter_status(const NavFilter &f, const NavStatus &st, char *vehicle, int64_t utime,
                         auv_nav_filter_status_t &out);
 

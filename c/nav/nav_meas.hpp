@@ -26,6 +26,7 @@ struct DvlMeas {
     bool bottom_lock;           // false: water track (velocity through the water)
     double velocity_mps[3];     // body x, y, z
     double sigma_mps;           // <= 0: the configured figure
+    double altitude_m;          // its range to the bottom; < 0 none
 };
 
 struct GpsMeas {

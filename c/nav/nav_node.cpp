@@ -42,6 +42,7 @@ NavNode::~NavNode()
     for (rx_sub_t *s : subs_)
         rx_unsubscribe(lcm_, s);
     rx_unsubscribe(lcm_, clock_sub_);
+    rx_unsubscribe(lcm_, altimeter_sub_);
 }
 
 bool NavNode::subscribe()
@@ -57,6 +58,10 @@ bool NavNode::subscribe()
         // default 30-message queue and lose sensor data.
         rx_set_queue_capacity(subs_[k], 1000);
     }
+    const std::string alt = opt_.vehicle + ".ALTIMETER";
+    altimeter_sub_ = rx_subscribe(lcm_, alt.c_str(), auv_type_find("altimeter_t"), on_altimeter, this);
+    if (!altimeter_sub_)
+        return false;
     if (opt_.sim_clock) {
         clock_sub_ = rx_subscribe(lcm_, "SIM.CLOCK", auv_type_find("sim_clock_t"), on_clock, this);
         if (!clock_sub_)
@@ -85,6 +90,15 @@ void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
     }
 }
 
+void NavNode::on_altimeter(const char *, const void *msg, int64_t, void *user)
+{
+    auto *n = static_cast<NavNode *>(user);
+    int64_t t = 0;
+    const double a = altimeter_reading(msg, n->opt_.vehicle.c_str(), &t);
+    if (a > 0)
+        n->filter_.note_altitude(t, a);
+}
+
 void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
 {
     auto *n = static_cast<NavNode *>(user);
@@ -97,7 +111,7 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
 
 uint64_t NavNode::decode_errors() const
 {
-    uint64_t e = clock_sub_ ? rx_decode_errors(clock_sub_) : 0;
+    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0);
     for (const rx_sub_t *s : subs_)
         if (s)
             e += rx_decode_errors(s);
@@ -113,7 +127,7 @@ void NavNode::publish_cycle()
     const NavStatus st = evaluate_status(scratch_, t, filter_.config());
     if (scratch_.aligned()) {
         auv_nav_solution_t sol;
-        fill_solution(scratch_, st, filter_.config(), &vehicle_[0], t, sol);
+        fill_solution(scratch_, st, filter_.config(), filter_.altitude_at(scratch_), &vehicle_[0], t, sol);
         auv_nav_solution_t_publish(lcm_, opt_.channel.c_str(), &sol);
         published_++;
     }

@@ -52,6 +52,7 @@ public:
 private:
     static void on_sensor(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
     void publish_health();
 
     NodeOptions opt_;
@@ -61,6 +62,7 @@ private:
     std::string vehicle_;       // mutable copy: LCM messages take char *
     rx_sub_t *subs_[kSensors] = {};
     rx_sub_t *clock_sub_ = nullptr;
+    rx_sub_t *altimeter_sub_ = nullptr;
     struct SubCtx {
         NavNode *node;
         Sensor sensor;

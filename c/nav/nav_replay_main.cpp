@@ -208,6 +208,8 @@ int main(int argc, char **argv)
     }
     dec.emplace_back("ground_truth_t");
     channel_sensor[o.vehicle + ".TRUTH"] = nav::kSensors;
+    dec.emplace_back("altimeter_t");
+    channel_sensor[o.vehicle + ".ALTIMETER"] = nav::kSensors + 1;
     std::map<std::string, uint64_t> undecodable;
     uint64_t events = 0, used = 0, not_used = 0, skipped_truth = 0;
     Timing tm;
@@ -219,11 +221,17 @@ int main(int argc, char **argv)
             Decoder &d = dec[it->second];
             if (rx_decode(d.type, ev->data, static_cast<int>(ev->datalen), d.buf.data()) != 0) {
                 undecodable[ev->channel]++;
+            } else if (it->second == nav::kSensors + 1) {
+                int64_t t = 0;
+                const double a = nav::altimeter_reading(d.buf.data(), o.vehicle.c_str(), &t);
+                if (a > 0)
+                    filter.note_altitude(t, a);
+                d.type->info()->decode_cleanup(d.buf.data());
             } else if (it->second == nav::kSensors) {
                 const auto *tr = reinterpret_cast<const auv_ground_truth_t *>(d.buf.data());
                 if (tr->utime >= filter.state().utime) {
                     filter.estimate_at(tr->utime, est);
-                    eval.add(*tr, est, nav::evaluate_status(est, tr->utime, cfg));
+                    eval.add(*tr, est, nav::evaluate_status(est, tr->utime, cfg), filter.altitude_at(est));
                 } else {
                     skipped_truth++;    // the filter already ran past it
                 }

@@ -20,7 +20,7 @@ Evaluator::Evaluator(FILE *csv, double score_from_s) : csv_(csv), score_from_s_(
                            "sd_n,sd_e,sd_d,sd_psi,status,trusted,h_err_m,distance_m,nees_pos,nees_psi,nees_vel\n");
 }
 
-void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const NavStatus &st)
+void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const NavStatus &st, double altitude_m)
 {
     const double t = static_cast<double>(tr.utime) * 1e-6;
     if (first_t_ < 0)
@@ -61,6 +61,10 @@ void Evaluator::add(const auv_ground_truth_t &tr, const FilterState &s, const Na
     if (!scored)
         return;
     h_err_.add(h_err);
+    if (altitude_m >= 0)
+        alt_err_.add(std::fabs(altitude_m - tr.altitude_m));
+    else
+        alt_unknown_++;
     psi_err_.add(std::fabs(e_psi));
     nees_pos_.add(nees_pos);
     nees_psi_.add(nees_psi);
@@ -84,6 +88,8 @@ void Evaluator::print_summary(FILE *out) const
     std::fprintf(out, "h_err_final_m %.4f\n", final_h_err_);
     std::fprintf(out, "h_err_final_pct %.4f\n", distance_m_ > 0 ? 100.0 * final_h_err_ / distance_m_ : -1.0);
     std::fprintf(out, "h_err_max_pct %.4f\n", max_pct_);
+    std::fprintf(out, "altitude_err_mean_m %.4f\n", alt_err_.mean());
+    std::fprintf(out, "altitude_unknown_fraction %.4f\n", static_cast<double>(alt_unknown_) / a);
     std::fprintf(out, "heading_err_mean_deg %.4f\n", psi_err_.mean() * 180.0 / M_PI);
     std::fprintf(out, "nees_pos_mean %.4f\n", nees_pos_.mean());
     std::fprintf(out, "nees_pos_max %.4f\n", nees_pos_.max);

@@ -35,7 +35,7 @@ public:
     // scored nor counted as distance travelled (e.g. the surface run before a dive).
     Evaluator(FILE *csv, double score_from_s);
     // One truth sample against the estimate at the same time.
-    void add(const auv_ground_truth_t &truth, const FilterState &est, const NavStatus &st);
+    void add(const auv_ground_truth_t &truth, const FilterState &est, const NavStatus &st, double altitude_m);
     void print_summary(FILE *out) const;
 
 private:
@@ -45,9 +45,9 @@ private:
     double last_n_ = 0, last_e_ = 0;
     double distance_m_ = 0;
     double first_t_ = -1, last_t_ = 0, align_t_ = -1;
-    Running h_err_, nees_pos_, nees_psi_, nees_vel_, nees_depth_, psi_err_;
+    Running h_err_, alt_err_, nees_pos_, nees_psi_, nees_vel_, nees_depth_, psi_err_;
     double final_h_err_ = 0, max_pct_ = 0;
-    uint64_t samples_ = 0, aligned_ = 0, trusted_ = 0, degraded_ = 0, invalid_ = 0;
+    uint64_t alt_unknown_ = 0, samples_ = 0, aligned_ = 0, trusted_ = 0, degraded_ = 0, invalid_ = 0;
 };
 
 }  // namespace nav

@@ -122,6 +122,7 @@ def test_live_alignment_bad_messages_and_clean_stop(variant_dir, lcm_url, child_
         assert last.source == nav_solution_t.SOURCE_EKF and last.status & nav_solution_t.STATUS_ALIGNED
         assert abs(last.north_m - 10) < 3 and abs(last.east_m - 20) < 3 and abs(last.depth_m - 5) < 0.1
         assert abs(last.heading_rad - math.pi / 2) < 0.01
+        assert abs(last.altitude_m - 20) < 0.01         # the DVL's range to the bottom
         assert w.status[-1].trusted
         # garbage: a truncated DVL, an AHRS on the GPS channel, and seeded
         # random (absurd) messages of every sensor type

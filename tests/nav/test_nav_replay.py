@@ -50,6 +50,7 @@ def test_nees_is_consistent_on_the_lbl_aided_survey(survey, tmp_path):
     assert 0.75 <= s["nees_vel_mean"] <= 7.5, s
     assert 0.25 <= s["nees_depth_mean"] <= 2.5, s
     assert s["h_err_rms_m"] < 1.5 and s["trusted_fraction"] > 0.95, s
+    assert s["altitude_err_mean_m"] < 0.2 and s["altitude_unknown_fraction"] < 0.01, s
     assert s["undecodable_total"] == 0 and s["truth_skipped"] == 0
 
 

@@ -68,7 +68,7 @@ std::vector<nav::Measurement> Synth::run(double duration_s, const nav::NavConfig
         }
         if (i % 4 == 0) {
             m.sensor = nav::SENSOR_DVL;
-            m.dvl = {true, {s.u + gauss(dvl_noise), gauss(dvl_noise), gauss(dvl_noise)}, dvl_noise};
+            m.dvl = {true, {s.u + gauss(dvl_noise), gauss(dvl_noise), gauss(dvl_noise)}, dvl_noise, 20.0};
             out.push_back(m);
         }
         if (i % 20 == 0 && t < gps_until_s) {
