@@ -1,7 +1,7 @@
 // auv-nav: the vehicle's onboard navigation filter as a process.
 //
 //   auv-nav --config FILE.nav [--vehicle AUV1] [--channel AUV1.NAV] [--status-channel AUV1.NAV_STATUS]
-//           [--rate 20] [--clock sim|system] [--url URL]
+//           [--rate 20] [--clock sim|system] [--url URL] [--check]
 //
 // Reads <VEHICLE>.AHRS, .DEPTH, .DVL, .GPS and .LBL; publishes
 // nav_solution_t (source SOURCE_EKF) on --channel at --rate Hz on the mission
@@ -9,6 +9,7 @@
 // second. --clock sim follows SIM.CLOCK (nothing is published until it
 // ticks), --clock system the host clock (a real vehicle). SIGINT/SIGTERM end
 // it cleanly (exit 0). Exit 1: bad configuration; 2: usage or LCM failure.
+// --check only reads the configuration: "ok" and exit 0, or its errors and 1.
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -29,13 +30,17 @@ void on_signal(int) { g_stop = 1; }
 void usage()
 {
     std::fprintf(stderr, "usage: auv-nav --config FILE.nav [--vehicle ID] [--channel CH] [--status-channel CH]\n"
-                         "               [--rate HZ] [--clock sim|system] [--url URL]\n");
+                         "               [--rate HZ] [--clock sim|system] [--url URL] [--check]\n");
 }
 
-bool parse_args(int argc, char **argv, nav::NodeOptions &o)
+bool parse_args(int argc, char **argv, nav::NodeOptions &o, bool &check)
 {
     for (int i = 1; i < argc; i++) {
         const std::string a = argv[i];
+        if (a == "--check") {
+            check = true;
+            continue;
+        }
         const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
         if (!v) {
             std::fprintf(stderr, "auv-nav: bad or incomplete option '%s'\n", a.c_str());
@@ -111,7 +116,8 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
 int main(int argc, char **argv)
 {
     nav::NodeOptions opt;
-    if (!parse_args(argc, argv, opt))
+    bool check = false;
+    if (!parse_args(argc, argv, opt, check))
         return 2;
     nav::NavConfig cfg;
     std::vector<std::string> errors;
@@ -120,6 +126,10 @@ int main(int argc, char **argv)
             std::fprintf(stderr, "%s\n", e.c_str());
         std::fprintf(stderr, "auv-nav: %zu error(s) in %s\n", errors.size(), opt.config_path.c_str());
         return 1;
+    }
+    if (check) {
+        std::printf("%s: ok (%d transponders)\n", opt.config_path.c_str(), cfg.n_transponders);
+        return 0;
     }
     lcm_t *lcm = lcm_create(opt.url.c_str());
     if (!lcm) {
