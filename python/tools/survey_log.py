@@ -25,16 +25,13 @@ from __future__ import annotations
 
 import argparse
 import math
-import signal
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
-for _p in (ROOT / "python", ROOT / "python" / "tools"):
-    if str(_p) not in sys.path:
-        sys.path.insert(0, str(_p))
+if str(ROOT / "python") not in sys.path:
+    sys.path.insert(0, str(ROOT / "python"))
 
 import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
 import lcm  # noqa: E402
@@ -43,7 +40,8 @@ from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t,
 
 from auvlcm.rx import Receiver  # noqa: E402
 from auvlcm.url import check_local, default_url  # noqa: E402
-from survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
+from tools.procs import Child  # noqa: E402
+from tools.survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
 
 DEFAULT_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 STEP_S = 0.1
@@ -155,20 +153,6 @@ def annotate(lc: lcm.LCM, name: str, text: str, kind: int) -> None:
     lc.publish("SIM.ANNOTATION", note.encode())
 
 
-def start(cmd: list[str], out: Path) -> subprocess.Popen:
-    return subprocess.Popen(cmd, stdout=open(out, "w"), stderr=subprocess.STDOUT, start_new_session=True)
-
-
-def stop(proc: subprocess.Popen) -> None:
-    if proc.poll() is None:
-        proc.send_signal(signal.SIGINT)
-        try:
-            proc.wait(15)
-        except subprocess.TimeoutExpired:
-            proc.kill()
-            proc.wait()
-
-
 def run(args: argparse.Namespace) -> int:
     url = check_local(args.url)
     out = Path(args.out)
@@ -184,8 +168,9 @@ def run(args: argparse.Namespace) -> int:
     stepper = Stepper(lc, vehicle, SurveyPilot(survey))
     logger, recorder = None, None
     if args.logger == "lcm-logger":
-        logger = start([str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"), f"--lcm-url={with_receive_buffer(url)}",
-                        "-f", str(out)], out.with_suffix(".logger.out"))
+        logger = Child("logger", [str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"),
+                                  f"--lcm-url={with_receive_buffer(url)}", "-f", str(out)],
+                       out.with_suffix(".logger.out")).start()
     else:
         recorder = Recorder(lc, out)
     sim = None
@@ -194,8 +179,8 @@ def run(args: argparse.Namespace) -> int:
             time.sleep(0.5)             # the logger is listening before anything is said
         annotate(lc, cfg_path.name, cfg_text, log_annotation_t.KIND_SCENARIO)
         annotate(lc, "survey", repr(survey), log_annotation_t.KIND_NOTE)
-        sim = start([sys.executable, str(ROOT / "python" / "sim"), str(cfg_path), "--clock", "stepped",
-                     "--lcm-url", url], out.with_suffix(".sim.out"))
+        sim = Child("sim", [sys.executable, str(ROOT / "python" / "sim"), str(cfg_path), "--clock", "stepped",
+                            "--lcm-url", url], out.with_suffix(".sim.out")).start()
         t_us, end_us = 0, None
         limit_us = int(min(args.max_s, 1e7) * 1e6)
         stepper.step_to(0, timeout_s=30.0)
@@ -209,12 +194,12 @@ def run(args: argparse.Namespace) -> int:
             stepper.step_to(t_us, timeout_s=10.0)
     finally:
         if sim is not None:
-            stop(sim)
+            sim.stop()
         deadline = time.monotonic() + 0.5   # the last messages reach the log
         while time.monotonic() < deadline:
             lc.handle_timeout(50)
         if logger is not None:
-            stop(logger)
+            logger.stop()
         if recorder is not None:
             recorder.close()
     print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "

@@ -7,15 +7,12 @@ though every importing module registers its own copy of the fixture."""
 from __future__ import annotations
 
 import os
-import sys
 
 import pytest
 
 from conftest import BUILD, ROOT, _ports
 
-sys.path.insert(0, str(ROOT / "python" / "tools"))
-
-from nav_common import record_survey  # noqa: E402
+from nav_common import record_survey
 
 _recorded: dict = {}
 
