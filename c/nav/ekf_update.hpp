@@ -15,9 +15,14 @@ struct Gated {
 
 // y is the innovation z - h(x) (angles already wrapped), H its Jacobian, R the
 // measurement covariance. The update is applied only if NIS <= gate.
+//
+// States in `consider` (a bit mask of StateIndex) are Schmidt "consider"
+// states for this update: their estimate is not moved, but the covariance
+// stays exact (the Joseph form holds for any gain). Used for the compass
+// bias: only position fixes may move it (see nav_updates.hpp).
 template <int M>
 Gated kalman_update(FilterState &s, const Eigen::Matrix<double, M, 1> &y, const Eigen::Matrix<double, M, N> &H,
-                    const Eigen::Matrix<double, M, M> &R, double gate)
+                    const Eigen::Matrix<double, M, M> &R, double gate, uint32_t consider = 0)
 {
     using MatM = Eigen::Matrix<double, M, M>;
     const Eigen::Matrix<double, N, M> PHt = s.P * H.transpose();
@@ -30,7 +35,10 @@ Gated kalman_update(FilterState &s, const Eigen::Matrix<double, M, 1> &y, const 
     if (!(g.nis <= gate))
         return g;
     // K = P H' S^-1, computed as (S^-1 (P H')')' with the factorisation
-    const Eigen::Matrix<double, N, M> K = llt.solve(PHt.transpose()).transpose();
+    Eigen::Matrix<double, N, M> K = llt.solve(PHt.transpose()).transpose();
+    for (int i = 0; i < N; i++)
+        if (consider & (1u << i))
+            K.row(i).setZero();
     s.x += K * y;
     const Mat IKH = Mat::Identity() - K * H;
     s.P = IKH * s.P * IKH.transpose() + K * R * K.transpose();

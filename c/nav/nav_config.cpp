@@ -45,6 +45,7 @@ const Key kKeys[] = {
     D(dvl_noise_mps, 1e-6, 10),
     D(dvl_water_track_extra_mps, 0, 10),
     D(dvl_water_track_surface_extra_mps, 0, 10),
+    D(wave_decay_depth_m, 0.01, 1000),
     D(gps_noise_m, 1e-3, 1e4),
     D(lbl_range_noise_m, 1e-3, 1e4),
     D(accel_noise_mps2, 1e-6, 100),

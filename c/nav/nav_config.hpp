@@ -36,8 +36,13 @@ struct NavConfig {
     double attitude_noise_rad = 0.00174533;       // roll, pitch (reported, not estimated)
     double depth_noise_m = 0.02;
     double dvl_noise_mps = 0.01;                  // used when the message gives none
-    double dvl_water_track_extra_mps = 0.03;      // wave orbital motion, shear: water track only
-    double dvl_water_track_surface_extra_mps = 0.3;  // ... within surface_zone_m of the surface
+    // Water track also measures the water's own motion that the current
+    // states do not model: shear (extra_mps) and wave orbital velocity, largest
+    // at the surface and decaying with depth as exp(-depth / wave_decay_depth_m)
+    // (g T^2 / 4 pi^2: 9 m for a 6 s swell).
+    double dvl_water_track_extra_mps = 0.03;
+    double dvl_water_track_surface_extra_mps = 0.3;
+    double wave_decay_depth_m = 9.0;
     double gps_noise_m = 2.0;                     // used when the fix gives no sigma
     double lbl_range_noise_m = 1.25;
 

@@ -13,6 +13,15 @@
 
 namespace nav {
 
+// The compass bias is a consider state of every update but the position
+// fixes (GPS, LBL): it is observable only through where the vehicle went, and
+// letting velocity, depth or compass innovations move it through their
+// correlations makes it absorb unmodelled water motion (wave orbital
+// velocity, shear seen in water track): in the simulated swell the bias
+// estimate drifted 0.5 deg the wrong way in every dive, which dead reckoning
+// then turned into cross-track error.
+constexpr uint32_t kConsiderBias = 1u << BIAS;
+
 struct Outcome {
     int accepted = 0, rejected = 0;     // scalar/vector updates (LBL: one per reply)
     int unknown = 0;                    // LBL replies from transponders not in the config

@@ -45,7 +45,7 @@ Outcome update_ahrs(FilterState &s, const AhrsMeas &m, int64_t utime, const NavC
     H(PSI) = 1;
     H(BIAS) = 1;
     R(0) = c.compass_noise_rad * c.compass_noise_rad;
-    const Gated g = kalman_update<1>(s, y, H, R, c.gate_chi2[1]);
+    const Gated g = kalman_update<1>(s, y, H, R, c.gate_chi2[1], kConsiderBias);
     s.x(PSI) = wrap_2pi(s.x(PSI));
     if (record_gated(s, SENSOR_AHRS, g, utime, c, o))
         align_heading(s, m.heading_rad, c);

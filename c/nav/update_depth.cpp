@@ -22,7 +22,7 @@ Outcome update_depth(FilterState &s, const DepthMeas &m, int64_t utime, const Na
     y(0) = m.depth_m - s.x(PD);
     H(PD) = 1;
     R(0) = r;
-    const Gated g = kalman_update<1>(s, y, H, R, c.gate_chi2[1]);
+    const Gated g = kalman_update<1>(s, y, H, R, c.gate_chi2[1], kConsiderBias);
     if (record_gated(s, SENSOR_DEPTH, g, utime, c, o))
         reset_state(s, PD, m.depth_m, r);
     return o;

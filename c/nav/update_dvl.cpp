@@ -6,7 +6,10 @@
 // Between position fixes the current is unobservable and its uncertainty
 // grows the position's, as it should; a GPS or LBL fix makes it observable.
 // Wave orbital motion and shear are not in the model: water track gets extra
-// noise for them (dvl_water_track_extra_mps).
+// noise for them, largest near the surface (NavConfig).
+#include <algorithm>
+#include <cmath>
+
 #include "nav/ekf_predict.hpp"
 #include "nav/nav_updates.hpp"
 
@@ -45,7 +48,8 @@ Outcome update_dvl(FilterState &s, const DvlMeas &m, int64_t utime, const NavCon
     double r = sigma * sigma;
     if (!m.bottom_lock) {
         // the water moves with the waves near the surface: little to learn there
-        const double extra = s.x(PD) < c.surface_zone_m ? c.dvl_water_track_surface_extra_mps : c.dvl_water_track_extra_mps;
+        const double waves = c.dvl_water_track_surface_extra_mps * std::exp(-std::max(s.x(PD), 0.0) / c.wave_decay_depth_m);
+        const double extra = c.dvl_water_track_extra_mps + waves;
         r += extra * extra;
     }
     s.last_meas_utime[SENSOR_DVL] = utime;
@@ -69,11 +73,17 @@ Outcome update_dvl(FilterState &s, const DvlMeas &m, int64_t utime, const NavCon
         Vec3 d_psi;
         h -= current_body(s, &d_current, &d_psi);
         H.block<3, 2>(0, CN) = -d_current;
-        H.block<3, 1>(0, PSI) = -d_psi;
+        // No heading column: the heading only rotates a current that is itself
+        // barely known, and linearising about its estimate would invent heading
+        // (and compass bias) information the data do not hold (the classic
+        // EKF inconsistency of unobservable directions; seen here as a 0.3 deg
+        // bias jump per update in the swell). Heading comes from the compass
+        // and from position fixes.
+        (void)d_psi;
     }
     const Vec3 y = z - h;
     const Mat3 R = Mat3::Identity() * r;
-    const Gated g = kalman_update<3>(s, y, H, R, c.gate_chi2[3]);
+    const Gated g = kalman_update<3>(s, y, H, R, c.gate_chi2[3], kConsiderBias);
     if (g.accepted)
         (m.bottom_lock ? s.last_bottom_lock_utime : s.last_water_track_utime) = utime;
     if (record_gated(s, SENSOR_DVL, g, utime, c, o))
