@@ -94,6 +94,11 @@ void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub)
     free(sub);
 }
 
+int rx_set_queue_capacity(rx_sub_t *sub, int capacity)
+{
+    return lcm_subscription_set_queue_capacity(sub->lcm_sub, capacity);
+}
+
 const rx_stats_t *rx_stats(const rx_sub_t *sub) { return &sub->stats; }
 
 uint64_t rx_decode_errors(const rx_sub_t *sub)

@@ -34,6 +34,10 @@ rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *
                        rx_handler_t handler, void *user);
 void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub);
 
+/* How many undelivered messages LCM queues for this subscription before it
+ * drops new ones (liblcm's default is 30). Returns lcm's result (0 ok). */
+int rx_set_queue_capacity(rx_sub_t *sub, int capacity);
+
 const rx_stats_t *rx_stats(const rx_sub_t *sub);
 uint64_t rx_decode_errors(const rx_sub_t *sub);
 

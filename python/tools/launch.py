@@ -3,7 +3,8 @@
     launch.py SCENARIO.yaml [--host NAME] [--out DIR] [--url URL]
 
 Order: lcm-logger, the files the run uses annotated into the log, the
-simulators, the managers; then the global clock starts. The mission ends when
+simulators, the onboard navigation filters (vehicles with `nav: ekf`), the
+managers; then the global clock starts. The mission ends when
 every vehicle's navigator is done, aborted or failed, or at the time limit;
 Ctrl-C, SIGTERM or any process dying ends it too. Everything is stopped in
 reverse order, the logger last, so the log holds the end.
@@ -46,6 +47,29 @@ def build_dir() -> Path:
     return b if b.is_absolute() else ROOT / b
 
 
+def nav_configs(sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Path) -> tuple[dict[str, Path], list[str]]:
+    """The nav config of each vehicle flown on the onboard filter (`nav: ekf`):
+    the scenario's file, or one derived from the vehicle's merged simulator
+    configuration (python/tools/navconf.py); each checked by auv-nav itself."""
+    from sim.config import load
+    from tools.navconf import nav_config_text
+    paths, errors = {}, []
+    for v in sc.vehicles:
+        if v.nav.source != "ekf" or v.id not in sim_configs:
+            continue
+        path = v.nav.config
+        if path is None:
+            path = out / f"{v.id}.nav"
+            path.write_text(nav_config_text(load(sim_configs[v.id])))
+        run = subprocess.run([str(build / "bin" / "auv-nav"), "--config", str(path), "--check"],
+                             capture_output=True, text=True)
+        if run.returncode != 0:
+            errors.append(f"{v.where}: {v.id}.nav: {path} does not load:")
+            errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
+        paths[v.id] = path
+    return paths, errors
+
+
 def check_plans(sc: Scenario, build: Path) -> list[str]:
     """`chasm check` every plan with its parameters before anything starts."""
     errors, done = [], set()
@@ -68,8 +92,10 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
 
 
 class Launcher:
-    def __init__(self, sc: Scenario, args, url: str, sim_configs: dict[str, Path]) -> None:
+    def __init__(self, sc: Scenario, args, url: str, sim_configs: dict[str, Path],
+                 nav_configs: dict[str, Path] | None = None) -> None:
         self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
+        self.nav_configs = nav_configs or {}
         self.host = args.host
         self.out: Path = args.out
         self.build = args.build
@@ -120,6 +146,9 @@ class Launcher:
             if v.id in self.sim_configs:
                 cfg = self.sim_configs[v.id]
                 self.notes.note(A.KIND_SCENARIO, cfg.name, cfg.read_text(), v.id)
+            if v.id in self.nav_configs:
+                nav = self.nav_configs[v.id]
+                self.notes.note(A.KIND_SCENARIO, nav.name, nav.read_text(), v.id)
             for m in v.managers:
                 self.notes.plan(m.plan, v.id)
                 self.notes.binding(m.bind, v.id)
@@ -139,12 +168,19 @@ class Launcher:
             cmd += ["-D", f"{k}={val}"]
         return cmd
 
+    def nav_cmd(self, v) -> list[str]:
+        return [str(self.build / "bin" / "auv-nav"), "--config", str(self.nav_configs[v.id]), "--vehicle", v.id,
+                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--url", self.url]
+
     def start_all(self) -> None:
         if self.own_log:
             self.start_logger()
             self.annotate()
         for v in self.mine:
             self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out"))
+        for v in self.mine:     # the onboard filter, before the managers that read it
+            if v.id in self.nav_configs:
+                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out"))
         for v in self.mine:
             for m in v.managers:
                 self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), self.out / f"{v.id}.{m.name}.out"))
@@ -249,6 +285,8 @@ def main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)
     sim_configs, errors = write_configs(sc, sc.vehicles, args.out)
+    navs, nav_errors = nav_configs(Scenario(**{**sc.__dict__, "vehicles": mine}), sim_configs, args.out, args.build)
+    errors += nav_errors
     errors += check_plans(Scenario(**{**sc.__dict__, "vehicles": mine}), args.build)
     if errors:
         print("\n".join(errors), file=sys.stderr)
@@ -258,7 +296,7 @@ def main(argv: list[str] | None = None) -> int:
     flag = {"stop": False}
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, lambda *_: flag.update(stop=True))
-    run = Launcher(sc, args, url, sim_configs)
+    run = Launcher(sc, args, url, sim_configs, navs)
     print(f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
           f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
           f"over {url}; run folder {args.out}", flush=True)

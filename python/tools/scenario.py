@@ -35,6 +35,14 @@ class Manager:
 
 
 @dataclass
+class NavChoice:
+    """What publishes the vehicle's <ID>.NAV (docs/navigation.md)."""
+    source: str = "ins"                   # "ins": the simulator's black-box INS; "ekf": auv-nav
+    config: Path | None = None            # auv-nav's nav config; None: derived from the sim config
+    rate_hz: float = 20.0
+
+
+@dataclass
 class Vehicle:
     id: str
     host: str
@@ -43,6 +51,7 @@ class Vehicle:
     managers: list[Manager]
     end_manager: str = "NAVIGATOR"        # whose status ends this vehicle's mission
     where: str = ""
+    nav: NavChoice = field(default_factory=NavChoice)
 
 
 @dataclass
@@ -166,8 +175,24 @@ def _manager(c: _Checker, m: Any, pos: str, key: str) -> Manager | None:
     return Manager(name, plan, bind, rate, dparams, [(c.base / p).resolve() for p in pp], pos)
 
 
+NAV_SOURCES = ("ins", "ekf")
+
+
+def _nav(c: _Checker, v: MDict, key: str) -> NavChoice:
+    """`nav: ins` (default), `nav: ekf`, or `nav: {source: ekf, config: FILE.nav, rate: 20}`."""
+    raw = v.get("nav", "ins")
+    check = lambda s: "" if s in NAV_SOURCES else f"expected one of: {', '.join(NAV_SOURCES)}"  # noqa: E731
+    if isinstance(raw, str):
+        return NavChoice(c.get(v, "nav", key, str, "ins", check))
+    m = c.mapping(raw, where(v, "nav"), f"{key}.nav", ("source", "config", "rate"), required=("source",))
+    nav = NavChoice(c.get(m, "source", f"{key}.nav", str, "ins", check))
+    nav.config = c.file(m, "config", f"{key}.nav") if "config" in m else None
+    nav.rate_hz = c.get(m, "rate", f"{key}.nav", float, nav.rate_hz, _positive)
+    return nav
+
+
 def _vehicle(c: _Checker, v: Any, pos: str, key: str, hosts: list[str]) -> Vehicle | None:
-    v = c.mapping(v, pos, key, ("id", "host", "sim", "managers", "end_manager"),
+    v = c.mapping(v, pos, key, ("id", "host", "sim", "managers", "end_manager", "nav"),
                   required=("id", "sim", "managers"))
     vid = c.get(v, "id", key, str, "", lambda s: "" if VEHICLE_ID.fullmatch(s) else
                 "upper-case letters and digits, starting with a letter, at most 16")
@@ -199,9 +224,10 @@ def _vehicle(c: _Checker, v: Any, pos: str, key: str, hosts: list[str]) -> Vehic
     if managers and end not in [m.name for m in managers]:
         c.err(where(v, "end_manager") if "end_manager" in v else where(v, "managers"),
               f"{key}.end_manager", f"no manager named '{end}' (its status ends the mission)")
+    nav = _nav(c, v, key)
     if not vid or cfg is None or not managers:
         return None
-    return Vehicle(vid, host, cfg, overrides, managers, end, pos)
+    return Vehicle(vid, host, cfg, overrides, managers, end, pos, nav)
 
 
 def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:

@@ -48,9 +48,24 @@ def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
     return merge(cfg, {"sonar": {"publish_targets": "yes" if first is v else "no"}})
 
 
+def _ins_out_of_the_way(v: Vehicle, cfg: dict) -> dict:
+    """With the onboard filter (`nav: ekf`) auv-nav owns <ID>.NAV: the simulated
+    INS moves to <ID>.NAV_INS, kept in the log for comparison (one writer per
+    channel). An absent `sensors` section means every sensor at its defaults
+    and a present one only the sensors it names, so all are named first."""
+    if v.nav.source != "ekf":
+        return cfg
+    from sim.sensors import REGISTRY
+    sensors = cfg.get("sensors") or {name: {} for name in REGISTRY}
+    ins = sensors.get("ins", False)
+    if ins is False or (isinstance(ins, dict) and ins.get("channel", "NAV") != "NAV"):
+        return dict(cfg, sensors=sensors)     # no INS, or already elsewhere
+    return dict(cfg, sensors=merge(sensors, {"ins": merge(ins or {}, {"channel": "NAV_INS"})}))
+
+
 def vehicle_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     """The merged simulator configuration of one vehicle (plain data)."""
-    return _targets_publisher(sc, v, _merged_config(sc, v, index))
+    return _ins_out_of_the_way(v, _targets_publisher(sc, v, _merged_config(sc, v, index)))
 
 
 def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:

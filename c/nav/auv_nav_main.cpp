@@ -1,0 +1,160 @@
+// auv-nav: the vehicle's onboard navigation filter as a process.
+//
+//   auv-nav --config FILE.nav [--vehicle AUV1] [--channel AUV1.NAV] [--status-channel AUV1.NAV_STATUS]
+//           [--rate 20] [--clock sim|system] [--url URL] [--check]
+//
+// Reads <VEHICLE>.AHRS, .DEPTH, .DVL, .GPS and .LBL; publishes
+// nav_solution_t (source SOURCE_EKF) on --channel at --rate Hz on the mission
+// clock once aligned, and nav_filter_status_t plus process_health_t once a
+// second. --clock sim follows SIM.CLOCK (nothing is published until it
+// ticks), --clock system the host clock (a real vehicle). SIGINT/SIGTERM end
+// it cleanly (exit 0). Exit 1: bad configuration; 2: usage or LCM failure.
+// --check only reads the configuration: "ok" and exit 0, or its errors and 1.
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "nav/nav_node.hpp"
+
+namespace {
+
+volatile sig_atomic_t g_stop = 0;
+
+void on_signal(int) { g_stop = 1; }
+
+void usage()
+{
+    std::fprintf(stderr, "usage: auv-nav --config FILE.nav [--vehicle ID] [--channel CH] [--status-channel CH]\n"
+                         "               [--rate HZ] [--clock sim|system] [--url URL] [--check]\n");
+}
+
+bool parse_args(int argc, char **argv, nav::NodeOptions &o, bool &check)
+{
+    for (int i = 1; i < argc; i++) {
+        const std::string a = argv[i];
+        if (a == "--check") {
+            check = true;
+            continue;
+        }
+        const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
+        if (!v) {
+            std::fprintf(stderr, "auv-nav: bad or incomplete option '%s'\n", a.c_str());
+            return false;
+        }
+        if (a == "--config") o.config_path = v;
+        else if (a == "--vehicle") o.vehicle = v;
+        else if (a == "--channel") o.channel = v;
+        else if (a == "--status-channel") o.status_channel = v;
+        else if (a == "--url") o.url = v;
+        else if (a == "--rate") {
+            char *end = nullptr;
+            o.rate_hz = std::strtod(v, &end);
+            if (!end || *end || !(o.rate_hz > 0 && o.rate_hz <= 1000)) {
+                std::fprintf(stderr, "auv-nav: --rate must be a number in (0, 1000]\n");
+                return false;
+            }
+        } else if (a == "--clock" && (!std::strcmp(v, "sim") || !std::strcmp(v, "system")))
+            o.sim_clock = !std::strcmp(v, "sim");
+        else {
+            std::fprintf(stderr, "auv-nav: bad or incomplete option '%s'\n", a.c_str());
+            return false;
+        }
+        i++;
+    }
+    if (o.config_path.empty() || o.vehicle.empty()) {
+        usage();
+        return false;
+    }
+    return true;
+}
+
+int64_t system_now_us()
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    return static_cast<int64_t>(ts.tv_sec) * 1000000 + ts.tv_nsec / 1000;
+}
+
+int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
+{
+    const int64_t period_us = static_cast<int64_t>(1e6 / o.rate_hz);
+    int64_t next_cycle = 0;
+    while (!g_stop) {
+        int wait_ms = 20;
+        if (!o.sim_clock) {
+            node.set_now(system_now_us());
+            if (next_cycle > node.now())
+                wait_ms = static_cast<int>((next_cycle - node.now()) / 1000);
+        }
+        // A signal interrupts the wait: that is how a stop arrives.
+        if (lcm_handle_timeout(lcm, wait_ms > 0 ? wait_ms : 0) < 0 && !g_stop) {
+            std::fprintf(stderr, "auv-nav: LCM receive failed\n");
+            return 2;
+        }
+        if (g_stop)
+            break;
+        if (!o.sim_clock)
+            node.set_now(system_now_us());
+        if (!node.have_time() || node.now() < next_cycle)
+            continue;
+        node.publish_cycle();
+        // Skip missed cycles instead of publishing a burst after a stall.
+        next_cycle += period_us;
+        if (next_cycle <= node.now())
+            next_cycle = node.now() + period_us;
+    }
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv)
+{
+    nav::NodeOptions opt;
+    bool check = false;
+    if (!parse_args(argc, argv, opt, check))
+        return 2;
+    nav::NavConfig cfg;
+    std::vector<std::string> errors;
+    if (!nav::load_config(opt.config_path, cfg, errors)) {
+        for (const std::string &e : errors)
+            std::fprintf(stderr, "%s\n", e.c_str());
+        std::fprintf(stderr, "auv-nav: %zu error(s) in %s\n", errors.size(), opt.config_path.c_str());
+        return 1;
+    }
+    if (check) {
+        std::printf("%s: ok (%d transponders)\n", opt.config_path.c_str(), cfg.n_transponders);
+        return 0;
+    }
+    lcm_t *lcm = lcm_create(opt.url.c_str());
+    if (!lcm) {
+        std::fprintf(stderr, "auv-nav: cannot open LCM at %s (no multicast route? see README)\n", opt.url.c_str());
+        return 2;
+    }
+    int rc = 2;
+    {
+        nav::NavNode node(opt, cfg, lcm);
+        if (node.subscribe()) {
+            struct sigaction sa;
+            std::memset(&sa, 0, sizeof sa);
+            sa.sa_handler = on_signal;
+            sigaction(SIGINT, &sa, nullptr);
+            sigaction(SIGTERM, &sa, nullptr);
+            std::fprintf(stderr, "auv-nav: %s: %d transponders; publishing %s at %.1f Hz on the %s clock\n",
+                         opt.vehicle.c_str(), cfg.n_transponders,
+                         (opt.channel.empty() ? opt.vehicle + ".NAV" : opt.channel).c_str(), opt.rate_hz,
+                         opt.sim_clock ? "SIM.CLOCK" : "system");
+            rc = run(node, lcm, opt);
+            node.print_summary();
+        } else {
+            std::fprintf(stderr, "auv-nav: cannot subscribe to the sensor channels\n");
+        }
+    }
+    lcm_destroy(lcm);
+    return rc;
+}

@@ -1,0 +1,180 @@
+#include "nav/nav_node.hpp"
+
+#include <cstdio>
+#include <ctime>
+#include <unistd.h>
+
+extern "C" {
+#include "auv/auv_process_health_t.h"
+#include "auv/auv_sim_clock_t.h"
+}
+
+namespace nav {
+
+namespace {
+
+// How far ahead of the last clock tick a sensor may stamp its data (the
+// clock comes at 10 Hz or so, sensors in between).
+constexpr int64_t kMaxFutureUs = 5000000;
+
+double clock_s(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+}  // namespace
+
+NavNode::NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm)
+    : opt_(opt), lcm_(lcm), filter_(cfg), vehicle_(opt.vehicle)
+{
+    if (opt_.channel.empty())
+        opt_.channel = opt_.vehicle + ".NAV";
+    if (opt_.status_channel.empty())
+        opt_.status_channel = opt_.vehicle + ".NAV_STATUS";
+    wall_s_at_health_ = clock_s(CLOCK_MONOTONIC);
+    cpu_s_at_health_ = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+}
+
+NavNode::~NavNode()
+{
+    for (rx_sub_t *s : subs_)
+        rx_unsubscribe(lcm_, s);
+    rx_unsubscribe(lcm_, clock_sub_);
+    rx_unsubscribe(lcm_, altimeter_sub_);
+}
+
+bool NavNode::subscribe()
+{
+    for (int k = 0; k < kSensors; k++) {
+        const SensorChannel &sc = kSensorChannels[k];
+        ctx_[k] = {this, sc.sensor};
+        const std::string ch = opt_.vehicle + "." + sc.topic;
+        subs_[k] = rx_subscribe(lcm_, ch.c_str(), auv_type_find(sc.type), on_sensor, &ctx_[k]);
+        if (!subs_[k])
+            return false;
+        // A burst (an LBL reply, a scheduling hiccup) must not overflow the
+        // default 30-message queue and lose sensor data.
+        rx_set_queue_capacity(subs_[k], 1000);
+    }
+    const std::string alt = opt_.vehicle + ".ALTIMETER";
+    altimeter_sub_ = rx_subscribe(lcm_, alt.c_str(), auv_type_find("altimeter_t"), on_altimeter, this);
+    if (!altimeter_sub_)
+        return false;
+    if (opt_.sim_clock) {
+        clock_sub_ = rx_subscribe(lcm_, "SIM.CLOCK", auv_type_find("sim_clock_t"), on_clock, this);
+        if (!clock_sub_)
+            return false;
+        rx_set_queue_capacity(clock_sub_, 1000);
+    }
+    return true;
+}
+
+void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
+{
+    auto *ctx = static_cast<SubCtx *>(user);
+    NavNode *n = ctx->node;
+    Measurement m;
+    Convert c = to_measurement(ctx->sensor, msg, n->opt_.vehicle.c_str(), m);
+    // A time of validity ahead of the mission clock is a broken stamp: taken
+    // as it is, it would move the filter into the future and make every
+    // honest measurement after it "too old".
+    if (c == Convert::OK && n->have_time_ && m.utime > n->now_us_ + kMaxFutureUs)
+        c = Convert::IMPLAUSIBLE;
+    switch (c) {
+    case Convert::OK: n->filter_.push(m); break;
+    case Convert::NOT_VALID: n->convert_.not_valid++; break;
+    case Convert::WRONG_VEHICLE: n->convert_.wrong_vehicle++; break;
+    case Convert::IMPLAUSIBLE: n->convert_.implausible++; break;
+    }
+}
+
+void NavNode::on_altimeter(const char *, const void *msg, int64_t, void *user)
+{
+    auto *n = static_cast<NavNode *>(user);
+    int64_t t = 0;
+    const double a = altimeter_reading(msg, n->opt_.vehicle.c_str(), &t);
+    if (a > 0)
+        n->filter_.note_altitude(t, a);
+}
+
+void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
+{
+    auto *n = static_cast<NavNode *>(user);
+    const auto *c = static_cast<const auv_sim_clock_t *>(msg);
+    // Global time never runs backwards here, whatever the network does.
+    if (!n->have_time_ || c->utime > n->now_us_)
+        n->now_us_ = c->utime;
+    n->have_time_ = true;
+}
+
+uint64_t NavNode::decode_errors() const
+{
+    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0);
+    for (const rx_sub_t *s : subs_)
+        if (s)
+            e += rx_decode_errors(s);
+    return e;
+}
+
+void NavNode::publish_cycle()
+{
+    // The solution is valid at the mission time, or at the newest
+    // measurement if the clock lags it (never extrapolated backwards).
+    const int64_t t = std::max(now_us_, filter_.state().utime);
+    filter_.estimate_at(t, scratch_);
+    const NavStatus st = evaluate_status(scratch_, t, filter_.config());
+    if (scratch_.aligned()) {
+        auv_nav_solution_t sol;
+        fill_solution(scratch_, st, filter_.config(), filter_.altitude_at(scratch_), &vehicle_[0], t, sol);
+        auv_nav_solution_t_publish(lcm_, opt_.channel.c_str(), &sol);
+        published_++;
+    }
+    if (now_us_ >= next_status_us_) {
+        auv_nav_filter_status_t fs;
+        fill_filter_status(filter_, st, &vehicle_[0], t, fs);
+        auv_nav_filter_status_t_publish(lcm_, opt_.status_channel.c_str(), &fs);
+        publish_health();
+        next_status_us_ = now_us_ + 1000000;
+    }
+}
+
+void NavNode::publish_health()
+{
+    const double wall = clock_s(CLOCK_MONOTONIC), cpu = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    auv_process_health_t h = {};
+    h.utime = now_us_;
+    h.vehicle = &vehicle_[0];
+    h.process = const_cast<char *>("NAV");
+    h.pid = static_cast<int32_t>(getpid());
+    uint64_t received = 0;
+    for (const rx_sub_t *s : subs_)
+        if (s)
+            received += rx_stats(s)->received;
+    h.messages_received = static_cast<int64_t>(received);
+    h.decode_errors = static_cast<int64_t>(decode_errors());
+    h.cpu_load = wall > wall_s_at_health_ ? (cpu - cpu_s_at_health_) / (wall - wall_s_at_health_) : 0;
+    wall_s_at_health_ = wall;
+    cpu_s_at_health_ = cpu;
+    auv_process_health_t_publish(lcm_, (opt_.vehicle + ".HEALTH").c_str(), &h);
+}
+
+void NavNode::print_summary() const
+{
+    const FilterStats &fs = filter_.stats();
+    std::fprintf(stderr, "auv-nav: %llu solutions published; decode errors %llu; not valid %llu, wrong vehicle %llu, "
+                         "implausible %llu; out of order %llu; numeric resets %llu\n",
+                 (unsigned long long)published_, (unsigned long long)decode_errors(),
+                 (unsigned long long)convert_.not_valid, (unsigned long long)convert_.wrong_vehicle,
+                 (unsigned long long)convert_.implausible, (unsigned long long)fs.out_of_order,
+                 (unsigned long long)fs.numeric_resets);
+    for (int k = 0; k < kSensors; k++) {
+        const SensorStats &s = fs.sensor[k];
+        std::fprintf(stderr, "auv-nav:   %-5s %llu measurements, %llu accepted, %llu rejected, %llu resets, %llu too old\n",
+                     sensor_name(k), (unsigned long long)s.measurements, (unsigned long long)s.accepted,
+                     (unsigned long long)s.rejected, (unsigned long long)s.resets, (unsigned long long)s.too_old);
+    }
+}
+
+}  // namespace nav

@@ -1,0 +1,80 @@
+// The live navigation process around the filter: the vehicle's sensor
+// channels in (count-and-drop through c/common/lcm_rx), the solution, the
+// filter status and the process health out.
+#ifndef NAV_NODE_HPP
+#define NAV_NODE_HPP
+
+#include <cstdint>
+#include <string>
+
+#include <lcm/lcm.h>
+
+extern "C" {
+#include "common/lcm_rx.h"
+}
+
+#include "nav/nav_filter.hpp"
+#include "nav/nav_lcm.hpp"
+
+namespace nav {
+
+struct NodeOptions {
+    std::string config_path, vehicle = "AUV1", url = "udpm://239.255.76.67:7667?ttl=0";
+    std::string channel;        // solution channel; default <VEHICLE>.NAV
+    std::string status_channel; // default <VEHICLE>.NAV_STATUS
+    double rate_hz = 20.0;
+    bool sim_clock = true;
+};
+
+struct ConvertCounts {
+    uint64_t not_valid = 0, wrong_vehicle = 0, implausible = 0;
+};
+
+class NavNode {
+public:
+    NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm);
+    ~NavNode();
+    bool subscribe();           // false if any subscription failed
+
+    // The mission clock: SIM.CLOCK's time (sim) or the host's (system).
+    bool have_time() const { return have_time_; }
+    int64_t now() const { return now_us_; }
+    void set_now(int64_t t) { now_us_ = t; have_time_ = true; }
+
+    // One output cycle at the mission time now(): solution (once aligned) and,
+    // once a second, filter status and health.
+    void publish_cycle();
+    void print_summary() const;
+
+    const NavFilter &filter() const { return filter_; }
+    uint64_t decode_errors() const;
+
+private:
+    static void on_sensor(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    void publish_health();
+
+    NodeOptions opt_;
+    lcm_t *lcm_;
+    NavFilter filter_;
+    FilterState scratch_;       // the estimate at the cycle time
+    std::string vehicle_;       // mutable copy: LCM messages take char *
+    rx_sub_t *subs_[kSensors] = {};
+    rx_sub_t *clock_sub_ = nullptr;
+    rx_sub_t *altimeter_sub_ = nullptr;
+    struct SubCtx {
+        NavNode *node;
+        Sensor sensor;
+    } ctx_[kSensors];
+    ConvertCounts convert_;
+    int64_t now_us_ = 0;
+    bool have_time_ = false;
+    int64_t next_status_us_ = 0;
+    double cpu_s_at_health_ = 0, wall_s_at_health_ = 0;
+    uint64_t published_ = 0;
+};
+
+}  // namespace nav
+
+#endif

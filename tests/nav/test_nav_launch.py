@@ -1,0 +1,72 @@
+"""The scenario chooses per vehicle what publishes <ID>.NAV: the simulator's
+black-box INS (`nav: ins`, the default) or the onboard filter (`nav: ekf`):
+the launcher then derives the vehicle's nav config from its simulator
+configuration (or takes the one given), moves the INS to <ID>.NAV_INS and
+starts auv-nav before the managers."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import yaml
+
+from auv import nav_solution_t
+from auvlcm.log import read_events
+from conftest import ROOT
+
+LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
+SIM = str(ROOT / "missions" / "sim" / "remus100_alt_damping.yaml")
+PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")     # 1500 rpm for N cycles, then done
+BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
+
+
+def scenario(tmp_path, vehicles, name="nav"):
+    sc = {"name": name, "seed": 3, "time": {"mode": "fast", "limit": 60, "wall_limit": 120}, "vehicles": vehicles}
+    path = tmp_path / f"{name}.yaml"
+    path.write_text(yaml.safe_dump(sc, sort_keys=False))
+    return path
+
+
+def vehicle(vid, nav, east=0.0):
+    mgr = {"name": "NAVIGATOR", "plan": PLAN, "bind": BIND, "rate": 10, "params": {"cycles": 150}}
+    return {"id": vid, "sim": {"config": SIM, "initial": {"east_m": east}}, "managers": [mgr], "nav": nav}
+
+
+def launch(path, out, url, env):
+    return subprocess.run(LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0"],
+                          env=env, capture_output=True, text=True, timeout=240)
+
+
+def test_each_vehicle_flies_on_the_navigation_its_scenario_names(tmp_path, lcm_url, child_env):
+    path = scenario(tmp_path, [vehicle("AUV1", "ekf"), vehicle("AUV2", "ins", east=30.0)])
+    run = launch(path, tmp_path / "run", lcm_url, child_env)
+    assert run.returncode == 0, run.stdout + run.stderr
+    sources, notes = {}, set()
+    for ev in read_events(tmp_path / "run" / "run.lcmlog"):
+        if ev.msg is None:
+            continue
+        if ev.channel in ("AUV1.NAV", "AUV1.NAV_INS", "AUV2.NAV", "AUV2.NAV_INS"):
+            sources.setdefault(ev.channel, set()).add(ev.msg.source)
+        if ev.channel == "SIM.ANNOTATION":
+            notes.add(ev.msg.name)
+    assert sources == {"AUV1.NAV": {nav_solution_t.SOURCE_EKF}, "AUV1.NAV_INS": {nav_solution_t.SOURCE_SIM_INS},
+                       "AUV2.NAV": {nav_solution_t.SOURCE_SIM_INS}}, sources
+    assert "AUV1.nav" in notes                               # the derived nav config is in the log
+    merged = yaml.safe_load((tmp_path / "run" / "AUV1.sim.yaml").read_text())
+    assert merged["sensors"]["ins"]["channel"] == "NAV_INS" and set(merged["sensors"]) >= {"ahrs", "dvl", "lbl"}
+    assert (tmp_path / "run" / "AUV1.nav.out").exists() and not (tmp_path / "run" / "AUV2.nav.out").exists()
+
+
+def test_a_bad_nav_choice_or_config_is_refused_before_anything_starts(tmp_path, lcm_url, child_env):
+    path = scenario(tmp_path, [vehicle("AUV1", "kalman")])
+    run = launch(path, tmp_path / "run1", lcm_url, child_env)
+    assert run.returncode == 2
+    assert "vehicles[0].nav: expected one of: ins, ekf" in run.stderr, run.stderr
+    bad = tmp_path / "bad.nav"
+    bad.write_text("gps_noise_m -1\n")
+    path = scenario(tmp_path, [vehicle("AUV1", {"source": "ekf", "config": str(bad)})], name="nav2")
+    run = launch(path, tmp_path / "run2", lcm_url, child_env)
+    assert run.returncode == 2
+    assert f"{bad}:1:13: gps_noise_m = -1 is outside" in run.stderr, run.stderr
+    assert not (tmp_path / "run2" / "run.lcmlog").exists()
