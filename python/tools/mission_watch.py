@@ -1,7 +1,10 @@
 """What the launcher knows about a running world, from LCM alone.
 
-- ready: every simulator (ACTUATOR_STATE) and every manager (CHASM status)
-  of the scenario has reported, on any host;
+- ready: every simulator (ACTUATOR_STATE), every onboard navigation filter
+  (NAV_STATUS, vehicles with `nav: ekf`) and every manager (CHASM status) of
+  the scenario has reported, on any host: a filter that subscribes after the
+  clock starts misses the first GPS fix and aligns a second later, so the
+  mission would not be the same from run to run;
 - gate: how far the clock may run, from each simulator's and each manager's
   sim time (a control loop must see the time it acts in, or a stalled pilot
   becomes sim time without control);
@@ -18,7 +21,7 @@ import select
 from dataclasses import dataclass
 
 import lcm
-from auv import actuator_state_t, chasm_status_t, sim_clock_t
+from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, sim_clock_t
 
 from auvlcm.rx import Receiver
 from tools.annotate import plan_files
@@ -73,6 +76,9 @@ class MissionWatch:
             self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
             self.expected.add(f"{v.id}.sim")
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
+            if v.nav.source == "ekf":
+                self.expected.add(f"{v.id}.NAV")
+                self.rx.subscribe(f"{v.id}.NAV_STATUS", nav_filter_status_t, self._on_nav_status, queue_capacity=100)
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
                 self.manager_us[f"{v.id}.{m.name}"] = None
@@ -85,6 +91,9 @@ class MissionWatch:
         v = self.vehicles.get(m.vehicle)
         if v is not None:
             v.sim_us = m.utime
+
+    def _on_nav_status(self, _ch: str, m) -> None:
+        self.seen.add(f"{m.vehicle}.NAV")
 
     def _on_status(self, ch: str, m) -> None:
         key = f"{m.vehicle}.{m.manager}"

@@ -70,3 +70,33 @@ def test_a_bad_nav_choice_or_config_is_refused_before_anything_starts(tmp_path, 
     assert run.returncode == 2
     assert f"{bad}:1:13: gps_noise_m = -1 is outside" in run.stderr, run.stderr
     assert not (tmp_path / "run2" / "run.lcmlog").exists()
+
+
+def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_url):
+    """A filter that subscribes after the clock starts misses the first GPS fix:
+    the world is ready only once every `nav: ekf` vehicle's NAV_STATUS is seen."""
+    import lcm
+
+    from auv import actuator_state_t, chasm_status_t, nav_filter_status_t
+    from tools.mission_watch import MissionWatch
+    from tools.scenario import load_scenario
+
+    sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf"), vehicle("AUV2", "ins", east=30.0)]))
+    lc = lcm.LCM(lcm_url)
+    watch = MissionWatch(lc, sc)
+
+    def publish(channel, msg, vid, manager=None):
+        msg.vehicle = vid
+        if manager:
+            msg.manager = manager
+        lc.publish(channel, msg.encode())
+        watch.handle(0.5)
+
+    for vid in ("AUV1", "AUV2"):
+        publish(f"{vid}.ACTUATOR_STATE", actuator_state_t(), vid)
+        publish(f"{vid}.CHASM.NAVIGATOR", chasm_status_t(), vid, "NAVIGATOR")
+    assert not watch.all_ready() and watch.not_ready() == ["AUV1.NAV"]
+    publish("AUV2.NAV_STATUS", nav_filter_status_t(), "AUV2")     # not a filter this scenario runs
+    assert watch.not_ready() == ["AUV1.NAV"]
+    publish("AUV1.NAV_STATUS", nav_filter_status_t(), "AUV1")
+    assert watch.all_ready()
