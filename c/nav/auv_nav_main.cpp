@@ -98,6 +98,8 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
         }
         if (g_stop)
             break;
+        if (node.attitude_fresh())
+            node.publish_on_attitude();
         if (!o.sim_clock)
             node.set_now(system_now_us());
         if (!node.have_time() || node.now() < next_cycle)

@@ -83,7 +83,10 @@ void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
     if (c == Convert::OK && n->have_time_ && m.utime > n->now_us_ + kMaxFutureUs)
         c = Convert::IMPLAUSIBLE;
     switch (c) {
-    case Convert::OK: n->filter_.push(m); break;
+    case Convert::OK:
+        n->filter_.push(m);
+        n->attitude_fresh_ |= ctx->sensor == SENSOR_AHRS;
+        break;
     case Convert::NOT_VALID: n->convert_.not_valid++; break;
     case Convert::WRONG_VEHICLE: n->convert_.wrong_vehicle++; break;
     case Convert::IMPLAUSIBLE: n->convert_.implausible++; break;
@@ -118,6 +121,26 @@ uint64_t NavNode::decode_errors() const
     return e;
 }
 
+void NavNode::publish_solution(int64_t t, const NavStatus &st)
+{
+    if (!scratch_.aligned())
+        return;
+    auv_nav_solution_t sol;
+    fill_solution(scratch_, st, filter_.config(), filter_.altitude_at(scratch_), &vehicle_[0], t, sol);
+    auv_nav_solution_t_publish(lcm_, opt_.channel.c_str(), &sol);
+    published_++;
+    last_solution_us_ = t;
+}
+
+void NavNode::publish_on_attitude()
+{
+    attitude_fresh_ = false;
+    // At the time of the newest measurement, the compass's: no extrapolation.
+    const int64_t t = filter_.state().utime;
+    filter_.estimate_at(t, scratch_);
+    publish_solution(t, evaluate_status(scratch_, t, filter_.config()));
+}
+
 void NavNode::publish_cycle()
 {
     // The solution is valid at the mission time, or at the newest
@@ -125,12 +148,11 @@ void NavNode::publish_cycle()
     const int64_t t = std::max(now_us_, filter_.state().utime);
     filter_.estimate_at(t, scratch_);
     const NavStatus st = evaluate_status(scratch_, t, filter_.config());
-    if (scratch_.aligned()) {
-        auv_nav_solution_t sol;
-        fill_solution(scratch_, st, filter_.config(), filter_.altitude_at(scratch_), &vehicle_[0], t, sol);
-        auv_nav_solution_t_publish(lcm_, opt_.channel.c_str(), &sol);
-        published_++;
-    }
+    // Each compass message already brought a solution out: the clock only
+    // keeps one coming when it is silent (the status then says why).
+    const int64_t period_us = static_cast<int64_t>(1e6 / opt_.rate_hz);
+    if (published_ == 0 || t - last_solution_us_ >= period_us)
+        publish_solution(t, st);
     if (now_us_ >= next_status_us_) {
         auv_nav_filter_status_t fs;
         fill_filter_status(filter_, st, &vehicle_[0], t, fs);

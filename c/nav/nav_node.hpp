@@ -41,9 +41,15 @@ public:
     int64_t now() const { return now_us_; }
     void set_now(int64_t t) { now_us_ = t; have_time_ = true; }
 
-    // One output cycle at the mission time now(): solution (once aligned) and,
+    // One output cycle at the mission time now(): the solution (once aligned)
+    // if no compass message brought one out within the last 1/rate, and,
     // once a second, filter status and health.
     void publish_cycle();
+    // The solution at the newest compass message's time, as soon as it is in:
+    // the pilot's attitude and rate loops cannot wait for the next cycle (a
+    // cycle's hold added 50-100 ms, which made the pitch loop oscillate).
+    bool attitude_fresh() const { return attitude_fresh_; }
+    void publish_on_attitude();
     void print_summary() const;
 
     const NavFilter &filter() const { return filter_; }
@@ -54,6 +60,7 @@ private:
     static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
     void publish_health();
+    void publish_solution(int64_t t, const NavStatus &st);
 
     NodeOptions opt_;
     lcm_t *lcm_;
@@ -73,6 +80,8 @@ private:
     int64_t next_status_us_ = 0;
     double cpu_s_at_health_ = 0, wall_s_at_health_ = 0;
     uint64_t published_ = 0;
+    int64_t last_solution_us_ = 0;
+    bool attitude_fresh_ = false;
 };
 
 }  // namespace nav

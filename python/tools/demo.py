@@ -25,7 +25,7 @@ SCENARIO = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
 # What the committed scenario was planned with (its header); --polygon replans with these.
 PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "8", "--overlap", "0.1", "--fix-every-min", "30",
              "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7",
-             "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml")]
+             "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--nav", "ekf"]
 
 
 def run(cmd: list, what: str) -> int:

@@ -77,6 +77,7 @@ def scenario_dict(name: str, out: Path, ids, sv: Survey, starts, args, lim: Limi
             "sim": {"config": _rel(args.sim_config, out),
                     "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1),
                                 "heading_rad": round(heading, 4)}},
+            **({"nav": args.nav} if args.nav != "ins" else {}),
             "managers": [
                 {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out),
                  "rate": 20},
@@ -103,6 +104,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--ids", help="vehicle ids, comma-separated (default AUV1, AUV2, ...)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--world", type=Path, help="YAML file: the scenario's world section")
+    ap.add_argument("--nav", choices=("ins", "ekf"), default="ins",
+                    help="what each vehicle steers by: the simulator's INS, or the onboard filter auv-nav")
     lim = Limits()
     for key, default in vars(lim).items():
         ap.add_argument("--" + key.replace("_", "-"), type=float, default=default)

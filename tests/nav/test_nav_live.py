@@ -54,6 +54,25 @@ def test_live_solution_follows_truth_with_its_covariance(survey):
     assert health and health[-1].decode_errors == 0 and health[-1].messages_received > 30 * duration
 
 
+def test_each_compass_message_brings_a_solution_out_at_its_time(survey):
+    """The pilot's attitude and rate loops read the solution: it goes out as
+    each AHRS message is in, at that message's time and with its attitude,
+    not at the next cycle of the clock (up to 100 ms later)."""
+    ahrs = {}
+    for ev in read_events(survey.log):
+        if ev.msg is not None and ev.channel == "AUV1.AHRS" and ev.msg.valid:
+            ahrs[ev.msg.utime] = ev.msg
+    sols, _, _ = _live(survey.log)
+    first = sols[0].utime
+    due = [t for t in ahrs if t >= first]
+    at = {m.utime: m for m in sols}
+    out = [t for t in due if t in at]
+    assert len(out) >= 0.98 * len(due), (len(out), len(due))
+    for t in out:
+        m, a = at[t], ahrs[t]
+        assert (m.pitch_rad, m.q_radps, m.r_radps) == (a.pitch_rad, a.q_radps, a.r_radps), t
+
+
 def test_live_and_replay_agree(survey, tmp_path):
     """The replay driver runs the same code on the same messages: its estimate
     at each truth time is the live one (which is published 0.1 s later at most
