@@ -139,5 +139,9 @@ def test_describe_plugin(chasm):
     assert "  behavior hold: hold a value" in p.stdout
     assert "value          double m      required, range [-100, 100]  # depth to hold" in p.stdout
     assert "  test handler above: x > limit" in p.stdout
+    p = chasm("describe", "-P", chasm.plugins, "guidance")      # a real plugin: parameters of two forms
+    assert p.returncode == 0, p.stderr
+    north = next(line for line in p.stdout.splitlines() if line.strip().startswith("north "))
+    assert "optional, no default, range [" in north and "e+15" not in p.stdout, north
     p = chasm("describe", "-P", chasm.plugins, "test_nosym")
     assert p.returncode == 1 and "does not export 'chasm_plugin'" in p.stderr
