@@ -123,13 +123,15 @@ uint64_t NavNode::decode_errors() const
 
 void NavNode::publish_solution(int64_t t, const NavStatus &st)
 {
-    if (!scratch_.aligned())
+    // Never a solution older than one already out: the managers' loops would
+    // see time run backwards.
+    if (!scratch_.aligned() || (published_ > 0 && t <= last_out_us_))
         return;
+    last_out_us_ = t;
     auv_nav_solution_t sol;
     fill_solution(scratch_, st, filter_.config(), filter_.altitude_at(scratch_), &vehicle_[0], t, sol);
     auv_nav_solution_t_publish(lcm_, opt_.channel.c_str(), &sol);
     published_++;
-    last_solution_us_ = t;
 }
 
 void NavNode::publish_on_attitude()
@@ -137,6 +139,9 @@ void NavNode::publish_on_attitude()
     attitude_fresh_ = false;
     // At the time of the newest measurement, the compass's: no extrapolation.
     const int64_t t = filter_.state().utime;
+    if (attitude_out_us_ > 0 && t > attitude_out_us_)
+        attitude_interval_us_ = t - attitude_out_us_;
+    attitude_out_us_ = t;
     filter_.estimate_at(t, scratch_);
     publish_solution(t, evaluate_status(scratch_, t, filter_.config()));
 }
@@ -148,10 +153,16 @@ void NavNode::publish_cycle()
     const int64_t t = std::max(now_us_, filter_.state().utime);
     filter_.estimate_at(t, scratch_);
     const NavStatus st = evaluate_status(scratch_, t, filter_.config());
-    // Each compass message already brought a solution out: the clock only
-    // keeps one coming when it is silent (the status then says why).
+    // Each compass message already brings a solution out: the clock only
+    // keeps them coming while the compass is silent (the status then says
+    // why). Silent means: the other sensors' data have moved two compass
+    // intervals past the last compass message, or the clock a whole second.
+    // Not the clock alone: it runs up to a step ahead of the data, and
+    // publishing on it would put a clock solution out before the compass's.
     const int64_t period_us = static_cast<int64_t>(1e6 / opt_.rate_hz);
-    if (published_ == 0 || t - last_solution_us_ >= period_us)
+    const int64_t silent_us = std::max(period_us, 2 * attitude_interval_us_);
+    if (attitude_out_us_ == 0 || filter_.state().utime - attitude_out_us_ > silent_us ||
+        now_us_ - attitude_out_us_ > 1000000)
         publish_solution(t, st);
     if (now_us_ >= next_status_us_) {
         auv_nav_filter_status_t fs;

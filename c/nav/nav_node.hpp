@@ -42,7 +42,7 @@ public:
     void set_now(int64_t t) { now_us_ = t; have_time_ = true; }
 
     // One output cycle at the mission time now(): the solution (once aligned)
-    // if no compass message brought one out within the last 1/rate, and,
+    // if the compass has been silent for two of its intervals (and 1/rate), and,
     // once a second, filter status and health.
     void publish_cycle();
     // The solution at the newest compass message's time, as soon as it is in:
@@ -80,8 +80,10 @@ private:
     int64_t next_status_us_ = 0;
     double cpu_s_at_health_ = 0, wall_s_at_health_ = 0;
     uint64_t published_ = 0;
-    int64_t last_solution_us_ = 0;
     bool attitude_fresh_ = false;
+    int64_t last_out_us_ = 0;           // time of the newest solution out
+    int64_t attitude_out_us_ = 0;       // time of the last compass-driven solution
+    int64_t attitude_interval_us_ = 0;  // between the last two of them
 };
 
 }  // namespace nav

@@ -172,7 +172,7 @@ class Mission:
                 for name, proc in self.procs.items():
                     assert proc.poll() is None, f"{name} died:\n{self.output(name)}"
                 sim_t = self.rec.truth[-1].t if self.rec.truth else None
-                raise AssertionError(f"at t={self.utime / 1e6:.2f} s: managers' last cycles {self.cycled}, sim at {sim_t}")
+                raise AssertionError(f"at t={self.utime / 1e6:.2f} s: managers' last cycles {self.cycled}, sim at {sim_t}, nav at {[p.t for p in self.rec.nav[-3:]]}")
         return self.rec
 
     def _cycled(self) -> bool:

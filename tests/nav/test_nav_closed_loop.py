@@ -52,8 +52,10 @@ class EkfMission(Mission):
         return super().__enter__()
 
     def _cycled(self) -> bool:
-        # once aligned, the filter's solution for this tick is in before the next
-        fresh = not self.rec.nav or self.rec.nav[-1].t * 1e6 >= self.utime - TICK_US
+        # once aligned, the filter's solution for the compass message of this
+        # tick is in before the next (the simulator stamps its messages with
+        # its step time, which can be 1 us short of the tick's)
+        fresh = not self.rec.nav or self.rec.nav[-1].t * 1e6 >= self.utime - TICK_US - 1000
         return fresh and super()._cycled()
 
 
