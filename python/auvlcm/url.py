@@ -38,3 +38,12 @@ def check_local(url: str, inside_netns: bool | None = None) -> str:
         raise ValueError(f"{url}: ttl={ttl} would send beyond this host; use ttl=0 "
                          "(a TTL of 1 only inside a network namespace made for the run)")
     return url
+
+
+def with_receive_buffer(url: str, size: int = 4 << 20) -> str:
+    """The URL with a large socket receive buffer: the logger must not drop
+    messages when the machine is busy for a moment (the kernel caps the size
+    at net.core.rmem_max)."""
+    if not url.startswith("udpm://") or "recv_buf_size=" in url:
+        return url
+    return url + ("&" if "?" in url else "?") + f"recv_buf_size={size}"

@@ -48,7 +48,9 @@ def summary(rep: dict) -> str:
              f"PD {_pd(det['pd_in_covered_area'])}); {det['contacts']} contacts, "
              f"{det['contacts_on_clutter']} on clutter, {det['false_alarms']} false alarms",
              "nav error " + ", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})"
-                                      for v, e in rep["navigation_error"].items())]
+                                      for v, e in rep["navigation_error"].items()),
+             "record    " + ", ".join(f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
+                                      for v, r in rep["record"].items())]
     return "\n".join(lines)
 
 

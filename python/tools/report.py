@@ -74,6 +74,25 @@ def nav_error(run: RunData) -> dict:
     return out
 
 
+def record_completeness(run: RunData) -> dict:
+    """Ground-truth samples missing from the log, per vehicle: gaps in TRUTH
+    longer than 1.5 of its usual interval. The simulator publishes TRUTH at a
+    fixed rate, so each gap is messages the logger lost, or a stalled
+    simulator; either way the figures above rest on less than was flown."""
+    out = {}
+    for vid in run.vehicles:
+        t = np.asarray(run.truth(vid).t, float)
+        if len(t) < 3:
+            continue
+        dt = np.diff(t)
+        step = float(np.median(dt))
+        gaps = dt[dt > 1.5 * step]
+        missing = int(np.round(gaps / step).sum() - len(gaps)) if step > 0 else 0
+        out[vid] = {"samples": int(len(t)), "missing": missing, "interval_s": step,
+                    "fraction_missing": missing / (len(t) + missing)}
+    return out
+
+
 def outcome_of(run: RunData) -> dict:
     if run.outcome is not None:
         return {"outcome": run.outcome.get("outcome"), "reason": run.outcome.get("reason", ""),
@@ -109,6 +128,7 @@ def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[
             return res & point_in_polygon([tuple(p) for p in sv["polygon"]], n, e)
     rep["detection"] = detection_stats(run, radius, covered if grid is not None else None)
     rep["navigation_error"] = nav_error(run)
+    rep["record"] = record_completeness(run)
     return rep, grid
 
 
@@ -145,6 +165,10 @@ def report_text(rep: dict) -> str:
     for vid, e in rep["navigation_error"].items():
         lines.append(f"  {vid}: mean {e['mean_m']:.2f} m, rms {e['rms_m']:.2f} m, max {e['max_m']:.2f} m, "
                      f"final {e['final_m']:.2f} m")
+    lines.append("record (TRUTH samples in the log; missing = lost by the logger or a stalled simulator)")
+    for vid, r in rep.get("record", {}).items():
+        lines.append(f"  {vid}: {r['samples']} samples every {r['interval_s']:g} s, {r['missing']} missing "
+                     f"({100 * r['fraction_missing']:.2f} %)")
     return "\n".join(lines) + "\n"
 
 

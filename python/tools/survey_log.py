@@ -39,7 +39,7 @@ import yaml  # noqa: E402
 from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
 
 from auvlcm.rx import Receiver  # noqa: E402
-from auvlcm.url import check_local, default_url  # noqa: E402
+from auvlcm.url import check_local, default_url, with_receive_buffer  # noqa: E402
 from tools.procs import Child  # noqa: E402
 from tools.survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
 
@@ -131,15 +131,6 @@ class Recorder:
 
     def close(self) -> None:
         self.log.close()
-
-
-def with_receive_buffer(url: str, size: int = 4 << 20) -> str:
-    """The URL with a large socket receive buffer: the logger must not drop
-    messages when the machine is busy for a moment (the kernel caps the size
-    at net.core.rmem_max)."""
-    if not url.startswith("udpm://") or "recv_buf_size=" in url:
-        return url
-    return url + ("&" if "?" in url else "?") + f"recv_buf_size={size}"
 
 
 def count_truth(log: Path, vehicle: str) -> int:

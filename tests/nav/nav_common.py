@@ -36,7 +36,8 @@ def record_survey(out_dir: Path, url: str, env: dict, args: list[str], live_nav:
     sets = [a for i, a in enumerate(args) if i > 0 and args[i - 1] == "--set"]
     sim_yaml = out_dir / "survey.sim.yaml"
     # the nav config the filter gets: derived from the same (overridden) world
-    from tools.survey_log import apply_overrides, with_receive_buffer
+    from auvlcm.url import with_receive_buffer
+    from tools.survey_log import apply_overrides
     sim_yaml.write_text(apply_overrides(SURVEY_CONFIG.read_text(), sets))
     nav_cfg = out_dir / "survey.nav"
     subprocess.run([sys.executable, NAVCONF, sim_yaml, "-o", nav_cfg], env=env, check=True, timeout=60)

@@ -23,10 +23,11 @@ SURVEY = {"polygon": [[0, -60], [200, -60], [200, 90], [0, 90]], "area_m2": 200 
           "sonar": {"range_m": 40, "nadir_gap_m": 4}, "operating_area": [[-100, -200], [300, -200], [300, 200]]}
 
 
-def synthetic_log(path):
+def synthetic_log(path, lost=()):
     """AUV1 flies north along east=0 (state line1), then south along east=50
     (state line2), at 10 m depth, 8 m altitude, 1 m/s, 10 Hz; its NAV is off by
-    (3, 4) m throughout. Targets and contacts as in the test below."""
+    (3, 4) m throughout. Targets and contacts as in the test below. The TRUTH
+    samples numbered in `lost` are left out, as a logger that dropped them."""
     log = lcm.EventLog(str(path), "w", overwrite=True)
     seq = [0]
 
@@ -49,6 +50,7 @@ def synthetic_log(path):
     put("SIM.TARGETS", tf)
     legs = [("line1", -20.0, 220.0, 0.0, 0.0), ("line2", 220.0, -20.0, 50.0, math.pi)]
     t_us = 0
+    seq_truth = [0]
     for name, n_from, n_to, east, yaw in legs:
         steps = int(abs(n_to - n_from) * 10)
         for k in range(steps + 1):
@@ -57,7 +59,9 @@ def synthetic_log(path):
             tr.utime, tr.vehicle = t_us, "AUV1"
             tr.eta = [north, east, 10.0, 0.0, 0.0, yaw]
             tr.altitude_m, tr.water_depth_m = 8.0, 18.0
-            put("AUV1.TRUTH", tr)
+            if seq_truth[0] not in lost:
+                put("AUV1.TRUTH", tr)
+            seq_truth[0] += 1
             nav = nav_solution_t()
             nav.utime, nav.vehicle, nav.north_m, nav.east_m = t_us, "AUV1", north + 3.0, east + 4.0
             put("AUV1.NAV", nav)
@@ -100,6 +104,18 @@ def test_report_figures_on_a_known_geometry(tmp_path):
     assert e["mean_m"] == pytest.approx(5.0) and e["max_m"] == pytest.approx(5.0)
     text = (tmp_path / "r" / "report.txt").read_text()
     assert "PD 0.333" in text and "false alarms 1" in text
+
+
+def test_report_counts_the_truth_samples_the_log_lost(tmp_path):
+    for name, lost in (("whole", ()), ("lossy", (5, 300, 301, 302, 4000))):
+        synthetic_log(tmp_path / f"{name}.lcmlog", lost=set(lost))
+        run = subprocess.run(REPORT + [str(tmp_path / f"{name}.lcmlog"), "--out", str(tmp_path / name), "--no-plots"],
+                             capture_output=True, text=True, timeout=120)
+        assert run.returncode == 0, run.stderr
+        r = json.loads((tmp_path / name / "report.json").read_text())["record"]["AUV1"]
+        assert r["missing"] == len(lost) and r["interval_s"] == pytest.approx(0.1), r
+        assert r["samples"] == 4802 - len(lost)
+        assert f"{len(lost)} missing" in (tmp_path / name / "report.txt").read_text()
 
 
 def test_plots_are_written_as_png_and_svg(tmp_path):
