@@ -52,11 +52,15 @@ def lcm_url() -> str:
     return f"udpm://239.255.76.67:{next(_ports)}?ttl=0"
 
 
-@pytest.fixture
-def child_env() -> dict[str, str]:
+def child_environment() -> dict[str, str]:
     """Environment for child processes: project Python paths, sanitizer options."""
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "python"), str(BUILD / "gen" / "python")])
     env.setdefault("ASAN_OPTIONS", "detect_leaks=1:abort_on_error=0:exitcode=86")
     env.setdefault("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1:exitcode=87")
     return env
+
+
+@pytest.fixture
+def child_env() -> dict[str, str]:
+    return child_environment()

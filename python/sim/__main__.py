@@ -39,13 +39,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--clock-drift-ppm", type=float, help="multi-HIL tests: drift this clock")
     args = ap.parse_args(argv)
 
-    from sim.config import ConfigError, load
-    try:
-        cfg = load(args.config)
-    except ConfigError as exc:
-        for line in exc.errors:
-            print(line, file=sys.stderr)
-        print(f"{args.config}: {len(exc.errors)} error(s)", file=sys.stderr)
+    from sim.config import load_or_report
+    cfg = load_or_report(args.config)
+    if cfg is None:
         return 2
     if args.clock:
         cfg.sim.clock = args.clock

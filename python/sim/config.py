@@ -14,6 +14,7 @@ from __future__ import annotations
 import dataclasses
 import difflib
 import re
+import sys
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -406,6 +407,18 @@ def load(path: str | Path) -> SimConfig:
     except OSError as exc:
         raise ConfigError([f"{path}: cannot read ({exc.strerror})"]) from None
     return loads(text, path)
+
+
+def load_or_report(path: str | Path) -> SimConfig | None:
+    """load(), for command-line tools: every problem printed to stderr, then
+    a count; None if there was any."""
+    try:
+        return load(path)
+    except ConfigError as exc:
+        for line in exc.errors:
+            print(line, file=sys.stderr)
+        print(f"{path}: {len(exc.errors)} error(s)", file=sys.stderr)
+        return None
 
 
 def loads(text: str, path: Path = Path("<config>")) -> SimConfig:

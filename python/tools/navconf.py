@@ -24,7 +24,7 @@ if str(ROOT / "python") not in sys.path:
     sys.path.insert(0, str(ROOT / "python"))
 
 import auvlcm  # noqa: E402,F401  (generated types on sys.path, needed by sim)
-from sim.config import ConfigError, SimConfig, load  # noqa: E402
+from sim.config import SimConfig, load_or_report  # noqa: E402
 from sim.sensors import REGISTRY  # noqa: E402
 
 # Below this a configured bias is "none"; the filter still gets a small prior.
@@ -83,11 +83,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("config", help="simulator configuration (YAML)")
     ap.add_argument("-o", "--out", help="nav config to write (default: stdout)")
     args = ap.parse_args(argv)
-    try:
-        cfg = load(args.config)
-    except ConfigError as exc:
-        for line in exc.errors:
-            print(line, file=sys.stderr)
+    cfg = load_or_report(args.config)
+    if cfg is None:
         return 2
     text = nav_config_text(cfg)
     if args.out:

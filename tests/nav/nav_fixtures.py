@@ -6,11 +6,9 @@ though every importing module registers its own copy of the fixture."""
 
 from __future__ import annotations
 
-import os
-
 import pytest
 
-from conftest import BUILD, ROOT, _ports
+from conftest import BUILD, _ports, child_environment
 
 from nav_common import record_survey
 
@@ -23,13 +21,6 @@ def _once(name: str, make):
     return _recorded[name]
 
 
-def _env() -> dict[str, str]:
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "python"), str(BUILD / "gen" / "python")])
-    env.setdefault("ASAN_OPTIONS", "detect_leaks=1:abort_on_error=0:exitcode=86")
-    env.setdefault("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1:exitcode=87")
-    return env
-
 
 @pytest.fixture(scope="session")
 def survey(tmp_path_factory):
@@ -39,7 +30,7 @@ def survey(tmp_path_factory):
     if not live.exists():
         pytest.fail(f"{live} is not built: run `make build sanitize` first")
     return _once("survey", lambda: record_survey(
-        tmp_path_factory.mktemp("survey"), f"udpm://239.255.76.67:{next(_ports)}?ttl=0", _env(),
+        tmp_path_factory.mktemp("survey"), f"udpm://239.255.76.67:{next(_ports)}?ttl=0", child_environment(),
         ["--lines", "2", "--length", "300", "--spacing", "40"], live_nav=live))
 
 
@@ -47,5 +38,5 @@ def survey(tmp_path_factory):
 def water_track_survey(tmp_path_factory):
     """One 250 m line with the DVL limited to 5 m altitude: water track only."""
     return _once("water_track", lambda: record_survey(
-        tmp_path_factory.mktemp("water_track"), f"udpm://239.255.76.67:{next(_ports)}?ttl=0", _env(),
+        tmp_path_factory.mktemp("water_track"), f"udpm://239.255.76.67:{next(_ports)}?ttl=0", child_environment(),
         ["--lines", "1", "--length", "250", "--set", "sensors.dvl.max_altitude_m=5"]))
