@@ -21,7 +21,7 @@ import select
 from dataclasses import dataclass
 
 import lcm
-from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, sim_clock_t
+from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
 
 from auvlcm.rx import Receiver
 from tools.annotate import plan_files
@@ -59,6 +59,8 @@ class VehicleState:
 SIM_LEAD_US = 300_000       # a simulator may fall this far behind the clock
 MANAGER_LEAD_US = 100_000   # a manager this far plus its own period: the pilot's loops
                             # tolerate about 100 ms of delay (docs/behaviors.md)
+NAV_LEAD_US = 300_000       # an onboard filter's newest solution: it follows the simulator
+NAV_STATUS_PERIOD_US = 1_000_000   # before it aligns, its status: once a second
 
 
 class MissionWatch:
@@ -71,6 +73,8 @@ class MissionWatch:
         self.sim_time_us = 0
         self.manager_us: dict[str, int | None] = {}
         self.manager_lead_us: dict[str, int] = {}
+        self.nav_us: dict[str, int | None] = {}      # each onboard filter's progress
+        self.nav_solved: set[str] = set()             # ... which has published a solution
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
             self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
@@ -78,7 +82,9 @@ class MissionWatch:
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             if v.nav.source == "ekf":
                 self.expected.add(f"{v.id}.NAV")
+                self.nav_us[v.id] = None
                 self.rx.subscribe(f"{v.id}.NAV_STATUS", nav_filter_status_t, self._on_nav_status, queue_capacity=100)
+                self.rx.subscribe(f"{v.id}.NAV", nav_solution_t, self._on_nav, queue_capacity=1000)
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
                 self.manager_us[f"{v.id}.{m.name}"] = None
@@ -94,6 +100,16 @@ class MissionWatch:
 
     def _on_nav_status(self, _ch: str, m) -> None:
         self.seen.add(f"{m.vehicle}.NAV")
+        # once a second from the start: the progress of a filter not yet
+        # aligned, which publishes no solution
+        if m.vehicle in self.nav_us and m.vehicle not in self.nav_solved:
+            self.nav_us[m.vehicle] = max(self.nav_us[m.vehicle] or 0, m.utime + NAV_STATUS_PERIOD_US)
+
+    def _on_nav(self, _ch: str, m) -> None:
+        if m.vehicle in self.nav_us and m.source == nav_solution_t.SOURCE_EKF:
+            first = m.vehicle not in self.nav_solved
+            self.nav_solved.add(m.vehicle)
+            self.nav_us[m.vehicle] = m.utime if first else max(self.nav_us[m.vehicle] or 0, m.utime)
 
     def _on_status(self, ch: str, m) -> None:
         key = f"{m.vehicle}.{m.manager}"
@@ -127,10 +143,14 @@ class MissionWatch:
         return sorted(self.expected - self.seen)
 
     def clock_limit_us(self) -> int | None:
-        """The latest time the clock may publish: no simulator more than SIM_LEAD_US
-        and no manager more than its lead behind it (None: someone has not reported)."""
+        """The latest time the clock may publish: no simulator more than SIM_LEAD_US,
+        no manager more than its lead and no onboard filter more than NAV_LEAD_US
+        behind it (None: someone has not reported). A starved filter must hold
+        the clock like a starved manager: its managers would otherwise see their
+        navigation go stale in sim time and abort (seen on a loaded machine)."""
         limits = [None if v.sim_us is None else v.sim_us + SIM_LEAD_US for v in self.vehicles.values()]
         limits += [None if t is None else t + self.manager_lead_us[k] for k, t in self.manager_us.items()]
+        limits += [None if t is None else t + NAV_LEAD_US for t in self.nav_us.values()]
         return None if any(t is None for t in limits) else min(limits)
 
     def outcome(self) -> str | None:

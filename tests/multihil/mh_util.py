@@ -15,6 +15,7 @@ import lcm
 
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
+from auvlcm.url import with_receive_buffer
 from conftest import ROOT
 from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: F401  (for the tests)
 
@@ -139,8 +140,8 @@ class Recorder(_Background):
     messages when it is descheduled on a loaded machine)."""
 
     def __init__(self, url: str) -> None:
-        super().__init__(url)
-        self.events: list[tuple[str, bytes]] = []
+        super().__init__(with_receive_buffer(url))    # and a deep socket buffer: a burst while
+        self.events: list[tuple[str, bytes]] = []       # the thread waits for a core is kept
         sub = self.lc.subscribe(".*", lambda ch, data: self.events.append((ch, data)))
         sub.set_queue_capacity(1_000_000)
         self._thread.start()

@@ -22,16 +22,33 @@ def test_rank_orders_by_priority_then_smaller_id():
     assert rank(3, "AUV1") > rank(3, "AUV10")
 
 
+class FakeWall:
+    """The elections' wall clock, moved by the test: windows of 50 ms checked
+    with real sleeps failed on a loaded machine (a sleep overshot a window)."""
+
+    def __init__(self) -> None:
+        self.t = 1000.0
+
+    def __call__(self) -> float:
+        return self.t
+
+    def sleep(self, dt: float) -> None:
+        self.t += dt
+
+
+WALL = FakeWall()
+
+
 def fast_election(my_id: str, prio: int) -> Election:
     return Election(my_id, prio, Timing(join_window_s=0.05, failover_timeout_s=0.05,
-                                        election_wait_s=0.05, peer_timeout_s=5.0))
+                                        election_wait_s=0.05, peer_timeout_s=5.0), clock=WALL)
 
 
 def test_the_best_candidate_wins_and_the_others_wait_for_it():
     a, b = fast_election("A", 1), fast_election("B", 9)
     a.heard("B", 9)
     b.heard("A", 1)
-    time.sleep(0.06)
+    WALL.sleep(0.06)
     assert a.poll() == "" and a.role == "client"
     assert b.poll() == "become_server" and b.server_term == 1
 
@@ -39,9 +56,9 @@ def test_the_best_candidate_wins_and_the_others_wait_for_it():
 def test_a_silent_better_candidate_is_suspected_and_the_next_takes_over():
     a = fast_election("A", 1)
     a.heard("B", 9)                       # B announced itself, then died
-    time.sleep(0.06)
+    WALL.sleep(0.06)
     assert a.poll() == ""                 # waits for B first
-    time.sleep(0.06)
+    WALL.sleep(0.06)
     a.poll()                              # B suspected
     assert a.poll() == "become_server"
 
@@ -51,7 +68,7 @@ def test_failover_goes_to_the_highest_live_priority_with_a_higher_term():
     c.heard("D", 2)
     assert c.on_heartbeat("S", term=3, priority=10) == "follow"
     assert c.server_id == "S"
-    time.sleep(0.06)
+    WALL.sleep(0.06)
     c.heard("D", 2)
     assert c.poll() == "lost"
     assert c.poll() == "become_server" and c.server_term == 4
@@ -59,7 +76,7 @@ def test_failover_goes_to_the_highest_live_priority_with_a_higher_term():
 
 def test_a_server_steps_down_for_a_higher_term_or_a_better_node_only():
     s = fast_election("S", 5)
-    time.sleep(0.06)
+    WALL.sleep(0.06)
     assert s.poll() == "become_server" and s.server_term == 1
     assert s.on_heartbeat("X", term=1, priority=4) == "ignore"     # same term, lower priority
     assert s.on_heartbeat("X", term=1, priority=5) == "ignore"     # same priority, "S" < "X"

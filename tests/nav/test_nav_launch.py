@@ -100,3 +100,43 @@ def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_ur
     assert watch.not_ready() == ["AUV1.NAV"]
     publish("AUV1.NAV_STATUS", nav_filter_status_t(), "AUV1")
     assert watch.all_ready()
+
+
+def test_the_clock_waits_for_a_filter_that_falls_behind(tmp_path, lcm_url):
+    """A filter starved of CPU holds the clock like a starved manager does:
+    before it aligns, by its once-a-second status; after, by its solutions."""
+    import lcm
+
+    from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t
+    from tools.mission_watch import NAV_LEAD_US, MissionWatch
+    from tools.scenario import load_scenario
+
+    sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf")]))
+    lc = lcm.LCM(lcm_url)
+    watch = MissionWatch(lc, sc)
+
+    def publish(channel, msg, utime, manager=None):
+        msg.vehicle, msg.utime = "AUV1", utime
+        if manager:
+            msg.manager = manager
+        lc.publish(channel, msg.encode())
+        watch.handle(0.5)
+
+    t = 50_000_000
+    publish("AUV1.ACTUATOR_STATE", actuator_state_t(), t)
+    publish("AUV1.CHASM.NAVIGATOR", chasm_status_t(), t, "NAVIGATOR")
+    assert watch.clock_limit_us() is None                       # the filter has not reported
+    publish("AUV1.NAV_STATUS", nav_filter_status_t(), 10_000_000)
+    assert watch.clock_limit_us() == 11_000_000 + NAV_LEAD_US   # not aligned: its status, a second on
+    ins = nav_solution_t()
+    ins.source = nav_solution_t.SOURCE_SIM_INS
+    publish("AUV1.NAV", ins, 49_000_000)                        # not the filter's
+    assert watch.clock_limit_us() == 11_000_000 + NAV_LEAD_US
+    sol = nav_solution_t()
+    sol.source = nav_solution_t.SOURCE_EKF
+    publish("AUV1.NAV", sol, 20_000_000)                        # aligned: its solutions
+    assert watch.clock_limit_us() == 20_000_000 + NAV_LEAD_US
+    publish("AUV1.NAV_STATUS", nav_filter_status_t(), 30_000_000)
+    assert watch.clock_limit_us() == 20_000_000 + NAV_LEAD_US   # a status no longer moves it
+    publish("AUV1.NAV", sol, t)
+    assert watch.clock_limit_us() < t + NAV_LEAD_US             # then the manager's lead binds

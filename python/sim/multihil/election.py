@@ -20,6 +20,7 @@ it hears and acts on what it decides, so the rules are testable alone.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 
@@ -60,9 +61,10 @@ class Election:
     waiting_since: float = 0.0
     elections_won: int = 0
     step_downs: int = 0
+    clock: Callable[[], float] = field(default=time.monotonic, repr=False)   # wall seconds; tests pass their own
 
     def __post_init__(self) -> None:
-        now = time.monotonic()
+        now = self.clock()
         self.decide_at = now + self.timing.join_window_s
         self.waiting_since = self.decide_at
 
@@ -71,7 +73,7 @@ class Election:
         if node_id == self.my_id:
             return
         p = self.peers.setdefault(node_id, Peer(node_id))
-        p.last_heard = time.monotonic()
+        p.last_heard = self.clock()
         if priority is not None:
             p.priority = priority
 
@@ -91,7 +93,7 @@ class Election:
             return "ignore"
         if (not self.server_id or server_id == self.server_id
                 or theirs > (self.server_term, rank(self.server_priority, self.server_id))
-                or time.monotonic() - self.last_heartbeat > self.timing.failover_timeout_s):
+                or self.clock() - self.last_heartbeat > self.timing.failover_timeout_s):
             self._follow(server_id, term, priority)
             return "follow"
         return "ignore"
@@ -102,11 +104,11 @@ class Election:
 
     def _follow(self, server_id: str, term: int, priority: int) -> None:
         self.server_id, self.server_term, self.server_priority = server_id, term, priority
-        self.last_heartbeat = time.monotonic()
+        self.last_heartbeat = self.clock()
 
     # ----------------------------------------------------------- deciding
     def live_peers(self) -> list[Peer]:
-        now = time.monotonic()
+        now = self.clock()
         return [p for p in self.peers.values()
                 if p.priority is not None and now - p.last_heard <= self.timing.peer_timeout_s
                 and (p.suspected_at is None or p.last_heard > p.suspected_at)]
@@ -123,7 +125,7 @@ class Election:
 
     def poll(self) -> str:
         """Time passes; returns 'lost' (server gone), 'become_server', or ''."""
-        now = time.monotonic()
+        now = self.clock()
         if self.role == "server":
             return ""
         if self.server_id and now - self.last_heartbeat > self.timing.failover_timeout_s:
