@@ -31,6 +31,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "python")]
 import auvlcm  # noqa: E402,F401
+from auvlcm.offline import OfflineLcm  # noqa: E402
 
 from sim.config import load  # noqa: E402
 from sim.dynamics import Dynamics  # noqa: E402
@@ -56,34 +57,18 @@ def model_only(steps: int) -> None:
         m.step()
 
 
-class _NullLcm:
-    """Stands in for lcm.LCM: publish() drops the bytes, nothing ever arrives."""
-
-    def __init__(self) -> None:
-        import os
-        self._r, self._w = os.pipe()
-
-    def publish(self, channel: str, data: bytes) -> None:
-        pass
-
-    def subscribe(self, channel, handler):
-        class _Sub:
-            def set_queue_capacity(self, n):
-                pass
-        return _Sub()
-
-    def fileno(self) -> int:
-        return self._r
-
-    def handle(self) -> None:
-        pass
-
-
 class _LcmGenSimulator(Simulator):
-    """The same loop with lcm-gen's encode() for every sensor message."""
+    """The same loop with message objects and lcm-gen's encode() for every sensor."""
 
-    def _encode(self, msg) -> bytes:
-        return msg.encode()
+    def __init__(self, *args, **kwargs) -> None:
+        super().__init__(*args, **kwargs)
+
+        def lcmgen(sen):
+            def poll(tr):
+                msg = sen.poll(tr)
+                return None if msg is None else msg.encode()
+            return poll
+        self._sensor_polls = [(lcmgen(sen), ch) for sen, ch in self._sensor_channels]
 
 
 def _run(sim: Simulator, seconds: float) -> dict:
@@ -101,16 +86,30 @@ def _config(seconds: float):
     return cfg
 
 
+def _offline(cls: type, seconds: float) -> dict:
+    lc = OfflineLcm(keep=False)
+    try:
+        return _run(cls(_config(seconds), fast=True, lc=lc), seconds)
+    finally:
+        lc.close()
+
+
 def loop_lcmgen(seconds: float) -> dict:
-    return _run(_LcmGenSimulator(_config(seconds), fast=True, lc=_NullLcm()), seconds)
+    return _offline(_LcmGenSimulator, seconds)
 
 
 def loop_no_network(seconds: float) -> dict:
-    return _run(Simulator(_config(seconds), fast=True, lc=_NullLcm()), seconds)
+    return _offline(Simulator, seconds)
 
 
 def hil(seconds: float) -> dict:
     return _run(Simulator(_config(seconds), fast=True), seconds)
+
+
+def hil_in_loop(seconds: float) -> dict:
+    cfg = _config(seconds)
+    cfg.sim.publish_thread = False
+    return _run(Simulator(cfg, fast=True), seconds)
 
 
 def main() -> None:
@@ -122,6 +121,7 @@ def main() -> None:
     physics = [("bare integrator (baseline)", bare), ("vehicle model", model_only)]
     loops = [("loop, no network, lcm-gen encode", loop_lcmgen),
              ("loop, no network (sensors+encode)", loop_no_network),
+             ("HIL over LCM, loop publishes", hil_in_loop),
              ("HIL over LCM, all output", hil)]
     best = {name: 0.0 for name, _ in physics}
     best_loop = {name: {"wall_x": 0.0, "cpu_x": 0.0, "msgs": 0.0} for name, _ in loops}

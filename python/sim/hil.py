@@ -19,6 +19,7 @@ import lcm
 from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 
 from auvlcm.rx import Receiver
+from auvlcm.sender import SenderUnavailable, ThreadedLcm
 from auvlcm.url import check_local, default_url
 from sim.actuators import Command
 from sim.config import SimConfig
@@ -27,11 +28,27 @@ from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
-from sim.wire import Encoder, fixed_layout
+from sim.wire import Encoder
 
 def _next_slot(due: float, period: float, t: float) -> float:
     """The first slot of the grid due + k period after t (missed slots skipped)."""
     return due + period * max(1, math.floor((t - due) / period) + 1)
+
+
+def open_lcm(url: str, threaded: bool) -> lcm.LCM | ThreadedLcm:
+    """The simulator's LCM: publishing from a sender thread unless told otherwise.
+
+    Why a thread: see auvlcm.sender. Without the library (not built) the loop
+    publishes itself, as before, and says so.
+    """
+    lc = lcm.LCM(url)
+    if not threaded:
+        return lc
+    try:
+        return ThreadedLcm(url, lc)
+    except SenderUnavailable as exc:
+        print(f"sim: {exc}: publishing from the simulation loop", flush=True)
+        return lc
 
 
 CLOCK_MODE = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
@@ -89,13 +106,19 @@ class Simulator:
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
         self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
-        self.lc = lc or lcm.LCM(url)
+        self.lc = lc or open_lcm(url, s.publish_thread)
+        # a sender thread's flush(): called before the loop waits (see _drain)
+        self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
         if s.clock == "stepped":
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
         self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
+        self._fd = self.lc.fileno()
+        poller = select.poll()
+        poller.register(self._fd, select.POLLIN)
+        self._poll = poller.poll
         self.last_cmd_t: float | None = None     # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
@@ -112,11 +135,12 @@ class Simulator:
                          1.0 / s.clock_rate_hz, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
+        # what _outputs() calls per sensor: its poll as bytes (or None), its channel
+        self._sensor_polls = [(sen.poll_encoded, ch) for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
         self._ch_health = f"{self.vid}.HEALTH"
-        self._encoders: dict[type, Encoder | None] = {}
         self._enc_truth = Encoder(ground_truth_t, vehicle=self.vid)
         self._enc_act = Encoder(actuator_state_t, vehicle=self.vid)
         self._enc_clock = Encoder(sim_clock_t, server_id=cfg.multihil.client_id)
@@ -170,17 +194,6 @@ class Simulator:
         self.lc.publish(channel, data)
         self.published += 1
 
-    def _encode(self, msg) -> bytes:
-        """A sensor message as bytes: one precompiled struct where the layout is fixed."""
-        cls = type(msg)
-        enc = self._encoders.get(cls, False)
-        if enc is False:
-            strings = [n for n, tn in zip(cls.__slots__, cls.__typenames__) if tn == "string"]
-            enc = (Encoder(cls, vehicle=self.vid) if fixed_layout(cls) and strings == ["vehicle"]
-                   else None)
-            self._encoders[cls] = enc
-        return enc.encode(msg) if enc is not None else msg.encode()
-
     def _check_stale(self) -> None:
         t = self.model.t
         since = t - (self.last_cmd_t if self.last_cmd_t is not None else self._t_start)
@@ -209,10 +222,10 @@ class Simulator:
             return
         tr = self.model.truth(self.truth)
         publish = self._publish
-        for sen, channel in self._sensor_channels:
-            msg = sen.poll(tr)
-            if msg is not None:
-                publish(channel, self._encode(msg))
+        for poll, channel in self._sensor_polls:
+            data = poll(tr)
+            if data is not None:
+                publish(channel, data)
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
@@ -258,11 +271,36 @@ class Simulator:
 
     # ---------------------------------------------------------------- loop
     def _drain(self, timeout_s: float) -> None:
-        fd = self.lc.fileno()
-        ready, _, _ = select.select([fd], [], [], timeout_s)
+        """Handle what LCM has for us, waiting up to timeout_s for the first message.
+
+        Before waiting, every message published so far goes out: whoever we
+        wait for (the global clock, the pilot, the lockstep server) may be
+        waiting for them. The check with no wait, once per physics step, is a
+        poll() on a registered descriptor: the cheapest system call for it.
+        """
+        if timeout_s > 0.0:
+            if self._flush is not None:
+                self._flush()
+            ready = self._wait(timeout_s)
+        else:
+            ready = self._poll(0)
         while ready:
             self.lc.handle()
-            ready, _, _ = select.select([fd], [], [], 0.0)
+            ready = self._poll(0)
+
+    def _wait(self, timeout_s: float) -> bool:
+        """Block until LCM has a message or timeout_s passed (select: microsecond timeouts)."""
+        return bool(select.select([self._fd], [], [], timeout_s)[0])
+
+    def _close_sender(self) -> str:
+        """Send what is queued and stop the sender thread; its figures for the summary."""
+        if not isinstance(self.lc, ThreadedLcm):
+            return ""
+        self.lc.close()
+        st = self.lc.stats()
+        err = self.lc.last_error()
+        return (f", sender thread: {st['full_waits']} waits on a full queue, "
+                f"{st['send_errors']} send errors{f' (last: {err})' if err else ''}")
 
     def run(self) -> int:
         cfg = self.cfg
@@ -297,13 +335,14 @@ class Simulator:
                 self._drain(min(pacer.wait_s(model.t, now), 0.1))
         if self.mh is not None:
             self.mh.close()
+        sender = self._close_sender()
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
               f"{wall:.2f}s wall ({steps * self.dt / wall if wall > 0 else 0:.1f}x real time), "
               f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
-              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events",
-              flush=True)
+              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events"
+              f"{sender}", flush=True)
         if self.modem is not None:
             print(self.modem.summary(), flush=True)
         return 0
