@@ -15,6 +15,7 @@
 #include "sender/msg_queue.h"
 
 #include <pthread.h>
+#include <sched.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,6 +35,7 @@ struct msg_queue {
     _Atomic uint64_t head;
     _Atomic uint64_t tail;
     _Atomic int closed;
+    _Atomic int producer_idle;  /* set by flush(), cleared by push(): no spinning then */
     _Atomic int consumer_waiting;
     _Atomic int producer_waiting;
     pthread_mutex_t mu;
@@ -51,13 +53,12 @@ static uint64_t now_ns(void)
     return (uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec;
 }
 
+/* One turn of a spin: give the core away if another thread wants it. On an
+ * idle machine this returns at once; on a busy one the thread we wait for
+ * (or any other) runs instead of our spinning. */
 static void cpu_relax(void)
 {
-#if defined(__x86_64__) || defined(__i386__)
-    __asm__ __volatile__("pause");
-#elif defined(__aarch64__)
-    __asm__ __volatile__("yield");
-#endif
+    sched_yield();
 }
 
 msg_queue_t *msg_queue_create(size_t slots, uint32_t spin_ns)
@@ -77,6 +78,7 @@ msg_queue_t *msg_queue_create(size_t slots, uint32_t spin_ns)
     atomic_init(&q->head, 0);
     atomic_init(&q->tail, 0);
     atomic_init(&q->closed, 0);
+    atomic_init(&q->producer_idle, 0);
     atomic_init(&q->consumer_waiting, 0);
     atomic_init(&q->producer_waiting, 0);
     atomic_init(&q->full_waits, 0);
@@ -152,6 +154,7 @@ int msg_queue_push(msg_queue_t *q, const char *channel, const void *data, uint32
         memcpy(s->buf + chan_len + 1, data, len);
     s->chan_len = chan_len;
     s->len = len;
+    atomic_store_explicit(&q->producer_idle, 0, memory_order_relaxed);
     atomic_store(&q->head, h + 1);
     wake(q, &q->consumer_waiting, &q->consumer_cv);
     return 0;
@@ -160,6 +163,9 @@ int msg_queue_push(msg_queue_t *q, const char *channel, const void *data, uint32
 void msg_queue_flush(msg_queue_t *q)
 {
     atomic_fetch_add_explicit(&q->flushes, 1, memory_order_relaxed);
+    /* the producer is about to wait for something else: once this is sent,
+     * nothing more comes soon, so the consumer need not spin for it */
+    atomic_store_explicit(&q->producer_idle, 1, memory_order_relaxed);
     wait_tail(q, atomic_load_explicit(&q->head, memory_order_relaxed));
 }
 
@@ -187,7 +193,8 @@ int msg_queue_peek(msg_queue_t *q, const char **channel, const void **data, uint
 {
     uint64_t t = atomic_load_explicit(&q->tail, memory_order_relaxed);
     if (!ready(q, t)) {
-        uint64_t deadline = now_ns() + q->spin_ns;
+        int idle = atomic_load_explicit(&q->producer_idle, memory_order_relaxed);
+        uint64_t deadline = idle ? 0 : now_ns() + q->spin_ns;
         while (!ready(q, t) && now_ns() < deadline)
             cpu_relax();
         if (!ready(q, t)) {

@@ -8,7 +8,9 @@
  * waking a sleeping thread costs tens of microseconds on a virtual machine,
  * more than the work between two messages when the loop runs fast. A pusher
  * only signals when the consumer has declared itself asleep, so a busy pair
- * never makes a system call for the hand-over.
+ * never makes a system call for the hand-over. After a flush() the consumer
+ * does not spin (the producer said it is about to wait for something else):
+ * a loop paced by a clock costs no spinning between its bursts.
  *
  * One thread may push/flush, one other thread may peek/pop. close() may be
  * called by the producer once it has pushed its last message.

@@ -26,6 +26,7 @@ import lcm
 from auvlcm import ROOT
 
 LIBRARY = "libauvlcm_sender.so"
+DEFAULT_SPIN_US = 200
 STAT_FIELDS = ("published", "sent", "send_errors", "full_waits", "sender_sleeps", "flushes")
 
 
@@ -79,12 +80,17 @@ class ThreadedLcm:
     slots: messages in flight before publish() waits; spin_us: how long the
     sender thread (and a waiting publisher) spins before sleeping. A spin
     longer than the gap between two messages keeps the hand-over free of
-    system calls while the loop runs fast; it costs at most spin_us of CPU
-    per burst when the loop runs slowly.
+    system calls while the loop runs fast (measured: 3 us per message
+    instead of 10 with a wake-up, 12-22 without the thread); after a flush()
+    the sender does not spin, so a loop paced by a clock wastes nothing.
+    Default: 200 us, 0 when the process may run on one CPU only (a spinning
+    sender would hold the publisher's only core).
     """
 
     def __init__(self, url: str, lc: lcm.LCM | None = None, slots: int = 512,
-                 spin_us: int = 200) -> None:
+                 spin_us: int | None = None) -> None:
+        if spin_us is None:
+            spin_us = DEFAULT_SPIN_US if len(os.sched_getaffinity(0)) > 1 else 0
         fast, slow = _load()
         self.lc = lc = lc if lc is not None else lcm.LCM(url)
         handle = slow.auv_lcm_sender_create(url.encode(), slots, spin_us)
@@ -95,6 +101,7 @@ class ThreadedLcm:
         self._publish = fast.auv_lcm_sender_publish
         self._pending = fast.auv_lcm_sender_pending
         self._channels: dict[str, bytes] = {}
+        self._errors_reported = 0
         # the receiving side, bound once: the simulator polls fileno() every step
         self.fileno, self.handle, self.handle_timeout = lc.fileno, lc.handle, lc.handle_timeout
         self.subscribe, self.unsubscribe = lc.subscribe, lc.unsubscribe
@@ -134,6 +141,21 @@ class ThreadedLcm:
         code = self._slow.auv_lcm_sender_last_error(self._h) if self._h is not None else self._err
         return os.strerror(code) if code else ""
 
+    def new_errors(self) -> str:
+        """A line about send failures since the last call ('' if none): the loop
+        prints it, since the failures happen on the sender thread."""
+        errors = self.stats()["send_errors"]
+        if errors == self._errors_reported:
+            return ""
+        self._errors_reported = errors
+        return f"LCM send failed ({self.last_error()}): {errors} messages lost so far"
+
+    def summary(self) -> str:
+        st = self.stats()
+        err = self.last_error()
+        return (f"sender thread: {st['full_waits']} waits on a full queue, "
+                f"{st['send_errors']} send errors{f' (last: {err})' if err else ''}")
+
     def close(self) -> None:
         """Send what is queued, stop the thread. Receiving still works."""
         if self._h is not None:
@@ -152,3 +174,17 @@ class ThreadedLcm:
         if name in ("lc", "_h"):      # not set yet: __init__ failed part-way
             raise AttributeError(name)
         return getattr(self.lc, name)
+
+
+def open_lcm(url: str, threaded: bool = True, log=print) -> lcm.LCM | ThreadedLcm:
+    """An lcm.LCM(url) that publishes from a sender thread, unless threaded is
+    false or the library is not built (then it says so, and the caller
+    publishes itself, as before)."""
+    lc = lcm.LCM(url)
+    if not threaded:
+        return lc
+    try:
+        return ThreadedLcm(url, lc)
+    except SenderUnavailable as exc:
+        log(f"{exc}: publishing from the calling thread")
+        return lc

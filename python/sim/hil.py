@@ -19,7 +19,7 @@ import lcm
 from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 
 from auvlcm.rx import Receiver
-from auvlcm.sender import SenderUnavailable, ThreadedLcm
+from auvlcm.sender import ThreadedLcm, open_lcm
 from auvlcm.url import check_local, default_url
 from sim.actuators import Command
 from sim.config import SimConfig
@@ -33,22 +33,6 @@ from sim.wire import Encoder
 def _next_slot(due: float, period: float, t: float) -> float:
     """The first slot of the grid due + k period after t (missed slots skipped)."""
     return due + period * max(1, math.floor((t - due) / period) + 1)
-
-
-def open_lcm(url: str, threaded: bool) -> lcm.LCM | ThreadedLcm:
-    """The simulator's LCM: publishing from a sender thread unless told otherwise.
-
-    Why a thread: see auvlcm.sender. Without the library (not built) the loop
-    publishes itself, as before, and says so.
-    """
-    lc = lcm.LCM(url)
-    if not threaded:
-        return lc
-    try:
-        return ThreadedLcm(url, lc)
-    except SenderUnavailable as exc:
-        print(f"sim: {exc}: publishing from the simulation loop", flush=True)
-        return lc
 
 
 CLOCK_MODE = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
@@ -106,7 +90,8 @@ class Simulator:
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
         self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
-        self.lc = lc or open_lcm(url, s.publish_thread)
+        self.lc = lc or open_lcm(url, s.publish_thread,
+                                 lambda line: print(f"sim: {self.vid}: {line}", flush=True))
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
@@ -268,6 +253,10 @@ class Simulator:
         self._publish(self._ch_health, self._enc_health.pack(
             utime(self.model.t), os.getpid(), sum(s.stats.received for s in self.rx.subscriptions),
             self.rx.decode_errors, self.missed_commands, load))
+        if isinstance(self.lc, ThreadedLcm):     # sends fail on the sender thread: say so here
+            line = self.lc.new_errors()
+            if line:
+                print(f"sim: {self.vid}: {line}", flush=True)
 
     # ---------------------------------------------------------------- loop
     def _drain(self, timeout_s: float) -> None:
@@ -297,10 +286,7 @@ class Simulator:
         if not isinstance(self.lc, ThreadedLcm):
             return ""
         self.lc.close()
-        st = self.lc.stats()
-        err = self.lc.last_error()
-        return (f", sender thread: {st['full_waits']} waits on a full queue, "
-                f"{st['send_errors']} send errors{f' (last: {err})' if err else ''}")
+        return ", " + self.lc.summary()
 
     def run(self) -> int:
         cfg = self.cfg

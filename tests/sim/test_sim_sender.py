@@ -185,3 +185,18 @@ def test_same_seed_same_messages_another_seed_other_noise():
         mine = [d for x, d in a if x == ch]
         other = [d for x, d in c if x == ch]
         assert len(mine) == len(other) and mine != other, ch
+
+
+def test_send_failures_are_counted_and_reported_once(lcm_url):
+    """Sends happen on the sender thread: a failure is counted, and the owner hears
+    of it when it asks (the simulator asks at each HEALTH), once."""
+    tx = ThreadedLcm(lcm_url)
+    tx.publish("T." + "X" * 100, b"abc")       # liblcm refuses channels over 63 characters
+    tx.publish("T.OK", b"abc")
+    tx.flush()
+    st = tx.stats()
+    assert st["sent"] == 2 and st["send_errors"] == 1
+    assert "1 messages lost so far" in tx.new_errors()
+    assert tx.new_errors() == ""
+    tx.close()
+    assert "1 send errors" in tx.summary()
