@@ -1,4 +1,5 @@
 /* LCM publisher thread: see lcm_sender.h. */
+#define _GNU_SOURCE /* pthread_setname_np: the thread shows as lcm-sender in top -H */
 #include "sender/lcm_sender.h"
 
 #include <errno.h>
@@ -22,6 +23,7 @@ struct auv_lcm_sender {
 static void *send_loop(void *arg)
 {
     auv_lcm_sender_t *s = arg;
+    pthread_setname_np(pthread_self(), "lcm-sender");
     const char *channel;
     const void *data;
     uint32_t len;
