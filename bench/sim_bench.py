@@ -73,7 +73,7 @@ class _LcmGenSimulator(Simulator):
                 msg = sen.poll(tr)
                 return None if msg is None else msg.encode()
             return poll
-        self._sensor_polls = [(lcmgen(sen), ch) for sen, ch in self._sensor_channels]
+        self._sensor_polls = [(sen.next_due, lcmgen(sen), ch) for sen, ch in self._sensor_channels]
 
 
 def _run(sim: Simulator, seconds: float) -> dict:

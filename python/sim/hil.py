@@ -120,8 +120,10 @@ class Simulator:
                          1.0 / s.clock_rate_hz, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
-        # what _outputs() calls per sensor: its poll as bytes (or None), its channel
-        self._sensor_polls = [(sen.poll_encoded, ch) for sen, ch in self._sensor_channels]
+        # what _outputs() calls per sensor: when it is due next, its poll as bytes
+        # (or None), its channel
+        self._sensor_polls = [(sen.next_due, sen.poll_encoded, ch)
+                              for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
@@ -207,10 +209,15 @@ class Simulator:
             return
         tr = self.model.truth(self.truth)
         publish = self._publish
-        for poll, channel in self._sensor_polls:
-            data = poll(tr)
-            if data is not None:
-                publish(channel, data)
+        sensors_due = math.inf
+        for next_due, poll, channel in self._sensor_polls:
+            if t >= next_due() - 1e-9:      # what poll() itself checks first: skip the call
+                data = poll(tr)
+                if data is not None:
+                    publish(channel, data)
+            due = next_due()
+            if due < sensors_due:
+                sensors_due = due
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
@@ -234,8 +241,7 @@ class Simulator:
         if t >= nx[3] - 1e-9:
             nx[3] = _next_slot(nx[3], self._periods[3], t)
             self._health()
-        self._next_due = min(min((s.next_due() for s, _ in self._sensor_channels), default=math.inf),
-                             min((x.next_due() for x in self.extras), default=math.inf),
+        self._next_due = min(sensors_due, min((x.next_due() for x in self.extras), default=math.inf),
                              nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
 
     def _health(self) -> None:
@@ -303,7 +309,7 @@ class Simulator:
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
-        model, pacer, monotonic = self.model, self.pacer, time.monotonic
+        model, pacer, monotonic, poll = self.model, self.pacer, time.monotonic, self._poll
         duration = duration if duration > 0 else math.inf
         while not self.stop_requested:
             if self.mh is not None:
@@ -313,7 +319,8 @@ class Simulator:
                 break
             now = monotonic()
             if pacer.may_step(model.t, now):
-                self._drain(0.0)
+                if poll(0):                 # anything from LCM (one poll() per step)
+                    self._drain(0.0)
                 self._check_stale()
                 model.step()
                 self._outputs()
