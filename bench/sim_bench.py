@@ -28,6 +28,7 @@ import argparse
 import contextlib
 import gc
 import io
+import os
 import statistics
 import sys
 import time
@@ -125,6 +126,28 @@ def hil_in_loop(seconds: float) -> dict:
     return _run(Simulator(cfg, fast=True), seconds)
 
 
+def _cpu_times() -> list[int] | None:
+    """The machine's CPU time counters (/proc/stat), None where there are none."""
+    try:
+        with open("/proc/stat") as f:
+            return [int(v) for v in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return None
+
+
+def _machine_line(before: list[int] | None, load: float) -> str:
+    """What the figures were measured on: a busy machine, or a virtual machine
+    whose host gave its time to others (steal), shows lower figures."""
+    after = _cpu_times()
+    line = f"machine: {os.cpu_count()} CPUs, load average {load:.2f} at the start"
+    if before and after and len(after) > 7:
+        d = [a - b for a, b in zip(after, before)]
+        total = sum(d[:8]) or 1
+        line += (f", during the run {100 * (total - d[3] - d[4]) / total:.0f} % busy, "
+                 f"{100 * d[7] / total:.0f} % stolen by the host")
+    return line
+
+
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--rounds", type=int, default=5)
@@ -139,6 +162,7 @@ def main() -> None:
     best = {name: 0.0 for name, _ in physics}
     runs: dict[str, list[dict]] = {name: [] for name, _ in loops}
     errors: dict[str, str] = {}
+    load, cpu0 = os.getloadavg()[0], _cpu_times()
     for _ in range(args.rounds):
         for name, fn in physics:
             t0 = time.perf_counter()
@@ -152,6 +176,7 @@ def main() -> None:
             except Exception as exc:  # no multicast route: say so, still print the rest
                 errors[name] = str(exc)
     base = best["bare integrator (baseline)"]
+    machine = _machine_line(cpu0, load)
     print(f"sim_bench: REMUS 100, RK4 at {1 / DT:.0f} Hz, default configuration "
           f"({CONFIG.relative_to(ROOT)}), best of {args.rounds} rounds of {args.seconds:.0f} sim s")
     print(f"  {'case':44} {'steps/s':>8}  {'real time':>9}  {'of baseline':>11}")
@@ -175,6 +200,7 @@ def main() -> None:
         x = max(r["wall_x"] for r in runs["HIL over LCM, all output"])
         print(f"  goal >= {GOAL_X:.0f}x over LCM on wall time: {'met' if x >= GOAL_X else 'NOT met'} "
               f"({x:.0f}x, best round)")
+    print(f"  {machine}")
 
 
 if __name__ == "__main__":

@@ -4,13 +4,15 @@
  * calling lcm_publish itself (see lcm_sender.h). The queue keeps the order,
  * never drops: a push into a full queue waits for a free slot, and counts it.
  *
- * Each side spins for `spin_ns` before it sleeps on a condition variable:
- * waking a sleeping thread costs tens of microseconds on a virtual machine,
- * more than the work between two messages when the loop runs fast. A pusher
- * only signals when the consumer has declared itself asleep, so a busy pair
- * never makes a system call for the hand-over. After a flush() the consumer
- * does not spin (the producer said it is about to wait for something else):
- * a loop paced by a clock costs no spinning between its bursts.
+ * Waking a sleeping thread costs the waker tens of microseconds on a virtual
+ * machine (milliseconds when the host is busy): more than the work between
+ * two messages when the loop runs fast. So a consumer with an empty queue
+ * spins for `spin_ns`, then dozes in short sleeps for up to 20 ms, and only
+ * then sleeps on a condition variable, the one state a push must wake it
+ * from (a pusher signals only then). After a flush() the consumer sleeps at
+ * once: the producer said it is about to wait for something else, so a loop
+ * paced by a clock costs no spinning between its bursts. A producer waiting
+ * for a full queue or a flush spins for `spin_ns`, then sleeps.
  *
  * One thread may push/flush, one other thread may peek/pop. close() may be
  * called by the producer once it has pushed its last message.

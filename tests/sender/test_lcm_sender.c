@@ -121,7 +121,7 @@ static void test_queue(void)
 {
     queue_case(4, 0, 10, 20000);          /* tiny, no spin: every hand-over sleeps */
     queue_case(4, 20000, 10, 20000);      /* tiny, spinning */
-    queue_case(1, 5000, 0, 20000);        /* one slot: strict ping-pong */
+    queue_case(1, 5000, 0, 5000);         /* one slot: strict ping-pong */
     queue_case(512, 50000, 0, 200000);    /* the simulator's shape */
     CHECK(msg_queue_create(0, 0) == NULL, "a queue of 0 slots");
 }
