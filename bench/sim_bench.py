@@ -26,7 +26,6 @@ from __future__ import annotations
 
 import argparse
 import contextlib
-import gc
 import io
 import os
 import statistics
@@ -85,11 +84,10 @@ def _run(sim: Simulator, seconds: float) -> dict:
     proc = time.process_time() - p0
     out = {"wall_x": seconds / wall, "cpu_x": seconds / cpu, "proc_x": seconds / proc,
            "msgs": sim.published / seconds}
-    # The simulator and its LCM instance hold each other (handlers are bound
-    # methods): collect them now, or every earlier round's liblcm receive
-    # thread would still be woken by each packet of the later rounds.
-    del sim
-    gc.collect()
+    # Let go of its LCM instance (see Simulator.close), or every earlier
+    # round's liblcm receive thread would still be woken by each packet of
+    # the later rounds.
+    sim.close()
     return out
 
 

@@ -287,6 +287,19 @@ class Simulator:
         """Block until LCM has a message or timeout_s passed (select: microsecond timeouts)."""
         return bool(select.select([self._fd], [], [], timeout_s)[0])
 
+    def close(self) -> None:
+        """Let go of LCM: stop the sender thread, drop the subscriptions.
+
+        A process running one simulator needs none of this (its exit does
+        it). An in-process user running several (the benchmark, tests) does:
+        liblcm holds the handlers where Python's collector cannot see them,
+        so a simulator never closed keeps its LCM instance alive, and with it
+        a receive thread that every later packet still wakes.
+        """
+        self._close_sender()
+        for sub in list(self.rx.subscriptions):
+            self.rx.unsubscribe(sub)
+
     def _close_sender(self) -> str:
         """Send what is queued and stop the sender thread; its figures for the summary."""
         if not isinstance(self.lc, ThreadedLcm):
@@ -297,8 +310,9 @@ class Simulator:
     def run(self) -> int:
         cfg = self.cfg
         self._t_start = self.model.t
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
+        # stop cleanly on SIGINT/SIGTERM; the previous handlers come back at the end
+        previous = {sig: signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
+                    for sig in (signal.SIGINT, signal.SIGTERM)}
         duration = cfg.sim.duration_s
         print(f"sim: {self.vid} running: clock={cfg.sim.clock} warp={self.pacer.warp:g}"
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
@@ -329,6 +343,8 @@ class Simulator:
         if self.mh is not None:
             self.mh.close()
         sender = self._close_sender()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "

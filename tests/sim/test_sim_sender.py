@@ -7,9 +7,11 @@ Run inside tests/isolated_net.sh (real LCM, ttl=0)."""
 from __future__ import annotations
 
 import contextlib
+import gc
 import io
 import threading
 import time
+import weakref
 from pathlib import Path
 
 import lcm
@@ -69,7 +71,9 @@ def recorded(cls, cfg, fast: bool = True) -> list[tuple[str, bytes]]:
     """One in-process run published into a list (HEALTH left out: pid, CPU load)."""
     lc = OfflineLcm()
     try:
-        run_quiet(cls(cfg, fast=fast, lc=lc))
+        sim = cls(cfg, fast=fast, lc=lc)
+        run_quiet(sim)
+        sim.close()
     finally:
         lc.close()
     return [(ch, d) for ch, d in lc.published if not ch.endswith(".HEALTH")]
@@ -129,6 +133,7 @@ def test_the_simulator_sends_through_the_thread_what_the_loop_would(lcm_url):
     sim = Simulator(config(10.0, lcm_url, "scaled"))
     assert isinstance(sim.lc, ThreadedLcm)
     summary = run_quiet(sim)
+    sim.close()
     assert "0 send errors" in summary
     want = recorded(Simulator, config(10.0, clock="scaled"), fast=False)
     got = [(ch, d) for ch, d in rx.wait_for(sim.published) if not ch.endswith(".HEALTH")]
@@ -165,9 +170,23 @@ def test_the_loop_never_waits_with_messages_still_queued(lcm_url):
     th.start()
     run_quiet(sim)
     th.join()
+    sim.close()
     assert sim.model.t == pytest.approx(5.0)
     assert sim.published > 400 and len(pending_at_wait) > 10
     assert max(pending_at_wait) == 0, pending_at_wait
+
+
+def test_a_closed_simulator_lets_go_of_its_lcm_instance(lcm_url):
+    """liblcm holds the handlers where the garbage collector cannot see them: an
+    in-process simulator (bench, tests) that kept its LCM instance would keep a
+    receive thread that every later packet wakes."""
+    sim = Simulator(config(1.0, lcm_url))
+    run_quiet(sim)
+    sim.close()
+    ref = weakref.ref(sim)
+    del sim
+    gc.collect()
+    assert ref() is None
 
 
 def test_same_seed_same_messages_another_seed_other_noise():
