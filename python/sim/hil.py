@@ -297,8 +297,9 @@ class Simulator:
         a receive thread that every later packet still wakes.
         """
         self._close_sender()
-        for sub in list(self.rx.subscriptions):
-            self.rx.unsubscribe(sub)
+        for rx in (self.rx, self.mh.node.rx) if self.mh is not None else (self.rx,):
+            for sub in list(rx.subscriptions):
+                rx.unsubscribe(sub)
 
     def _close_sender(self) -> str:
         """Send what is queued and stop the sender thread; its figures for the summary."""
@@ -344,7 +345,8 @@ class Simulator:
             self.mh.close()
         sender = self._close_sender()
         for sig, handler in previous.items():
-            signal.signal(sig, handler)
+            if handler is not None:     # None: not set from Python, nothing to restore
+                signal.signal(sig, handler)
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
