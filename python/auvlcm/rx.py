@@ -74,6 +74,9 @@ class Receiver:
 
     def unsubscribe(self, sub: Subscription) -> None:
         self.lc.unsubscribe(sub.lcm_sub)
+        # lcm's subscription object holds our handler and is invisible to the
+        # garbage collector: drop it, or sub and its handler's owner never go
+        sub.lcm_sub = None
         self.subscriptions.remove(sub)
 
     @property

@@ -58,6 +58,7 @@ class SimSettings:
     duration_s: float = 0.0          # 0 = until stopped
     seed: int = -1                   # sensor seed; -1 = the environment's seed
     lcm_url: str = ""                # "" = $LCM_DEFAULT_URL or the project default
+    publish_thread: bool = True      # messages go out from a sender thread (auvlcm.sender)
 
 
 @dataclass

@@ -80,8 +80,7 @@ class Dynamics:
         m = vp.mass_kg
         xg, yg, zg = vp.cg_m
         ixx, iyy, izz = vp.inertia_kgm2
-        # One tuple, unpacked once per derivative: attribute look-ups are the
-        # main cost of plain-Python numerics.
+        # The constants of the right-hand side (make_rhs), in its order.
         self._k = (
             m, xg, yg, zg, ixx, iyy, izz, vp.weight_n, vp.buoyancy_n, vp.radius_m,
             h["Xuu"], h["Xwq"], h["Xqq"], h["Xvr"], h["Xrr"],
@@ -103,6 +102,7 @@ class Dynamics:
         self.torque = 0.0
         self.current_ned = (0.0, 0.0, 0.0)
         self.external_tau: list[float] | None = None  # optional extra body forces (tests, tow)
+        self._f = make_rhs(self._k, self._minv)
 
     # ------------------------------------------------------------------ API
     @property
@@ -118,23 +118,41 @@ class Dynamics:
         self.x[6:12] = [float(v) for v in nu]
 
     def step(self) -> None:
-        """Advance one fixed step with classic RK4 (inputs held)."""
+        """Advance one fixed step with classic RK4 (inputs held).
+
+        Written out element by element (list comprehensions over zip() cost
+        more than the arithmetic they do): each stage's state is x + h k with
+        h = dt/2, dt/2, dt, and x_next = x + dt/6 (k1 + 2 (k2 + k3) + k4).
+        """
         dt = self.dt
         h = 0.5 * dt
-        f = self._deriv
-        x = self.x
-        k1 = f(x)
-        k2 = f([a + h * b for a, b in zip(x, k1)])
-        k3 = f([a + h * b for a, b in zip(x, k2)])
-        k4 = f([a + dt * b for a, b in zip(x, k3)])
-        c = dt / 6.0
-        x = [a + c * (b1 + 2.0 * (b2 + b3) + b4) for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4)]
-        # keep yaw in [0, 2pi) and roll in (-pi, pi]
-        x[5] %= TWO_PI
-        roll = x[3]
+        cn, ce, cd = self.current_ned
+        u = (cn, ce, cd, self.rudder, self.stern, self.thrust, self.torque, self.external_tau)
+        f = self._f
+        x0, x1, x2, x3, x4, x5, x6, x7, x8, x9, x10, x11 = x = self.x
+        k1 = a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11 = f(x, *u)
+        b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11 = f((
+            x0 + h * a0, x1 + h * a1, x2 + h * a2, x3 + h * a3, x4 + h * a4, x5 + h * a5,
+            x6 + h * a6, x7 + h * a7, x8 + h * a8, x9 + h * a9, x10 + h * a10, x11 + h * a11), *u)
+        c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11 = f((
+            x0 + h * b0, x1 + h * b1, x2 + h * b2, x3 + h * b3, x4 + h * b4, x5 + h * b5,
+            x6 + h * b6, x7 + h * b7, x8 + h * b8, x9 + h * b9, x10 + h * b10, x11 + h * b11), *u)
+        d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11 = f((
+            x0 + dt * c0, x1 + dt * c1, x2 + dt * c2, x3 + dt * c3, x4 + dt * c4, x5 + dt * c5,
+            x6 + dt * c6, x7 + dt * c7, x8 + dt * c8, x9 + dt * c9, x10 + dt * c10,
+            x11 + dt * c11), *u)
+        w = dt / 6.0
+        # keep roll in (-pi, pi] and yaw in [0, 2pi)
+        roll = x3 + w * (a3 + 2.0 * (b3 + c3) + d3)
         if roll > math.pi or roll <= -math.pi:
-            x[3] = (roll + math.pi) % TWO_PI - math.pi
-        self.x = x
+            roll = (roll + math.pi) % TWO_PI - math.pi
+        self.x = [
+            x0 + w * (a0 + 2.0 * (b0 + c0) + d0), x1 + w * (a1 + 2.0 * (b1 + c1) + d1),
+            x2 + w * (a2 + 2.0 * (b2 + c2) + d2), roll,
+            x4 + w * (a4 + 2.0 * (b4 + c4) + d4), (x5 + w * (a5 + 2.0 * (b5 + c5) + d5)) % TWO_PI,
+            x6 + w * (a6 + 2.0 * (b6 + c6) + d6), x7 + w * (a7 + 2.0 * (b7 + c7) + d7),
+            x8 + w * (a8 + 2.0 * (b8 + c8) + d8), x9 + w * (a9 + 2.0 * (b9 + c9) + d9),
+            x10 + w * (a10 + 2.0 * (b10 + c10) + d10), x11 + w * (a11 + 2.0 * (b11 + c11) + d11)]
         self.nu_dot = k1[6:12]
         self.t += dt
 
@@ -145,19 +163,34 @@ class Dynamics:
 
     # ------------------------------------------------------------ internals
     def _deriv(self, x):
-        """x_dot for state x: the hot path (four calls per step).
+        """x_dot for state x with the inputs held now (the validation's Jacobian)."""
+        cn, ce, cd = self.current_ned
+        return self._f(x, cn, ce, cd, self.rudder, self.stern, self.thrust, self.torque,
+                       self.external_tau)
 
-        Written as one function over locals: a call, a tuple and an
-        attribute look-up each cost as much as several multiplications.
-        """
-        (m, xg, yg, zg, ixx, iyy, izz, W, B, rad,
-         Xuu, Xwq, Xqq, Xvr, Xrr,
-         Yvv, Yrr, Yuv, Ywp, Yur, Ypq, Yuudr,
-         Zww, Zqq, Zuw, Zuq, Zvp, Zrp, Zuuds,
-         Kpp,
-         Mww, Mqq, Muw, Muq, Mvp, Mrp, Muuds,
-         Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr,
-         ma_u, ma_v, ma_w, ma_qw, ma_rv) = self._k
+
+def make_rhs(k: tuple, minv: tuple):
+    """The right-hand side x_dot = f(x, inputs) for one vehicle's constants.
+
+    A closure: the constants are unpacked once, here, and read by the inner
+    function as free variables; the inputs held over a step come as
+    arguments. Four calls per physics step make this the simulator's hot
+    path: a call, a tuple unpacking and an attribute look-up each cost as
+    much as several multiplications.
+    """
+    (m, xg, yg, zg, ixx, iyy, izz, W, B, rad,
+     Xuu, Xwq, Xqq, Xvr, Xrr,
+     Yvv, Yrr, Yuv, Ywp, Yur, Ypq, Yuudr,
+     Zww, Zqq, Zuw, Zuq, Zvp, Zrp, Zuuds,
+     Kpp,
+     Mww, Mqq, Muw, Muq, Mvp, Mrp, Muuds,
+     Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr,
+     ma_u, ma_v, ma_w, ma_qw, ma_rv) = k
+    (i00, i01, i02, i03, i04, i05, i10, i11, i12, i13, i14, i15,
+     i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
+     i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = minv
+
+    def rhs(x, cn, ce, cd, dr, ds, thrust, torque, et):
         _, _, z, phi, theta, psi, u, v, w, p, q, r = x
         cphi, sphi = cos(phi), sin(phi)
         cth, sth = cos(theta), sin(theta)
@@ -173,7 +206,6 @@ class Dynamics:
         r21 = cth * sphi
         r22 = cth * cphi
 
-        cn, ce, cd = self.current_ned
         if cn or ce or cd:
             uc = r00 * cn + r10 * ce + r20 * cd
             vc = r01 * cn + r11 * ce + r21 * cd
@@ -185,7 +217,6 @@ class Dynamics:
         uau = ur * (ur if ur >= 0.0 else -ur)
         vav = vr * (vr if vr >= 0.0 else -vr)
         waw = wr * (wr if wr >= 0.0 else -wr)
-        dr, ds = self.rudder, self.stern
 
         # hydrostatics: buoyancy falls as the hull breaks the surface
         fw = W - (B if z >= rad else B * submerged_fraction(z, rad))
@@ -197,7 +228,7 @@ class Dynamics:
 
         X = (Xuu * uau + Xwq * wr * q + Xqq * qq + Xvr * vr * r + Xrr * rr
              + m * (v * r - w * q + xg * (qq + rr) - yg * p * q - zg * p * r)
-             + fw * ex + self.thrust)
+             + fw * ex + thrust)
         Y = (Yvv * vav + Yrr * r * ar + Yuv * ur * vr + Ywp * wr * p + Yur * ur * r
              + Ypq * p * q + Yuudr * uau * dr
              + m * (w * p - u * r + yg * (rr + pp) - zg * q * r - xg * q * p)
@@ -209,7 +240,7 @@ class Dynamics:
         # moments of weight about the CB: W (r_g x e)
         K = (Kpp * p * ap - (izz - iyy) * q * r
              - m * (yg * (v * p - u * q) - zg * (u * r - w * p))
-             + W * (yg * ez - zg * ey) + self.torque)
+             + W * (yg * ez - zg * ey) + torque)
         Mm = (Mww * waw + Mqq * q * aq + Muw * ur * wr + Muq * ur * q + Mvp * vr * p
               + Mrp * r * p + Muuds * uau * ds
               - (ixx - izz) * r * p - m * (zg * (w * q - v * r) - xg * (v * p - u * q))
@@ -228,13 +259,9 @@ class Dynamics:
             Z += ma_w * acw
             Mm += ma_qw * acw
             N += ma_rv * acv
-        et = self.external_tau
         if et is not None:
             X, Y, Z = X + et[0], Y + et[1], Z + et[2]
             K, Mm, N = K + et[3], Mm + et[4], N + et[5]
-        (i00, i01, i02, i03, i04, i05, i10, i11, i12, i13, i14, i15,
-         i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
-         i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = self._minv
         tth = sth / cth
         return (
             r00 * u + r01 * v + r02 * w,
@@ -250,3 +277,5 @@ class Dynamics:
             i40 * X + i41 * Y + i42 * Z + i43 * K + i44 * Mm + i45 * N,
             i50 * X + i51 * Y + i52 * Z + i53 * K + i54 * Mm + i55 * N,
         )
+
+    return rhs

@@ -86,6 +86,12 @@ class Environment:
                 self._waves.append((a, w, w * w / G, rng.uniform(0.0, 2.0 * math.pi)))
         self._wave_cos = math.cos(p.wave_direction_rad)
         self._wave_sin = math.sin(p.wave_direction_rad)
+        # what current() needs per call, computed once (it runs every physics step)
+        self._layer_pairs = list(zip(self._layers, self._layers[1:]))
+        self._varies = p.current_variation_mps != 0.0 and p.current_variation_period_s > 0.0
+        self._var_cos, self._var_sin = math.cos(self._var_dir), math.sin(self._var_dir)
+        # per wave component: a w (orbital speed amplitude at the surface), -k, k, w, phase
+        self._orbital = [(a * w, -k, k, w, ph) for a, w, k, ph in self._waves]
 
     # ------------------------------------------------------------- currents
     def current_profile(self, depth: float) -> tuple[float, float, float]:
@@ -94,7 +100,7 @@ class Environment:
             return 0.0, 0.0, 0.0
         if depth <= ls[0][0]:
             return ls[0][1], ls[0][2], ls[0][3]
-        for (d0, n0, e0, w0), (d1, n1, e1, w1) in zip(ls, ls[1:]):
+        for (d0, n0, e0, w0), (d1, n1, e1, w1) in self._layer_pairs:
             if depth <= d1:
                 f = (depth - d0) / (d1 - d0) if d1 > d0 else 1.0
                 return n0 + f * (n1 - n0), e0 + f * (e1 - e0), w0 + f * (w1 - w0)
@@ -103,15 +109,16 @@ class Environment:
     def current(self, t: float, north: float, east: float, depth: float) -> tuple[float, float, float]:
         """Water velocity (NED) from the profile, the slow variation and the waves."""
         cn, ce, cd = self.current_profile(depth)
-        p = self.params
-        if p.current_variation_mps != 0.0 and p.current_variation_period_s > 0.0:
-            s = north * math.cos(self._var_dir) + east * math.sin(self._var_dir)
+        if self._varies:
+            p = self.params
+            vc, vs = self._var_cos, self._var_sin
+            s = north * vc + east * vs
             amp = p.current_variation_mps * math.sin(
                 2.0 * math.pi * (t / p.current_variation_period_s + s / CURRENT_VARIATION_WAVELENGTH_M)
                 + self._var_phase)
-            cn += amp * math.cos(self._var_dir)
-            ce += amp * math.sin(self._var_dir)
-        if self._waves:
+            cn += amp * vc
+            ce += amp * vs
+        if self._orbital:
             wh, wv = self.wave_orbital(t, north, east, depth)
             cn += wh * self._wave_cos
             ce += wh * self._wave_sin
@@ -124,13 +131,14 @@ class Environment:
         s = north * self._wave_cos + east * self._wave_sin
         d = max(depth, 0.0)
         uh = uv = 0.0
-        for a, w, k, ph in self._waves:
-            decay = math.exp(-k * d)
+        exp, cos, sin = math.exp, math.cos, math.sin
+        for aw, nk, k, w, ph in self._orbital:
+            decay = exp(nk * d)
             if decay < 1e-4:
                 continue
             th = k * s - w * t + ph
-            uh += a * w * decay * math.cos(th)
-            uv -= a * w * decay * math.sin(th)
+            uh += aw * decay * cos(th)
+            uv -= aw * decay * sin(th)
         return uh, uv
 
     def wave_elevation(self, t: float, north: float, east: float) -> float:

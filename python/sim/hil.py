@@ -19,6 +19,7 @@ import lcm
 from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 
 from auvlcm.rx import Receiver
+from auvlcm.sender import ThreadedLcm, open_lcm
 from auvlcm.url import check_local, default_url
 from sim.actuators import Command
 from sim.config import SimConfig
@@ -27,7 +28,7 @@ from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
-from sim.wire import Encoder, fixed_layout
+from sim.wire import Encoder
 
 def _next_slot(due: float, period: float, t: float) -> float:
     """The first slot of the grid due + k period after t (missed slots skipped)."""
@@ -89,13 +90,20 @@ class Simulator:
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
         self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
-        self.lc = lc or lcm.LCM(url)
+        self.lc = lc or open_lcm(url, s.publish_thread,
+                                 lambda line: print(f"sim: {self.vid}: {line}", flush=True))
+        # a sender thread's flush(): called before the loop waits (see _drain)
+        self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
         if s.clock == "stepped":
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
         self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
+        self._fd = self.lc.fileno()
+        poller = select.poll()
+        poller.register(self._fd, select.POLLIN)
+        self._poll = poller.poll
         self.last_cmd_t: float | None = None     # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
@@ -112,11 +120,14 @@ class Simulator:
                          1.0 / s.clock_rate_hz, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
+        # what _outputs() calls per sensor: when it is due next, its poll as bytes
+        # (or None), its channel
+        self._sensor_polls = [(sen.next_due, sen.poll_encoded, ch)
+                              for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
         self._ch_health = f"{self.vid}.HEALTH"
-        self._encoders: dict[type, Encoder | None] = {}
         self._enc_truth = Encoder(ground_truth_t, vehicle=self.vid)
         self._enc_act = Encoder(actuator_state_t, vehicle=self.vid)
         self._enc_clock = Encoder(sim_clock_t, server_id=cfg.multihil.client_id)
@@ -170,17 +181,6 @@ class Simulator:
         self.lc.publish(channel, data)
         self.published += 1
 
-    def _encode(self, msg) -> bytes:
-        """A sensor message as bytes: one precompiled struct where the layout is fixed."""
-        cls = type(msg)
-        enc = self._encoders.get(cls, False)
-        if enc is False:
-            strings = [n for n, tn in zip(cls.__slots__, cls.__typenames__) if tn == "string"]
-            enc = (Encoder(cls, vehicle=self.vid) if fixed_layout(cls) and strings == ["vehicle"]
-                   else None)
-            self._encoders[cls] = enc
-        return enc.encode(msg) if enc is not None else msg.encode()
-
     def _check_stale(self) -> None:
         t = self.model.t
         since = t - (self.last_cmd_t if self.last_cmd_t is not None else self._t_start)
@@ -209,10 +209,15 @@ class Simulator:
             return
         tr = self.model.truth(self.truth)
         publish = self._publish
-        for sen, channel in self._sensor_channels:
-            msg = sen.poll(tr)
-            if msg is not None:
-                publish(channel, self._encode(msg))
+        sensors_due = math.inf
+        for next_due, poll, channel in self._sensor_polls:
+            if t >= next_due() - 1e-9:      # what poll() itself checks first: skip the call
+                data = poll(tr)
+                if data is not None:
+                    publish(channel, data)
+            due = next_due()
+            if due < sensors_due:
+                sensors_due = due
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
@@ -236,8 +241,7 @@ class Simulator:
         if t >= nx[3] - 1e-9:
             nx[3] = _next_slot(nx[3], self._periods[3], t)
             self._health()
-        self._next_due = min(min((s.next_due() for s, _ in self._sensor_channels), default=math.inf),
-                             min((x.next_due() for x in self.extras), default=math.inf),
+        self._next_due = min(sensors_due, min((x.next_due() for x in self.extras), default=math.inf),
                              nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
 
     def _health(self) -> None:
@@ -255,20 +259,61 @@ class Simulator:
         self._publish(self._ch_health, self._enc_health.pack(
             utime(self.model.t), os.getpid(), sum(s.stats.received for s in self.rx.subscriptions),
             self.rx.decode_errors, self.missed_commands, load))
+        if isinstance(self.lc, ThreadedLcm):     # sends fail on the sender thread: say so here
+            line = self.lc.new_errors()
+            if line:
+                print(f"sim: {self.vid}: {line}", flush=True)
 
     # ---------------------------------------------------------------- loop
     def _drain(self, timeout_s: float) -> None:
-        fd = self.lc.fileno()
-        ready, _, _ = select.select([fd], [], [], timeout_s)
+        """Handle what LCM has for us, waiting up to timeout_s for the first message.
+
+        Before waiting, every message published so far goes out: whoever we
+        wait for (the global clock, the pilot, the lockstep server) may be
+        waiting for them. The check with no wait, once per physics step, is a
+        poll() on a registered descriptor: the cheapest system call for it.
+        """
+        if timeout_s > 0.0:
+            if self._flush is not None:
+                self._flush()
+            ready = self._wait(timeout_s)
+        else:
+            ready = self._poll(0)
         while ready:
             self.lc.handle()
-            ready, _, _ = select.select([fd], [], [], 0.0)
+            ready = self._poll(0)
+
+    def _wait(self, timeout_s: float) -> bool:
+        """Block until LCM has a message or timeout_s passed (select: microsecond timeouts)."""
+        return bool(select.select([self._fd], [], [], timeout_s)[0])
+
+    def close(self) -> None:
+        """Let go of LCM: stop the sender thread, drop the subscriptions.
+
+        A process running one simulator needs none of this (its exit does
+        it). An in-process user running several (the benchmark, tests) does:
+        liblcm holds the handlers where Python's collector cannot see them,
+        so a simulator never closed keeps its LCM instance alive, and with it
+        a receive thread that every later packet still wakes.
+        """
+        self._close_sender()
+        for rx in (self.rx, self.mh.node.rx) if self.mh is not None else (self.rx,):
+            for sub in list(rx.subscriptions):
+                rx.unsubscribe(sub)
+
+    def _close_sender(self) -> str:
+        """Send what is queued and stop the sender thread; its figures for the summary."""
+        if not isinstance(self.lc, ThreadedLcm):
+            return ""
+        self.lc.close()
+        return ", " + self.lc.summary()
 
     def run(self) -> int:
         cfg = self.cfg
         self._t_start = self.model.t
-        for sig in (signal.SIGINT, signal.SIGTERM):
-            signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
+        # stop cleanly on SIGINT/SIGTERM; the previous handlers come back at the end
+        previous = {sig: signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
+                    for sig in (signal.SIGINT, signal.SIGTERM)}
         duration = cfg.sim.duration_s
         print(f"sim: {self.vid} running: clock={cfg.sim.clock} warp={self.pacer.warp:g}"
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
@@ -279,7 +324,7 @@ class Simulator:
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
-        model, pacer, monotonic = self.model, self.pacer, time.monotonic
+        model, pacer, monotonic, poll = self.model, self.pacer, time.monotonic, self._poll
         duration = duration if duration > 0 else math.inf
         while not self.stop_requested:
             if self.mh is not None:
@@ -289,7 +334,8 @@ class Simulator:
                 break
             now = monotonic()
             if pacer.may_step(model.t, now):
-                self._drain(0.0)
+                if poll(0):                 # anything from LCM (one poll() per step)
+                    self._drain(0.0)
                 self._check_stale()
                 model.step()
                 self._outputs()
@@ -297,13 +343,17 @@ class Simulator:
                 self._drain(min(pacer.wait_s(model.t, now), 0.1))
         if self.mh is not None:
             self.mh.close()
+        sender = self._close_sender()
+        for sig, handler in previous.items():
+            if handler is not None:     # None: not set from Python, nothing to restore
+                signal.signal(sig, handler)
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
               f"{wall:.2f}s wall ({steps * self.dt / wall if wall > 0 else 0:.1f}x real time), "
               f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
-              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events",
-              flush=True)
+              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events"
+              f"{sender}", flush=True)
         if self.modem is not None:
             print(self.modem.summary(), flush=True)
         return 0

@@ -93,3 +93,12 @@ def fixed_layout(cls: type) -> bool:
         if dims is not None and any(not isinstance(d, int) for d in dims):
             return False
     return True
+
+
+def encoder_for(cls: type, vehicle: str) -> Encoder | None:
+    """An Encoder for a sensor message type whose only string is the vehicle id,
+    None if the type has variable-length fields or other strings."""
+    strings = [n for n, tn in zip(cls.__slots__, cls.__typenames__) if tn == "string"]
+    if not fixed_layout(cls) or strings != ["vehicle"]:
+        return None
+    return Encoder(cls, vehicle=vehicle)

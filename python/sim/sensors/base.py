@@ -14,6 +14,7 @@ from typing import Any
 
 from sim.model import Truth
 from sim.noise import Noise
+from sim.wire import encoder_for
 
 TWO_PI = 2.0 * math.pi
 
@@ -41,6 +42,7 @@ class Sensor:
         self.next_t = cfg.phase_s
         self.samples = 0
         self.dropped = 0
+        self._encoders: dict[type, Any] = {}
 
     def due(self, t: float) -> bool:
         return self.cfg.enabled and t >= self.next_t - 1e-9
@@ -49,18 +51,53 @@ class Sensor:
         """Sim time of the next poll() that can return something."""
         return self.next_t if self.cfg.enabled else math.inf
 
-    def poll(self, truth: Truth) -> Any | None:
-        """A message if one is due at truth.t (and not dropped), else None."""
-        t = truth.t
+    def _take(self, t: float) -> int:
+        """Whether a sample is due at t: 0 no, 1 a measurement, 2 a dropout.
+
+        Schedules the next one on the grid (never drifting, skipping missed
+        slots) and draws the dropout, so call it once per poll.
+        """
         if not self.due(t):
-            return None
-        # schedule on the grid, never drifting, skipping missed slots
+            return 0
         self.next_t += self.period * max(1, math.floor((t - self.next_t) / self.period + 1e-9) + 1)
         self.samples += 1
         if self.cfg.dropout > 0.0 and self.rng.random() < self.cfg.dropout:
             self.dropped += 1
-            return self.dropout_message(truth)
-        return self.measure(truth)
+            return 2
+        return 1
+
+    def poll(self, truth: Truth) -> Any | None:
+        """A message if one is due at truth.t (and not dropped), else None."""
+        take = self._take(truth.t)
+        if take == 0:
+            return None
+        return self.measure(truth) if take == 1 else self.dropout_message(truth)
+
+    def poll_encoded(self, truth: Truth) -> bytes | None:
+        """poll() as the bytes the simulator publishes.
+
+        Sensors sampled at high rates override measure_encoded() to pack their
+        values straight into bytes (sim.wire), with no message object.
+        """
+        take = self._take(truth.t)
+        if take == 0:
+            return None
+        if take == 1:
+            return self.measure_encoded(truth)
+        msg = self.dropout_message(truth)
+        return None if msg is None else self.encode(msg)
+
+    def measure_encoded(self, truth: Truth) -> bytes | None:
+        msg = self.measure(truth)
+        return None if msg is None else self.encode(msg)
+
+    def encode(self, msg) -> bytes:
+        """A message of this sensor as bytes: a precompiled struct where the layout allows."""
+        cls = type(msg)
+        enc = self._encoders.get(cls, False)
+        if enc is False:
+            enc = self._encoders[cls] = encoder_for(cls, self.vehicle)
+        return enc.encode(msg) if enc is not None else msg.encode()
 
     def measure(self, truth: Truth) -> Any | None:  # pragma: no cover - abstract
         raise NotImplementedError

@@ -18,6 +18,7 @@ from auv import nav_solution_t
 
 from sim.model import Truth
 from sim.sensors.base import Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
+from sim.wire import Encoder
 
 
 @dataclass
@@ -56,16 +57,25 @@ class Ins(Sensor):
         self.pos_var = cfg.gps_sigma_m ** 2
         self.dist = 0.0          # distance travelled since the last fix [m]
         self.t_since_fix = 0.0
+        self._pack = Encoder(nav_solution_t, vehicle=vehicle).pack
 
     def measure(self, tr: Truth):
+        return nav_solution_t.decode(self.measure_encoded(tr))
+
+    def measure_encoded(self, tr: Truth) -> bytes:
+        """The nav_solution_t as bytes, packed from the values (20 Hz: no object)."""
         c = self.cfg
-        dt = 0.0 if self.last_t is None else tr.t - self.last_t
-        self.last_t = tr.t
-        surfaced = tr.depth <= c.surface_depth_m
+        gauss = self.gauss
+        t = tr.t
+        dt = 0.0 if self.last_t is None else t - self.last_t
+        self.last_t = t
+        eta, nu = tr.eta, tr.nu
+        surfaced = eta[2] <= c.surface_depth_m
         vn, ve, _ = tr.velocity_ned()
+        bias = c.bias
         if dt > 0.0:
-            self.head_walk += self.gauss(c.heading_random_walk * math.sqrt(dt))
-            he = c.bias + self.head_walk
+            self.head_walk += gauss(c.heading_random_walk * math.sqrt(dt))
+            he = bias + self.head_walk
             # the INS integrates its velocity rotated by its heading error and
             # scaled by its scale error; the difference from truth is
             # (R(he)(1+k) - I) v
@@ -74,52 +84,52 @@ class Ins(Sensor):
             dn = (k * (ch * vn - sh * ve) - vn) * dt
             de = (k * (sh * vn + ch * ve) - ve) * dt
             rw = c.position_random_walk * math.sqrt(dt)
-            self.err_n += dn + self.gauss(rw)
-            self.err_e += de + self.gauss(rw)
+            self.err_n += dn + gauss(rw)
+            self.err_e += de + gauss(rw)
             self.dist += math.hypot(vn, ve) * dt
             self.t_since_fix += dt
+        status = nav_solution_t.STATUS_ALIGNED
         if surfaced and c.gps_aiding:
-            self.err_n = self.gauss(c.gps_sigma_m)
-            self.err_e = self.gauss(c.gps_sigma_m)
+            self.err_n = gauss(c.gps_sigma_m)
+            self.err_e = gauss(c.gps_sigma_m)
             self.dist = 0.0
             self.t_since_fix = 0.0
+            status |= nav_solution_t.STATUS_GPS
         # the 1-sigma a real filter would claim: the fix's error plus the
         # dead-reckoning drift since (heading and scale errors grow with
         # distance, the random walk with time)
-        frac2 = c.bias ** 2 + c.velocity_scale_error ** 2 + c.heading_random_walk ** 2 * self.t_since_fix
+        frac2 = bias ** 2 + c.velocity_scale_error ** 2 + c.heading_random_walk ** 2 * self.t_since_fix
         self.pos_var = (c.gps_sigma_m ** 2 + frac2 * self.dist ** 2
                         + c.position_random_walk ** 2 * self.t_since_fix)
-        m = nav_solution_t()
-        m.utime, m.vehicle, m.source = utime(tr.t), self.vehicle, nav_solution_t.SOURCE_SIM_INS
-        status = nav_solution_t.STATUS_ALIGNED
-        if surfaced and c.gps_aiding:
-            status |= nav_solution_t.STATUS_GPS
-        if 0.0 < tr.altitude_m <= c.dvl_max_altitude_m:
+        noise = c.noise
+        alt = tr.altitude_m
+        if 0.0 < alt <= c.dvl_max_altitude_m:
             status |= nav_solution_t.STATUS_DVL_BOTTOM
-            m.altitude_m = tr.altitude_m + self.gauss(c.noise)
+            altitude = alt + gauss(noise)
         else:
             status |= nav_solution_t.STATUS_DVL_WATER
-            m.altitude_m = -1.0
-        m.status = status
-        m.north_m = tr.eta[0] + self.err_n + self.gauss(c.noise)
-        m.east_m = tr.eta[1] + self.err_e + self.gauss(c.noise)
-        m.depth_m = tr.eta[2] + self.gauss(c.noise)
-        m.latitude_deg, m.longitude_deg = self.frame.to_latlon(m.north_m, m.east_m)
-        m.roll_rad = wrap_pi(tr.eta[3] + self.gauss(c.attitude_noise))
-        m.pitch_rad = tr.eta[4] + self.gauss(c.attitude_noise)
-        m.heading_rad = wrap_2pi(tr.eta[5] + c.bias + self.head_walk + self.gauss(c.heading_noise))
+            altitude = -1.0
+        north = eta[0] + self.err_n + gauss(noise)
+        east = eta[1] + self.err_e + gauss(noise)
+        depth = eta[2] + gauss(noise)
+        lat, lon = self.frame.to_latlon(north, east)
+        att = c.attitude_noise
+        roll = wrap_pi(eta[3] + gauss(att))
+        pitch = eta[4] + gauss(att)
+        heading = wrap_2pi(eta[5] + bias + self.head_walk + gauss(c.heading_noise))
         vnoise = c.velocity_noise
-        m.u_mps = tr.nu[0] + self.gauss(vnoise)
-        m.v_mps = tr.nu[1] + self.gauss(vnoise)
-        m.w_mps = tr.nu[2] + self.gauss(vnoise)
-        m.p_radps, m.q_radps, m.r_radps = tr.nu[3], tr.nu[4], tr.nu[5]
-        m.speed_over_ground_mps = math.hypot(vn, ve)
-        m.course_over_ground_rad = wrap_2pi(math.atan2(ve, vn) + c.bias + self.head_walk)
-        pv = self.pos_var + c.noise ** 2
-        m.position_cov_m2 = [[pv, 0.0, 0.0], [0.0, pv, 0.0], [0.0, 0.0, c.noise ** 2]]
+        u = nu[0] + gauss(vnoise)
+        v = nu[1] + gauss(vnoise)
+        w = nu[2] + gauss(vnoise)
+        pv = self.pos_var + noise ** 2
+        dv = noise ** 2
         vv = vnoise ** 2
-        m.velocity_cov_m2ps2 = [[vv, 0.0, 0.0], [0.0, vv, 0.0], [0.0, 0.0, vv]]
-        av = c.attitude_noise ** 2
-        hv = c.heading_noise ** 2 + c.bias ** 2 + self.head_walk ** 2
-        m.attitude_cov_rad2 = [[av, 0.0, 0.0], [0.0, av, 0.0], [0.0, 0.0, hv]]
-        return m
+        av = att ** 2
+        hv = c.heading_noise ** 2 + bias ** 2 + self.head_walk ** 2
+        return self._pack(
+            utime(t), nav_solution_t.SOURCE_SIM_INS, status, lat, lon, north, east, depth,
+            altitude, roll, pitch, heading, u, v, w, nu[3], nu[4], nu[5], math.hypot(vn, ve),
+            wrap_2pi(math.atan2(ve, vn) + bias + self.head_walk),
+            pv, 0.0, 0.0, 0.0, pv, 0.0, 0.0, 0.0, dv,
+            vv, 0.0, 0.0, 0.0, vv, 0.0, 0.0, 0.0, vv,
+            av, 0.0, 0.0, 0.0, av, 0.0, 0.0, 0.0, hv)

@@ -9,6 +9,7 @@ from auv import ahrs_t, altimeter_t, depth_t, dvl_t, gps_fix_t
 
 from sim.model import Truth
 from sim.sensors.base import Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
+from sim.wire import Encoder
 
 RHO_SEAWATER = 1025.0
 P_ATM = 101325.0
@@ -29,17 +30,26 @@ class Ahrs(Sensor):
     topic = "AHRS"
     cfg: AhrsConfig
 
+    def __init__(self, cfg, seed, vehicle) -> None:
+        super().__init__(cfg, seed, vehicle)
+        self._pack = Encoder(ahrs_t, vehicle=vehicle).pack
+
     def measure(self, tr: Truth):
+        return ahrs_t.decode(self.measure_encoded(tr))
+
+    def measure_encoded(self, tr: Truth) -> bytes:
+        """The ahrs_t as bytes, packed from the values (20 Hz: no object)."""
         c = self.cfg
-        m = ahrs_t()
-        m.utime, m.vehicle, m.valid = utime(tr.t), self.vehicle, True
-        m.roll_rad = wrap_pi(tr.eta[3] + self.gauss(c.attitude_noise))
-        m.pitch_rad = tr.eta[4] + self.gauss(c.attitude_noise)
-        m.heading_rad = wrap_2pi(tr.eta[5] + c.bias + self.gauss(c.noise))
-        m.p_radps = tr.nu[3] + self.gauss(c.rate_noise)
-        m.q_radps = tr.nu[4] + self.gauss(c.rate_noise)
-        m.r_radps = tr.nu[5] + self.gauss(c.rate_noise)
-        return m
+        gauss = self.gauss
+        eta, nu = tr.eta, tr.nu
+        att, rate = c.attitude_noise, c.rate_noise
+        roll = wrap_pi(eta[3] + gauss(att))
+        pitch = eta[4] + gauss(att)
+        heading = wrap_2pi(eta[5] + c.bias + gauss(c.noise))
+        p = nu[3] + gauss(rate)
+        q = nu[4] + gauss(rate)
+        r = nu[5] + gauss(rate)
+        return self._pack(utime(tr.t), roll, pitch, heading, p, q, r, True)
 
     def dropout_message(self, tr: Truth):
         m = ahrs_t()

@@ -52,6 +52,10 @@ class Lbl(Sensor):
             self.pending.append(msg)
         return out
 
+    def poll_encoded(self, tr: Truth) -> bytes | None:
+        msg = self.poll(tr)       # published later than measured: through poll()
+        return None if msg is None else self.encode(msg)
+
     def next_due(self) -> float:
         due = super().next_due()
         return min(due, self.pending[0][0]) if self.pending else due
