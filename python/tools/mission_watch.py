@@ -56,10 +56,11 @@ class VehicleState:
         return "aborted" if o == "done" and self.entered_abort else o
 
 
-SIM_LEAD_US = 300_000       # a simulator may fall this far behind the clock
+SIM_LEAD_US = 100_000       # a simulator may fall this far behind the clock (0.3 s let the
+                            # pilot cycle on 300 ms old attitude: docs/scenarios.md)
 MANAGER_LEAD_US = 100_000   # a manager this far plus its own period: the pilot's loops
                             # tolerate about 100 ms of delay (docs/behaviors.md)
-NAV_LEAD_US = 300_000       # an onboard filter's newest solution: it follows the simulator
+NAV_LEAD_US = 150_000       # an onboard filter's newest solution: it follows the simulator
 NAV_STATUS_PERIOD_US = 1_000_000   # before it aligns, its status: once a second
 
 

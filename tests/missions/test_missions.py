@@ -24,7 +24,8 @@ CALM = {"environment": {"waves": None}}
 # (1 sigma) would dominate the true cross-track error of a line flown after a
 # fix (measured up to 5 m against 1.4 m of guidance error); the survey test
 # uses a 0.5 m fix so that the truth measures the guidance.
-PRECISE_GPS = {**CALM, "sensors": {"ins": {"gps_sigma_m": 0.5}}}
+GPS_FIX_SIGMA_M = 0.5
+PRECISE_GPS = {**CALM, "sensors": {"ins": {"gps_sigma_m": GPS_FIX_SIGMA_M}}}
 
 
 def surfaced_since(rec: Record, t0: float, hold_s: float = 2.0) -> float | None:
@@ -128,7 +129,11 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
             assert span > 0.7 * BOX["length"], f"line {k}: measured over {span:.0f} m only"
             worst = max(pts, key=lambda p: abs(p.e - east))
             where = f"line {k} {max(err):.2f} m off at {worst.t:.1f} s, north {worst.n:.0f} m"
-            assert max(err) < (1.0 if name == "nav" else 1.5), f"{name}: {where}"   # truth: + the navigation's error
+            # truth: + the navigation's error, which restarts at each GPS fix
+            # with the fix's (sigma 0.5 m an axis): 3 sigma over the nav bound.
+            # (1.5 m failed at 1.506 m; line 0 measured 0.21 or 1.42 m from run
+            # to run, as the fix before it drew its error.)
+            assert max(err) < (1.0 if name == "nav" else 1.0 + 3 * GPS_FIX_SIGMA_M), f"{name}: {where}"
             if name == "truth":
                 order += [(p.t, k) for p in pts]
     order.sort()
