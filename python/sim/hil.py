@@ -90,7 +90,10 @@ class Simulator:
                               or (s.publish_clock == "auto" and s.clock != "stepped"))
         self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
-        self.lc = lc or open_lcm(url, s.publish_thread,
+        # The sender thread serves a loop that runs as fast as it can (fast,
+        # stepped): a loop paced by the wall clock has the time to publish,
+        # and its multi-HIL clock sync wants no queue between it and the wire.
+        self.lc = lc or open_lcm(url, s.publish_thread and (fast or s.clock == "stepped"),
                                  lambda line: print(f"sim: {self.vid}: {line}", flush=True))
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
