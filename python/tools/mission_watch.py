@@ -74,8 +74,8 @@ class MissionWatch:
         self.sim_time_us = 0
         self.manager_us: dict[str, int | None] = {}
         self.manager_lead_us: dict[str, int] = {}
-        self.nav_us: dict[str, int | None] = {}      # each onboard filter's progress
-        self.nav_solved: set[str] = set()             # ... which has published a solution
+        self.nav_solution_us: dict[str, int | None] = {}   # each onboard filter's newest solution
+        self.nav_status_us: dict[str, int | None] = {}     # ... and status
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
             self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
@@ -83,7 +83,7 @@ class MissionWatch:
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             if v.nav.source == "ekf":
                 self.expected.add(f"{v.id}.NAV")
-                self.nav_us[v.id] = None
+                self.nav_solution_us[v.id] = self.nav_status_us[v.id] = None
                 self.rx.subscribe(f"{v.id}.NAV_STATUS", nav_filter_status_t, self._on_nav_status, queue_capacity=100)
                 self.rx.subscribe(f"{v.id}.NAV", nav_solution_t, self._on_nav, queue_capacity=1000)
             for m in v.managers:
@@ -101,16 +101,20 @@ class MissionWatch:
 
     def _on_nav_status(self, _ch: str, m) -> None:
         self.seen.add(f"{m.vehicle}.NAV")
-        # once a second from the start: the progress of a filter not yet
-        # aligned, which publishes no solution
-        if m.vehicle in self.nav_us and m.vehicle not in self.nav_solved:
-            self.nav_us[m.vehicle] = max(self.nav_us[m.vehicle] or 0, m.utime + NAV_STATUS_PERIOD_US)
+        if m.vehicle in self.nav_status_us:
+            self.nav_status_us[m.vehicle] = max(self.nav_status_us[m.vehicle] or 0, m.utime)
 
     def _on_nav(self, _ch: str, m) -> None:
-        if m.vehicle in self.nav_us and m.source == nav_solution_t.SOURCE_EKF:
-            first = m.vehicle not in self.nav_solved
-            self.nav_solved.add(m.vehicle)
-            self.nav_us[m.vehicle] = m.utime if first else max(self.nav_us[m.vehicle] or 0, m.utime)
+        if m.vehicle in self.nav_solution_us and m.source == nav_solution_t.SOURCE_EKF:
+            self.nav_solution_us[m.vehicle] = max(self.nav_solution_us[m.vehicle] or 0, m.utime)
+
+    def _nav_progress_us(self, vid: str) -> int | None:
+        """A filter's newest solution; before it aligns (no solution), its
+        once-a-second status plus a second."""
+        sol, status = self.nav_solution_us[vid], self.nav_status_us[vid]
+        if sol is not None:
+            return sol
+        return None if status is None else status + NAV_STATUS_PERIOD_US
 
     def _on_status(self, ch: str, m) -> None:
         key = f"{m.vehicle}.{m.manager}"
@@ -151,7 +155,8 @@ class MissionWatch:
         navigation go stale in sim time and abort (seen on a loaded machine)."""
         limits = [None if v.sim_us is None else v.sim_us + SIM_LEAD_US for v in self.vehicles.values()]
         limits += [None if t is None else t + self.manager_lead_us[k] for k, t in self.manager_us.items()]
-        limits += [None if t is None else t + NAV_LEAD_US for t in self.nav_us.values()]
+        nav = [self._nav_progress_us(vid) for vid in self.nav_solution_us]
+        limits += [None if t is None else t + NAV_LEAD_US for t in nav]
         return None if any(t is None for t in limits) else min(limits)
 
     def outcome(self) -> str | None:
