@@ -120,6 +120,24 @@ void chasm_status_get(const chasm_machine *m, int64_t now_us, chasm_status *out)
 int chasm_hotplug(chasm_machine *m, const char *so_path, char *err, size_t errlen);
 /* Number of plugin code versions currently loaded (for tests and status). */
 int chasm_plugin_versions_loaded(const chasm_machine *m);
+/* 1 if the loaded plan names plugin `name` in a `use`. */
+int chasm_uses_plugin(const chasm_machine *m, const char *name);
+
+/* Plugin files. Every loader (`use` in a plan, hot plug, `chasm describe`, a
+ * manager's upload) opens a file the same way: a regular file of at most
+ * 64 MiB, its ELF structure checked on the bytes read (cm_elf_check.h), a
+ * private copy loaded first in a probe process (a file that crashes, exits or
+ * hangs for 5 s there is refused), then ABI, symbol and schema checked. A
+ * plugin name is 1-63 characters of a-z, 0-9 and _, beginning with a letter. */
+#define CHASM_PLUGIN_NAME_MAX 63
+#define CHASM_PLUGIN_NAME_MAX_TEXT "63"
+int chasm_plugin_name_check(const char *name, char *err, size_t errlen);
+/* Opens one plugin file on its own, for tools and uploads; if name is not
+ * NULL the file must hold that plugin. NULL with the reason in err. */
+typedef struct chasm_plugin_file chasm_plugin_file;
+chasm_plugin_file *chasm_plugin_file_open(const char *path, const char *name, char *err, size_t errlen);
+const chasm_plugin_descriptor *chasm_plugin_file_descriptor(const chasm_plugin_file *f);
+void chasm_plugin_file_close(chasm_plugin_file *f);
 
 /* Graphviz DOT of states, default children (bold), default next (dashed) and
  * transitions (labelled with their conditions). */

@@ -40,8 +40,8 @@ typedef struct {
 
 struct cm_plugin;
 
-/* One loaded file of a plugin. Copied to a private path before dlopen so two
- * versions loaded from the same path get distinct handles. */
+/* One loaded file of a plugin (cm_plugin_file.h: checked, probed, and loaded
+ * from a private copy so two versions from one path get distinct handles). */
 typedef struct cm_plugin_version {
     struct cm_plugin *plugin;
     void *dl;
@@ -173,8 +173,6 @@ struct chasm_machine {
     cm_plugin_version *loaded;  /* every version still loaded */
     cm_aplan *plan;             /* the syntax tree, kept to re-bind actions on hot plug */
     cm_map param_map;           /* name -> cm_aparam* (the winning definition) */
-    char tmpdir[256];           /* private folder for plugin copies */
-    int copy_counter;
     long n_lines;
     chasm_options opt;
     /* runtime */
@@ -193,6 +191,9 @@ struct chasm_machine {
 extern const chasm_host_api cm_host_api;
 void cm_binding_release(chasm_machine *m, cm_binding *b);
 void cm_plugins_unload_all(chasm_machine *m);
+/* One plugin file as a new code version (cm_plugins.c); NULL with err set. */
+cm_plugin_version *cm_plugin_version_open(chasm_machine *m, const char *path, char *err, size_t errlen);
+void cm_plugin_version_unload(chasm_machine *m, cm_plugin_version *v);
 void cm_stop_all(chasm_machine *m);
 
 /* What plugin callbacks see behind chasm_ctx.engine. */

@@ -20,6 +20,9 @@ $(1)/bin/chasm_unit_tests: $(patsubst %.c,$(1)/obj/%.o,$(CHASM_UNIT_SRCS)) $(1)/
 $(1)/bin/chasm_fuzz: $(1)/obj/c/chasm/fuzz/fuzz_loader.o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
+$(1)/bin/chasm_fuzz_plugin: $(1)/obj/c/chasm/fuzz/fuzz_plugin_file.o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(1)/lib/libchasm.a
+	@mkdir -p $$(@D)
+	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
 $(1)/bin/chasm_bench: $(1)/obj/bench/chasm_bench.o $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
@@ -30,22 +33,33 @@ $(1)/plugins/chasm_%.so: $(1)/obj/tests/chasm/plugins/%.o
 endef
 $(foreach v,$(VARIANTS),$(eval $(call chasm_rules,$(v))))
 
-C_PROGRAMS += bin/chasm bin/chasm_unit_tests bin/chasm_fuzz bin/chasm_bench $(CHASM_TEST_PLUGINS)
+C_PROGRAMS += bin/chasm bin/chasm_unit_tests bin/chasm_fuzz bin/chasm_fuzz_plugin bin/chasm_bench $(CHASM_TEST_PLUGINS)
 C_LIBS += lib/libchasm.a
 
-# Long fuzz run of the Loader. With clang, a real libFuzzer binary; otherwise
-# the self-written mutation driver (built with ASan+UBSan). FUZZ_SECONDS=600.
+# Long fuzz runs of the Loader (plans) and of the plugin loader's file check
+# (seeded with the sanitized build's plugins), FUZZ_SECONDS each. With clang,
+# real libFuzzer binaries; otherwise the self-written mutation driver (built
+# with ASan+UBSan). FUZZ_SECONDS=600.
 FUZZ_SECONDS ?= 600
+# Seeds of the plugin-file fuzzer: every built plugin but those whose
+# constructor crashes, exits or hangs on purpose (each input would cost a probe).
+PLUGIN_SEEDS = $$(ls $(BUILD)/san/plugins/*.so | grep -v '/chasm_test_ctor_')
 CLANG := $(shell command -v clang 2>/dev/null)
 .PHONY: fuzz
 ifneq ($(CLANG),)
 $(BUILD)/fuzz/chasm_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_loader.c
 	@mkdir -p $(@D)
 	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
-fuzz: $(BUILD)/fuzz/chasm_libfuzzer
+$(BUILD)/fuzz/chasm_plugin_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_plugin_file.c
+	@mkdir -p $(@D)
+	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
+fuzz: $(BUILD)/fuzz/chasm_libfuzzer $(BUILD)/fuzz/chasm_plugin_libfuzzer $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
 	@mkdir -p $(BUILD)/fuzz/corpus && cp tests/chasm/fuzz_corpus/* $(BUILD)/fuzz/corpus/
 	$< -max_total_time=$(FUZZ_SECONDS) -dict=c/chasm/fuzz/chasm.dict $(BUILD)/fuzz/corpus
+	@mkdir -p $(BUILD)/fuzz/plugin_corpus && cp $(PLUGIN_SEEDS) $(BUILD)/fuzz/plugin_corpus/
+	$(BUILD)/fuzz/chasm_plugin_libfuzzer -max_total_time=$(FUZZ_SECONDS) $(BUILD)/fuzz/plugin_corpus
 else
-fuzz: $(BUILD)/san/bin/chasm_fuzz
+fuzz: $(BUILD)/san/bin/chasm_fuzz $(BUILD)/san/bin/chasm_fuzz_plugin $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
 	$< --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/chasm/fuzz_corpus
+	$(BUILD)/san/bin/chasm_fuzz_plugin --no-dict --seconds $(FUZZ_SECONDS) --seed $$RANDOM $(PLUGIN_SEEDS)
 endif

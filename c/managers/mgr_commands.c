@@ -1,8 +1,5 @@
 /* Mission commands (start, pause, resume, abort, load plan, stop) and plugin
- * uploads, each answered on <VEHICLE>.MISSION_ACK. An upload is written and
- * hot-loaded only if its SHA-256 matches both its own digest field and an
- * entry of the allowlist: plugins are untrusted input. */
-#include <errno.h>
+ * uploads (mgr_upload.c), each answered on <VEHICLE>.MISSION_ACK. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -11,8 +8,8 @@
 #include "auv/auv_mission_ack_t.h"
 #include "auv/auv_mission_command_t.h"
 #include "auv/auv_plugin_upload_t.h"
-#include "common/sha256.h"
 #include "managers/manager.h"
+#include "managers/mgr_upload.h"
 
 static void ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
 {
@@ -86,19 +83,6 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
     }
 }
 
-static int allowlisted(const char *allowlist, const char *hex)
-{
-    FILE *f = allowlist ? fopen(allowlist, "r") : NULL;
-    if (!f)
-        return 0;
-    char line[256], digest[80];
-    int ok = 0;
-    while (!ok && fgets(line, sizeof line, f))
-        ok = sscanf(line, "%79s", digest) == 1 && !strcmp(digest, hex);
-    fclose(f);
-    return ok;
-}
-
 static void on_upload(const char *channel, const void *msg, int64_t recv_utime, void *user)
 {
     (void)channel;
@@ -107,44 +91,9 @@ static void on_upload(const char *channel, const void *msg, int64_t recv_utime, 
     const auv_plugin_upload_t *u = msg;
     if (!for_me(mg, u->manager))
         return;
-    char hex[65], text[1600];
-    sha256_hex(u->data, (size_t)(u->n_bytes > 0 ? u->n_bytes : 0), hex);
-    if (strcmp(hex, u->sha256_hex)) {
-        ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_REJECTED, "plugin rejected: data does not match its SHA-256");
-        return;
-    }
-    if (!allowlisted(mg->opt.allowlist, hex)) {
-        ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_REJECTED, "plugin rejected: digest not in the allowlist");
-        return;
-    }
-    for (const char *p = u->plugin_name; *p; p++)
-        if (!(*p == '_' || (*p >= 'a' && *p <= 'z') || (*p >= '0' && *p <= '9'))) {
-            ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_REJECTED, "plugin rejected: bad plugin name");
-            return;
-        }
-    char path[1024], tmp[1100];
-    snprintf(path, sizeof path, "%s/chasm_%s.so", mg->opt.plugin_dir, u->plugin_name);
-    snprintf(tmp, sizeof tmp, "%s.upload", path);
-    FILE *f = fopen(tmp, "wb");
-    int wrote = f && fwrite(u->data, 1, (size_t)u->n_bytes, f) == (size_t)u->n_bytes;
-    if (f && fclose(f) != 0)
-        wrote = 0;
-    if (!wrote || rename(tmp, path) != 0) {
-        snprintf(text, sizeof text, "plugin not written to %s: %s", path, strerror(errno));
-        unlink(tmp);
-        ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_FAILED, text);
-        return;
-    }
-    char err[400];
-    if (chasm_hotplug(mg->m, path, err, sizeof err) != 0) {
-        snprintf(text, sizeof text, "plugin %s %s not loaded, mission unchanged: %s", u->plugin_name,
-                 u->plugin_version, err);
-        ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_FAILED, text);
-        return;
-    }
-    snprintf(text, sizeof text, "plugin %s %s loaded; used from the next entry of its states", u->plugin_name,
-             u->plugin_version);
-    ack(mg, u->seq, AUV_MISSION_ACK_T_RESULT_OK, text);
+    char text[2048];
+    int8_t result = mgr_upload_plugin(mg, u, text, sizeof text);
+    ack(mg, u->seq, result, text);
 }
 
 int mgr_commands_subscribe(manager_t *mg)
@@ -156,6 +105,7 @@ int mgr_commands_subscribe(manager_t *mg)
     snprintf(ch, sizeof ch, "%s.PLUGIN_UPLOAD", mg->opt.vehicle);
     if (!(mg->upload_sub = rx_subscribe(mg->lcm, ch, auv_type_find("plugin_upload_t"), on_upload, mg)))
         return -1;
+    mgr_upload_clean_dir(mg);
     return 0;
 }
 

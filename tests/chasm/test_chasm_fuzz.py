@@ -14,3 +14,19 @@ def test_fuzz_loader_short(build_dir, child_env, tmp_path):
     assert p.returncode == 0, p.stdout + p.stderr
     assert "no crash" in p.stdout
     assert not list(tmp_path.glob("chasm-crash-*"))
+
+
+def test_fuzz_plugin_file_check_short(build_dir, child_env, tmp_path):
+    """The plugin loader's file check on mutated plugins (ASan+UBSan); every
+    input it accepts is opened for real (probe process, dlopen)."""
+    exe = build_dir / "san" / "bin" / "chasm_fuzz_plugin"
+    assert exe.exists(), f"{exe} is not built: run `make sanitize`"
+    seeds = [build_dir / "san" / "plugins" / f"chasm_{n}.so" for n in ("test_basic", "test_other", "test_nosym")]
+    tmp = tmp_path / "tmp"
+    tmp.mkdir()
+    child_env["TMPDIR"] = str(tmp)
+    p = run([exe, "--no-dict", "--runs", "3000", "--seed", "7", *seeds], child_env, cwd=tmp_path, timeout=300)
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "no crash" in p.stdout
+    assert not list(tmp_path.glob("chasm-crash-*"))
+    assert list(tmp.iterdir()) == [], "the fuzzer or the loader left files behind"

@@ -1,10 +1,12 @@
 /* A small mutation fuzzer for machines without libFuzzer (gcc only): reads a
  * corpus, mutates entries (bit flips, byte edits, block copies, dictionary
- * words of the plan language, splices) and feeds LLVMFuzzerTestOneInput.
+ * words of the plan language, splices, interesting integers written over
+ * header-sized fields, truncation) and feeds LLVMFuzzerTestOneInput. It drives
+ * both the plan fuzzer and the plugin-file fuzzer (--no-dict: binary input).
  * Built with ASan+UBSan, a crash aborts; the input that caused it is written
  * to ./chasm-crash-<seed>.chasm first. Deterministic for a given --seed.
  *
- *   chasm_fuzz [--seconds N] [--runs N] [--seed N] CORPUS_DIR_OR_FILE... */
+ *   chasm_fuzz [--seconds N] [--runs N] [--seed N] [--no-dict] CORPUS_DIR_OR_FILE... */
 #include <dirent.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -20,9 +22,11 @@ typedef struct {
     size_t n;
 } buf_t;
 
+#define FUZZ_MAX_INPUT (1024 * 1024) /* a plan, or a plugin file */
 static buf_t corpus[4096];
 static size_t n_corpus;
-static uint8_t cur[65536];
+static int use_dict = 1;
+static uint8_t cur[FUZZ_MAX_INPUT];
 static size_t cur_n;
 static unsigned long long seed_arg;
 
@@ -62,9 +66,9 @@ static void load_path(const char *p)
         if (f) fclose(f);
         return;
     }
-    buf_t b = {malloc(65536), 0};
+    buf_t b = {malloc(FUZZ_MAX_INPUT), 0};
     if (!b.d) abort();
-    b.n = fread(b.d, 1, 65536, f);
+    b.n = fread(b.d, 1, FUZZ_MAX_INPUT, f);
     fclose(f);
     corpus[n_corpus++] = b;
 }
@@ -82,7 +86,7 @@ static void mutate(void)
     int n = 1 + (int)(rnd() % 6);
     for (int k = 0; k < n; k++) {
         size_t at = cur_n ? rnd() % (cur_n + 1) : 0;
-        switch (rnd() % 8) {
+        switch (rnd() % 9) {
         case 0:
             if (cur_n) cur[rnd() % cur_n] ^= (uint8_t)(1u << (rnd() % 8));
             break;
@@ -106,8 +110,20 @@ static void mutate(void)
             insert(at, tmp, len);
             break;
         }
+        case 8: { /* an interesting integer over a field, mostly in the headers */
+            static const uint64_t vals[] = {0, 1, 2, 0x7f, 0x80, 0xff, 0x100, 0x7fff, 0xffff, 0x7fffffff,
+                                            0x80000000u, 0xffffffffu, 0x7fffffffffffffffull, ~0ull};
+            size_t w = (size_t)1 << (rnd() % 4);
+            if (cur_n < w) break;
+            size_t span = rnd() % 2 && cur_n > 4096 ? 4096 : cur_n;
+            size_t off = rnd() % (span - w + 1);
+            uint64_t v = rnd() % 4 == 0 ? (uint64_t)cur_n + rnd() % 64 : vals[rnd() % (sizeof vals / sizeof vals[0])];
+            memcpy(cur + off, &v, w); /* little-endian hosts: the low bytes */
+            break;
+        }
         case 4:
         case 5: {
+            if (!use_dict) break;
             const char *w = dict[rnd() % (sizeof dict / sizeof dict[0])];
             insert(at, (const uint8_t *)w, strlen(w));
             break;
@@ -149,6 +165,7 @@ int main(int argc, char **argv)
         if (!strcmp(argv[i], "--seconds") && i + 1 < argc) seconds = atof(argv[++i]);
         else if (!strcmp(argv[i], "--runs") && i + 1 < argc) runs = atoll(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc) seed_arg = strtoull(argv[++i], NULL, 10);
+        else if (!strcmp(argv[i], "--no-dict")) use_dict = 0;
         else load_path(argv[i]);
     }
     if (!n_corpus) {
