@@ -221,17 +221,32 @@ static long long ms_now(void)
     return (long long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
 }
 
-/* The child loads the copy and reports "OK" or "NO<reason>" on the pipe. */
+/* The child loads the copy, unloads it again (destructors run at unload
+ * too) and reports "OK" or "NO<reason>" on the pipe. A fault must kill it by
+ * its signal, not go to a handler the process installed (a sanitizer's would
+ * print a report and exit), and what the plugin prints is not the loader's
+ * output. */
 static _Noreturn void probe_child(int wfd, const char *copy, const char *path)
 {
+    static const int fatal[] = {SIGSEGV, SIGBUS, SIGILL, SIGFPE, SIGABRT, SIGTRAP, SIGSYS};
+    struct sigaction dfl;
+    memset(&dfl, 0, sizeof dfl);
+    dfl.sa_handler = SIG_DFL;
+    for (size_t i = 0; i < sizeof fatal / sizeof fatal[0]; i++) sigaction(fatal[i], &dfl, NULL);
+    int null = open("/dev/null", O_WRONLY | O_CLOEXEC);
+    if (null >= 0) {
+        dup2(null, STDOUT_FILENO);
+        dup2(null, STDERR_FILENO);
+    }
     char msg[1024];
     const chasm_plugin_descriptor *d = NULL;
     void *dl = open_copy(copy, path, &d, msg + 2, sizeof msg - 2);
+    if (dl) dlclose(dl);
     memcpy(msg, dl ? "OK" : "NO", 2);
     size_t len = dl ? 2 : 2 + strlen(msg + 2);
     ssize_t w = write(wfd, msg, len);
     (void)w;
-    _exit(0); /* no atexit handlers, no destructors, no stdio flush of the parent's buffers */
+    _exit(0); /* no atexit handlers, no stdio flush of the parent's buffers */
 }
 
 static int probe(const char *copy, const char *path, char *err, size_t el)

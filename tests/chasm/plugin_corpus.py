@@ -87,8 +87,10 @@ def byte_cases(good: bytes) -> list[Case]:
     ]
     first_load = next(off for off, p in ph if p[0] == PT_LOAD)
     last_load = [off for off, p in ph if p[0] == PT_LOAD][-1]
+    off = PHDR.unpack_from(good, last_load)[2]
+    beyond = _set(_set(good, last_load + 32, "<Q", len(good) - off + 4096), last_load + 40, "<Q", len(good) - off + 8192)
     cases += [
-        Case("segment_beyond_eof", _set(good, last_load + 32, "<Q", len(good) + 65536), "truncated"),
+        Case("segment_beyond_eof", beyond, "truncated"),
         Case("segment_offset_huge", _set(good, last_load + 8, "<Q", 2**63), "truncated"),
         Case("segment_memsz_small", _set(good, first_load + 40, "<Q", 1), "more bytes in the file"),
         Case("segment_bad_align", _set(good, first_load + 48, "<Q", 3), "alignment"),

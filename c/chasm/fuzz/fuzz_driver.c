@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 extern void __sanitizer_set_death_callback(void (*)(void)) __attribute__((weak));
@@ -144,8 +145,11 @@ static void mutate(void)
     }
 }
 
+static pid_t main_pid;
+
 static void on_death(void)
 {
+    if (getpid() != main_pid) return; /* a child the target forked (the plugin probe) */
     char name[64];
     snprintf(name, sizeof name, "chasm-crash-%llu.chasm", seed_arg);
     FILE *f = fopen(name, "wb");
@@ -172,6 +176,7 @@ int main(int argc, char **argv)
         fputs("chasm_fuzz: no corpus files\n", stderr);
         return 2;
     }
+    main_pid = getpid();
     if (__sanitizer_set_death_callback) __sanitizer_set_death_callback(on_death);
     rng_state = seed_arg * 0x9E3779B97F4A7C15ull + 1;
     struct timespec t0, t;
