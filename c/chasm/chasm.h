@@ -127,7 +127,7 @@ int chasm_uses_plugin(const chasm_machine *m, const char *name);
  * manager's upload) opens a file the same way: a regular file of at most
  * 64 MiB, its ELF structure checked on the bytes read (cm_elf_check.h), a
  * private copy loaded first in a probe process (a file that crashes, exits or
- * hangs for 5 s there is refused), then ABI, symbol and schema checked. A
+ * hangs for 2 s there is refused), then ABI, symbol and schema checked. A
  * plugin name is 1-63 characters of a-z, 0-9 and _, beginning with a letter. */
 #define CHASM_PLUGIN_NAME_MAX 63
 #define CHASM_PLUGIN_NAME_MAX_TEXT "63"

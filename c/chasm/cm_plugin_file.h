@@ -17,7 +17,7 @@
 
 #include "chasm/chasm_plugin.h"
 
-#define CM_PLUGIN_PROBE_MS 5000
+#define CM_PLUGIN_PROBE_MS 2000 /* a good plugin takes 1-30 ms; a manager's cycle waits */
 
 typedef struct {
     void *dl;

@@ -136,7 +136,7 @@ BUILT = [
     ("test_ctor_crash", "crashed the probe process"),
     ("test_ctor_exit", "ended the probe process"),
 ]
-# Costs the probe's time limit (5 s) per load: used once per build variant.
+# Costs the probe's time limit (2 s) per load: used once per build variant.
 HANG = ("test_ctor_hang", "did not finish loading")
 
 
