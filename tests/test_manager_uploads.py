@@ -111,6 +111,15 @@ def test_hostile_uploads_fail_and_leave_nothing(lcm_url, child_env, tmp_path, sa
         assert ack.result == mission_ack_t.RESULT_OK and "loaded" in ack.message, ack.message
         assert sorted(p.name for p in pdir.iterdir()) == ["chasm_test_basic.so"]
         assert (pdir / "chasm_test_basic.so").read_bytes() == good
+        # the loaded code is a private copy: truncating the file in place
+        # (what makes a mapped .so fault) changes nothing for the mission
+        with open(pdir / "chasm_test_basic.so", "r+b") as f:
+            f.truncate(len(good) // 3)
+        n = len(w.status)
+        for _ in range(3):
+            w.tick(0.1, depth=0.0)
+        assert len(w.status) > n and mgr.poll() is None
+        (pdir / "chasm_test_basic.so").write_bytes(good)
     finally:
         assert stop(mgr, signal.SIGTERM) == 0, mgr.stderr.read()
     # the manager starts again on that plugin directory

@@ -25,7 +25,7 @@ def test_fuzz_plugin_file_check_short(build_dir, child_env, tmp_path):
     tmp = tmp_path / "tmp"
     tmp.mkdir()
     child_env["TMPDIR"] = str(tmp)
-    p = run([exe, "--no-dict", "--runs", "800", "--seed", "7", *seeds], child_env, cwd=tmp_path, timeout=300)
+    p = run([exe, "--no-dict", "--runs", "400", "--seed", "7", *seeds], child_env, cwd=tmp_path, timeout=300)
     assert p.returncode == 0, p.stdout + p.stderr
     assert "no crash" in p.stdout
     assert not list(tmp_path.glob("chasm-crash-*"))
