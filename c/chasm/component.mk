@@ -36,30 +36,38 @@ $(foreach v,$(VARIANTS),$(eval $(call chasm_rules,$(v))))
 C_PROGRAMS += bin/chasm bin/chasm_unit_tests bin/chasm_fuzz bin/chasm_fuzz_plugin bin/chasm_bench $(CHASM_TEST_PLUGINS)
 C_LIBS += lib/libchasm.a
 
-# Long fuzz runs of the Loader (plans) and of the plugin loader's file check
-# (seeded with the sanitized build's plugins), FUZZ_SECONDS each. With clang,
-# real libFuzzer binaries; otherwise the self-written mutation driver (built
-# with ASan+UBSan). FUZZ_SECONDS=600.
+# Long fuzz run of the Loader. With clang, a real libFuzzer binary; otherwise
+# the self-written mutation driver (built with ASan+UBSan). FUZZ_SECONDS=600.
 FUZZ_SECONDS ?= 600
-# Seeds of the plugin-file fuzzer: every built plugin but those whose
-# constructor crashes, exits or hangs on purpose (each input would cost a probe).
-PLUGIN_SEEDS = $$(ls $(BUILD)/san/plugins/*.so | grep -v '/chasm_test_ctor_')
 CLANG := $(shell command -v clang 2>/dev/null)
 .PHONY: fuzz
 ifneq ($(CLANG),)
 $(BUILD)/fuzz/chasm_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_loader.c
 	@mkdir -p $(@D)
 	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
+fuzz: $(BUILD)/fuzz/chasm_libfuzzer
+	@mkdir -p $(BUILD)/fuzz/corpus && cp tests/chasm/fuzz_corpus/* $(BUILD)/fuzz/corpus/
+	$< -max_total_time=$(FUZZ_SECONDS) -dict=c/chasm/fuzz/chasm.dict $(BUILD)/fuzz/corpus
+else
+fuzz: $(BUILD)/san/bin/chasm_fuzz
+	$< --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/chasm/fuzz_corpus
+endif
+
+# Long fuzz run of the plugin loader's file check (cm_elf_check; every input it
+# accepts goes through the whole open: probe process, dlopen), seeded with the
+# sanitized build's plugins but those whose constructor crashes, exits or hangs
+# on purpose (each such input would cost a probe). FUZZ_SECONDS too.
+.PHONY: fuzz-plugin-file
+fuzz: fuzz-plugin-file
+PLUGIN_SEEDS = $$(ls $(BUILD)/san/plugins/*.so | grep -v '/chasm_test_ctor_')
+ifneq ($(CLANG),)
 $(BUILD)/fuzz/chasm_plugin_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_plugin_file.c
 	@mkdir -p $(@D)
 	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
-fuzz: $(BUILD)/fuzz/chasm_libfuzzer $(BUILD)/fuzz/chasm_plugin_libfuzzer $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
-	@mkdir -p $(BUILD)/fuzz/corpus && cp tests/chasm/fuzz_corpus/* $(BUILD)/fuzz/corpus/
-	$< -max_total_time=$(FUZZ_SECONDS) -dict=c/chasm/fuzz/chasm.dict $(BUILD)/fuzz/corpus
+fuzz-plugin-file: $(BUILD)/fuzz/chasm_plugin_libfuzzer $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
 	@mkdir -p $(BUILD)/fuzz/plugin_corpus && cp $(PLUGIN_SEEDS) $(BUILD)/fuzz/plugin_corpus/
-	$(BUILD)/fuzz/chasm_plugin_libfuzzer -max_total_time=$(FUZZ_SECONDS) $(BUILD)/fuzz/plugin_corpus
+	$< -max_total_time=$(FUZZ_SECONDS) $(BUILD)/fuzz/plugin_corpus
 else
-fuzz: $(BUILD)/san/bin/chasm_fuzz $(BUILD)/san/bin/chasm_fuzz_plugin $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
-	$< --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/chasm/fuzz_corpus
-	$(BUILD)/san/bin/chasm_fuzz_plugin --no-dict --seconds $(FUZZ_SECONDS) --seed $$RANDOM $(PLUGIN_SEEDS)
+fuzz-plugin-file: $(BUILD)/san/bin/chasm_fuzz_plugin $(addprefix $(BUILD)/san/,$(CHASM_TEST_PLUGINS))
+	$< --no-dict --seconds $(FUZZ_SECONDS) --seed $$RANDOM $(PLUGIN_SEEDS)
 endif

@@ -18,7 +18,7 @@ typedef struct {
     int exit_on_end;            /* leave when the plan is done/aborted/failed */
     int wait_start;             /* start only on a CMD_START */
     const char *plugin_dir;     /* where uploads are written; also searched first */
-    const char *allowlist;      /* file of "sha256hex name" lines; NULL: refuse uploads */
+    const char *allowlist;      /* file of "sha256hex [name]" lines; NULL: refuse uploads */
     const char *plugin_path[16];
     size_t n_plugin_path;
     const char *param_names[64], *param_values[64];

@@ -1,5 +1,8 @@
 /* Mission commands (start, pause, resume, abort, load plan, stop) and plugin
- * uploads (mgr_upload.c), each answered on <VEHICLE>.MISSION_ACK. */
+ * uploads, each answered on <VEHICLE>.MISSION_ACK. An upload is written and
+ * hot-loaded only if its SHA-256 matches both its own digest field and an
+ * entry of the allowlist: plugins are untrusted input. */
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -8,6 +11,7 @@
 #include "auv/auv_mission_ack_t.h"
 #include "auv/auv_mission_command_t.h"
 #include "auv/auv_plugin_upload_t.h"
+#include "common/sha256.h"
 #include "managers/manager.h"
 #include "managers/mgr_upload.h"
 
