@@ -190,6 +190,9 @@ struct chasm_machine {
 /* Runtime entry points used across files. */
 extern const chasm_host_api cm_host_api;
 void cm_binding_release(chasm_machine *m, cm_binding *b);
+/* At an entry or exit of its state a use takes the binding a hot plug left
+ * pending (cm_hotplug.c); the one it replaces is released. */
+void cm_binding_adopt_pending(chasm_machine *m, cm_binding **cur, cm_binding **pending);
 void cm_plugins_unload_all(chasm_machine *m);
 /* One plugin file as a new code version (cm_plugins.c); NULL with err set. */
 cm_plugin_version *cm_plugin_version_open(chasm_machine *m, const char *path, char *err, size_t errlen);

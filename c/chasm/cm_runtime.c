@@ -78,11 +78,7 @@ static void enter_state(chasm_machine *m, cm_state *s, int64_t now)
         cm_test *t = &s->tests[i];
         t->true_since = CM_NEVER;
         t->value_now = false;
-        if (t->pending) {
-            cm_binding_release(m, t->cur);
-            t->cur = t->pending;
-            t->pending = NULL;
-        }
+        cm_binding_adopt_pending(m, &t->cur, &t->pending);
     }
     for (int i = 0; i < s->n_actions; i++) {
         cm_action *a = &s->actions[i];
@@ -90,11 +86,7 @@ static void enter_state(chasm_machine *m, cm_state *s, int64_t now)
         a->fired = false;
         a->last_run = CM_NEVER;
         if (a->kind == ACT_PLUGIN) {
-            if (a->pending) {
-                cm_binding_release(m, a->cur);
-                a->cur = a->pending;
-                a->pending = NULL;
-            }
+            cm_binding_adopt_pending(m, &a->cur, &a->pending);
             cm_binding *b = a->cur;
             if (b->inst_size) memset(b->inst, 0, b->inst_size);
             a->started = true;
@@ -123,20 +115,10 @@ static void exit_state(chasm_machine *m, cm_state *s, int64_t now)
             a->cur->beh->stop(&x.c, a->cur->inst);
         }
         a->started = false;
-        if (a->pending) { /* the old code is no longer in use: switch now so it can be unloaded */
-            cm_binding_release(m, a->cur);
-            a->cur = a->pending;
-            a->pending = NULL;
-        }
+        /* the old code is no longer in use: switch now so it can be unloaded */
+        cm_binding_adopt_pending(m, &a->cur, &a->pending);
     }
-    for (int i = 0; i < s->n_tests; i++) {
-        cm_test *t = &s->tests[i];
-        if (t->pending) {
-            cm_binding_release(m, t->cur);
-            t->cur = t->pending;
-            t->pending = NULL;
-        }
-    }
+    for (int i = 0; i < s->n_tests; i++) cm_binding_adopt_pending(m, &s->tests[i].cur, &s->tests[i].pending);
 }
 
 static bool on_path(const chasm_machine *m, const cm_state *s)
