@@ -2,6 +2,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include "chasm/cm_elf_check.h"
 #include "harness.h"
 
 static const char *PLAN =
@@ -94,7 +95,8 @@ static void expect_rejected(const char *file, int write_garbage, const char *exp
             fputs("\177ELF this is not really a shared object", f);
             fclose(f);
         }
-    } else path_of(p, sizeof p, file);
+    } else if (file[0] == '/') snprintf(p, sizeof p, "%s", file);
+    else path_of(p, sizeof p, file);
     CHECK(chasm_hotplug(m, p, err, sizeof err) == -1);
     if (!strstr(err, expect_in_error)) {
         fprintf(stderr, "error text \"%s\" lacks \"%s\"\n", err, expect_in_error);
@@ -121,6 +123,56 @@ static void hotplug_wrong_abi(void) { expect_rejected("chasm_test_basic_badabi.s
 static void hotplug_schema_mismatch(void) { expect_rejected("chasm_test_basic_noschema.so", 0, "unknown parameter 'value' for 'hold'"); }
 static void hotplug_missing_symbol(void) { expect_rejected("chasm_test_nosym.so", 0, "does not export the symbol 'chasm_plugin'"); }
 static void hotplug_unused_plugin(void) { expect_rejected("chasm_test_other.so", 0, "is not used by the running plan"); }
+/* Constructors run first in a probe process: the test process lives on. */
+static void hotplug_ctor_crash(void) { expect_rejected("chasm_test_ctor_crash.so", 0, "crashed the probe process"); }
+static void hotplug_ctor_exit(void) { expect_rejected("chasm_test_ctor_exit.so", 0, "ended the probe process"); }
+
+static unsigned char *slurp(const char *path, size_t *n)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return NULL;
+    unsigned char *b = malloc(1 << 22);
+    *n = b ? fread(b, 1, 1 << 22, f) : 0;
+    fclose(f);
+    return b;
+}
+
+/* Every truncation of a good plugin is refused before dlopen could map it
+ * (the SIGBUS class), and the whole file is accepted. */
+static void every_truncation_is_refused(void)
+{
+    char p[1024], err[512];
+    path_of(p, sizeof p, "chasm_test_basic.so");
+    size_t n = 0;
+    unsigned char *b = slurp(p, &n);
+    CHECK(b && n > 1000);
+    if (!b) return;
+    CHECK(cm_elf_check(b, n, err, sizeof err) == 0);
+    size_t accepted = 0;
+    for (size_t cut = 0; cut < n; cut++) accepted += cm_elf_check(b, cut, err, sizeof err) == 0;
+    CHECK(accepted == 0);
+    free(b);
+}
+
+/* A truncated plugin through the whole hot plug: refused, mission untouched. */
+static void hotplug_truncated_file(void)
+{
+    char src[1024], dst[1024];
+    path_of(src, sizeof src, "chasm_test_basic.so");
+    size_t n = 0;
+    unsigned char *b = slurp(src, &n);
+    if (!b) return;
+    const char *tmp = getenv("TMPDIR");
+    snprintf(dst, sizeof dst, "%s/chasm_unit_cut_%d.so", tmp && *tmp ? tmp : "/tmp", (int)getpid());
+    FILE *f = fopen(dst, "wb");
+    if (f) {
+        fwrite(b, 1, n / 2, f);
+        fclose(f);
+    }
+    free(b);
+    expect_rejected(dst, 0, "truncated");
+    unlink(dst);
+}
 
 const unit_test plugin_tests[] = {
     {"good_plugin", good_plugin},
@@ -132,5 +184,9 @@ const unit_test plugin_tests[] = {
     {"hotplug_schema_mismatch", hotplug_schema_mismatch},
     {"hotplug_missing_symbol", hotplug_missing_symbol},
     {"hotplug_unused_plugin", hotplug_unused_plugin},
+    {"hotplug_ctor_crash", hotplug_ctor_crash},
+    {"hotplug_ctor_exit", hotplug_ctor_exit},
+    {"every_truncation_is_refused", every_truncation_is_refused},
+    {"hotplug_truncated_file", hotplug_truncated_file},
     {NULL, NULL},
 };
