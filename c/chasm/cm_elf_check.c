@@ -143,16 +143,22 @@ static int check_header(elf_t *e, Ehdr *h)
         return fail(e, "the program header table (offset %llu, %llu bytes) is not inside the file of %zu bytes: "
                        "truncated or corrupt",
                     (unsigned long long)h->e_phoff, (unsigned long long)table, e->n);
-    if (h->e_shoff) { /* the linker does not read sections, but a file that lies about them is broken */
-        if (h->e_shnum && h->e_shentsize != sizeof(Shdr))
-            return fail(e, "section header size %u is not %zu", h->e_shentsize, sizeof(Shdr));
-        uint64_t st = (uint64_t)(h->e_shnum ? h->e_shnum : 1) * sizeof(Shdr);
-        if (!in_file(e, h->e_shoff, st))
-            return fail(e, "the section header table (offset %llu, %llu bytes) ends past the end of the file (%zu bytes): "
-                           "truncated", (unsigned long long)h->e_shoff, (unsigned long long)st, e->n);
-        if (h->e_shnum && h->e_shstrndx != SHN_XINDEX && h->e_shstrndx >= h->e_shnum)
-            return fail(e, "section name table index %u, but there are %u sections", h->e_shstrndx, h->e_shnum);
-    }
+    return 0;
+}
+
+/* Checked last (the segments say more about a truncated file): the linker
+ * does not read sections, but a file that lies about them is broken. */
+static int check_sections(elf_t *e, const Ehdr *h)
+{
+    if (!h->e_shoff) return 0;
+    if (h->e_shnum && h->e_shentsize != sizeof(Shdr))
+        return fail(e, "section header size %u is not %zu", h->e_shentsize, sizeof(Shdr));
+    uint64_t st = (uint64_t)(h->e_shnum ? h->e_shnum : 1) * sizeof(Shdr);
+    if (!in_file(e, h->e_shoff, st))
+        return fail(e, "the section header table (offset %llu, %llu bytes) ends past the end of the file (%zu bytes): "
+                       "truncated", (unsigned long long)h->e_shoff, (unsigned long long)st, e->n);
+    if (h->e_shnum && h->e_shstrndx != SHN_XINDEX && h->e_shstrndx >= h->e_shnum)
+        return fail(e, "section name table index %u, but there are %u sections", h->e_shstrndx, h->e_shnum);
     return 0;
 }
 
@@ -327,6 +333,8 @@ int cm_elf_check(const unsigned char *data, size_t n, char *err, size_t errlen)
     Phdr ph[CM_ELF_MAX_PHDRS];
     for (int i = 0; i < h.e_phnum; i++) get(&e, h.e_phoff + (uint64_t)i * sizeof(Phdr), &ph[i], sizeof(Phdr));
     const Phdr *dyn;
-    if (check_loads(&e, ph, h.e_phnum) || check_others(&e, ph, h.e_phnum, &dyn) || check_dynamic(&e, dyn)) return -1;
+    if (check_loads(&e, ph, h.e_phnum) || check_others(&e, ph, h.e_phnum, &dyn) || check_dynamic(&e, dyn) ||
+        check_sections(&e, &h))
+        return -1;
     return 0;
 }
