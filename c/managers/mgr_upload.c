@@ -109,7 +109,13 @@ static void name_the_upload(char *err, size_t el, const char *tmp, const char *p
 int8_t mgr_upload_plugin(manager_t *mg, const auv_plugin_upload_t *u, char *text, size_t tl)
 {
     const char *name = u->plugin_name ? u->plugin_name : "";
-    const char *version = u->plugin_version ? u->plugin_version : "";
+    /* the version is free text from the sender: shown cut and printable */
+    char version[48];
+    size_t vk = 0;
+    for (const char *c = u->plugin_version ? u->plugin_version : ""; *c && vk + 4 < sizeof version; c++)
+        version[vk++] = (unsigned char)*c < 0x20 || (unsigned char)*c >= 0x7f ? '?' : *c;
+    if (u->plugin_version && strlen(u->plugin_version) > vk) version[vk++] = '~';
+    version[vk] = 0;
     char why[512];
     if (u->vehicle && *u->vehicle && strcmp(u->vehicle, mg->opt.vehicle)) {
         snprintf(text, tl, "plugin rejected: the upload is for vehicle '%.64s', this is '%s'", u->vehicle, mg->opt.vehicle);
