@@ -141,6 +141,30 @@ typedef struct {
         CHASM_PLUGIN_ABI, (uint32_t)sizeof(chasm_plugin_descriptor), NAME, VERSION,   \
         BEH, NBEH, TESTS, NTESTS}
 
+/* Optional: limits of a plan's values that the schema cannot state (a
+ * polygon's vertex count, a list's length). A plugin may define
+ *
+ *   CHASM_PLUGIN_CHECK(check);
+ *   static int check(const char *item, const chasm_ctx *c, int *slot, char *why, size_t whylen);
+ *
+ * The Loader calls it at load (and at a hot plug) for every behavior and test
+ * handler `item` of this plugin the plan uses, with the plan's parameters
+ * readable through chasm_param_*; variables read as 0 and writes are ignored.
+ * Return 0 if the values are usable; otherwise set *slot to the parameter at
+ * fault (or -1 for the item as a whole) and write the reason to why: the plan
+ * fails to load with "file:line:col: error: parameter 'p' of 'item': why".
+ * An optional symbol, not part of the descriptor: the ABI is unchanged. */
+#define CHASM_PLUGIN_CHECK_SYMBOL "chasm_plugin_check"
+typedef int (*chasm_plugin_check_fn)(const char *item, const chasm_ctx *c, int *slot, char *why, size_t whylen);
+#define CHASM_PLUGIN_CHECK(FN)                                                                              \
+    static int FN(const char *, const chasm_ctx *, int *, char *, size_t);                                 \
+    __attribute__((visibility("default"))) int chasm_plugin_check(const char *item, const chasm_ctx *c, int *slot, \
+                                                                  char *why, size_t whylen);                 \
+    int chasm_plugin_check(const char *item, const chasm_ctx *c, int *slot, char *why, size_t whylen)          \
+    {                                                                                                       \
+        return FN(item, c, slot, why, whylen);                                                              \
+    }
+
 #ifdef __cplusplus
 }
 #endif

@@ -46,6 +46,7 @@ typedef struct cm_plugin_version {
     struct cm_plugin *plugin;
     void *dl;
     const chasm_plugin_descriptor *desc;
+    chasm_plugin_check_fn check; /* the plugin's own limits of plan values, or NULL */
     int serial;                 /* 1, 2, ... per plugin */
     int refs;                   /* bindings pointing here (current and pending) */
     bool retired;               /* a newer version is current */

@@ -1,10 +1,13 @@
 /* Binding at compile time: find the plugin of a behavior or test handler
  * named in the plan, and bind the plan's arguments against its parameter
  * schema (type, unit, range, required, variables and the one-writer rule). */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "chasm/cm_compile.h"
+
+static void check_limits(cm_cc *cc, cm_binding *b, const char *item, const cm_aarg *args, cm_loc item_loc, cm_state *st);
 
 cm_plugin *cm_find_plugin_of(cm_cc *cc, const char *item, int want_test, cm_loc loc, const void **spec)
 {
@@ -45,6 +48,70 @@ cm_plugin *cm_find_plugin_of(cm_cc *cc, const char *item, int want_test, cm_loc 
         cm_error(cc->d, loc, "unknown behavior '%s' (the plan uses no plugins: add `use PLUGIN`; the built-in action is `set`)", item);
     else cm_error(cc->d, loc, "unknown %s '%s' (not in any plugin named by `use`)", kind, item);
     return NULL;
+}
+
+/* ------------------------------------------------------------ a plugin's own limits */
+
+/* What the plugin's check sees: the plan's parameters; no variables (it runs
+ * at load, before anything has a value), no writes. */
+static double no_read_d(const chasm_ctx *c, int s) { (void)c; (void)s; return 0.0; }
+static int64_t no_read_i(const chasm_ctx *c, int s) { (void)c; (void)s; return 0; }
+static int no_read_b(const chasm_ctx *c, int s) { (void)c; (void)s; return 0; }
+static const char *no_read_s(const chasm_ctx *c, int s) { (void)c; (void)s; return ""; }
+static double no_age(const chasm_ctx *c, int s) { (void)c; (void)s; return 1e300; }
+static void no_write_d(chasm_ctx *c, int s, double v) { (void)c; (void)s; (void)v; }
+static void no_write_i(chasm_ctx *c, int s, int64_t v) { (void)c; (void)s; (void)v; }
+static void no_write_b(chasm_ctx *c, int s, int v) { (void)c; (void)s; (void)v; }
+static void no_write_s(chasm_ctx *c, int s, const char *v) { (void)c; (void)s; (void)v; }
+static void no_log(chasm_ctx *c, const char *m) { (void)c; (void)m; }
+
+/* The plugin's name of the behavior or test handler whose schema is specs. */
+static const char *spec_name(const chasm_plugin_descriptor *d, const chasm_param_spec *specs, const char *item)
+{
+    const char *dot = strrchr(item, '.');
+    const char *bare = dot ? dot + 1 : item, *first = NULL;
+    for (size_t k = 0; k < d->n_behaviors + d->n_tests; k++) {
+        int beh = k < d->n_behaviors;
+        const char *nm = beh ? d->behaviors[k].name : d->tests[k - d->n_behaviors].name;
+        const chasm_param_spec *ps = beh ? d->behaviors[k].params : d->tests[k - d->n_behaviors].params;
+        if (ps != specs) continue;
+        if (!strncmp(nm, bare, strlen(nm)) && !isalnum((unsigned char)bare[strlen(nm)]) && bare[strlen(nm)] != '_')
+            return nm;
+        if (!first) first = nm;
+    }
+    return first ? first : bare;
+}
+
+/* A limit the schema cannot state (chasm_plugin.h, CHASM_PLUGIN_CHECK) is a
+ * load error at the parameter the plugin names. */
+static void check_limits(cm_cc *cc, cm_binding *b, const char *item, const cm_aarg *args, cm_loc item_loc, cm_state *st)
+{
+    static const chasm_host_api api = {NULL, NULL, NULL, NULL, no_read_d, no_read_i, no_read_b, no_read_s, no_age,
+                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log};
+    chasm_host_api full = api;
+    full.param_double = cm_host_api.param_double;
+    full.param_int = cm_host_api.param_int;
+    full.param_bool = cm_host_api.param_bool;
+    full.param_string = cm_host_api.param_string;
+    cm_ext x = {0};
+    x.c.api = &full;
+    x.c.state_path = st ? st->path : "";
+    x.c.engine = &x;
+    x.m = cc->m;
+    x.b = b;
+    const char *name = spec_name(b->ver->desc, b->specs, item);
+    int slot = -1;
+    char why[256] = "";
+    if (!b->ver->check(name, &x.c, &slot, why, sizeof why)) return;
+    why[sizeof why - 1] = 0;
+    if (slot < 0 || slot >= b->n_slots) {
+        cm_error(cc->d, item_loc, "'%s': %s", item, why[0] ? why : "refused by its plugin");
+        return;
+    }
+    cm_loc loc = item_loc;
+    for (const cm_aarg *g = args; g; g = g->next)
+        if (!strcmp(g->name, b->specs[slot].name)) loc = g->val.loc;
+    cm_error(cc->d, loc, "parameter '%s' of '%s': %s", b->specs[slot].name, item, why[0] ? why : "refused by its plugin");
 }
 
 static const char *slot_kind_name(chasm_slot_kind k) { return k == CHASM_WRITES ? "writes" : "reads"; }
@@ -150,6 +217,8 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
         if (s->kind == CHASM_WRITES && record_writers)
             cm_add_writer(cc, v, vloc, cm_sprintf(cc->a, "'%s' in state '%s'", item, st ? st->path : "?"), st);
     }
+    if (cc->d->len != before) return NULL;
+    if (ver->check) check_limits(cc, b, item, args, item_loc, st);
     if (cc->d->len != before) return NULL;
     return b;
 }

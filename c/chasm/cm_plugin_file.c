@@ -322,6 +322,7 @@ int cm_plugin_code_open(const char *path, cm_plugin_code *out, char *err, size_t
 {
     out->dl = NULL;
     out->desc = NULL;
+    out->check = NULL;
     size_t n = 0;
     unsigned char *data = read_whole(path, &n, err, el);
     if (!data) return -1;
@@ -341,7 +342,10 @@ int cm_plugin_code_open(const char *path, cm_plugin_code *out, char *err, size_t
     }
     out->dl = open_copy(copy, path, &out->desc, err, el);
     unlink(copy); /* the mapping stays; nothing is left on disk */
-    return out->dl ? 0 : -1;
+    if (!out->dl) return -1;
+    void *check = dlsym(out->dl, CHASM_PLUGIN_CHECK_SYMBOL);
+    memcpy(&out->check, &check, sizeof check); /* ISO C has no object-to-function pointer cast */
+    return 0;
 }
 
 void cm_plugin_code_close(cm_plugin_code *c)
@@ -349,6 +353,7 @@ void cm_plugin_code_close(cm_plugin_code *c)
     if (c->dl) dlclose(c->dl);
     c->dl = NULL;
     c->desc = NULL;
+    c->check = NULL;
 }
 
 /* ------------------------------------------------------------ public */

@@ -22,6 +22,7 @@
 typedef struct {
     void *dl;
     const chasm_plugin_descriptor *desc;
+    chasm_plugin_check_fn check;  /* optional (chasm_plugin.h), NULL if absent */
 } cm_plugin_code;
 
 /* How long a probe may take, in ms (CM_PLUGIN_PROBE_MS; the fuzzer lowers it). */

@@ -17,7 +17,7 @@ void cm_plugin_version_unload(chasm_machine *m, cm_plugin_version *v)
             *pp = v->next_loaded;
             break;
         }
-    cm_plugin_code c = {v->dl, v->desc};
+    cm_plugin_code c = {v->dl, v->desc, v->check};
     cm_plugin_code_close(&c);
     cm_arena_free(&v->arena);
     free(v);
@@ -32,6 +32,7 @@ cm_plugin_version *cm_plugin_version_open(chasm_machine *m, const char *path, ch
     if (!v) abort();
     v->dl = c.dl;
     v->desc = c.desc;
+    v->check = c.check;
     v->next_loaded = m->loaded;
     m->loaded = v;
     return v;

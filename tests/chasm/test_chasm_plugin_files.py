@@ -148,3 +148,18 @@ def test_describe_refuses_a_name_that_is_not_a_plugin_name(variant_dir, env):
     p = run([variant_dir / "bin" / "chasm", "describe", "-P", variant_dir / "plugins", "Test.basic"], env)
     assert p.returncode == 1
     assert "'Test.basic' is not a plugin name" in p.stderr
+
+
+def test_a_plugin_limit_is_a_load_error_and_values_within_it_load(variant_dir, env, tmp_path):
+    """CHASM_PLUGIN_CHECK (chasm_plugin.h): the plugin's own limit of a value
+    is checked at load, at the value's file:line:col; within it the plan loads
+    and runs. (The refusals are in bad_plans/56_plugin_limit.chasm.)"""
+    plan = tmp_path / "ok.chasm"
+    plan.write_text('use test_limits\nvar test.count : int\nstate a {\n    do route(points = "1; 2; 3; 4")\n}\n')
+    exe = variant_dir / "bin" / "chasm"
+    p = run([exe, "check", "-P", variant_dir / "plugins", plan], env)
+    assert p.returncode == 0, p.stderr
+    plan.write_text(plan.read_text().replace('"1; 2; 3; 4"', '""'))
+    p = run([exe, "check", "-P", variant_dir / "plugins", plan], env)
+    assert p.returncode == 1
+    assert f"{plan}:4:23: error: parameter 'points' of 'route': 0 points, this plugin takes 1 to 4" in p.stderr, p.stderr
