@@ -8,6 +8,7 @@ from __future__ import annotations
 import hashlib
 import signal
 import subprocess
+import time
 from pathlib import Path
 
 import lcm
@@ -20,6 +21,7 @@ from conftest import ROOT, c_program
 from lcm_proc import pump, stop
 
 HERE = ROOT / "tests" / "managers"
+PERIOD_US = 100_000   # start_manager runs the manager at --rate 10
 
 
 class World:
@@ -37,7 +39,11 @@ class World:
         self.utime = 0
 
     def tick(self, dt_s: float, depth: float | None = None) -> None:
-        """Advance the global clock (and send a NAV fix valid at that time)."""
+        """Advance the global clock (and send a NAV fix valid at that time).
+
+        When the clock passes the manager's next cycle, wait for that cycle's
+        status however long a loaded machine takes: status[-1] then always
+        describes this tick, never an earlier one."""
         self.utime += int(dt_s * 1e6)
         if depth is not None:
             nav = nav_solution_t()
@@ -46,9 +52,13 @@ class World:
         clock = sim_clock_t()
         clock.utime, clock.server_id, clock.step_us = self.utime, "test", int(dt_s * 1e6)
         self.lc.publish("SIM.CLOCK", clock.encode())
-        n = len(self.status)
-        due = not self.status or self.utime - self.status[-1].utime >= 100_000
-        pump(self.lc, lambda: len(self.status) > n, timeout=0.3 if due else 0.01)
+        if not self.status:     # not subscribed yet, or still starting: nothing is due
+            pump(self.lc, lambda: bool(self.status), timeout=0.05)
+            return
+        due = self.status[-1].utime + PERIOD_US
+        if self.utime >= due:
+            assert pump(self.lc, lambda: self.status[-1].utime >= due, timeout=30), \
+                f"the manager did not run its cycle at {due} us"
 
     def command(self, cmd: int, seq: int, **fields) -> mission_ack_t:
         msg = mission_command_t()
@@ -59,13 +69,16 @@ class World:
         assert pump(self.lc, lambda: any(a.seq == seq for a in self.acks), timeout=5), f"no ack {seq}"
         return next(a for a in self.acks if a.seq == seq)
 
-    def wait_for_first_cycle(self) -> None:
-        """Tick until the manager (which subscribes at start) runs its first cycle."""
-        for _ in range(50):
+    def wait_for_status(self, running: bool = True, timeout_s: float = 60.0) -> None:
+        """Tick until the manager (which subscribes at start) publishes status;
+        with running, until it has left LOADING (its inputs arrived)."""
+        deadline = time.monotonic() + timeout_s
+        while not (self.status and (not running or self.status[-1].run_state != chasm_status_t.RUN_LOADING)):
+            assert time.monotonic() < deadline, "the manager never ran a cycle"
             self.tick(0.05, depth=0.0)
-            if self.status:
-                return
-        raise AssertionError("the manager never ran a cycle")
+
+    def wait_for_first_cycle(self) -> None:
+        self.wait_for_status(running=True)
 
     def leaf(self) -> str:
         return self.status[-1].active_path[-1]
@@ -237,6 +250,7 @@ def test_a_required_input_holds_the_start(lcm_url, child_env, tmp_path):
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env, plan="gps_fix.chasm", bind=bind)
     try:
+        w.wait_for_status(running=False)
         for _ in range(30):
             w.tick(0.05, depth=0.0)
         assert w.status, "the manager publishes LOADING status while it waits"

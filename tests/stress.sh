@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Run the whole test suite N times in a row (default 5) with demos running
+# beside it the whole time, the load a busy CI machine puts on the tests.
+# A test that waits on wall time instead of on what it waits for fails here.
+#
+#   tests/stress.sh [N] [pytest args...]      (after `make build sanitize`)
+#
+# Results: build/stress/run-K.log per run, build/stress/summary.txt.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+runs=${1:-5}; shift || true
+out=build/stress
+mkdir -p "$out"
+: > "$out/summary.txt"
+
+# Demos one after another until killed (constant load), in a process group of
+# their own so that one signal stops the loop, the demo and its children.
+demo_loop='k=0; while true; do k=$((k + 1));
+    tests/isolated_net.sh .venv/bin/python python/tools/demo.py --out "$0/demo" > "$0/demo-$k.log" 2>&1; done'
+
+failed=0
+for i in $(seq 1 "$runs"); do
+    setsid bash -c "$demo_loop" "$out" & loader=$!
+    start=$(date +%s)
+    tests/isolated_net.sh .venv/bin/python -m pytest -q "$@" > "$out/run-$i.log" 2>&1
+    rc=$?
+    kill -TERM -- "-$loader" 2>/dev/null; wait "$loader" 2>/dev/null
+    line="run $i: exit $rc, $(( $(date +%s) - start )) s: $(tail -1 "$out/run-$i.log")"
+    echo "$line" | tee -a "$out/summary.txt"
+    [[ $rc -eq 0 ]] || failed=$((failed + 1))
+done
+echo "$((runs - failed)) of $runs runs passed with demos beside them" | tee -a "$out/summary.txt"
+(( failed == 0 ))
