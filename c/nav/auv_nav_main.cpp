@@ -10,6 +10,7 @@
 // ticks), --clock system the host clock (a real vehicle). SIGINT/SIGTERM end
 // it cleanly (exit 0). Exit 1: bad configuration; 2: usage or LCM failure.
 // --check only reads the configuration: "ok" and exit 0, or its errors and 1.
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -89,7 +90,7 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
         if (!o.sim_clock) {
             node.set_now(system_now_us());
             if (next_cycle > node.now())
-                wait_ms = static_cast<int>((next_cycle - node.now()) / 1000);
+                wait_ms = static_cast<int>(std::min<int64_t>((next_cycle - node.now()) / 1000, 1000));
         }
         // A signal interrupts the wait: that is how a stop arrives.
         if (lcm_handle_timeout(lcm, wait_ms > 0 ? wait_ms : 0) < 0 && !g_stop) {
@@ -106,9 +107,9 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
             continue;
         node.publish_cycle();
         // Skip missed cycles instead of publishing a burst after a stall.
-        next_cycle += period_us;
+        next_cycle = tp_sat_add(next_cycle, period_us); // saturating: no stamp can overflow it
         if (next_cycle <= node.now())
-            next_cycle = node.now() + period_us;
+            next_cycle = tp_sat_add(node.now(), period_us);
     }
     return 0;
 }

@@ -33,6 +33,7 @@
 #include "common/lcm_rx.h"
 #include "common/msg_print.h"
 #include "common/sha256.h"
+#include "common/time_policy.h"
 
 static const char *opt(int argc, char **argv, const char *name, const char *fallback)
 {
@@ -289,8 +290,41 @@ static int cmd_sha256(const char *path)
     return 0;
 }
 
+/* The time rule (common/time_policy.h) on a script, for tests in both builds:
+ *   clock V...            offer clock values; prints "ok NOW" or the reason per value
+ *   input NOW TOL S...    offer data stamps to one input against clock NOW
+ * Values are int64 decimal (INT64_MIN and INT64_MAX allowed). */
+static int cmd_time(int argc, char **argv)
+{
+    if (argc >= 3 && !strcmp(argv[2], "clock")) {
+        tp_clock c;
+        tp_clock_init(&c, TP_MAX_CLOCK_JUMP_US);
+        for (int i = 3; i < argc; i++) {
+            tp_reason r = tp_clock_offer(&c, strtoll(argv[i], NULL, 10));
+            if (r == TP_OK)
+                printf("ok %lld\n", (long long)c.now);
+            else
+                printf("%s\n", tp_reason_name(r));
+        }
+        return 0;
+    }
+    if (argc >= 5 && !strcmp(argv[2], "input")) {
+        tp_input in = {0};
+        int64_t now = strtoll(argv[3], NULL, 10), tol = strtoll(argv[4], NULL, 10);
+        for (int i = 5; i < argc; i++) {
+            tp_reason r = tp_input_offer(&in, strtoll(argv[i], NULL, 10), 1, now, tol);
+            printf("%s\n", r == TP_OK ? "ok" : tp_reason_name(r));
+        }
+        return 0;
+    }
+    fprintf(stderr, "usage: auv-lcm-probe time clock V... | time input NOW TOL STAMP...\n");
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc >= 2 && !strcmp(argv[1], "time"))
+        return cmd_time(argc, argv);
     if (argc < 2) {
         fprintf(stderr, "usage: auv-lcm-probe roundtrip DIR | publish-track ... | listen ...\n");
         return 2;
