@@ -311,6 +311,7 @@ int main(int argc, char **argv)
     mg.chasm_opt.param_names = mg.opt.param_names;
     mg.chasm_opt.param_values = mg.opt.param_values;
     mg.chasm_opt.n_params = mg.opt.n_params;
+    mg.chasm_opt.future_tolerance_us = mg.opt.future_tol_us > 0 ? mg.opt.future_tol_us : 1; /* age backstop */
     mg.chasm_opt.log = log_line;
     mg.chasm_opt.log_user = &mg;
     mg.lcm = mgr_lcm_open(mg.opt.url, mg.opt.name, &mg.max_plan_bytes);

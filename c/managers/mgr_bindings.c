@@ -133,19 +133,23 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
 {
     word_t w[6];
     int n = 0;
-    for (size_t i = 0; i < len && line[i] != '#';) {
+    size_t end = 0;
+    while (end < len && line[end] != '#') end++; /* a comment may hold anything */
+    for (size_t i = 0; i < end; i++) {
         unsigned char c = (unsigned char)line[i];
-        if (c == ' ' || c == '\t' || c == '\r') {
-            i++;
-            continue;
-        }
-        if (c < 0x20 || c >= 0x7f) {
+        if ((c < 0x20 && c != '\t' && c != '\r') || c >= 0x7f) {
             mgr_errors_add(errs, "%s:%d:%zu: unexpected byte 0x%02x (binding files are plain ASCII)", path, lineno,
                            i + 1, c);
             return 1;
         }
+    }
+    for (size_t i = 0; i < end;) {
+        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
+            i++;
+            continue;
+        }
         size_t j = i;
-        while (j < len && line[j] != ' ' && line[j] != '\t' && line[j] != '\r' && line[j] != '#') j++;
+        while (j < end && line[j] != ' ' && line[j] != '\t' && line[j] != '\r') j++;
         if (n == 6) {
             mgr_errors_add(errs, "%s:%d:%zu: unexpected '%.*s' after the line's last field", path, lineno, i + 1,
                            (int)(j - i > 40 ? 40 : j - i), line + i);

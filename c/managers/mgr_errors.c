@@ -12,7 +12,8 @@ void mgr_errors_add(mgr_errors *e, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "%s\n", buf);
+    if (!e || !e->quiet)
+        fprintf(stderr, "%s\n", buf);
     if (!e)
         return;
     char **grown = realloc(e->lines, (e->n + 1) * sizeof *grown);

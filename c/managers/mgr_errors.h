@@ -9,6 +9,7 @@
 typedef struct {
     char **lines;
     size_t n;
+    int quiet;          /* only collect, do not print (the fuzzer) */
 } mgr_errors;
 
 /* Adds one line (and prints it). e may be NULL: then it is only printed. */

@@ -20,7 +20,7 @@ extern "C" {
 namespace nav {
 
 struct NodeOptions {
-    std::string config_path, vehicle = "AUV1", url = "udpm://239.255.76.67:7667?ttl=0";
+    std::string config_path, vehicle = "AUV1", url;  // url "": liblcm's default ($LCM_DEFAULT_URL)
     std::string channel;        // solution channel; default <VEHICLE>.NAV
     std::string status_channel; // default <VEHICLE>.NAV_STATUS
     double rate_hz = 20.0;

@@ -325,9 +325,13 @@ int main(int argc, char **argv)
 {
     if (argc >= 2 && !strcmp(argv[1], "time"))
         return cmd_time(argc, argv);
-    if (argc < 2) {
-        fprintf(stderr, "usage: auv-lcm-probe roundtrip DIR | publish-track ... | listen ...\n");
-        return 2;
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+        fprintf(argc < 2 ? stderr : stdout,
+                "usage: auv-lcm-probe roundtrip DIR | field TYPE PATH FILE | sha256 FILE | time ...\n"
+                "       auv-lcm-probe publish-track|listen [--lcm-url URL] [--vehicle ID] [--count N] [--rate HZ]\n"
+                "                     [--channel RE] [--type T] [--timeout-ms MS]\n"
+                "  --lcm-url URL   LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default); --url is the old spelling\n");
+        return argc < 2 ? 2 : 0;
     }
     if (!strcmp(argv[1], "roundtrip") && argc == 3)
         return cmd_roundtrip(argv[2]);
@@ -335,10 +339,11 @@ int main(int argc, char **argv)
         return cmd_field(argv[2], argv[3], argv[4]);
     if (!strcmp(argv[1], "sha256") && argc == 3)
         return cmd_sha256(argv[2]);
-    const char *url = opt(argc, argv, "--url", "udpm://239.255.76.67:7667?ttl=0");
+    /* --lcm-url (or its old spelling --url); none: liblcm honours $LCM_DEFAULT_URL */
+    const char *url = opt(argc, argv, "--lcm-url", opt(argc, argv, "--url", NULL));
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
-        fprintf(stderr, "auv-lcm-probe: cannot open LCM at %s (no multicast route? see README)\n", url);
+        fprintf(stderr, "auv-lcm-probe: cannot open LCM at %s (no multicast route? see README)\n", url ? url : "the default URL");
         return 2;
     }
     int rc = 2;

@@ -44,7 +44,7 @@ INJECTIONS = [
     ("", "has no value"),
     ("   ", "has no value"),
     ("12 furlongs", "unknown unit"),
-    ("\x00", "control character"),
+    ("12 m\x7f", "control character"),
 ]
 
 
@@ -65,8 +65,6 @@ def chasm(variant_dir, child_env, tmp_path):
 
 @pytest.mark.parametrize("value,error", INJECTIONS, ids=[repr(v)[:24] for v, _ in INJECTIONS])
 def test_injection_attempts_are_refused(chasm, value, error):
-    if "\x00" in value:
-        pytest.skip("a NUL cannot be passed in argv (execve ends the string there)")
     p = chasm(f"depth={value}")
     assert p.returncode == 2, p.stdout + p.stderr
     assert "<-D depth>:1:" in p.stderr and error in p.stderr, p.stderr
