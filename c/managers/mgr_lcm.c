@@ -12,9 +12,12 @@
 #include <unistd.h>
 
 #define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0"
-/* LCM fragments a large message into datagrams of up to 64 KB; the kernel
- * charges each about its size again in overhead (truesize), and one more
- * fragment may be in flight. */
+/* LCM fragments a large message into datagrams of up to 64 KB. liblcm's
+ * reader thread drains the socket as fragments come, but a loaded machine
+ * can starve it: the buffer must hold a whole message of the maximum size,
+ * plus two fragments of slack for the kernel's per-datagram overhead and
+ * other traffic. (Measured on loopback: with 425984 bytes granted, a 400 KB
+ * message arrives and a 1 MB one does not.) */
 #define FRAGMENT_BYTES (64 * 1024)
 
 static size_t granted_rcvbuf(size_t want)
@@ -35,7 +38,7 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
     const char *base = url_opt ? url_opt : getenv("LCM_DEFAULT_URL");
     if (!base || !*base)
         base = DEFAULT_URL;
-    const size_t need = 2 * ((size_t)MGR_MAX_PLAN_BYTES + 2 * FRAGMENT_BYTES); /* capacity for the maximum */
+    const size_t need = (size_t)MGR_MAX_PLAN_BYTES + 2 * FRAGMENT_BYTES; /* capacity for the maximum */
     const size_t want = need / 2 + 1;                                            /* what to ask: the kernel doubles */
     char url[1024];
     int is_udpm = !strncmp(base, "udpm://", 7);
@@ -53,7 +56,7 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
     size_t asked = rb ? strtoul(rb + 14, NULL, 10) : 0;
     size_t cap = is_udpm ? granted_rcvbuf(asked ? asked : want) : need;
     if (is_udpm && cap < need) {
-        size_t fit = cap / 2 > 2 * FRAGMENT_BYTES ? cap / 2 - 2 * FRAGMENT_BYTES : 0;
+        size_t fit = cap > 2 * FRAGMENT_BYTES ? cap - 2 * FRAGMENT_BYTES : 0;
         if (fit < MGR_MIN_PLAN_BYTES)
             fit = MGR_MIN_PLAN_BYTES;
         if (fit < *max_plan_bytes)

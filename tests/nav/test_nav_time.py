@@ -42,7 +42,7 @@ def test_bad_stamps_are_counted_in_nav_status_and_dropped(variant_dir, lcm_url, 
             c.utime = bad
             w.lc.publish("SIM.CLOCK", c.encode())
         c = sim_clock_t()
-        c.utime = w.t - 5_000_000
+        c.utime = w.t - 500_000
         w.lc.publish("SIM.CLOCK", c.encode())  # backwards
         c.utime = w.t + 600_000_000
         w.lc.publish("SIM.CLOCK", c.encode())  # a 10-minute jump, never confirmed
