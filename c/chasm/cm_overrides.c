@@ -17,6 +17,7 @@ static const char *kind_name(const cm_aval *v)
     case V_NUMBER: return v->unit && v->unit->dim != CM_DIM_NONE ? cm_dim_name(v->unit->dim) : "a plain number";
     case V_STRING: return "a string";
     case V_BOOL: return "true or false";
+    case V_NAME: return "a name";
     default: return "something else";
     }
 }
@@ -66,9 +67,9 @@ void cm_parse_override(cm_parse_ctx *ctx, const char *name, const char *value)
         return;
     }
     v = cm_p_value(&p, "a value: a number with its unit, a string in quotes, true or false");
-    if (!p.failed && (v.kind == V_PARAM || v.kind == V_NAME)) {
+    if (!p.failed && v.kind == V_PARAM) {
         cm_error(ctx->diag, v.loc, "the value of -D %s must be a constant (a number with its unit, a string in quotes, "
-                                   "true or false), not '%s'", name, v.str);
+                                   "true or false), not the parameter '$%s'", name, v.str);
         p.failed = 1;
     }
     /* Exactly one value and nothing after it; a comment ('#') the lexer
@@ -117,8 +118,10 @@ void cm_check_overrides(cm_diag *d, const cm_aplan *plan)
         const cm_aval *a = &o->val, *b = &decl->val;
         int dim_a = a->unit ? (int)a->unit->dim : (int)CM_DIM_NONE, dim_b = b->unit ? (int)b->unit->dim : (int)CM_DIM_NONE;
         if (a->kind != b->kind || (a->kind == V_NUMBER && dim_a != dim_b)) {
-            cm_error(d, o->loc, "-D %s: the value is %s, but the plan's '%s' is %s (%s:%d:%d)", o->name, kind_name(a),
-                     o->name, kind_name(b), decl->loc.file, decl->loc.line, decl->loc.col);
+            cm_error(d, o->loc, "-D %s: the value is %s%s%s%s, but the plan's '%s' is %s (%s:%d:%d)", o->name,
+                     kind_name(a), a->kind == V_NAME ? " ('" : "", a->kind == V_NAME ? a->str : "",
+                     a->kind == V_NAME ? "')" : "", o->name, kind_name(b), decl->loc.file, decl->loc.line,
+                     decl->loc.col);
         }
     }
 }

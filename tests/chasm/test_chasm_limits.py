@@ -120,3 +120,30 @@ def test_command_line_lists_past_their_limit_are_usage_errors(check, what, n):
         args += [what, f"p{i}=1" if what == "-D" else f"/nonexistent{i}"]
     p = check("state a {\n}\n", "plan.chasm", *args)
     assert p.returncode == 2 and "at most 64" in p.stderr, p.stderr
+
+
+@pytest.mark.parametrize("name,text,code,error", [
+    ("i.txt", "1e300 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between 0 s and 1e+09 s"),
+    ("i.txt", "-1 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between"),
+    ("i.txt", "1 n = 1e300\n", 1, "i.txt:1:7: error: 'n' is an int: 1e+300 is out of its range"),
+    ("i.csv", "time,n\n1,1e300\n", 1, "i.csv:2:1: error: 'n' is an int"),
+    ("i.csv", "time,x\nnan,1\n", 1, "i.csv:2:1: error: an input's time must be between"),
+    ("i.csv", "time," + ",".join(["x"] * 257) + "\n", 1, "i.csv:1:1: error: more than 256 columns"),
+])
+def test_chasm_run_inputs_at_the_extremes(variant_dir, child_env, tmp_path, name, text, code, error):
+    """Times and integers out of range are file:line:col errors, never an
+    overflowing conversion (UBSan in the sanitized build)."""
+    (tmp_path / "p.chasm").write_text("input x : double m\ninput n : int\nstate a {\n}\n")
+    (tmp_path / name).write_text(text)
+    p = run([variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / name], child_env)
+    assert p.returncode == code and error in p.stderr, p.stderr
+
+
+@pytest.mark.parametrize("flag", ["--dt", "--until"])
+@pytest.mark.parametrize("value", ["1e300", "-5", "nan", "inf"])
+def test_chasm_run_durations_out_of_range_are_usage_errors(variant_dir, child_env, tmp_path, flag, value):
+    (tmp_path / "p.chasm").write_text("state a {\n}\n")
+    (tmp_path / "i.txt").write_text("")
+    p = run([variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / "i.txt", flag, value],
+            child_env)
+    assert p.returncode == 2 and "is not a duration" in p.stderr, p.stderr

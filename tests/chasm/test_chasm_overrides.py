@@ -36,7 +36,7 @@ INJECTIONS = [
     ('12 m "x"', "takes one value"),
     ("12 m 13 m", "takes one value"),
     ("$label", "must be a constant"),
-    ("nav.depth", "must be a constant"),
+    ("nav.depth", "the value is a name ('nav.depth'), but the plan's 'depth' is a length"),
     ('"12 m"', "the value is a string"),
     ("12 s", "the value is a duration"),
     ("12", "the value is a plain number"),

@@ -72,6 +72,10 @@ static double seconds(const char *s)
         fprintf(stderr, "chasm: '%s' is not a duration\n", s);
         exit(2);
     }
+    if (end == s || !(v >= 0 && v <= 1e9)) { /* like durations in plans; no overflow in microseconds */
+        fprintf(stderr, "chasm: '%s' is not a duration from 0 to 1e9 s\n", s);
+        exit(2);
+    }
     return v;
 }
 
