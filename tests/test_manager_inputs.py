@@ -261,3 +261,25 @@ def test_manager_overrides_are_values_and_names_are_checked(lcm_url, child_env, 
         assert p.returncode == 2 and error in p.stderr, p.stderr
     p = subprocess.run([*base, "--help"], env=child_env, capture_output=True, text=True, timeout=20)
     assert p.returncode == 0 and "--lcm-url" in p.stdout
+
+
+@pytest.mark.parametrize("args", [
+    ["--vehicle", "AUV 1"], ["--vehicle", ""], ["--vehicle", "V" * 49], ["--name", "N" * 60],
+    ["--name", "NAV\nIGATOR"], ["--rate", "0"], ["--rate", "1e300"], ["--rate", "nan"], ["--rate", "10x"],
+    ["--future-tolerance", "-1"], ["--max-clock-jump", "0"], ["--bogus"], ["-D", "noequals"], ["-D", "=1 m"],
+])
+def test_bad_manager_options_are_usage_errors(lcm_url, child_env, args):
+    import subprocess
+
+    from conftest import c_program
+    opts = {"--plan": str(HERE / "dive.chasm"), "--bind": str(HERE / "vehicle.bind"), "--vehicle": "AUV1",
+            "--name": "NAVIGATOR", "--lcm-url": lcm_url}
+    extra = []
+    if args[0] in opts and len(args) == 2:
+        opts[args[0]] = args[1]
+    else:
+        extra = args
+    cmd = [c_program("bin/chasm-manager")] + [x for kv in opts.items() for x in kv] + extra
+    p = subprocess.run(cmd, env=child_env, capture_output=True, text=True, timeout=20)
+    assert p.returncode == 2, p.stderr
+    assert "chasm-manager:" in p.stderr or "usage:" in p.stderr

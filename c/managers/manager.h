@@ -19,7 +19,7 @@
 #define MGR_MIN_PLAN_BYTES (32 * 1024)      /* the least a too-small receive buffer falls back to */
 #define MGR_MAX_PLAN_NAME 255               /* LOAD_PLAN plan_name, characters */
 #define MGR_MAX_REASON 1024                 /* a command's reason, characters */
-#define MGR_MAX_NAME_FIELD 63               /* vehicle and manager fields, characters */
+#define MGR_MAX_VEHICLE 48                  /* --vehicle: <VEHICLE>.PLUGIN_UPLOAD fits LCM's 63 */
 #define MGR_ACK_MAX_ERRORS 5                /* errors quoted in a rejected LOAD_PLAN's ack */
 #define MGR_ACK_MAX_CHARS 2000              /* an ack's message, characters */
 #define MGR_MAX_PARAMS 64                   /* -D overrides */

@@ -62,6 +62,16 @@ static int number_arg(const char *opt, const char *v, double lo, double hi, doub
     return 0;
 }
 
+static int id_ok(const char *s)
+{
+    if (!*s)
+        return 0;
+    for (; *s; s++)
+        if (!((*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '_'))
+            return 0;
+    return 1;
+}
+
 int manager_parse_args(manager_options *o, int argc, char **argv)
 {
     memset(o, 0, sizeof *o);
@@ -132,8 +142,12 @@ int manager_parse_args(manager_options *o, int argc, char **argv)
         usage(stderr);
         return -1;
     }
-    if (!*o->vehicle || strlen(o->vehicle) > MGR_MAX_NAME_FIELD || !*o->name || strlen(o->name) > MGR_MAX_NAME_FIELD) {
-        fprintf(stderr, "chasm-manager: --vehicle and --name want 1 to %d characters\n", MGR_MAX_NAME_FIELD);
+    /* Every channel the manager names must fit LCM's 63 characters, the
+     * longest being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
+    if (!id_ok(o->vehicle) || !id_ok(o->name) || strlen(o->vehicle) > MGR_MAX_VEHICLE ||
+        strlen(o->vehicle) + strlen(o->name) + 7 > 63) {
+        fprintf(stderr, "chasm-manager: --vehicle (1 to %d) and --name are letters, digits and '_', and "
+                        "<VEHICLE>.CHASM.<NAME> at most 63 characters\n", MGR_MAX_VEHICLE);
         return -1;
     }
     if (o->plugin_dir) {
