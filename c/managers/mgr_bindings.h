@@ -69,7 +69,8 @@ int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, ch
 /* mgr_bindings_load from text (the fuzzer uses it). */
 int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                            chasm_machine *m, mgr_errors *errs);
-/* Only the file's syntax, nothing bound. Returns the number of errors. */
+/* Only the file's syntax, nothing bound (mgr_bind_parse.c). Return the number of errors. */
+int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehicle, mgr_errors *errs);
 int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                             mgr_errors *errs);
 /* Subscribe to every input channel; messages then update the blackboard. */
