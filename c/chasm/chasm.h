@@ -40,7 +40,10 @@ typedef enum { CHASM_VAR_INPUT = 0, CHASM_VAR_OUTPUT = 1, CHASM_VAR_LOCAL = 2 } 
 typedef struct {
     const char *const *plugin_path;   /* directories searched for chasm_NAME.so, NAME.so */
     size_t n_plugin_path;
-    /* Parameter overrides (`-D depth=12m`), values in plan syntax ("12 m"). */
+    /* Parameter overrides (`-D depth=12m`): each value is one value in plan
+     * syntax ("12 m", "\"text\"", true), never plan text, and each name must
+     * be a parameter the plan declares, with a value of the same kind and
+     * unit dimension; anything else is a load error in "<-D name>". */
     const char *const *param_names;
     const char *const *param_values;
     size_t n_params;
@@ -49,7 +52,23 @@ typedef struct {
     void *log_user;
     /* chasm_load_string only: folder that relative `include`s start from. */
     const char *base_dir;
+    /* A variable stamped more than this ahead of `now` counts as infinitely
+     * old (stale) in `age` tests and chasm_ctx age(): no stamp can switch off
+     * an `age > X` rule. 0: CHASM_FUTURE_TOLERANCE_US. */
+    int64_t future_tolerance_us;
 } chasm_options;
+
+/* Time (docs/channels.md, "Time and timestamps"): every time difference the
+ * engine computes (elapsed, for, every, after, age) saturates instead of
+ * overflowing, so any int64 `now` or stamp is safe. Ages are never negative. */
+#define CHASM_FUTURE_TOLERANCE_US INT64_C(1000000)
+
+/* Limits of a plan (docs/chasm.md, "Limits"); going past one is a load error
+ * that names it, never a silent cut. */
+#define CHASM_STRING_MAX 1023          /* characters of a string value or variable */
+#define CHASM_MAX_FILE_BYTES (64 * 1024 * 1024) /* one plan file or plan text */
+#define CHASM_MAX_STATE_DEPTH 32       /* levels of nested states (= CHASM_STATUS_MAX_DEPTH) */
+#define CHASM_MAX_INCLUDE_DEPTH 16     /* files included inside each other */
 
 /* Load: on any error returns NULL and, if errors != NULL, every error found. */
 chasm_machine *chasm_load_file(const char *path, const chasm_options *opt, chasm_errors **errors);
@@ -81,7 +100,8 @@ const char *chasm_var_name(const chasm_machine *m, int id);
 chasm_type chasm_var_type(const chasm_machine *m, int id);
 chasm_var_kind chasm_var_kind_of(const chasm_machine *m, int id);
 const char *chasm_var_unit(const chasm_machine *m, int id);     /* SI unit, "" if none */
-/* Setters return 0, or -1 on a bad id or a type mismatch. utime = time of validity. */
+/* Setters return 0, or -1 on a bad id, a type mismatch or a string longer
+ * than CHASM_STRING_MAX (nothing is written then). utime = time of validity. */
 int chasm_var_set_double(chasm_machine *m, int id, double v, int64_t utime);
 int chasm_var_set_int(chasm_machine *m, int id, int64_t v, int64_t utime);
 int chasm_var_set_bool(chasm_machine *m, int id, bool v, int64_t utime);

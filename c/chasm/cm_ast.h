@@ -7,7 +7,8 @@
 #include "chasm/cm_diag.h"
 #include "chasm/cm_units.h"
 
-#define CM_MAX_PARSE_DEPTH 32
+#include "chasm/chasm.h"
+#define CM_MAX_PARSE_DEPTH CHASM_MAX_STATE_DEPTH
 
 typedef enum { V_NONE, V_NUMBER, V_STRING, V_BOOL, V_PARAM, V_NAME } cm_vkind;
 
@@ -112,6 +113,7 @@ typedef struct cm_aparam {
     char *name;
     cm_aval val;
     int depth;             /* include depth: the outermost file wins */
+    bool is_override;      /* from -D (chasm_options.param_*) */
 } cm_aparam;
 
 typedef struct cm_ause {

@@ -1,4 +1,5 @@
 /* The blackboard seen from outside (managers, tools) and from plugins. */
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -58,8 +59,8 @@ int chasm_var_set_bool(chasm_machine *m, int id, bool x, int64_t utime)
 int chasm_var_set_string(chasm_machine *m, int id, const char *x, int64_t utime)
 {
     cm_var *v = settable(m, id, CHASM_STRING);
-    if (!v || !x) return -1;
-    snprintf(v->s, v->s_cap, "%s", x);
+    if (!v || !x || strlen(x) >= v->s_cap) return -1;
+    memcpy(v->s, x, strlen(x) + 1);
     v->updated_us = utime;
     v->has_value = true;
     return 0;
@@ -109,8 +110,8 @@ static double age(const chasm_ctx *c, int s)
 {
     const cm_ext *x = c->engine;
     if (s < 0 || s >= x->b->n_slots || !x->b->slots[s].var) return 1e300;
-    const cm_var *v = x->b->slots[s].var;
-    return v->updated_us == CM_NEVER ? 1e300 : (double)(c->now_us - v->updated_us) * 1e-6;
+    double a = cm_age_s(x->m, x->b->slots[s].var->updated_us, c->now_us);
+    return isinf(a) ? 1e300 : a;
 }
 
 static cm_var *w(chasm_ctx *c, int s, chasm_type t)
@@ -124,7 +125,16 @@ static cm_var *w(chasm_ctx *c, int s, chasm_type t)
 static void w_double(chasm_ctx *c, int s, double v) { cm_var *x = w(c, s, CHASM_DOUBLE); if (x) x->d = v; }
 static void w_int(chasm_ctx *c, int s, int64_t v) { cm_var *x = w(c, s, CHASM_INT); if (x) { x->i = v; x->d = (double)v; } }
 static void w_bool(chasm_ctx *c, int s, int v) { cm_var *x = w(c, s, CHASM_BOOL); if (x) { x->b = v != 0; x->d = x->b; } }
-static void w_string(chasm_ctx *c, int s, const char *v) { cm_var *x = w(c, s, CHASM_STRING); if (x) snprintf(x->s, x->s_cap, "%s", v ? v : ""); }
+static void w_string(chasm_ctx *c, int s, const char *v)
+{
+    if (v && strlen(v) > CHASM_STRING_MAX) { /* never cut: the write is refused, and said */
+        const cm_ext *e = c->engine;
+        cm_log(e->m, c->state_path, "string of %zu characters not written: the limit is %d", strlen(v), CHASM_STRING_MAX);
+        return;
+    }
+    cm_var *x = w(c, s, CHASM_STRING);
+    if (x) snprintf(x->s, x->s_cap, "%s", v ? v : "");
+}
 
 static void plog(chasm_ctx *c, const char *msg)
 {

@@ -49,7 +49,7 @@ static void build(cm_cc *cc, const cm_astate *a, cm_state *parent, int *idx)
 
 static cm_state *resolve(cm_cc *cc, const char *ref, cm_loc loc, cm_state *from, const char *what)
 {
-    char key[1024];
+    const char *key;
     if (strchr(ref, '/')) {
         cm_state *s = cm_map_get(&cc->path_map, ref);
         if (s) return s;
@@ -69,7 +69,7 @@ static cm_state *resolve(cm_cc *cc, const char *ref, cm_loc loc, cm_state *from,
         if (found) return found;
     } else {
         for (cm_state *s = from; s; s = s->parent) {
-            snprintf(key, sizeof key, "%s/%s", s->path, ref);
+            key = cm_sprintf(cc->a, "%s/%s", s->path, ref);
             cm_state *t = cm_map_get(&cc->path_map, key);
             if (t) return t;
         }
@@ -112,8 +112,8 @@ void cm_compile_states(cm_cc *cc)
                 cm_error(cc->d, a->start_loc, "state '%s' has no child states, so 'start %s' has nothing to start",
                          s->name, a->start);
             } else {
-                char key[1024];
-                snprintf(key, sizeof key, "%s/%s", s->path, a->start);
+                const char *key;
+                key = cm_sprintf(cc->a, "%s/%s", s->path, a->start);
                 s->default_child = cm_map_get(&cc->path_map, key);
                 if (!s->default_child) {
                     cm_suggest sg;
@@ -173,13 +173,13 @@ static void emit(cm_cc *cc, emitter *e, cm_cop op, int push)
 
 static cm_test *find_test(cm_cc *cc, const char *name, cm_state *owner)
 {
-    char key[1024];
+    const char *key;
     for (cm_state *s = owner; s; s = s->parent) {
-        snprintf(key, sizeof key, "%s:%s", s->path, name);
+        key = cm_sprintf(cc->a, "%s:%s", s->path, name);
         cm_test *t = cm_map_get(&cc->test_map, key);
         if (t) return t;
     }
-    snprintf(key, sizeof key, ":%s", name);
+    key = cm_sprintf(cc->a, ":%s", name);
     return cm_map_get(&cc->test_map, key);
 }
 

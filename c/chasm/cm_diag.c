@@ -8,16 +8,22 @@
 void cm_error(cm_diag *d, cm_loc loc, const char *fmt, ...)
 {
     if (d->limit && d->len >= d->limit) return;
+
     if (d->len == d->cap) {
         d->cap = d->cap ? d->cap * 2 : 16;
         d->items = realloc(d->items, d->cap * sizeof *d->items);
         if (!d->items) abort();
     }
     char msg[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
+    if (d->limit && d->len + 1 == d->limit) {
+        /* the last place says that the list stops here: never a silent cut */
+        snprintf(msg, sizeof msg, "too many errors: only the first %zu are shown", d->limit - 1);
+    } else {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg, sizeof msg, fmt, ap);
+        va_end(ap);
+    }
     size_t n = strlen(msg) + strlen(loc.file ? loc.file : "?") + 64;
     char *text = malloc(n);
     if (!text) abort();

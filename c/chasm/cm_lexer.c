@@ -78,7 +78,6 @@ cm_tokens cm_lex(cm_arena *a, cm_diag *d, const char *file, int file_order, cons
             continue;
         }
         if (isdigit((unsigned char)c) || (c == '.' && i + 1 < n && isdigit((unsigned char)s[i + 1]))) {
-            char buf[64];
             size_t e = i;
             while (e < n && isdigit((unsigned char)s[e])) e++;
             if (e < n && s[e] == '.') {
@@ -93,11 +92,10 @@ cm_tokens cm_lex(cm_arena *a, cm_diag *d, const char *file, int file_order, cons
                     e = f;
                 }
             }
-            size_t L = e - i < sizeof buf - 1 ? e - i : sizeof buf - 1;
-            memcpy(buf, s + i, L);
-            buf[L] = 0;
+            /* Any length: the whole number is converted (never cut). */
+            char *num = cm_strndup(a, s + i, e - i);
             k->type = T_NUMBER;
-            k->num = strtod(buf, NULL);
+            k->num = strtod(num, NULL);
             k->len = (int)(e - i);
             i = e;
             len++;
@@ -105,8 +103,11 @@ cm_tokens cm_lex(cm_arena *a, cm_diag *d, const char *file, int file_order, cons
         }
         if (c == '"') {
             size_t e = i + 1;
-            char *out = cm_alloc(a, 1 + (n - i < 4096 ? n - i : 4096));
-            size_t o = 0, lim = n - i < 4096 ? n - i : 4096;
+            /* As long as the line: limits on string values are checked
+             * where they are used (CHASM_STRING_MAX), never by cutting here. */
+            size_t lim = n - i;
+            char *out = cm_alloc(a, 1 + lim);
+            size_t o = 0;
             int closed = 0;
             while (e < n && s[e] != '\n') {
                 if (s[e] == '"') {

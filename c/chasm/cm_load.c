@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "chasm/cm_compile.h"
+#include "chasm/cm_overrides.h"
 #include "chasm/cm_parser.h"
 
 struct chasm_errors {
@@ -66,13 +67,16 @@ static chasm_machine *load(const char *path, const char *name, const char *text,
     cm_aplan *plan = cm_alloc(&m->arena, sizeof *plan);
     m->plan = plan;
     cm_parse_ctx pc = {.arena = &m->arena, .diag = &d, .plan = plan};
-    for (size_t i = 0; opt && i < opt->n_params; i++) {
-        char *t = cm_sprintf(&m->arena, "param %s = %s\n", opt->param_names[i], opt->param_values[i]);
-        cm_parse_text(&pc, cm_sprintf(&m->arena, "<-D %s>", opt->param_names[i]), "", t, strlen(t), NULL);
-    }
+    /* Overrides are values, never plan text (cm_overrides.c). */
+    for (size_t i = 0; opt && i < opt->n_params; i++)
+        cm_parse_override(&pc, opt->param_names[i], opt->param_values[i]);
     if (path) {
         cm_parse_file(&pc, cm_strdup(&m->arena, path), NULL);
         m->plan_name = cm_strdup(&m->arena, path);
+    } else if (len > CHASM_MAX_FILE_BYTES) {
+        cm_error(&d, (cm_loc){cm_strdup(&m->arena, name), 0, 1, 1}, "plan text larger than %d bytes (CHASM_MAX_FILE_BYTES)",
+                 CHASM_MAX_FILE_BYTES);
+        m->plan_name = cm_strdup(&m->arena, name);
     } else {
         pc.stack[0] = name;
         pc.depth = 1;
@@ -81,6 +85,7 @@ static chasm_machine *load(const char *path, const char *name, const char *text,
         m->plan_name = cm_strdup(&m->arena, name);
     }
     m->n_lines = plan->n_lines;
+    cm_check_overrides(&d, plan);
     cm_cc cc = {.m = m, .a = &m->arena, .d = &d, .plan = plan};
     if (!d.len) {
         resolve_params(&cc);

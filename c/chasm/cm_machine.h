@@ -13,6 +13,21 @@
 
 #define CM_NEVER INT64_MIN
 
+/* now - since in microseconds, saturated: no signed overflow for any pair. */
+static inline int64_t cm_span_us(int64_t now, int64_t since)
+{
+    int64_t r;
+    if (__builtin_sub_overflow(now, since, &r)) return since < 0 ? INT64_MAX : INT64_MIN;
+    return r;
+}
+/* a + b saturated. */
+static inline int64_t cm_add_us(int64_t a, int64_t b)
+{
+    int64_t r;
+    if (__builtin_add_overflow(a, b, &r)) return b > 0 ? INT64_MAX : INT64_MIN;
+    return r;
+}
+
 typedef struct cm_var {
     const char *name;
     chasm_type type;
@@ -206,5 +221,9 @@ typedef struct {
     chasm_machine *m;
     cm_binding *b;
 } cm_ext;
+/* Age of a value stamped `stamp` at `now` in seconds: never negative;
+ * INFINITY when never written or stamped more than the future tolerance
+ * ahead of now (a stamp from the future must not keep a value fresh). */
+double cm_age_s(const chasm_machine *m, int64_t stamp, int64_t now);
 void cm_log(chasm_machine *m, const char *path, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
 #endif

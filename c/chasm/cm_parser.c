@@ -44,15 +44,15 @@ static cm_atrans *transition(P *p, cm_token *kw)
     cm_loc l;
     char *n = cm_p_name(p, "a target state", &l);
     if (!n) return NULL;
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", n);
+    /* a path of any length (no buffer to cut it) */
+    const char *path = n;
     while (cur(p)->type == T_SLASH && !p->failed) {
         adv(p);
         char *m = cm_p_name(p, "a state name after '/'", NULL);
         if (!m) return NULL;
-        snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "/%s", m);
+        path = cm_sprintf(p->ctx->arena, "%s/%s", path, m);
     }
-    tr->target = cm_strdup(p->ctx->arena, buf);
+    tr->target = (char *)path;
     tr->target_loc = l;
     return tr;
 }
@@ -160,15 +160,10 @@ static void state_body(P *p, cm_astate *s, int depth)
                 adv(p);
             } else {
                 s->next_state = cm_p_name(p, "a state name", &s->next_loc);
-                if (s->next_state) {
-                    char buf[512];
-                    snprintf(buf, sizeof buf, "%s", s->next_state);
-                    while (cur(p)->type == T_SLASH && !p->failed) {
-                        adv(p);
-                        char *m = cm_p_name(p, "a state name after '/'", NULL);
-                        if (m) snprintf(buf + strlen(buf), sizeof buf - strlen(buf), "/%s", m);
-                    }
-                    s->next_state = cm_strdup(p->ctx->arena, buf);
+                while (s->next_state && cur(p)->type == T_SLASH && !p->failed) {
+                    adv(p);
+                    char *m = cm_p_name(p, "a state name after '/'", NULL);
+                    if (m) s->next_state = cm_sprintf(p->ctx->arena, "%s/%s", s->next_state, m);
                 }
             }
         } else if (!strcmp(t->text, "test")) {
@@ -211,7 +206,7 @@ static cm_astate *state_decl(P *p, int depth)
     s->name = cm_p_name(p, "a state name", &s->loc);
     if (!s->name) return NULL;
     if (depth >= CM_MAX_PARSE_DEPTH) {
-        cm_error(p->ctx->diag, s->loc, "states nested too deeply (more than %d levels)", CM_MAX_PARSE_DEPTH);
+        cm_error(p->ctx->diag, s->loc, "states nested too deeply (more than %d levels, CHASM_MAX_STATE_DEPTH)", CM_MAX_PARSE_DEPTH);
         p->failed = 1;
         return NULL;
     }
@@ -373,8 +368,8 @@ void cm_parse_file(cm_parse_ctx *ctx, const char *path, cm_loc *inc)
             cm_error(ctx->diag, here, "'%s' includes itself (include cycle)", path);
             return;
         }
-    if (ctx->depth >= 16) {
-        cm_error(ctx->diag, here, "includes nested more than 16 deep");
+    if (ctx->depth >= CHASM_MAX_INCLUDE_DEPTH) {
+        cm_error(ctx->diag, here, "includes nested more than %d deep (CHASM_MAX_INCLUDE_DEPTH)", CHASM_MAX_INCLUDE_DEPTH);
         return;
     }
     struct stat sb;
@@ -382,8 +377,8 @@ void cm_parse_file(cm_parse_ctx *ctx, const char *path, cm_loc *inc)
         cm_error(ctx->diag, here, "cannot open '%s'%s", path, stat(path, &sb) ? "" : " (not a regular file)");
         return;
     }
-    if (sb.st_size > 64L * 1024 * 1024) {
-        cm_error(ctx->diag, here, "'%s' is larger than 64 MB", path);
+    if (sb.st_size > CHASM_MAX_FILE_BYTES) {
+        cm_error(ctx->diag, here, "'%s' is larger than %d bytes (CHASM_MAX_FILE_BYTES)", path, CHASM_MAX_FILE_BYTES);
         return;
     }
     FILE *f = fopen(path, "rb");

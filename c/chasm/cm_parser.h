@@ -4,6 +4,7 @@
 #define CM_PARSER_H
 #include <stddef.h>
 
+#include "chasm/chasm.h"
 #include "chasm/cm_arena.h"
 #include "chasm/cm_ast.h"
 #include "chasm/cm_diag.h"
@@ -13,7 +14,7 @@ typedef struct {
     cm_diag *diag;
     cm_aplan *plan;
     int file_counter;
-    const char *stack[16];   /* files being included, for cycle detection */
+    const char *stack[CHASM_MAX_INCLUDE_DEPTH + 1];   /* files being included, for cycle detection */
     int depth;
 } cm_parse_ctx;
 

@@ -19,12 +19,21 @@ void cm_log(chasm_machine *m, const char *path, const char *fmt, ...)
     m->opt.log(m->opt.log_user, m->now, path, buf);
 }
 
+double cm_age_s(const chasm_machine *m, int64_t stamp, int64_t now)
+{
+    if (stamp == CM_NEVER) return INFINITY;
+    int64_t tol = m->opt.future_tolerance_us > 0 ? m->opt.future_tolerance_us : CHASM_FUTURE_TOLERANCE_US;
+    if (stamp > cm_add_us(now, tol)) return INFINITY;
+    int64_t d = cm_span_us(now, stamp);
+    return d <= 0 ? 0.0 : (double)d * 1e-6;
+}
+
 static void ctx_init(cm_ext *x, chasm_machine *m, cm_binding *b, const cm_state *s, int64_t now, int64_t last)
 {
     x->c.api = &cm_host_api;
     x->c.now_us = now;
-    x->c.dt_s = last == CM_NEVER ? 0.0 : (double)(now - last) * 1e-6;
-    x->c.time_in_state_s = (double)(now - s->entered_us) * 1e-6;
+    x->c.dt_s = last == CM_NEVER ? 0.0 : (double)cm_span_us(now, last) * 1e-6;
+    x->c.time_in_state_s = (double)cm_span_us(now, s->entered_us) * 1e-6;
     x->c.state_path = s->path;
     x->c.engine = x;
     x->m = m;
@@ -200,11 +209,9 @@ static bool eval_raw(chasm_machine *m, cm_test *t, int64_t now)
     switch (t->kind) {
     case CR_ELAPSED: {
         int64_t since = t->state ? t->state->entered_us : m->start_us;
-        return cmp((double)(now - since) * 1e-6, t->op, t->value);
+        return cmp((double)cm_span_us(now, since) * 1e-6, t->op, t->value);
     }
-    case CR_AGE:
-        if (v->updated_us == CM_NEVER) return cmp(INFINITY, t->op, t->value);
-        return cmp((double)(now - v->updated_us) * 1e-6, t->op, t->value);
+    case CR_AGE: return cmp(cm_age_s(m, v->updated_us, now), t->op, t->value);
     case CR_HANDLER: {
         cm_ext x;
         const cm_state *s = t->state ? t->state : m->path[0];
@@ -236,7 +243,7 @@ static void eval_test(chasm_machine *m, cm_test *t, int64_t now)
 {
     if (eval_raw(m, t, now)) {
         if (t->true_since == CM_NEVER) t->true_since = now;
-        t->value_now = now - t->true_since >= t->hold_us;
+        t->value_now = cm_span_us(now, t->true_since) >= t->hold_us;
     } else {
         t->true_since = CM_NEVER;
         t->value_now = false;
@@ -255,7 +262,7 @@ static bool eval_cond(const chasm_machine *m, const cm_trans *t, int64_t now)
         case CO_FAILED: st[sp++] = m->states[c->arg].failed; break;
         case CO_ELAPSED: {
             int64_t since = c->arg < 0 ? m->start_us : m->states[c->arg].entered_us;
-            st[sp++] = cmp((double)(now - since), (cm_cmp)c->cmp, (double)c->t_us);
+            st[sp++] = cmp((double)cm_span_us(now, since), (cm_cmp)c->cmp, (double)c->t_us);
             break;
         }
         case CO_TRUE: st[sp++] = true; break;
@@ -294,12 +301,12 @@ chasm_run_state chasm_step(chasm_machine *m, int64_t now)
             case TM_EVERY:
                 if (now >= a->next_due) {
                     run_action(m, a, now);
-                    a->next_due += a->period_us;
-                    if (a->next_due <= now) a->next_due = now + a->period_us; /* late: skip, never burst */
+                    a->next_due = cm_add_us(a->next_due, a->period_us);
+                    if (a->next_due <= now) a->next_due = cm_add_us(now, a->period_us); /* late: skip, never burst */
                 }
                 break;
             case TM_AFTER:
-                if (!a->fired && now - s->entered_us >= a->period_us) {
+                if (!a->fired && cm_span_us(now, s->entered_us) >= a->period_us) {
                     a->fired = true;
                     run_action(m, a, now);
                 }

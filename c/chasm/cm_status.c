@@ -8,7 +8,7 @@ void chasm_status_get(const chasm_machine *m, int64_t now, chasm_status *o)
     o->path_len = m->path_len;
     for (int d = 0; d < m->path_len; d++) {
         o->active_path[d] = m->path[d]->name;
-        o->time_in_state_s[d] = (double)(now - m->path[d]->entered_us) * 1e-6;
+        o->time_in_state_s[d] = (double)cm_span_us(now, m->path[d]->entered_us) * 1e-6;
     }
     o->leaf_path = m->path_len ? m->path[m->path_len - 1]->path : "";
     o->last_transition_us = m->last_us;

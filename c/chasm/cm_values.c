@@ -100,6 +100,11 @@ int cm_value(cm_cc *cc, const cm_aval *v0, chasm_type type, const cm_unit *unit,
             cm_error(cc->d, at, "%s must be a string in quotes, not %s%s", what, written(v, b, sizeof b), via);
             return -1;
         }
+        if (strlen(v->str) > CHASM_STRING_MAX) {
+            cm_error(cc->d, at, "%s is a string of %zu characters: strings hold at most %d (CHASM_STRING_MAX)%s", what,
+                     strlen(v->str), CHASM_STRING_MAX, via);
+            return -1;
+        }
         out->s = v->str;
         return 0;
     }
@@ -227,7 +232,7 @@ void cm_compile_vars(cm_cc *cc)
             continue;
         }
         if (v->type == CHASM_STRING) {
-            v->s_cap = 256;
+            v->s_cap = CHASM_STRING_MAX + 1;
             v->s = cm_alloc(cc->a, v->s_cap);
         }
         if (a->has_init) {

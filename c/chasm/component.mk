@@ -36,20 +36,23 @@ $(foreach v,$(VARIANTS),$(eval $(call chasm_rules,$(v))))
 C_PROGRAMS += bin/chasm bin/chasm_unit_tests bin/chasm_fuzz bin/chasm_fuzz_plugin bin/chasm_bench $(CHASM_TEST_PLUGINS)
 C_LIBS += lib/libchasm.a
 
-# Long fuzz run of the Loader. With clang, a real libFuzzer binary; otherwise
-# the self-written mutation driver (built with ASan+UBSan). FUZZ_SECONDS=600.
+# Long fuzz runs: the Loader here, the binding-file parser in
+# c/managers/component.mk (`make fuzz` runs both, FUZZ_SECONDS each). With
+# clang, real libFuzzer binaries; otherwise the self-written mutation driver
+# (built with ASan+UBSan). FUZZ_SECONDS=600.
 FUZZ_SECONDS ?= 600
 CLANG := $(shell command -v clang 2>/dev/null)
-.PHONY: fuzz
+.PHONY: fuzz fuzz-loader
+fuzz: fuzz-loader
 ifneq ($(CLANG),)
 $(BUILD)/fuzz/chasm_libfuzzer: $(CHASM_LIB_SRCS) c/chasm/fuzz/fuzz_loader.c
 	@mkdir -p $(@D)
 	$(CLANG) -std=c11 -D_POSIX_C_SOURCE=200809L -g -O1 -Ic -fsanitize=fuzzer,address,undefined $^ -o $@ -lm -ldl
-fuzz: $(BUILD)/fuzz/chasm_libfuzzer
+fuzz-loader: $(BUILD)/fuzz/chasm_libfuzzer
 	@mkdir -p $(BUILD)/fuzz/corpus && cp tests/chasm/fuzz_corpus/* $(BUILD)/fuzz/corpus/
 	$< -max_total_time=$(FUZZ_SECONDS) -dict=c/chasm/fuzz/chasm.dict $(BUILD)/fuzz/corpus
 else
-fuzz: $(BUILD)/san/bin/chasm_fuzz
+fuzz-loader: $(BUILD)/san/bin/chasm_fuzz
 	$< --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/chasm/fuzz_corpus
 endif
 

@@ -7,9 +7,24 @@
 #include <lcm/lcm.h>
 
 #include "chasm/chasm.h"
+#include "common/time_policy.h"
 #include "managers/mgr_bindings.h"
+#include "managers/mgr_errors.h"
 #include "managers/mgr_lockstep.h"
 #include "managers/mgr_status.h"
+
+/* Sizes the manager accepts; each has a refusal with a reason (docs/managers.md
+ * and docs/channels.md say them). */
+#define MGR_MAX_PLAN_BYTES (256 * 1024)     /* LOAD_PLAN plan_text, documented maximum */
+#define MGR_MIN_PLAN_BYTES (32 * 1024)      /* the least a too-small receive buffer falls back to */
+#define MGR_MAX_PLAN_NAME 255               /* LOAD_PLAN plan_name, characters */
+#define MGR_MAX_REASON 1024                 /* a command's reason, characters */
+#define MGR_MAX_VEHICLE 48                  /* --vehicle: <VEHICLE>.PLUGIN_UPLOAD fits LCM's 63 */
+#define MGR_ACK_MAX_ERRORS 5                /* errors quoted in a rejected LOAD_PLAN's ack */
+#define MGR_ACK_MAX_CHARS 2000              /* an ack's message, characters */
+#define MGR_MAX_PARAMS 64                   /* -D overrides */
+#define MGR_MAX_RATE_HZ 1000                /* --rate */
+#define MGR_MAX_PLUGIN_PATH 16              /* --plugin-path folders (with --plugin-dir) */
 
 typedef struct {
     const char *plan_path, *bind_path, *vehicle, *name, *url;
@@ -19,10 +34,12 @@ typedef struct {
     int wait_start;             /* start only on a CMD_START */
     const char *plugin_dir;     /* where uploads are written; also searched first */
     const char *allowlist;      /* file of "sha256hex [name]" lines; NULL: refuse uploads */
-    const char *plugin_path[16];
+    const char *plugin_path[MGR_MAX_PLUGIN_PATH];
     size_t n_plugin_path;
-    const char *param_names[64], *param_values[64];
+    const char *param_names[MGR_MAX_PARAMS], *param_values[MGR_MAX_PARAMS];
     size_t n_params;
+    int64_t future_tol_us;      /* --future-tolerance S: data stamped further ahead is dropped */
+    int64_t max_clock_jump_us;  /* --max-clock-jump S */
 } manager_options;
 
 typedef struct {
@@ -34,6 +51,10 @@ typedef struct {
     mgr_status_ctx status;
     int64_t now_us;             /* mission time of the latest clock reading */
     int have_time;
+    tp_clock clock;             /* SIM.CLOCK or the system clock, under the time rule */
+    tp_counts clock_drops;      /* clock readings refused, per reason */
+    uint64_t commands_refused;
+    size_t max_plan_bytes;      /* MGR_MAX_PLAN_BYTES, or less if the receive buffer cannot hold it */
     int started;
     volatile int stop;
     rx_sub_t *cmd_sub, *upload_sub, *clock_sub;
@@ -41,11 +62,15 @@ typedef struct {
 } manager_t;
 
 int manager_parse_args(manager_options *o, int argc, char **argv);
-/* Load plan + bindings into a fresh machine; on errors prints them and returns NULL. */
-chasm_machine *manager_load(manager_t *mg, const char *name, const char *text, mgr_bindings *out_b);
+/* Load plan + bindings into a fresh machine; on errors prints them, returns
+ * NULL and, if errs is not NULL, leaves them there (for an ack). */
+chasm_machine *manager_load(manager_t *mg, const char *name, const char *text, mgr_bindings *out_b, mgr_errors *errs);
 /* Mission command and plugin-upload channels. */
 int mgr_commands_subscribe(manager_t *mg);
 void mgr_commands_unsubscribe(manager_t *mg);
 uint64_t mgr_commands_decode_errors(const manager_t *mg);
+/* vehicle and utime of a command or upload: 1 when they are this manager's
+ * and valid; otherwise refused with an ack and counted. */
+int mgr_command_header_ok(manager_t *mg, int64_t utime, const char *vehicle, int32_t seq);
 
 #endif

@@ -1,7 +1,7 @@
 /* chasm-manager: run one CHASM mission plan as a manager process.
  *
  *   chasm-manager --plan navigator.chasm --bind vehicle.bind --vehicle AUV1 --name NAVIGATOR
- *                 [--rate 10] [--clock sim|system] [--url URL] [--exit-on-end] [--wait-start]
+ *                 [--rate 10] [--clock sim|system] [--lcm-url URL] [--exit-on-end] [--wait-start]
  *                 [--plugin-path DIR]... [--plugin-dir DIR --allowlist FILE] [-D name=value]...
  *
  * Each cycle (rate_hz on the mission clock): chasm_step(), then the plan's
@@ -21,6 +21,7 @@
 
 #include "auv/auv_sim_clock_t.h"
 #include "managers/manager.h"
+#include "managers/mgr_lcm.h"
 
 static manager_t *g_mg;
 
@@ -31,85 +32,46 @@ static void on_signal(int sig)
         g_mg->stop = 1;
 }
 
-static void usage(void)
-{
-    fprintf(stderr, "usage: chasm-manager --plan FILE --bind FILE --vehicle ID --name NAME [--rate HZ]\n"
-                    "       [--clock sim|system] [--url URL] [--exit-on-end] [--wait-start]\n"
-                    "       [--plugin-path DIR]... [--plugin-dir DIR --allowlist FILE] [-D name=value]...\n");
-}
-
-int manager_parse_args(manager_options *o, int argc, char **argv)
-{
-    memset(o, 0, sizeof *o);
-    o->rate_hz = 10.0;
-    o->sim_clock = 1;
-    o->url = "udpm://239.255.76.67:7667?ttl=0";
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
-        if (!strcmp(a, "--plan") && v) o->plan_path = v;
-        else if (!strcmp(a, "--bind") && v) o->bind_path = v;
-        else if (!strcmp(a, "--vehicle") && v) o->vehicle = v;
-        else if (!strcmp(a, "--name") && v) o->name = v;
-        else if (!strcmp(a, "--url") && v) o->url = v;
-        else if (!strcmp(a, "--rate") && v) o->rate_hz = atof(v);
-        else if (!strcmp(a, "--clock") && v && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
-        else if (!strcmp(a, "--plugin-dir") && v) o->plugin_dir = v;
-        else if (!strcmp(a, "--allowlist") && v) o->allowlist = v;
-        else if (!strcmp(a, "--plugin-path") && v && o->n_plugin_path < 15) o->plugin_path[o->n_plugin_path++] = v;
-        else if (!strcmp(a, "-D") && v && strchr(v, '=') && o->n_params < 64) {
-            /* -D name=value: split in place (argv is ours). */
-            char *eq = strchr(argv[i + 1], '=');
-            *eq = '\0';
-            o->param_names[o->n_params] = argv[i + 1];
-            o->param_values[o->n_params++] = eq + 1;
-        } else {
-            takes = 0;
-            if (!strcmp(a, "--exit-on-end")) o->exit_on_end = 1;
-            else if (!strcmp(a, "--wait-start")) o->wait_start = 1;
-            else {
-                fprintf(stderr, "chasm-manager: bad or incomplete option '%s'\n", a);
-                return -1;
-            }
-        }
-        i += takes;
-    }
-    if (!o->plan_path || !o->bind_path || !o->vehicle || !o->name || !(o->rate_hz > 0)) {
-        usage();
-        return -1;
-    }
-    if (o->plugin_dir && o->n_plugin_path < 16) {
-        /* Uploaded plugins take precedence over installed ones. */
-        memmove(o->plugin_path + 1, o->plugin_path, o->n_plugin_path * sizeof o->plugin_path[0]);
-        o->plugin_path[0] = o->plugin_dir;
-        o->n_plugin_path++;
-    }
-    return 0;
-}
-
 static void log_line(void *user, int64_t now_us, const char *state, const char *message)
 {
     manager_t *mg = user;
     fprintf(stderr, "%s %.3f %s: %s\n", mg->opt.name, (double)now_us / 1e6, state ? state : "", message);
 }
 
-chasm_machine *manager_load(manager_t *mg, const char *name, const char *text, mgr_bindings *out_b)
+chasm_machine *manager_load(manager_t *mg, const char *name, const char *text, mgr_bindings *out_b, mgr_errors *out)
 {
     chasm_errors *errs = NULL;
     chasm_machine *m = text ? chasm_load_string(name, text, strlen(text), &mg->chasm_opt, &errs)
                             : chasm_load_file(name, &mg->chasm_opt, &errs);
     if (!m) {
         for (size_t i = 0; i < chasm_errors_count(errs); i++)
-            fprintf(stderr, "%s\n", chasm_errors_get(errs, i));
+            mgr_errors_add(out, "%s", chasm_errors_get(errs, i));
         chasm_errors_free(errs);
         return NULL;
     }
-    if (mgr_bindings_load(out_b, mg->opt.bind_path, mg->opt.vehicle, m) != 0) {
+    if (mgr_bindings_load(out_b, mg->opt.bind_path, mg->opt.vehicle, m, out) != 0) {
         mgr_bindings_free(out_b, mg->lcm);
         chasm_free(m);
         return NULL;
     }
+    /* Inputs are judged against the manager's clock (time rule). */
+    out_b->clock = &mg->clock;
+    out_b->future_tol_us = mg->opt.future_tol_us;
+    out_b->who = mg->opt.name;
     return m;
+}
+
+/* Offer a clock reading to the time rule; 1 when accepted. */
+static int clock_reading(manager_t *mg, int64_t utime, const char *source)
+{
+    tp_reason why = tp_clock_offer(&mg->clock, utime);
+    if (why != TP_OK) {
+        tp_count(&mg->clock_drops, why, mg->opt.name, source, utime);
+        return 0;
+    }
+    mg->now_us = mg->clock.now;
+    mg->have_time = 1;
+    return 1;
 }
 
 static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user)
@@ -118,10 +80,10 @@ static void on_clock(const char *channel, const void *msg, int64_t recv_utime, v
     (void)recv_utime;
     manager_t *mg = user;
     const auv_sim_clock_t *c = msg;
-    /* Global time never runs backwards for the plan, whatever the network does. */
-    if (!mg->have_time || c->utime > mg->now_us)
-        mg->now_us = c->utime;
-    mg->have_time = 1;
+    /* Global time never runs backwards for the plan and never leaps on one
+     * message, whatever the network does (time rule, docs/channels.md). */
+    if (!clock_reading(mg, c->utime, "SIM.CLOCK"))
+        return;
     mgr_lockstep_on_clock(&mg->lockstep, mg->lcm, c);
 }
 
@@ -139,9 +101,28 @@ static double cpu_us(void)
     return (double)ts.tv_sec * 1e6 + (double)ts.tv_nsec / 1e3;
 }
 
-static int64_t decode_errors(const manager_t *mg)
+static mgr_drop_counts drop_counts(const manager_t *mg)
 {
-    return (int64_t)(mgr_bindings_decode_errors(&mg->b) + mgr_commands_decode_errors(mg));
+    const tp_counts *in = &mg->b.time_drops, *ck = &mg->clock_drops;
+    mgr_drop_counts d = {
+        .decode_errors = (int64_t)(mgr_bindings_decode_errors(&mg->b) + mgr_commands_decode_errors(mg) +
+                                   (mg->clock_sub ? rx_decode_errors(mg->clock_sub) : 0)),
+        .dropped_invalid_time = (int64_t)in->n[TP_INVALID],
+        .dropped_future = (int64_t)in->n[TP_FUTURE],
+        .dropped_out_of_order = (int64_t)in->n[TP_OUT_OF_ORDER],
+        .dropped_out_of_range = (int64_t)mg->b.range_drops,
+        .clock_invalid = (int64_t)ck->n[TP_INVALID],
+        .clock_backwards = (int64_t)ck->n[TP_BACKWARDS],
+        .clock_jumps = (int64_t)ck->n[TP_JUMP],
+        .commands_refused = (int64_t)mg->commands_refused,
+    };
+    return d;
+}
+
+static void publish_status(manager_t *mg, double cost)
+{
+    mgr_drop_counts d = drop_counts(mg);
+    mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us, &d, cost);
 }
 
 static int run(manager_t *mg)
@@ -154,10 +135,11 @@ static int run(manager_t *mg)
             mgr_lockstep_poll(&mg->lockstep, mg->lcm);
         int64_t wait_ms = 20;
         if (!mg->opt.sim_clock) {
-            mg->now_us = system_now_us();
-            mg->have_time = 1;
-            if (next_cycle > mg->now_us)
+            clock_reading(mg, system_now_us(), "system clock");
+            if (mg->have_time && next_cycle > mg->now_us)
                 wait_ms = (next_cycle - mg->now_us + 999) / 1000; /* round up: never spin */
+            if (wait_ms > 1000)
+                wait_ms = 1000;
         }
         /* A signal interrupts the wait: that is how a stop arrives. */
         if (lcm_handle_timeout(mg->lcm, (int)(wait_ms > 0 ? wait_ms : 0)) < 0 && !mg->stop) {
@@ -167,13 +149,15 @@ static int run(manager_t *mg)
         if (mg->stop)
             break;
         if (!mg->opt.sim_clock)
-            mg->now_us = system_now_us();
+            clock_reading(mg, system_now_us(), "system clock");
+        if (mg->have_time)
+            mgr_bindings_recheck(&mg->b, mg->now_us);
         if (!mg->have_time || mg->opt.wait_start || !mgr_lockstep_may_cycle(&mg->lockstep))
             continue;
         if (!mg->started && !mgr_bindings_inputs_ready(&mg->b)) {
             if (mg->now_us >= next_cycle) { /* say so at the cycle rate: lcm-spy shows LOADING */
-                mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us, decode_errors(mg), 0);
-                next_cycle = mg->now_us + period_us;
+                publish_status(mg, 0);
+                next_cycle = tp_sat_add(mg->now_us, period_us);
             }
             continue;
         }
@@ -188,11 +172,12 @@ static int run(manager_t *mg)
         rs = chasm_step(mg->m, mg->now_us);
         double cost = cpu_us() - t0;
         mgr_bindings_publish(&mg->b, mg->lcm, mg->now_us);
-        mgr_status_publish(&mg->status, mg->lcm, mg->m, mg->now_us, decode_errors(mg), cost);
-        /* Skip missed cycles instead of running a burst after a stall. */
-        next_cycle += period_us;
+        publish_status(mg, cost);
+        /* Skip missed cycles instead of running a burst after a stall; the
+         * clock is within 0..TP_UTIME_MAX, and the sums saturate anyway. */
+        next_cycle = tp_sat_add(next_cycle, period_us);
         if (next_cycle <= mg->now_us)
-            next_cycle = mg->now_us + period_us;
+            next_cycle = tp_sat_add(mg->now_us, period_us);
         if (mg->opt.exit_on_end && rs >= CHASM_RUN_DONE)
             break;
     }
@@ -205,25 +190,33 @@ static int run(manager_t *mg)
 int main(int argc, char **argv)
 {
     static manager_t mg;
-    if (manager_parse_args(&mg.opt, argc, argv) != 0)
-        return 2;
+    int pa = manager_parse_args(&mg.opt, argc, argv);
+    if (pa != 0)
+        return pa > 0 ? 0 : 2;
     mg.chasm_opt.plugin_path = mg.opt.plugin_path;
     mg.chasm_opt.n_plugin_path = mg.opt.n_plugin_path;
     mg.chasm_opt.param_names = mg.opt.param_names;
     mg.chasm_opt.param_values = mg.opt.param_values;
     mg.chasm_opt.n_params = mg.opt.n_params;
+    mg.chasm_opt.future_tolerance_us = mg.opt.future_tol_us > 0 ? mg.opt.future_tol_us : 1; /* age backstop */
     mg.chasm_opt.log = log_line;
     mg.chasm_opt.log_user = &mg;
-    mg.lcm = lcm_create(mg.opt.url);
-    if (!mg.lcm) {
-        fprintf(stderr, "chasm-manager: cannot open LCM at %s (no multicast route? see README)\n", mg.opt.url);
+    mg.lcm = mgr_lcm_open(mg.opt.url, mg.opt.name, &mg.max_plan_bytes);
+    if (!mg.lcm)
         return 2;
-    }
-    mg.m = manager_load(&mg, mg.opt.plan_path, NULL, &mg.b);
+    tp_clock_init(&mg.clock, mg.opt.max_clock_jump_us);
+    mgr_errors errs = {0};
+    mg.m = manager_load(&mg, mg.opt.plan_path, NULL, &mg.b, &errs);
     if (!mg.m) {
+        /* a bad -D is a usage error (2), like a bad option */
+        int usage_error = 0;
+        for (size_t i = 0; i < errs.n; i++)
+            usage_error |= !strncmp(errs.lines[i], "<-D ", 4);
+        mgr_errors_free(&errs);
         lcm_destroy(mg.lcm);
-        return 1;
+        return usage_error ? 2 : 1;
     }
+    mgr_errors_free(&errs);
     mgr_status_init(&mg.status, mg.opt.vehicle, mg.opt.name, mg.opt.plan_path);
     mgr_lockstep_init(&mg.lockstep, mg.opt.vehicle, mg.opt.name);
     int rc = 2;

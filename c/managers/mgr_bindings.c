@@ -5,44 +5,64 @@
 #include <stdlib.h>
 #include <string.h>
 
-static int expand_vehicle(const char *in, const char *vehicle, char *out, size_t outlen)
+/* Does every bound value of this message fit its variable? An integer
+ * outside int64 (or NaN) and a string longer than a string variable holds
+ * would otherwise be cut or be undefined behaviour. */
+static int values_fit(const mgr_message_binding *mb, const void *msg)
 {
-    size_t o = 0;
-    for (const char *p = in; *p; p++) {
-        if (!strncmp(p, "${VEHICLE}", 10)) {
-            size_t n = strlen(vehicle);
-            if (o + n >= outlen)
-                return -1;
-            memcpy(out + o, vehicle, n);
-            o += n;
-            p += 9;
-        } else {
-            if (o + 1 >= outlen)
-                return -1;
-            out[o++] = *p;
+    for (int i = 0; i < mb->n_vars; i++) {
+        const mgr_var_binding *v = &mb->vars[i];
+        int ok = 1;
+        if (v->var_type == CHASM_INT)
+            (void)tp_double_to_i64(field_ref_get_double(&v->field, msg), &ok);
+        else if (v->var_type == CHASM_STRING) {
+            const char *s = field_ref_get_string(&v->field, msg);
+            ok = !s || strlen(s) <= CHASM_STRING_MAX;
         }
+        if (!ok)
+            return 0;
     }
-    out[o] = '\0';
-    return 0;
+    return 1;
 }
 
-/* Copy a decoded message's bound fields into the blackboard. */
+/* Copy a decoded message's bound fields into the blackboard, once it has
+ * passed the time rule and every value fits. */
 static void on_input(const char *channel, const void *msg, int64_t recv_utime, void *user)
 {
-    (void)channel;
     (void)recv_utime;
     mgr_message_binding *mb = user;
     mgr_bindings *b = mb->owner;
-    /* The message's own time of validity: plans compute message age from it. */
-    int64_t utime = mb->has_utime ? (int64_t)field_ref_get_double(&mb->utime, msg) : 0;
+    const tp_clock *clk = b->clock;
+    /* The message's own time of validity: plans compute message age from it.
+     * A message type without utime is valid when it arrives. */
+    int64_t utime = clk && clk->have ? clk->now : 0;
+    if (mb->has_utime) {
+        int ok;
+        utime = tp_double_to_i64(field_ref_get_double(&mb->utime, msg), &ok);
+        if (!ok)
+            utime = -1; /* not representable: invalid */
+    }
+    tp_reason why = tp_input_offer(&mb->order, utime, clk && clk->have, clk ? clk->now : 0, b->future_tol_us);
+    if (why != TP_OK) {
+        tp_count(&b->time_drops, why, b->who ? b->who : "manager", channel, utime);
+        return;
+    }
+    if (!values_fit(mb, msg)) {
+        if (b->range_drops++ == 0)
+            fprintf(stderr, "%s: %s: dropped a message with a value that does not fit its plan variable "
+                            "(integer out of range or string over %d characters); further drops of this kind are only counted\n",
+                    b->who ? b->who : "manager", channel, CHASM_STRING_MAX);
+        return;
+    }
     for (int i = 0; i < mb->n_vars; i++) {
         const mgr_var_binding *v = &mb->vars[i];
+        int ok;
         switch (v->var_type) {
         case CHASM_DOUBLE:
             chasm_var_set_double(b->machine, v->var, field_ref_get_double(&v->field, msg), utime);
             break;
         case CHASM_INT:
-            chasm_var_set_int(b->machine, v->var, (int64_t)field_ref_get_double(&v->field, msg), utime);
+            chasm_var_set_int(b->machine, v->var, tp_double_to_i64(field_ref_get_double(&v->field, msg), &ok), utime);
             break;
         case CHASM_BOOL:
             chasm_var_set_bool(b->machine, v->var, field_ref_get_double(&v->field, msg) != 0.0, utime);
@@ -57,74 +77,16 @@ static void on_input(const char *channel, const void *msg, int64_t recv_utime, v
     b->inputs_applied++;
 }
 
-static int parse_file(mgr_bindings *b, const char *path, const char *vehicle)
+void mgr_bindings_recheck(mgr_bindings *b, int64_t now)
 {
-    FILE *f = fopen(path, "r");
-    if (!f) {
-        fprintf(stderr, "%s: cannot open binding file\n", path);
-        return 1;
+    for (int i = 0; i < b->n_msgs; i++) {
+        mgr_message_binding *mb = &b->msgs[i];
+        if (!mb->is_output && tp_input_recheck(&mb->order, now, b->future_tol_us))
+            tp_count(&b->time_drops, TP_FUTURE, b->who ? b->who : "manager", mb->channel, mb->order.newest);
     }
-    char line[512];
-    int lineno = 0, errors = 0;
-    while (fgets(line, sizeof line, f)) {
-        lineno++;
-        char *hash = strchr(line, '#');
-        if (hash)
-            *hash = '\0';
-        char dir[32], prefix[64], channel[128], type[96], flag[16], extra[8];
-        int n = sscanf(line, "%31s %63s %127s %95s %15s %7s", dir, prefix, channel, type, flag, extra);
-        if (n <= 0)
-            continue;
-        int col = (int)(strspn(line, " \t") + 1);
-        if (n < 4 || n > 5 || (strcmp(dir, "input") && strcmp(dir, "output"))) {
-            fprintf(stderr, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE [optional]`\n", path, lineno, col);
-            errors++;
-            continue;
-        }
-        /* `optional`: an input that may be absent when the plan starts (GPS
-         * only exists at the surface); the plan sees its variables as never
-         * written until the first message. */
-        if (n == 5 && (strcmp(flag, "optional") || strcmp(dir, "input"))) {
-            fprintf(stderr, "%s:%d:%d: %s\n", path, lineno, (int)(strstr(line, flag) - line) + 1,
-                    strcmp(flag, "optional") ? "the only flag after the type is `optional`"
-                                             : "only an input can be optional");
-            errors++;
-            continue;
-        }
-        const auv_type_entry_t *t = auv_type_find(type);
-        if (!t) {
-            fprintf(stderr, "%s:%d:%d: unknown message type '%s'\n", path, lineno,
-                    (int)(strstr(line, type) - line) + 1, type);
-            errors++;
-            continue;
-        }
-        mgr_message_binding *grown = realloc(b->msgs, (size_t)(b->n_msgs + 1) * sizeof *grown);
-        if (!grown)
-            break;
-        b->msgs = grown;
-        mgr_message_binding *mb = &b->msgs[b->n_msgs++];
-        memset(mb, 0, sizeof *mb);
-        mb->is_output = !strcmp(dir, "output");
-        mb->optional = n == 5;
-        snprintf(mb->prefix, sizeof mb->prefix, "%s", prefix);
-        if (expand_vehicle(channel, vehicle, mb->channel, sizeof mb->channel) != 0 || strlen(mb->channel) > 62) {
-            fprintf(stderr, "%s:%d:%d: channel name too long (LCM allows 63 characters)\n", path, lineno, col);
-            errors++;
-        }
-        mb->type = t;
-        mb->line = lineno;
-        for (int k = 0; k < b->n_msgs - 1; k++)
-            if (!strcmp(b->msgs[k].prefix, prefix)) {
-                fprintf(stderr, "%s:%d:%d: prefix '%s' is already bound on line %d\n", path, lineno, col,
-                        prefix, b->msgs[k].line);
-                errors++;
-            }
-    }
-    fclose(f);
-    return errors;
 }
 
-static int bind_var(mgr_bindings *b, const char *path, int var)
+static int bind_var(mgr_bindings *b, const char *path, int var, mgr_errors *errs)
 {
     const char *name = chasm_var_name(b->machine, var);
     chasm_var_kind kind = chasm_var_kind_of(b->machine, var);
@@ -135,18 +97,18 @@ static int bind_var(mgr_bindings *b, const char *path, int var)
         if (!dot || strlen(mb->prefix) != plen || strncmp(mb->prefix, name, plen))
             continue;
         if (mb->is_output != (kind == CHASM_VAR_OUTPUT)) {
-            fprintf(stderr, "%s:%d:1: plan %s '%s' is bound as an %s\n", path, mb->line,
+            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", path, mb->line,
                     kind == CHASM_VAR_OUTPUT ? "output" : "input", name, mb->is_output ? "output" : "input");
             return 1;
         }
         mgr_var_binding vb = {var, chasm_var_type(b->machine, var), {0, 0}};
         char err[256];
         if (field_path_resolve(mb->type, dot + 1, &vb.field, err, sizeof err) != 0) {
-            fprintf(stderr, "%s:%d:1: plan variable '%s': %s\n", path, mb->line, name, err);
+            mgr_errors_add(errs, "%s:%d:1: plan variable '%s': %s", path, mb->line, name, err);
             return 1;
         }
         if ((vb.var_type == CHASM_STRING) != !field_ref_is_numeric(&vb.field)) {
-            fprintf(stderr, "%s:%d:1: plan variable '%s' is %s but the field is %s\n", path, mb->line, name,
+            mgr_errors_add(errs, "%s:%d:1: plan variable '%s' is %s but the field is %s", path, mb->line, name,
                     vb.var_type == CHASM_STRING ? "a string" : "a number",
                     vb.var_type == CHASM_STRING ? "a number" : "a string");
             return 1;
@@ -158,7 +120,7 @@ static int bind_var(mgr_bindings *b, const char *path, int var)
         mb->vars[mb->n_vars++] = vb;
         return 0;
     }
-    fprintf(stderr, "%s:1:1: plan %s '%s' has no binding (no `%s %.*s ...` line)\n", path,
+    mgr_errors_add(errs, "%s:1:1: plan %s '%s' has no binding (no `%s %.*s ...` line)", path,
             kind == CHASM_VAR_OUTPUT ? "output" : "input", name,
             kind == CHASM_VAR_OUTPUT ? "output" : "input", (int)plen, name);
     return 1;
@@ -183,15 +145,30 @@ static void prepare_output(mgr_bindings *b, mgr_message_binding *mb)
         *(const char **)((char *)mb->scratch + mb->vehicle.offset) = b->vehicle;
 }
 
-int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, chasm_machine *m)
+static int bind_all(mgr_bindings *b, const char *path, chasm_machine *m, mgr_errors *errs, int errors);
+
+int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, chasm_machine *m, mgr_errors *errs)
 {
     memset(b, 0, sizeof *b);
     b->machine = m;
     b->vehicle = vehicle;
-    int errors = parse_file(b, path, vehicle);
+    return bind_all(b, path, m, errs, mgr_bindings_parse_file(b, path, vehicle, errs));
+}
+
+int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
+                           chasm_machine *m, mgr_errors *errs)
+{
+    memset(b, 0, sizeof *b);
+    b->machine = m;
+    b->vehicle = vehicle;
+    return bind_all(b, path, m, errs, mgr_bindings_parse_text(b, path, text, len, vehicle, errs));
+}
+
+static int bind_all(mgr_bindings *b, const char *path, chasm_machine *m, mgr_errors *errs, int errors)
+{
     for (size_t v = 0; v < chasm_var_count(m); v++)
         if (chasm_var_kind_of(m, (int)v) != CHASM_VAR_LOCAL)
-            errors += bind_var(b, path, (int)v);
+            errors += bind_var(b, path, (int)v, errs);
     for (int i = 0; i < b->n_msgs; i++) {
         mgr_message_binding *mb = &b->msgs[i];
         char err[128];
@@ -254,8 +231,10 @@ uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
 
 int mgr_bindings_inputs_ready(const mgr_bindings *b)
 {
+    /* Delivered is not enough: a message dropped by the time rule or a range
+     * check has not filled the blackboard. */
     for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub && !b->msgs[i].optional && rx_stats(b->msgs[i].sub)->delivered == 0)
+        if (b->msgs[i].sub && !b->msgs[i].optional && !b->msgs[i].order.have)
             return 0;
     return 1;
 }
@@ -269,6 +248,7 @@ void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
         if (mb->is_output)
             free(mb->scratch);
         free(mb->vars);
+        free(mb->prefix);
     }
     free(b->msgs);
     memset(b, 0, sizeof *b);

@@ -16,6 +16,11 @@
 #include "chasm/chasm.h"
 #include "common/field_path.h"
 #include "common/lcm_rx.h"
+#include "common/time_policy.h"
+#include "managers/mgr_errors.h"
+
+#define MGR_MAX_CHANNEL 63                  /* LCM's channel name limit, characters */
+#define MGR_MAX_BIND_BYTES (1024 * 1024)    /* a binding file, bytes */
 
 typedef struct {
     int var;                /* blackboard id */
@@ -26,14 +31,15 @@ typedef struct {
 typedef struct {
     int is_output;
     int optional;           /* input the plan may start without (`optional`) */
-    char prefix[64];
-    char channel[128];
+    char *prefix;           /* any length: plan names have no limit */
+    char channel[MGR_MAX_CHANNEL + 1];
     const auv_type_entry_t *type;
     int line;               /* in the binding file, for messages */
     mgr_var_binding *vars;
     int n_vars;
     /* inputs */
     rx_sub_t *sub;
+    tp_input order;         /* newest accepted utime: time rule checks */
     struct mgr_bindings *owner;
     /* outputs: a struct filled each cycle */
     void *scratch;
@@ -47,12 +53,26 @@ typedef struct mgr_bindings {
     chasm_machine *machine; /* the machine inputs are copied into */
     const char *vehicle;
     uint64_t inputs_applied;
+    /* The receiver's clock inputs are judged against (docs/channels.md,
+     * "Time and timestamps"); set by the manager before subscribing. */
+    const tp_clock *clock;
+    int64_t future_tol_us;
+    const char *who;        /* manager name, for the first-drop log lines */
+    tp_counts time_drops;   /* per tp_reason */
+    uint64_t range_drops;   /* a value that does not fit its variable */
 } mgr_bindings;
 
 /* Parse the binding file (with ${VEHICLE} expanded) and bind every input and
  * output variable of the plan. Errors go to stderr as file:line:col: message;
  * returns the number of errors (0 = ready). */
-int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, chasm_machine *m);
+int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, chasm_machine *m, mgr_errors *errs);
+/* mgr_bindings_load from text (the fuzzer uses it). */
+int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
+                           chasm_machine *m, mgr_errors *errs);
+/* Only the file's syntax, nothing bound (mgr_bind_parse.c). Return the number of errors. */
+int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehicle, mgr_errors *errs);
+int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
+                            mgr_errors *errs);
 /* Subscribe to every input channel; messages then update the blackboard. */
 int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm);
 /* Publish every output message with the current output variables. */
@@ -61,6 +81,10 @@ uint64_t mgr_bindings_decode_errors(const mgr_bindings *b);
 /* True once every bound input channel not marked `optional` has delivered a
  * message: a plan does not start on a blackboard it has never seen filled. */
 int mgr_bindings_inputs_ready(const mgr_bindings *b);
+/* Judge what inputs held before the clock existed: a value from the future
+ * of `now` is counted as such and its input accepts newer messages again
+ * (libchasm already treats it as stale). Cheap: call every cycle. */
+void mgr_bindings_recheck(mgr_bindings *b, int64_t now);
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm);
 
 #endif

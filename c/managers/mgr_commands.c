@@ -3,6 +3,7 @@
  * hot-loaded only if its SHA-256 matches both its own digest field and an
  * entry of the allowlist: plugins are untrusted input. */
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,14 +32,94 @@ static int for_me(const manager_t *mg, const char *manager)
     return !manager || !*manager || !strcmp(manager, mg->opt.name);
 }
 
+static void refuse(manager_t *mg, int32_t seq, const char *fmt, ...) __attribute__((format(printf, 3, 4)));
+static void refuse(manager_t *mg, int32_t seq, const char *fmt, ...)
+{
+    char text[MGR_ACK_MAX_CHARS + 1];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    mg->commands_refused++;
+    ack(mg, seq, AUV_MISSION_ACK_T_RESULT_REJECTED, text);
+}
+
+/* Printable ASCII only, at most max characters (NULL counts as ""). */
+static int plain_text(const char *s, size_t max)
+{
+    size_t n = 0;
+    for (; s && s[n]; n++)
+        if ((unsigned char)s[n] < 0x20 || (unsigned char)s[n] >= 0x7f)
+            return 0;
+    return n <= max;
+}
+
+/* A field for the ack: the first 40 characters, never control bytes. */
+static const char *shown(const char *s, char *buf, size_t cap)
+{
+    size_t o = 0;
+    for (size_t i = 0; s && s[i] && o + 4 < cap && i < 40; i++)
+        buf[o++] = (unsigned char)s[i] < 0x20 || (unsigned char)s[i] >= 0x7f ? '?' : s[i];
+    if (s && strlen(s) > 40 && o + 4 < cap) {
+        memcpy(buf + o, "...", 3);
+        o += 3;
+    }
+    buf[o] = '\0';
+    return buf;
+}
+
+/* The fields every command and upload share: a message for another vehicle
+ * or with a bad stamp is refused (and acknowledged as such), never executed.
+ * Returns 1 when the message may proceed. */
+int mgr_command_header_ok(manager_t *mg, int64_t utime, const char *vehicle, int32_t seq)
+{
+    char b[64];
+    if (!vehicle || strcmp(vehicle, mg->opt.vehicle)) {
+        refuse(mg, seq, "refused: addressed to vehicle '%s', this is %s", shown(vehicle, b, sizeof b), mg->opt.vehicle);
+        return 0;
+    }
+    if (!tp_utime_valid(utime)) {
+        refuse(mg, seq, "refused: utime %lld is outside 0..%lld us", (long long)utime, (long long)TP_UTIME_MAX);
+        return 0;
+    }
+    return 1;
+}
+
+/* Field checks of a mission command; NULL when valid, else the reason. */
+static const char *command_fields_bad(const manager_t *mg, const auv_mission_command_t *c, char *why, size_t cap)
+{
+    int load = c->command == AUV_MISSION_COMMAND_T_CMD_LOAD_PLAN;
+    size_t text_len = c->plan_text ? strlen(c->plan_text) : 0;
+    if (c->command < AUV_MISSION_COMMAND_T_CMD_START || c->command > AUV_MISSION_COMMAND_T_CMD_STOP)
+        snprintf(why, cap, "unknown command %d (0..%d)", c->command, AUV_MISSION_COMMAND_T_CMD_STOP);
+    else if (!plain_text(c->reason, MGR_MAX_REASON))
+        snprintf(why, cap, "reason must be printable text of at most %d characters", MGR_MAX_REASON);
+    else if (!load && ((c->plan_name && *c->plan_name) || text_len))
+        snprintf(why, cap, "plan_name and plan_text are only for LOAD_PLAN");
+    else if (load && (!c->plan_name || !*c->plan_name || !plain_text(c->plan_name, MGR_MAX_PLAN_NAME)))
+        snprintf(why, cap, "LOAD_PLAN needs a plan_name of 1 to %d printable characters", MGR_MAX_PLAN_NAME);
+    else if (load && text_len == 0)
+        snprintf(why, cap, "LOAD_PLAN needs a plan_text");
+    else if (load && text_len > mg->max_plan_bytes)
+        snprintf(why, cap, "plan is %zu bytes, the maximum is %zu bytes", text_len, mg->max_plan_bytes);
+    else
+        return NULL;
+    return why;
+}
+
 static void load_plan(manager_t *mg, const auv_mission_command_t *c)
 {
     mgr_bindings nb;
-    chasm_machine *nm = manager_load(mg, c->plan_name, c->plan_text, &nb);
+    mgr_errors errs = {0};
+    chasm_machine *nm = manager_load(mg, c->plan_name, c->plan_text, &nb, &errs);
     if (!nm) {
-        ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_REJECTED, "plan rejected: see the manager's errors");
+        char text[MGR_ACK_MAX_CHARS + 1];
+        mgr_errors_summary(&errs, MGR_ACK_MAX_ERRORS, text, sizeof text);
+        mgr_errors_free(&errs);
+        refuse(mg, c->seq, "plan rejected, mission unchanged: %s", text);
         return;
     }
+    mgr_errors_free(&errs);
     /* Only now that the new plan is complete does the old one go. The
      * bindings subscribe once in their final place: handlers keep a pointer. */
     mgr_bindings_free(&mg->b, mg->lcm);
@@ -61,6 +142,13 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
     const auv_mission_command_t *c = msg;
     if (!for_me(mg, c->manager))
         return;
+    if (!mgr_command_header_ok(mg, c->utime, c->vehicle, c->seq))
+        return;
+    char why[200];
+    if (command_fields_bad(mg, c, why, sizeof why)) {
+        refuse(mg, c->seq, "refused: %s", why);
+        return;
+    }
     switch (c->command) {
     case AUV_MISSION_COMMAND_T_CMD_START:
         mg->opt.wait_start = 0;
@@ -82,8 +170,8 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
         mg->stop = 1;
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, "stopping");
         break;
-    default:
-        ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_REJECTED, "unknown command");
+    default: /* command_fields_bad() refused it already */
+        break;
     }
 }
 
@@ -94,6 +182,8 @@ static void on_upload(const char *channel, const void *msg, int64_t recv_utime, 
     manager_t *mg = user;
     const auv_plugin_upload_t *u = msg;
     if (!for_me(mg, u->manager))
+        return;
+    if (!mgr_command_header_ok(mg, u->utime, u->vehicle, u->seq))
         return;
     char text[2048];
     int8_t result = mgr_upload_plugin(mg, u, text, sizeof text);

@@ -1,9 +1,13 @@
 #include "managers/mgr_status.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "auv/auv_chasm_status_t.h"
+
+/* Counters are 64-bit here and 32-bit on the wire: saturate, never wrap. */
+static int32_t clamp32(int64_t v) { return v > INT32_MAX ? INT32_MAX : v < 0 ? 0 : (int32_t)v; }
 
 void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan)
 {
@@ -15,7 +19,7 @@ void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager
 }
 
 void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
-                        int64_t decode_errors, double cycle_cost_us)
+                        const mgr_drop_counts *drops, double cycle_cost_us)
 {
     chasm_status st;
     chasm_status_get(m, now_us, &st);
@@ -40,7 +44,15 @@ void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine
     for (int i = 0; i < st.n_tests; i++)
         values[i] = st.test_value[i];
     msg.test_value = values;
-    msg.decode_errors = (int32_t)decode_errors;
+    msg.decode_errors = clamp32(drops->decode_errors);
+    msg.dropped_invalid_time = clamp32(drops->dropped_invalid_time);
+    msg.dropped_future = clamp32(drops->dropped_future);
+    msg.dropped_out_of_order = clamp32(drops->dropped_out_of_order);
+    msg.dropped_out_of_range = clamp32(drops->dropped_out_of_range);
+    msg.clock_invalid = clamp32(drops->clock_invalid);
+    msg.clock_backwards = clamp32(drops->clock_backwards);
+    msg.clock_jumps = clamp32(drops->clock_jumps);
+    msg.commands_refused = clamp32(drops->commands_refused);
     msg.cycle_cost_us = cycle_cost_us;
     auv_chasm_status_t_publish(lcm, s->channel, &msg);
 }

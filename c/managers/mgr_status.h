@@ -13,8 +13,16 @@ typedef struct {
     char channel[64];           /* <VEHICLE>.CHASM.<MANAGER> */
 } mgr_status_ctx;
 
+/* What the manager counted and dropped, for the status message. */
+typedef struct {
+    int64_t decode_errors;
+    int64_t dropped_invalid_time, dropped_future, dropped_out_of_order, dropped_out_of_range;
+    int64_t clock_invalid, clock_backwards, clock_jumps;
+    int64_t commands_refused;
+} mgr_drop_counts;
+
 void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan);
 void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
-                        int64_t decode_errors, double cycle_cost_us);
+                        const mgr_drop_counts *drops, double cycle_cost_us);
 
 #endif

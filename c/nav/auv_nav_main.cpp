@@ -1,7 +1,7 @@
 // auv-nav: the vehicle's onboard navigation filter as a process.
 //
 //   auv-nav --config FILE.nav [--vehicle AUV1] [--channel AUV1.NAV] [--status-channel AUV1.NAV_STATUS]
-//           [--rate 20] [--clock sim|system] [--url URL] [--check]
+//           [--rate 20] [--clock sim|system] [--lcm-url URL] [--check]
 //
 // Reads <VEHICLE>.AHRS, .DEPTH, .DVL, .GPS and .LBL; publishes
 // nav_solution_t (source SOURCE_EKF) on --channel at --rate Hz on the mission
@@ -10,6 +10,7 @@
 // ticks), --clock system the host clock (a real vehicle). SIGINT/SIGTERM end
 // it cleanly (exit 0). Exit 1: bad configuration; 2: usage or LCM failure.
 // --check only reads the configuration: "ok" and exit 0, or its errors and 1.
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
@@ -27,10 +28,27 @@ volatile sig_atomic_t g_stop = 0;
 
 void on_signal(int) { g_stop = 1; }
 
-void usage()
+void usage(FILE *out = stderr)
 {
-    std::fprintf(stderr, "usage: auv-nav --config FILE.nav [--vehicle ID] [--channel CH] [--status-channel CH]\n"
-                         "               [--rate HZ] [--clock sim|system] [--url URL] [--check]\n");
+    std::fprintf(out, "usage: auv-nav --config FILE.nav [--vehicle ID] [--channel CH] [--status-channel CH]\n"
+                      "               [--rate HZ] [--clock sim|system] [--lcm-url URL] [--check]\n"
+                      "               [--future-tolerance S] [--max-clock-jump S]\n"
+                      "  --lcm-url URL         LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
+                      "                        --url is the old spelling of it\n"
+                      "  --future-tolerance S  drop sensor messages stamped more than S ahead of the clock (default 1)\n"
+                      "  --max-clock-jump S    a clock jump over S needs a second message to confirm it (default 60)\n");
+}
+
+bool seconds_arg(const char *opt, const char *v, double lo, double hi, int64_t &out_us)
+{
+    char *end = nullptr;
+    const double x = std::strtod(v, &end);
+    if (!end || end == v || *end || !(x >= lo && x <= hi)) {
+        std::fprintf(stderr, "auv-nav: %s wants seconds from %g to %g, not '%s'\n", opt, lo, hi, v);
+        return false;
+    }
+    out_us = static_cast<int64_t>(x * 1e6);
+    return true;
 }
 
 bool parse_args(int argc, char **argv, nav::NodeOptions &o, bool &check)
@@ -41,6 +59,10 @@ bool parse_args(int argc, char **argv, nav::NodeOptions &o, bool &check)
             check = true;
             continue;
         }
+        if (a == "--help" || a == "-h") {
+            usage(stdout);
+            std::exit(0);
+        }
         const char *v = i + 1 < argc ? argv[i + 1] : nullptr;
         if (!v) {
             std::fprintf(stderr, "auv-nav: bad or incomplete option '%s'\n", a.c_str());
@@ -50,7 +72,14 @@ bool parse_args(int argc, char **argv, nav::NodeOptions &o, bool &check)
         else if (a == "--vehicle") o.vehicle = v;
         else if (a == "--channel") o.channel = v;
         else if (a == "--status-channel") o.status_channel = v;
-        else if (a == "--url") o.url = v;
+        else if (a == "--lcm-url" || a == "--url") o.url = v;
+        else if (a == "--future-tolerance") {
+            if (!seconds_arg("--future-tolerance", v, 0, 3600, o.future_tol_us))
+                return false;
+        } else if (a == "--max-clock-jump") {
+            if (!seconds_arg("--max-clock-jump", v, 1e-3, 86400, o.max_clock_jump_us))
+                return false;
+        }
         else if (a == "--rate") {
             char *end = nullptr;
             o.rate_hz = std::strtod(v, &end);
@@ -89,7 +118,7 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
         if (!o.sim_clock) {
             node.set_now(system_now_us());
             if (next_cycle > node.now())
-                wait_ms = static_cast<int>((next_cycle - node.now()) / 1000);
+                wait_ms = static_cast<int>(std::min<int64_t>((next_cycle - node.now()) / 1000, 1000));
         }
         // A signal interrupts the wait: that is how a stop arrives.
         if (lcm_handle_timeout(lcm, wait_ms > 0 ? wait_ms : 0) < 0 && !g_stop) {
@@ -106,9 +135,9 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
             continue;
         node.publish_cycle();
         // Skip missed cycles instead of publishing a burst after a stall.
-        next_cycle += period_us;
+        next_cycle = tp_sat_add(next_cycle, period_us); // saturating: no stamp can overflow it
         if (next_cycle <= node.now())
-            next_cycle = node.now() + period_us;
+            next_cycle = tp_sat_add(node.now(), period_us);
     }
     return 0;
 }
@@ -133,9 +162,9 @@ int main(int argc, char **argv)
         std::printf("%s: ok (%d transponders)\n", opt.config_path.c_str(), cfg.n_transponders);
         return 0;
     }
-    lcm_t *lcm = lcm_create(opt.url.c_str());
+    lcm_t *lcm = lcm_create(opt.url.empty() ? nullptr : opt.url.c_str()); // NULL: liblcm honours LCM_DEFAULT_URL
     if (!lcm) {
-        std::fprintf(stderr, "auv-nav: cannot open LCM at %s (no multicast route? see README)\n", opt.url.c_str());
+        std::fprintf(stderr, "auv-nav: cannot open LCM at %s (no multicast route? see README)\n", opt.url.empty() ? "the default URL" : opt.url.c_str());
         return 2;
     }
     int rc = 2;

@@ -179,8 +179,10 @@ void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c
     out.attitude_cov_rad2[2][2] = s.P(PSI, PSI);
 }
 
+static int32_t clamp32(uint64_t v) { return static_cast<int32_t>(v > INT32_MAX ? INT32_MAX : v); }
+
 void fill_filter_status(const NavFilter &f, const NavStatus &st, char *vehicle, int64_t utime,
-                        auv_nav_filter_status_t &out)
+                        auv_nav_filter_status_t &out, const tp_counts *time_drops, const tp_counts *clock_drops)
 {
     std::memset(&out, 0, sizeof out);
     out.utime = utime;
@@ -195,6 +197,16 @@ void fill_filter_status(const NavFilter &f, const NavStatus &st, char *vehicle, 
         out.rejected[k] = static_cast<int32_t>(ss.rejected > INT32_MAX ? INT32_MAX : ss.rejected);
         out.last_nis[k] = s.last_nis[k];
         out.last_update_utime[k] = s.last_accept_utime[k];
+    }
+    if (time_drops) {
+        out.dropped_invalid_time = clamp32(time_drops->n[TP_INVALID]);
+        out.dropped_future = clamp32(time_drops->n[TP_FUTURE]);
+        out.dropped_out_of_order = clamp32(time_drops->n[TP_OUT_OF_ORDER]);
+    }
+    if (clock_drops) {
+        out.clock_invalid = clamp32(clock_drops->n[TP_INVALID]);
+        out.clock_backwards = clamp32(clock_drops->n[TP_BACKWARDS]);
+        out.clock_jumps = clamp32(clock_drops->n[TP_JUMP]);
     }
 }
 

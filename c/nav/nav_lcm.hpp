@@ -12,6 +12,7 @@ extern "C" {
 #include "auv/auv_nav_filter_status_t.h"
 #include "auv/auv_nav_solution_t.h"
 #include "common/auv_types.h"
+#include "common/time_policy.h"
 }
 
 #include "nav/nav_filter.hpp"
@@ -41,8 +42,10 @@ double altimeter_reading(const void *msg, const char *vehicle, int64_t *utime);
 // (-1: unknown). Strings point into vehicle, which must outlive out.
 void fill_solution(const FilterState &s, const NavStatus &st, const NavConfig &c, double altitude_m, char *vehicle,
                    int64_t utime, auv_nav_solution_t &out);
+// time_drops / clock_drops: the time rule's counters per tp_reason (NULL: none).
 void fill_filter_status(const NavFilter &f, const NavStatus &st, char *vehicle, int64_t utime,
-                        auv_nav_filter_status_t &out);
+                        auv_nav_filter_status_t &out, const tp_counts *time_drops = nullptr,
+                        const tp_counts *clock_drops = nullptr);
 
 // latitude/longitude of a local north/east on the world origin's tangent plane
 void local_to_latlon(const NavConfig &c, double north_m, double east_m, double &lat_deg, double &lon_deg);

@@ -13,10 +13,6 @@ namespace nav {
 
 namespace {
 
-// How far ahead of the last clock tick a sensor may stamp its data (the
-// clock comes at 10 Hz or so, sensors in between).
-constexpr int64_t kMaxFutureUs = 5000000;
-
 double clock_s(clockid_t id)
 {
     struct timespec ts;
@@ -35,6 +31,7 @@ NavNode::NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm)
         opt_.status_channel = opt_.vehicle + ".NAV_STATUS";
     wall_s_at_health_ = clock_s(CLOCK_MONOTONIC);
     cpu_s_at_health_ = clock_s(CLOCK_PROCESS_CPUTIME_ID);
+    tp_clock_init(&clock_, opt_.max_clock_jump_us);
 }
 
 NavNode::~NavNode()
@@ -71,17 +68,23 @@ bool NavNode::subscribe()
     return true;
 }
 
-void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
+void NavNode::on_sensor(const char *channel, const void *msg, int64_t, void *user)
 {
     auto *ctx = static_cast<SubCtx *>(user);
     NavNode *n = ctx->node;
     Measurement m;
+    // The time rule first: a stamp outside the valid range, ahead of the
+    // mission clock by more than the tolerance (it would move the filter into
+    // the future and make every honest measurement after it "too old") or
+    // older than this sensor's newest is counted and dropped.
+    const int64_t stamp = *static_cast<const int64_t *>(msg); // every sensor message starts with utime
+    const tp_reason why = tp_input_offer(&n->order_[ctx->sensor], stamp, n->have_time_, n->now_us_,
+                                         n->opt_.future_tol_us);
+    if (why != TP_OK) {
+        tp_count(&n->time_drops_, why, "auv-nav", channel, stamp);
+        return;
+    }
     Convert c = to_measurement(ctx->sensor, msg, n->opt_.vehicle.c_str(), m);
-    // A time of validity ahead of the mission clock is a broken stamp: taken
-    // as it is, it would move the filter into the future and make every
-    // honest measurement after it "too old".
-    if (c == Convert::OK && n->have_time_ && m.utime > n->now_us_ + kMaxFutureUs)
-        c = Convert::IMPLAUSIBLE;
     switch (c) {
     case Convert::OK:
         n->filter_.push(m);
@@ -93,9 +96,15 @@ void NavNode::on_sensor(const char *, const void *msg, int64_t, void *user)
     }
 }
 
-void NavNode::on_altimeter(const char *, const void *msg, int64_t, void *user)
+void NavNode::on_altimeter(const char *channel, const void *msg, int64_t, void *user)
 {
     auto *n = static_cast<NavNode *>(user);
+    const int64_t stamp = *static_cast<const int64_t *>(msg);
+    const tp_reason why = tp_input_offer(&n->alt_order_, stamp, n->have_time_, n->now_us_, n->opt_.future_tol_us);
+    if (why != TP_OK) {
+        tp_count(&n->time_drops_, why, "auv-nav", channel, stamp);
+        return;
+    }
     int64_t t = 0;
     const double a = altimeter_reading(msg, n->opt_.vehicle.c_str(), &t);
     if (a > 0)
@@ -106,10 +115,20 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
 {
     auto *n = static_cast<NavNode *>(user);
     const auto *c = static_cast<const auv_sim_clock_t *>(msg);
-    // Global time never runs backwards here, whatever the network does.
-    if (!n->have_time_ || c->utime > n->now_us_)
-        n->now_us_ = c->utime;
-    n->have_time_ = true;
+    // Global time never runs backwards here and never leaps on one message.
+    n->clock_reading(c->utime, "SIM.CLOCK");
+}
+
+bool NavNode::clock_reading(int64_t t, const char *source)
+{
+    const tp_reason why = tp_clock_offer(&clock_, t);
+    if (why != TP_OK) {
+        tp_count(&clock_drops_, why, "auv-nav", source, t);
+        return false;
+    }
+    now_us_ = clock_.now;
+    have_time_ = true;
+    return true;
 }
 
 uint64_t NavNode::decode_errors() const
@@ -166,7 +185,7 @@ void NavNode::publish_cycle()
         publish_solution(t, st);
     if (now_us_ >= next_status_us_) {
         auv_nav_filter_status_t fs;
-        fill_filter_status(filter_, st, &vehicle_[0], t, fs);
+        fill_filter_status(filter_, st, &vehicle_[0], t, fs, &time_drops_, &clock_drops_);
         auv_nav_filter_status_t_publish(lcm_, opt_.status_channel.c_str(), &fs);
         publish_health();
         next_status_us_ = now_us_ + 1000000;
@@ -202,6 +221,11 @@ void NavNode::print_summary() const
                  (unsigned long long)convert_.not_valid, (unsigned long long)convert_.wrong_vehicle,
                  (unsigned long long)convert_.implausible, (unsigned long long)fs.out_of_order,
                  (unsigned long long)fs.numeric_resets);
+    std::fprintf(stderr, "auv-nav: time rule drops: invalid time %llu, from the future %llu, out of order %llu; "
+                         "clock refused: invalid %llu, backwards %llu, unconfirmed jumps %llu\n",
+                 (unsigned long long)time_drops_.n[TP_INVALID], (unsigned long long)time_drops_.n[TP_FUTURE],
+                 (unsigned long long)time_drops_.n[TP_OUT_OF_ORDER], (unsigned long long)clock_drops_.n[TP_INVALID],
+                 (unsigned long long)clock_drops_.n[TP_BACKWARDS], (unsigned long long)clock_drops_.n[TP_JUMP]);
     for (int k = 0; k < kSensors; k++) {
         const SensorStats &s = fs.sensor[k];
         std::fprintf(stderr, "auv-nav:   %-5s %llu measurements, %llu accepted, %llu rejected, %llu resets, %llu too old\n",

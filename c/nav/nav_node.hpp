@@ -11,6 +11,7 @@
 
 extern "C" {
 #include "common/lcm_rx.h"
+#include "common/time_policy.h"
 }
 
 #include "nav/nav_filter.hpp"
@@ -19,11 +20,13 @@ extern "C" {
 namespace nav {
 
 struct NodeOptions {
-    std::string config_path, vehicle = "AUV1", url = "udpm://239.255.76.67:7667?ttl=0";
+    std::string config_path, vehicle = "AUV1", url;  // url "": liblcm's default ($LCM_DEFAULT_URL)
     std::string channel;        // solution channel; default <VEHICLE>.NAV
     std::string status_channel; // default <VEHICLE>.NAV_STATUS
     double rate_hz = 20.0;
     bool sim_clock = true;
+    int64_t future_tol_us = TP_FUTURE_TOLERANCE_US;
+    int64_t max_clock_jump_us = TP_MAX_CLOCK_JUMP_US;
 };
 
 struct ConvertCounts {
@@ -39,7 +42,8 @@ public:
     // The mission clock: SIM.CLOCK's time (sim) or the host's (system).
     bool have_time() const { return have_time_; }
     int64_t now() const { return now_us_; }
-    void set_now(int64_t t) { now_us_ = t; have_time_ = true; }
+    // A system clock reading, under the same time rule as SIM.CLOCK.
+    void set_now(int64_t t) { clock_reading(t, "system clock"); }
 
     // One output cycle at the mission time now(): the solution (once aligned)
     // if the compass has been silent for two of its intervals (and 1/rate), and,
@@ -60,6 +64,7 @@ private:
     static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
     void publish_health();
+    bool clock_reading(int64_t t, const char *source);
     void publish_solution(int64_t t, const NavStatus &st);
 
     NodeOptions opt_;
@@ -77,6 +82,12 @@ private:
     ConvertCounts convert_;
     int64_t now_us_ = 0;
     bool have_time_ = false;
+    // The time rule (docs/channels.md, "Time and timestamps").
+    tp_clock clock_;
+    tp_input order_[kSensors] = {};
+    tp_input alt_order_ = {};
+    tp_counts time_drops_ = {};
+    tp_counts clock_drops_ = {};
     int64_t next_status_us_ = 0;
     double cpu_s_at_health_ = 0, wall_s_at_health_ = 0;
     uint64_t published_ = 0;

@@ -33,6 +33,7 @@
 #include "common/lcm_rx.h"
 #include "common/msg_print.h"
 #include "common/sha256.h"
+#include "common/time_policy.h"
 
 static const char *opt(int argc, char **argv, const char *name, const char *fallback)
 {
@@ -289,11 +290,48 @@ static int cmd_sha256(const char *path)
     return 0;
 }
 
+/* The time rule (common/time_policy.h) on a script, for tests in both builds:
+ *   clock V...            offer clock values; prints "ok NOW" or the reason per value
+ *   input NOW TOL S...    offer data stamps to one input against clock NOW
+ * Values are int64 decimal (INT64_MIN and INT64_MAX allowed). */
+static int cmd_time(int argc, char **argv)
+{
+    if (argc >= 3 && !strcmp(argv[2], "clock")) {
+        tp_clock c;
+        tp_clock_init(&c, TP_MAX_CLOCK_JUMP_US);
+        for (int i = 3; i < argc; i++) {
+            tp_reason r = tp_clock_offer(&c, strtoll(argv[i], NULL, 10));
+            if (r == TP_OK)
+                printf("ok %lld\n", (long long)c.now);
+            else
+                printf("%s\n", tp_reason_name(r));
+        }
+        return 0;
+    }
+    if (argc >= 5 && !strcmp(argv[2], "input")) {
+        tp_input in = {0};
+        int64_t now = strtoll(argv[3], NULL, 10), tol = strtoll(argv[4], NULL, 10);
+        for (int i = 5; i < argc; i++) {
+            tp_reason r = tp_input_offer(&in, strtoll(argv[i], NULL, 10), 1, now, tol);
+            printf("%s\n", r == TP_OK ? "ok" : tp_reason_name(r));
+        }
+        return 0;
+    }
+    fprintf(stderr, "usage: auv-lcm-probe time clock V... | time input NOW TOL STAMP...\n");
+    return 2;
+}
+
 int main(int argc, char **argv)
 {
-    if (argc < 2) {
-        fprintf(stderr, "usage: auv-lcm-probe roundtrip DIR | publish-track ... | listen ...\n");
-        return 2;
+    if (argc >= 2 && !strcmp(argv[1], "time"))
+        return cmd_time(argc, argv);
+    if (argc < 2 || !strcmp(argv[1], "--help") || !strcmp(argv[1], "-h")) {
+        fprintf(argc < 2 ? stderr : stdout,
+                "usage: auv-lcm-probe roundtrip DIR | field TYPE PATH FILE | sha256 FILE | time ...\n"
+                "       auv-lcm-probe publish-track|listen [--lcm-url URL] [--vehicle ID] [--count N] [--rate HZ]\n"
+                "                     [--channel RE] [--type T] [--timeout-ms MS]\n"
+                "  --lcm-url URL   LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default); --url is the old spelling\n");
+        return argc < 2 ? 2 : 0;
     }
     if (!strcmp(argv[1], "roundtrip") && argc == 3)
         return cmd_roundtrip(argv[2]);
@@ -301,10 +339,11 @@ int main(int argc, char **argv)
         return cmd_field(argv[2], argv[3], argv[4]);
     if (!strcmp(argv[1], "sha256") && argc == 3)
         return cmd_sha256(argv[2]);
-    const char *url = opt(argc, argv, "--url", "udpm://239.255.76.67:7667?ttl=0");
+    /* --lcm-url (or its old spelling --url); none: liblcm honours $LCM_DEFAULT_URL */
+    const char *url = opt(argc, argv, "--lcm-url", opt(argc, argv, "--url", NULL));
     lcm_t *lcm = lcm_create(url);
     if (!lcm) {
-        fprintf(stderr, "auv-lcm-probe: cannot open LCM at %s (no multicast route? see README)\n", url);
+        fprintf(stderr, "auv-lcm-probe: cannot open LCM at %s (no multicast route? see README)\n", url ? url : "the default URL");
         return 2;
     }
     int rc = 2;

@@ -166,7 +166,7 @@ class Launcher:
 
     def manager_cmd(self, vid: str, m) -> list[str]:
         cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),
-               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--url", self.url]
+               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--lcm-url", self.url]
         for d in m.plugin_path or [self.build / "plugins"]:
             cmd += ["--plugin-path", str(d)]
         for k, val in m.params.items():
@@ -175,7 +175,7 @@ class Launcher:
 
     def nav_cmd(self, v) -> list[str]:
         return [str(self.build / "bin" / "auv-nav"), "--config", str(self.nav_configs[v.id]), "--vehicle", v.id,
-                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--url", self.url]
+                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--lcm-url", self.url]
 
     def start_all(self) -> None:
         if self.own_log:

@@ -46,7 +46,10 @@ static const char *dict[] = {
     "for 5 s", "within 1 m of ", "tolerance ", "age ", "elapsed > 1 s", " and ", " or ", "not ", "(", ")", "{",
     "}\n", "\n", "resume ", "resume deep ", "done", "failed", "true", "false", "$p", " m", " s", " deg", " m/s",
     "== ", "!= ", "<= ", ">= ", "< ", "> ", "= ", ": double m", ": int", ": bool", ": string", "\"", "#", "/", ",",
-    "1e308", "-0", "0.5", "99999999999999999999", "nav.depth", "a.b.c"};
+    "1e308", "-0", "0.5", "99999999999999999999", "nav.depth", "a.b.c",
+    /* binding files (c/managers/fuzz/fuzz_bindings.c uses this driver too) */
+    "input nav ", "output setpoint ", "${VEHICLE}", "${VEHICLE}.NAV ", " nav_solution_t", " setpoint_t",
+    " gps_fix_t", " optional", "\t", "\r\n"};
 
 static void load_path(const char *p)
 {

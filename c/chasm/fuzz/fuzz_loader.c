@@ -2,13 +2,36 @@
  * also started and stepped, so the runtime is fuzzed on every valid plan. */
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 
 #include "chasm/chasm.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
+/* The same bytes as a -D value: overrides are values, never plan text. */
+static void fuzz_override(const uint8_t *data, size_t size)
+{
+    static const char plan[] = "param depth = 1 m\nparam name = \"x\"\nstate a {\n}\n";
+    char value[256];
+    size_t n = size < sizeof value - 1 ? size : sizeof value - 1;
+    memcpy(value, data, n);
+    value[n] = 0;
+    const char *names[] = {"depth", "name"}, *values[] = {value, value};
+    chasm_options o;
+    memset(&o, 0, sizeof o);
+    o.param_names = names;
+    o.param_values = values;
+    o.n_params = 2;
+    chasm_errors *e = NULL;
+    chasm_machine *m = chasm_load_string("fuzz_d.chasm", plan, sizeof plan - 1, &o, &e);
+    chasm_errors_free(e);
+    if (m && chasm_state_count(m) != 1) __builtin_trap(); /* an override injected a state */
+    chasm_free(m);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    fuzz_override(data, size);
     chasm_errors *e = NULL;
     chasm_machine *m = chasm_load_string("fuzz.chasm", (const char *)data, size, NULL, &e);
     for (size_t i = 0; i < chasm_errors_count(e); i++) (void)chasm_errors_get(e, i);

@@ -38,6 +38,10 @@ static char *slurp(const char *path, size_t *n)
 }
 
 /* number [unit] -> value in the unit `to` (NULL: seconds) */
+/* Input times, like durations in plans: 0 to 1e9 s (no overflow in us). */
+#define MAX_TIME_S 1e9
+static int time_ok(double s) { return s >= 0 && s <= MAX_TIME_S; }
+
 static int number(cm_token *t, size_t *i, const char *to, double *out, const char *path)
 {
     int neg = 0;
@@ -99,7 +103,14 @@ static int read_lines(const char *path, const char *text, size_t n, const chasm_
             continue;
         }
         double ts;
+        const cm_token *tt = &t[i];
         if (number(t, &i, NULL, &ts, path)) {
+            rc = -1;
+            break;
+        }
+        if (!time_ok(ts)) {
+            fprintf(stderr, "%s:%d:%d: error: an input's time must be between 0 s and %g s\n", path, tt->line, tt->col,
+                    MAX_TIME_S);
             rc = -1;
             break;
         }
@@ -140,9 +151,18 @@ static int read_lines(const char *path, const char *text, size_t n, const chasm_
             }
             e.s = strdup(t[i].text);
             i++;
-        } else if (number(t, &i, chasm_var_unit(m, id), &e.d, path)) {
-            rc = -1;
-            break;
+        } else {
+            const cm_token *vt = &t[i];
+            if (number(t, &i, chasm_var_unit(m, id), &e.d, path)) {
+                rc = -1;
+                break;
+            }
+            if (e.type == CHASM_INT && !(e.d >= -9.0e18 && e.d <= 9.0e18)) {
+                fprintf(stderr, "%s:%d:%d: error: '%s' is an int: %g is out of its range\n", path, vt->line, vt->col,
+                        chasm_var_name(m, id), e.d);
+                rc = -1;
+                break;
+            }
         }
         push(out, e);
         if (t[i].type != T_NEWLINE && t[i].type != T_EOF) {
@@ -169,7 +189,10 @@ static int read_csv(const char *path, char *text, const chasm_machine *m, chasm_
             while (*f == ' ') f++;
             if (header) {
                 if (c == 0) continue;
-                if (nc >= 256) return -1;
+                if (nc >= 256) {
+                    fprintf(stderr, "%s:%d:1: error: more than 256 columns\n", path, line);
+                    return -1;
+                }
                 cols[nc] = chasm_var_find(m, f);
                 if (cols[nc] < 0) {
                     fprintf(stderr, "%s:%d:1: error: the plan has no variable '%s'\n", path, line, f);
@@ -182,11 +205,21 @@ static int read_csv(const char *path, char *text, const chasm_machine *m, chasm_
             double v = strtod(f, &end);
             if (c == 0) {
                 t = v;
+                if (!time_ok(t)) {
+                    fprintf(stderr, "%s:%d:1: error: an input's time must be between 0 s and %g s\n", path, line,
+                            MAX_TIME_S);
+                    return -1;
+                }
                 continue;
             }
             if (c > nc || !*f) continue;
             int id = cols[c - 1];
             chasm_input_event e = {(int64_t)(t * 1e6 + 0.5), id, chasm_var_type(m, id), v, 0, NULL, 0};
+            if (e.type == CHASM_INT && !(v >= -9.0e18 && v <= 9.0e18)) {
+                fprintf(stderr, "%s:%d:1: error: '%s' is an int: %g is out of its range\n", path, line,
+                        chasm_var_name(m, id), v);
+                return -1;
+            }
             if (e.type == CHASM_BOOL) e.b = !strcmp(f, "true") || !strcmp(f, "1");
             if (e.type == CHASM_STRING) e.s = strdup(f);
             push(out, e);

@@ -17,6 +17,17 @@
 
 #define MAXN 64
 
+/* Every list on the command line holds MAXN; more is a usage error, never a
+ * silent drop. */
+static int too_many(const char *what)
+{
+    fprintf(stderr, "chasm: at most %d %s\n", MAXN, what);
+    return -1;
+}
+
+/* A load error in an override (`<-D NAME>`) is a usage error: exit 2. */
+static int override_error;
+
 typedef struct {
     const char *dirs[MAXN];
     size_t n_dirs;
@@ -61,6 +72,10 @@ static double seconds(const char *s)
         fprintf(stderr, "chasm: '%s' is not a duration\n", s);
         exit(2);
     }
+    if (end == s || !(v >= 0 && v <= 1e9)) { /* like durations in plans; no overflow in microseconds */
+        fprintf(stderr, "chasm: '%s' is not a duration from 0 to 1e9 s\n", s);
+        exit(2);
+    }
     return v;
 }
 
@@ -74,14 +89,16 @@ static int parse_args(int argc, char **argv, args_t *a)
 #define NEED() do { if (!val) { fprintf(stderr, "chasm: %s needs a value\n", s); return -1; } i++; } while (0)
         if (!strcmp(s, "-P") || !strcmp(s, "--plugin-path")) {
             NEED();
-            if (a->n_dirs < MAXN) a->dirs[a->n_dirs++] = val;
+            if (a->n_dirs >= MAXN) return too_many("-P folders");
+            a->dirs[a->n_dirs++] = val;
         } else if (!strcmp(s, "-D")) {
             NEED();
             const char *eq = strchr(val, '=');
-            if (!eq || a->n_params >= MAXN) {
+            if (!eq) {
                 fprintf(stderr, "chasm: -D wants NAME=VALUE, got '%s'\n", val);
                 return -1;
             }
+            if (a->n_params >= MAXN) return too_many("-D overrides");
             char *name = strndup(val, (size_t)(eq - val));
             a->pn[a->n_params] = name;
             a->pv[a->n_params++] = eq + 1;
@@ -96,14 +113,16 @@ static int parse_args(int argc, char **argv, args_t *a)
             a->until_s = seconds(val);
         } else if (!strcmp(s, "--watch")) {
             NEED();
-            if (a->n_watch < MAXN) a->watch[a->n_watch++] = val;
+            if (a->n_watch >= MAXN) return too_many("--watch variables");
+            a->watch[a->n_watch++] = val;
         } else if (!strcmp(s, "--expect")) {
             NEED();
             a->expect = val;
         } else if (!strcmp(s, "--hotplug")) {
             NEED();
             const char *colon = strchr(val, ':');
-            if (!colon || a->n_hp >= MAXN) {
+            if (a->n_hp >= MAXN) return too_many("--hotplug files");
+            if (!colon) {
                 fprintf(stderr, "chasm: --hotplug wants SECONDS:FILE, got '%s'\n", val);
                 return -1;
             }
@@ -116,13 +135,15 @@ static int parse_args(int argc, char **argv, args_t *a)
         else if (s[0] == '-' && s[1]) {
             fprintf(stderr, "chasm: unknown option '%s'\n", s);
             return -1;
-        } else if (a->n_plans < MAXN) a->plans[a->n_plans++] = s;
+        } else if (a->n_plans >= MAXN) return too_many("plans");
+        else a->plans[a->n_plans++] = s;
     }
     const char *env = getenv("CHASM_PLUGIN_PATH");
     if (env && *env) {
         a->env_copy = strdup(env);
         for (char *save = NULL, *d = strtok_r(a->env_copy, ":", &save); d; d = strtok_r(NULL, ":", &save))
-            if (a->n_dirs < MAXN) a->dirs[a->n_dirs++] = d;
+            if (a->n_dirs >= MAXN) return too_many("plugin folders (with $CHASM_PLUGIN_PATH)");
+            else a->dirs[a->n_dirs++] = d;
     }
     return 0;
 }
@@ -147,7 +168,10 @@ static chasm_machine *load(const args_t *a, const char *plan)
     o.log_user = &verbose_flag;
     chasm_errors *e = NULL;
     chasm_machine *m = chasm_load_file(plan, &o, &e);
-    for (size_t i = 0; i < chasm_errors_count(e); i++) fprintf(stderr, "%s\n", chasm_errors_get(e, i));
+    for (size_t i = 0; i < chasm_errors_count(e); i++) {
+        fprintf(stderr, "%s\n", chasm_errors_get(e, i));
+        if (!strncmp(chasm_errors_get(e, i), "<-D ", 4)) override_error = 1;
+    }
     if (e && chasm_errors_count(e) > 1) fprintf(stderr, "%s: %zu errors\n", plan, chasm_errors_count(e));
     chasm_errors_free(e);
     return m;
@@ -262,7 +286,11 @@ int main(int argc, char **argv)
 {
     if (argc < 2) return usage();
     args_t a = {0};
-    if (parse_args(argc, argv, &a)) return 2;
+    if (parse_args(argc, argv, &a)) {
+        for (size_t i = 0; i < a.n_params; i++) free((char *)a.pn[i]);
+        free(a.env_copy);
+        return 2;
+    }
     verbose_flag = a.verbose;
     int rc = 0;
     if (!strcmp(argv[1], "check")) {
@@ -295,5 +323,5 @@ int main(int argc, char **argv)
     } else rc = usage();
     for (size_t i = 0; i < a.n_params; i++) free((char *)a.pn[i]);
     free(a.env_copy);
-    return rc;
+    return rc == 1 && override_error ? 2 : rc;
 }

@@ -92,7 +92,7 @@ class World:
             self._start(f"{spec.vehicle}.{name}",
                         [self.build / "bin" / "chasm-manager", "--plan", plan, "--bind", bind,
                          "--vehicle", spec.vehicle, "--name", name, "--rate", "10",
-                         "--clock", "sim", "--url", self.url, *(extra or [])], prefix)
+                         "--clock", "sim", "--lcm-url", self.url, *(extra or [])], prefix)
 
     def kill(self, name: str) -> None:
         p = self.procs[name]

@@ -1,4 +1,6 @@
 /* Semantics of the engine on small plans and a scripted clock. */
+#include <stdlib.h>
+
 #include "harness.h"
 
 #define IO "input x : double m\ninput flag : bool\n"
@@ -483,7 +485,88 @@ static void step_does_not_allocate(void)
     chasm_free(m);
 }
 
+/* The time rule's backstop: no stamp can keep a value fresh, and no `now` or
+ * stamp overflows any time difference (UBSan would stop the build/san run). */
+static void time_extremes(void)
+{
+    const char *plan = "input x : double m\n"
+                       "test stale : age x > 3 s\n"
+                       "abort when stale -> surface\n"
+                       "state a {\n do set y = 1 every 2 s\n test t : elapsed > 1 s for 1 s\n when t -> b\n}\n"
+                       "state b {\n do set y = 2 after 1 s\n test long : elapsed > 5 s\n when long -> a\n}\n"
+                       "state surface {\n}\nvar y : int = 0\n";
+    const int64_t stamps[] = {INT64_MIN, -1, INT64_C(1000000000000000000), INT64_MAX, INT64_C(4102444800000000)};
+    for (size_t k = 0; k < sizeof stamps / sizeof stamps[0]; k++) {
+        chasm_machine *m = load_plan(plan);
+        CHECK(m != NULL);
+        if (!m) return;
+        int id = chasm_var_find(m, "x");
+        chasm_start(m, 0);
+        /* one message stamped at the extreme, then silence */
+        chasm_var_set_double(m, id, 5.0, stamps[k]);
+        run_until(m, 0.1, 5.0);
+        CHECK_STR(leaf(m), "surface");
+        chasm_free(m);
+    }
+    /* a stamp a little ahead (within the tolerance) counts as fresh, age 0 */
+    chasm_machine *m = load_plan(plan);
+    CHECK(m != NULL);
+    if (!m) return;
+    chasm_start(m, 0);
+    chasm_var_set_double(m, chasm_var_find(m, "x"), 5.0, 500000);
+    chasm_step(m, 100000);
+    CHECK(strcmp(leaf(m), "surface") != 0);
+    chasm_free(m);
+    /* `now` itself at the extremes: steps never overflow and never burst */
+    const int64_t nows[] = {INT64_MIN, -5, 0, INT64_C(4102444800000000), INT64_MAX - 1, INT64_MAX};
+    m = load_plan(plan);
+    CHECK(m != NULL);
+    if (!m) return;
+    chasm_start(m, INT64_MIN);
+    for (size_t k = 0; k < sizeof nows / sizeof nows[0]; k++) {
+        chasm_step(m, nows[k]);
+        chasm_status st;
+        chasm_status_get(m, nows[k], &st);
+        for (int d = 0; d < st.path_len; d++) CHECK(st.time_in_state_s[d] == st.time_in_state_s[d]);
+    }
+    chasm_free(m);
+}
+
+/* String values longer than a string variable holds are refused, never cut. */
+static void string_limit(void)
+{
+    char *plan = malloc(4 * CHASM_STRING_MAX + 200);
+    char *big = malloc(CHASM_STRING_MAX + 2);
+    memset(big, 'a', CHASM_STRING_MAX + 1);
+    big[CHASM_STRING_MAX + 1] = 0;
+    /* at the limit: loads, and a test on it is true */
+    snprintf(plan, 4 * CHASM_STRING_MAX + 200, "input s : string\ntest same : s == \"%.*s\"\nstate a {\n when same -> b\n}\nstate b {\n}\n",
+             CHASM_STRING_MAX, big);
+    chasm_machine *m = load_plan(plan);
+    CHECK(m != NULL);
+    if (m) {
+        big[CHASM_STRING_MAX] = 0;
+        CHECK(chasm_var_set_string(m, chasm_var_find(m, "s"), big, 0) == 0);
+        big[CHASM_STRING_MAX] = 'a';
+        chasm_start(m, 0);
+        chasm_step(m, 100000);
+        CHECK_STR(leaf(m), "b");
+        /* one past it: refused at run time, nothing written */
+        CHECK(chasm_var_set_string(m, chasm_var_find(m, "s"), big, 200000) == -1);
+        CHECK(chasm_var_updated_us(m, chasm_var_find(m, "s")) == 0);
+        chasm_free(m);
+    }
+    /* one past the limit in the plan: a load error naming it */
+    snprintf(plan, 4 * CHASM_STRING_MAX + 200, "input s : string\ntest same : s == \"%s\"\nstate a {\n when same -> b\n}\nstate b {\n}\n", big);
+    CHECK(strstr(first_error(plan), "CHASM_STRING_MAX") != NULL);
+    CHECK(strstr(first_error(plan), ":2:") != NULL);
+    free(plan);
+    free(big);
+}
+
 const unit_test semantics_tests[] = {
+    {"time_extremes", time_extremes},
+    {"string_limit", string_limit},
     {"step_does_not_allocate", step_does_not_allocate},
     {"priority_outer_first", priority_outer_first},
     {"priority_declaration_order", priority_declaration_order},

@@ -1,0 +1,137 @@
+/* chasm-manager's command line: every option checked (numbers in range,
+ * names that make valid channels, -D as name=value), --help on stdout.
+ * Returns 0, 1 for --help (exit 0) or -1 on a usage error (exit 2). */
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "managers/manager.h"
+
+static void usage(FILE *out)
+{
+    fprintf(out, "usage: chasm-manager --plan FILE --bind FILE --vehicle ID --name NAME [--rate HZ]\n"
+                 "       [--clock sim|system] [--lcm-url URL] [--exit-on-end] [--wait-start]\n"
+                 "       [--plugin-path DIR]... [--plugin-dir DIR --allowlist FILE] [-D name=value]...\n"
+                 "       [--future-tolerance S] [--max-clock-jump S]\n"
+                 "  --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
+                 "                         --url is the old spelling of it\n"
+                 "  --rate HZ              cycles per second of mission time, 0 < HZ <= %d (default 10)\n"
+                 "  -D name=value          override a plan parameter: one value of its type and unit\n"
+                 "                         (at most %d overrides)\n"
+                 "  --future-tolerance S   drop input messages stamped more than S ahead of the clock (default 1)\n"
+                 "  --max-clock-jump S     a clock jump over S needs a second message to confirm it (default 60)\n",
+            MGR_MAX_RATE_HZ, MGR_MAX_PARAMS);
+}
+
+/* A number option: finite, within [lo, hi]; -1 with a message otherwise. */
+static int number_arg(const char *opt, const char *v, double lo, double hi, double *out)
+{
+    char *end;
+    errno = 0;
+    double x = strtod(v, &end);
+    if (end == v || *end || errno || !(x >= lo && x <= hi)) {
+        fprintf(stderr, "chasm-manager: %s wants a number from %g to %g, not '%s'\n", opt, lo, hi, v);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+static int id_ok(const char *s)
+{
+    if (!*s)
+        return 0;
+    for (; *s; s++)
+        if (!((*s >= 'A' && *s <= 'Z') || (*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '_'))
+            return 0;
+    return 1;
+}
+
+int manager_parse_args(manager_options *o, int argc, char **argv)
+{
+    memset(o, 0, sizeof *o);
+    o->rate_hz = 10.0;
+    o->sim_clock = 1;
+    o->url = NULL; /* liblcm then honours LCM_DEFAULT_URL */
+    o->future_tol_us = TP_FUTURE_TOLERANCE_US;
+    o->max_clock_jump_us = TP_MAX_CLOCK_JUMP_US;
+    size_t n_dirs = 0;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+        int takes = 1;
+        double x;
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 1;
+        }
+        if (!strcmp(a, "--plan") && v) o->plan_path = v;
+        else if (!strcmp(a, "--bind") && v) o->bind_path = v;
+        else if (!strcmp(a, "--vehicle") && v) o->vehicle = v;
+        else if (!strcmp(a, "--name") && v) o->name = v;
+        else if ((!strcmp(a, "--lcm-url") || !strcmp(a, "--url")) && v) o->url = v;
+        else if (!strcmp(a, "--rate") && v) {
+            if (number_arg(a, v, 1e-3, MGR_MAX_RATE_HZ, &o->rate_hz)) return -1;
+        } else if (!strcmp(a, "--future-tolerance") && v) {
+            if (number_arg(a, v, 0, 3600, &x)) return -1;
+            o->future_tol_us = (int64_t)(x * 1e6);
+        } else if (!strcmp(a, "--max-clock-jump") && v) {
+            if (number_arg(a, v, 1e-3, 86400, &x)) return -1;
+            o->max_clock_jump_us = (int64_t)(x * 1e6);
+        } else if (!strcmp(a, "--clock") && v && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
+        else if (!strcmp(a, "--plugin-dir") && v) o->plugin_dir = v;
+        else if (!strcmp(a, "--allowlist") && v) o->allowlist = v;
+        else if (!strcmp(a, "--plugin-path") && v) {
+            if (n_dirs + 1 >= MGR_MAX_PLUGIN_PATH) { /* one place is kept for --plugin-dir */
+                fprintf(stderr, "chasm-manager: at most %d --plugin-path folders\n", MGR_MAX_PLUGIN_PATH - 1);
+                return -1;
+            }
+            o->plugin_path[n_dirs++] = v;
+            o->n_plugin_path = n_dirs;
+        } else if (!strcmp(a, "-D") && v) {
+            /* -D name=value: split in place (argv is ours). libchasm checks the
+             * name against the plan and the value as one value of its type. */
+            char *eq = strchr(argv[i + 1], '=');
+            if (!eq || eq == argv[i + 1]) {
+                fprintf(stderr, "chasm-manager: -D wants name=value, not '%s'\n", v);
+                return -1;
+            }
+            if (o->n_params >= MGR_MAX_PARAMS) {
+                fprintf(stderr, "chasm-manager: at most %d -D overrides\n", MGR_MAX_PARAMS);
+                return -1;
+            }
+            *eq = '\0';
+            o->param_names[o->n_params] = argv[i + 1];
+            o->param_values[o->n_params++] = eq + 1;
+        } else {
+            takes = 0;
+            if (!strcmp(a, "--exit-on-end")) o->exit_on_end = 1;
+            else if (!strcmp(a, "--wait-start")) o->wait_start = 1;
+            else {
+                fprintf(stderr, "chasm-manager: bad or incomplete option '%s' (see --help)\n", a);
+                return -1;
+            }
+        }
+        i += takes;
+    }
+    if (!o->plan_path || !o->bind_path || !o->vehicle || !o->name) {
+        usage(stderr);
+        return -1;
+    }
+    /* Every channel the manager names must fit LCM's 63 characters, the
+     * longest being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
+    if (!id_ok(o->vehicle) || !id_ok(o->name) || strlen(o->vehicle) > MGR_MAX_VEHICLE ||
+        strlen(o->vehicle) + strlen(o->name) + 7 > 63) {
+        fprintf(stderr, "chasm-manager: --vehicle (1 to %d) and --name are letters, digits and '_', and "
+                        "<VEHICLE>.CHASM.<NAME> at most 63 characters\n", MGR_MAX_VEHICLE);
+        return -1;
+    }
+    if (o->plugin_dir) {
+        /* Uploaded plugins take precedence over installed ones. */
+        memmove(o->plugin_path + 1, o->plugin_path, o->n_plugin_path * sizeof o->plugin_path[0]);
+        o->plugin_path[0] = o->plugin_dir;
+        o->n_plugin_path++;
+    }
+    return 0;
+}
+
