@@ -6,7 +6,7 @@ import re
 import sys
 
 
-class ConfigError(Exception):
+class ConfigError(ValueError):
     def __init__(self, errors: list[str]) -> None:
         super().__init__("\n".join(errors))
         self.errors = errors
