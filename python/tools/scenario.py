@@ -20,7 +20,6 @@ from confcheck import Checker, ConfigError, Rule, join, setting, vehicle_id_prob
 from confcheck.checker import control_character
 from tools.plan_params import declared_params
 
-YamlError = ConfigError      # the name this module's callers used before confcheck
 
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
 PARAM_NAME = r"[A-Za-z_][A-Za-z0-9_]{0,63}"
@@ -264,7 +263,7 @@ TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "veh
 
 
 def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario; ConfigError (alias YamlError) lists every problem."""
+    """Read and check a scenario; ConfigError lists every problem."""
     path = Path(path).resolve()
     c = Checker.from_file(path)
     s = _Scenario(c)
