@@ -11,7 +11,6 @@ base class's rule: rule_of() looks the name up along the class's bases.
 from __future__ import annotations
 
 import dataclasses
-import math
 import re
 from dataclasses import dataclass
 from typing import Any
@@ -63,9 +62,6 @@ class Rule:
 
 
 NO_RULE = Rule()
-POSITIVE = Rule(gt=0)
-NONNEGATIVE = Rule(ge=0)
-PROBABILITY = Rule(ge=0, le=1)
 
 
 def setting(default: Any = dataclasses.MISSING, *, factory: Any = dataclasses.MISSING,
@@ -86,11 +82,3 @@ def rule_of(cls: type, name: str) -> Rule:
         if fields and name in fields and "rule" in fields[name].metadata:
             return fields[name].metadata["rule"]
     return NO_RULE
-
-
-def yaml_key(f: dataclasses.Field, cls: type) -> str:
-    return rule_of(cls, f.name).key or f.name
-
-
-def finite(value: float) -> bool:
-    return math.isfinite(value)

@@ -10,7 +10,7 @@ the dataclass fields (confcheck.setting): a new setting is one line.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 

@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from confcheck import Checker, ConfigError, Rule, join, setting, vehicle_id_problem
+from confcheck import Checker, Rule, join, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from tools.plan_params import declared_params
 

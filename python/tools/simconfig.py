@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Any
 
 from confcheck import ConfigError, Checker
 from confcheck.reader import dump_yaml

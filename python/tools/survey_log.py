@@ -36,7 +36,6 @@ if str(ROOT / "python") not in sys.path:
 
 import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
 import lcm  # noqa: E402
-import yaml  # noqa: E402
 from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
 
 from auvlcm.rx import Receiver  # noqa: E402
@@ -162,7 +161,8 @@ def run(args: argparse.Namespace) -> int:
     cfg_text = apply_overrides(Path(args.config).read_text(encoding="utf-8"), args.set, Path(args.config))
     cfg_path = out.with_suffix(".sim.yaml")
     cfg_path.write_text(cfg_text)
-    vehicle = (yaml.safe_load(cfg_text).get("vehicle") or {}).get("id", "AUV1")
+    from sim.config import load
+    vehicle = load(cfg_path).vehicle_id     # checked before anything starts (ConfigError: exit 2)
     survey = Survey(length_m=args.length, spacing_m=args.spacing, lines=args.lines, depth_m=args.depth,
                     surface_s=args.surface_s, final_surface=args.final_surface,
                     surface_crossovers=args.surface_crossovers)

@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from auvlcm.eventlog import HEADER, SYNC_BYTES, Damage, read_raw
+from auvlcm.eventlog import HEADER, SYNC_BYTES, read_raw
 from auvlcm.log import EXIT_EVENTS_LOST, LogStats, read_events
 from conftest import ROOT
 from test_report import synthetic_log
