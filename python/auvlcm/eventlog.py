@@ -115,7 +115,22 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
             return
         with mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as buf:
             pos, last_number = 0, -1
+            unpack, hsize = HEADER.unpack_from, HEADER.size
             while pos < size:
+                if pos + hsize <= size:     # the common case, inline: a sound event followed by a sync word
+                    sync, number, ts, clen, dlen = unpack(buf, pos)
+                    end = pos + hsize + clen + dlen
+                    if (sync == SYNC and 0 < clen <= MAX_CHANNEL and number >= 0 and dlen >= 0
+                            and (end == size or (end + 4 <= size and buf[end:end + 4] == SYNC_BYTES))):
+                        raw_name = buf[pos + hsize:pos + hsize + clen]
+                        try:
+                            name, bad = raw_name.decode("utf-8"), False
+                        except UnicodeDecodeError:
+                            name, bad = raw_name.decode("utf-8", errors="replace"), True
+                            damage.bad_channel_names += 1
+                        yield RawEvent(number, ts, name, buf[pos + hsize + clen:end], pos, bad)
+                        last_number, pos = number, end
+                        continue
                 hdr = _header_at(buf, pos, size)
                 suspect = hdr is not None and not _chains(buf, pos, size, hdr)
                 if suspect:
