@@ -10,7 +10,7 @@ event after it. This reader checks every header (sync word, a channel length
 of 1..MAX_CHANNEL bytes, a data length within the file) and that the next
 event starts right after it (or the file ends there); a header that fails is
 skipped by searching for the next sync word whose header passes the same
-test. An event followed by garbage is kept when no valid header starts inside
+test. Event numbers must continue (see _Numbers). An event followed by garbage is kept when no valid header starts inside
 it (the garbage is skipped) and marked suspect: its reader keeps it only if
 it decodes exactly (auvlcm.log), else it counts as lost. What was skipped is counted: bytes, regions, and the events lost
 (estimated from the event numbers on either side of a gap). Channel names
@@ -50,22 +50,36 @@ class Damage:
     lost_events: int = 0
     truncated: bool = False       # the file ends inside an event
     bad_channel_names: int = 0    # not UTF-8: kept, with U+FFFD in the name
+    number_gaps: int = 0          # sound events whose numbers jump forward: whole events cut out
 
     @property
     def any(self) -> bool:
         return bool(self.skipped_bytes or self.lost_events or self.bad_channel_names)
 
-    def lines(self, path: str | Path) -> list[str]:
-        out = []
-        if self.skipped_bytes:
-            where = ", ".join(f"{o}+{n}" for o, n in self.regions[:5]) + (" ..." if len(self.regions) > 5 else "")
-            out.append(f"{path}: damaged: skipped {self.skipped_bytes} byte(s) in {len(self.regions)} "
-                       f"region(s) (offset+length: {where}); about {self.lost_events} event(s) lost"
-                       + ("; the file ends inside an event" if self.truncated else ""))
-        if self.bad_channel_names:
-            out.append(f"{path}: {self.bad_channel_names} event(s) with a channel name that is not UTF-8 "
-                       "(kept, shown with U+FFFD)")
-        return out
+
+class _Numbers:
+    """Event number continuity. lcm-logger numbers events 0, 1, 2, ...; a forward
+    jump that the next event confirms (it continues from the new number) means
+    whole events were cut out. A single odd number (a damaged number field) or a
+    restart from a lower one (logs joined) loses nothing."""
+
+    def __init__(self, damage: Damage) -> None:
+        self.damage, self.base, self.odd, self.after_skip = damage, -1, None, False
+
+    def see(self, n: int) -> None:
+        if self.base < 0 or self.after_skip:        # the gap before it was counted with the skip
+            self.base, self.odd, self.after_skip = n, None, False
+        elif self.odd is None:
+            if n == self.base + 1:
+                self.base = n
+            else:
+                self.odd = n
+        else:
+            odd, self.odd = self.odd, None
+            if n == odd + 1 and odd > self.base + 1:    # confirmed: events base+1 .. odd-1 are missing
+                self.damage.lost_events += odd - self.base - 1
+                self.damage.number_gaps += 1
+            self.base = n                                # else a damaged number, or a restart
 
 
 def _header_at(buf, pos: int, size: int, need_sync: bool = True) -> tuple[int, int, int, int] | None:
@@ -115,6 +129,7 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
             return
         with mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as buf:
             pos, last_number = 0, -1
+            numbers = _Numbers(damage)
             unpack, hsize = HEADER.unpack_from, HEADER.size
             while pos < size:
                 if pos + hsize <= size:     # the common case, inline: a sound event followed by a sync word
@@ -128,6 +143,7 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
                         except UnicodeDecodeError:
                             name, bad = raw_name.decode("utf-8", errors="replace"), True
                             damage.bad_channel_names += 1
+                        numbers.see(number)
                         yield RawEvent(number, ts, name, buf[pos + hsize + clen:end], pos, bad)
                         last_number, pos = number, end
                         continue
@@ -149,6 +165,7 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
                     damage.lost_events += gap if 0 <= gap <= (nxt - pos) // HEADER.size + 1 else 1
                     if nxt >= size and _partial(buf, pos, size):
                         damage.truncated = True
+                    numbers.after_skip = True
                     pos = nxt
                     continue
                 number, ts, clen, dlen = hdr
@@ -160,6 +177,7 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
                     name, bad = raw_name.decode("utf-8", errors="replace"), True
                     damage.bad_channel_names += 1
                 data = bytes(buf[start + clen:start + clen + dlen])
+                numbers.see(number)
                 yield RawEvent(number, ts, name, data, pos, bad, suspect)
                 last_number = number
                 pos = start + clen + dlen

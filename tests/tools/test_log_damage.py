@@ -180,3 +180,17 @@ def test_hostile_channel_names_never_escape_the_csv_folder(tmp_path):
     assert not (tmp_path / "escape.csv").exists()
     run = _run(LCMLOG + ["summary", str(p)])
     assert "\x1b" not in run.stdout
+
+
+def test_whole_events_cut_out_are_found_by_their_numbers(good, tmp_path):
+    data, offsets = _small(good)
+    cut = data[:offsets[100]] + data[offsets[150]:]          # 50 sound events removed cleanly
+    _, evs, stats = _events(cut, tmp_path)
+    assert len(evs) == len(offsets) - 50
+    assert stats.damage.lost_events == 50 and stats.damage.number_gaps == 1 and not stats.damage.skipped_bytes
+    bad = bytearray(data)                                     # one damaged number field: nothing lost
+    struct.pack_into(">q", bad, offsets[200] + 4, 7)
+    _, evs, stats = _events(bytes(bad), tmp_path)
+    assert len(evs) == len(offsets) and stats.damage.lost_events == 0
+    _, evs, stats = _events(data + data, tmp_path)            # two logs joined: numbers restart
+    assert len(evs) == 2 * len(offsets) and not stats.damage.any
