@@ -274,6 +274,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
     args = ap.parse_args(argv)
+    if args.warp is not None and not 0 < args.warp < float("inf"):
+        ap.error(f"--warp must be a number > 0, got {args.warp}")
+    if not 0 <= args.progress < float("inf"):
+        ap.error(f"--progress must be a number >= 0, got {args.progress}")
     try:
         sc = load_scenario(args.scenario)
         if args.host is not None and args.host not in sc.hosts:

@@ -109,3 +109,17 @@ def test_sim_config_refusals_name_file_line_col(tmp_path):
         with pytest.raises(ConfigError) as exc:
             load(p)
         assert any(e.startswith(f"{p}:{want}") for e in exc.value.errors), (data, exc.value.errors)
+
+
+def test_command_line_overrides_are_checked(tmp_path):
+    run = subprocess.run(LAUNCH + [str(HERE / "two_vehicles.yaml"), "--warp", "nan", "--out", str(tmp_path)],
+                         capture_output=True, text=True, timeout=60)
+    assert run.returncode == 2 and "--warp must be a number > 0" in run.stderr and "Traceback" not in run.stderr
+    from tools.survey_log import DEFAULT_CONFIG, apply_overrides
+    text = DEFAULT_CONFIG.read_text()
+    for item, want in (("sensors.gps.noise=*a", "--set sensors.gps.noise:1:1: YAML alias '*a' refused"),
+                       ("vehicle.id=\"A\\u0007\"", "must not hold control character U+0007"),
+                       ("a..b=1", "--set 'a..b=1': expected key.path=value")):
+        with pytest.raises(ValueError) as exc:
+            apply_overrides(text, [item])
+        assert want in str(exc.value), (item, str(exc.value))
