@@ -35,8 +35,8 @@ RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "
 
 @dataclass
 class SimSettings:
-    # the integrator is validated from 50 Hz up
-    physics_rate_hz: float = setting(50.0, ge=50.0)
+    # the integrator is validated from 50 Hz up; above 10 kHz a second of sim time costs minutes
+    physics_rate_hz: float = setting(50.0, ge=50.0, le=10000.0, unit="Hz")
     clock: str = setting("realtime", one_of=CLOCK_MODES)
     warp: float = setting(1.0, gt=0.0)   # sim seconds per wall second (scaled)
     publish_clock: str = setting("auto", one_of=("auto", "yes", "no"))   # auto: not in stepped mode

@@ -16,7 +16,7 @@ from typing import Any
 
 import yaml
 
-from confcheck import Checker, Rule, join, setting, vehicle_id_problem
+from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from tools.plan_params import declared_params
 
@@ -171,9 +171,9 @@ class _Scenario:
         c.unknown(items, ("name", "plan", "bind", "rate", "params", "plugin_path"), key)
         c.required(items, ("name", "plan", "bind"), node, key)
         m = Manager(where=c.where(node))
-        m.name = self.get(items, "name", key, "", dataclasses.fields(Manager)[0].metadata["rule"])
+        m.name = self.get(items, "name", key, "", rule_of(Manager, "name"))
         plan, bind = self.file(items, "plan", key), self.file(items, "bind", key)
-        m.rate_hz = self.get(items, "rate", key, 10.0, Rule(gt=0.0))
+        m.rate_hz = self.get(items, "rate", key, 10.0, rule_of(Manager, "rate_hz"))
         if "params" in items:
             m.params = self.params(items["params"][1], join(key, "params"), plan)
         pp: list = []
