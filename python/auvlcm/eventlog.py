@@ -56,6 +56,22 @@ class Damage:
     def any(self) -> bool:
         return bool(self.skipped_bytes or self.lost_events or self.bad_channel_names)
 
+    def lines(self, path: str | Path) -> list[str]:
+        """What was skipped, one line each for stderr (none for an intact log)."""
+        out = []
+        if self.skipped_bytes:
+            where = ", ".join(f"{o}+{n}" for o, n in self.regions[:5]) + (" ..." if len(self.regions) > 5 else "")
+            out.append(f"{path}: damaged: skipped {self.skipped_bytes} byte(s) in {len(self.regions)} "
+                       f"region(s) (offset+length: {where}); about {self.lost_events} event(s) lost"
+                       + ("; the file ends inside an event" if self.truncated else ""))
+        if self.number_gaps:
+            out.append(f"{path}: the event numbers jump {self.number_gaps} time(s) between sound events "
+                       f"(whole events missing; {self.lost_events} event(s) lost in all)")
+        if self.bad_channel_names:
+            out.append(f"{path}: {self.bad_channel_names} event(s) with a channel name that is not UTF-8 "
+                       "(kept, shown with U+FFFD)")
+        return out
+
 
 class _Numbers:
     """Event number continuity. lcm-logger numbers events 0, 1, 2, ...; a forward

@@ -218,7 +218,7 @@ class _Scenario:
         if problem:
             c.err(items["id"][1], join(key, "id"), problem)
             vid = ""
-        host = self.get(items, "host", key, hosts[0], Rule(one_of=tuple(hosts)))
+        host = self.host(items, "host", key, hosts)
         cfg, overrides, sim_node = None, {}, None
         if "sim" in items:
             sim_node = items["sim"][1]
@@ -246,6 +246,14 @@ class _Scenario:
         if not vid or cfg is None or not managers:
             return None
         return Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node)
+
+    def host(self, items: dict, k: str, key: str, hosts: list[str]) -> str:
+        """One of the scenario's hosts (the first if not given)."""
+        h = self.get(items, k, key, hosts[0])
+        if h not in hosts:
+            self.c.err(items[k][1], join(key, k), f"unknown host '{h}'; hosts are: {', '.join(hosts)}")
+            return hosts[0]
+        return h
 
     def hosts(self, items: dict) -> list[str]:
         if "hosts" not in items:
@@ -280,7 +288,9 @@ def load_scenario(path: str | Path) -> Scenario:
         world = {}
     time = TimeSettings(host=hosts[0])
     tnode = top["time"][1] if "time" in top else None
-    c.fill(tnode, "time", time, special={"host": lambda n, k: c.value(n, k, "", Rule(one_of=tuple(hosts)))})
+    t_items = c.mapping(tnode, "time")
+    c.fill(tnode, "time", time, skip=("host",))
+    time.host = s.host(t_items, "host", "time", hosts)
     lg_items = c.mapping(top["logging"][1], "logging") if "logging" in top else {}
     c.unknown(lg_items, ("enabled", "file", "host"), "logging")
     vehicles = []
@@ -306,7 +316,7 @@ def load_scenario(path: str | Path) -> Scenario:
         log_enabled=s.get(lg_items, "enabled", "logging", True),
         log_file=s.get(lg_items, "file", "logging", "run.lcmlog", Rule(pattern=r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,127}",
                        pattern_hint="a file name in the run folder")),
-        log_host=s.get(lg_items, "host", "logging", hosts[0], Rule(one_of=tuple(hosts))),
+        log_host=s.host(lg_items, "host", "logging", hosts),
         hosts=hosts, vehicles=vehicles, text=c.text, survey=s.file(top, "survey", ""),
         world_node=world_node)
     c.raise_errors()

@@ -188,6 +188,7 @@ def test_whole_events_cut_out_are_found_by_their_numbers(good, tmp_path):
     _, evs, stats = _events(cut, tmp_path)
     assert len(evs) == len(offsets) - 50
     assert stats.damage.lost_events == 50 and stats.damage.number_gaps == 1 and not stats.damage.skipped_bytes
+    assert "the event numbers jump 1 time(s)" in stats.damage.lines("x")[0]
     bad = bytearray(data)                                     # one damaged number field: nothing lost
     struct.pack_into(">q", bad, offsets[200] + 4, 7)
     _, evs, stats = _events(bytes(bad), tmp_path)
