@@ -163,13 +163,21 @@ class _Scenario:
             out[pk] = text
         return out
 
-    def manager(self, node, key: str) -> Manager | None:
-        c = self.c
-        items = c.mapping(node, key)
+    def section(self, node, key: str, allowed: tuple, required: tuple) -> dict | None:
+        """A mapping's items, its keys checked; None if it is not a mapping (reported)."""
+        items = self.c.mapping(node, key)
         if not isinstance(node, yaml.MappingNode):
             return None
-        c.unknown(items, ("name", "plan", "bind", "rate", "params", "plugin_path"), key)
-        c.required(items, ("name", "plan", "bind"), node, key)
+        self.c.unknown(items, allowed, key)
+        self.c.required(items, required, node, key)
+        return items
+
+    def manager(self, node, key: str) -> Manager | None:
+        c = self.c
+        items = self.section(node, key, ("name", "plan", "bind", "rate", "params", "plugin_path"),
+                             ("name", "plan", "bind"))
+        if items is None:
+            return None
         m = Manager(where=c.where(node))
         m.name = self.get(items, "name", key, "", rule_of(Manager, "name"))
         plan, bind = self.file(items, "plan", key), self.file(items, "bind", key)
@@ -200,19 +208,17 @@ class _Scenario:
             nav.source = self.get(items, "nav", key, "ins", Rule(one_of=NAV_SOURCES))
             return nav
         n = self.c.mapping(node, join(key, "nav"))
-        self.c.unknown(n, ("source", "config", "rate"), join(key, "nav"))
         self.c.required(n, ("source",), node, join(key, "nav"))
-        self.c.fill(node, join(key, "nav"), nav, skip=("config",))
+        self.c.fill(node, join(key, "nav"), nav, skip=("config",))     # config: a file, below
         nav.config = self.file(n, "config", join(key, "nav")) if "config" in n else None
         return nav
 
     def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
         c = self.c
-        items = c.mapping(node, key)
-        if not isinstance(node, yaml.MappingNode):
+        items = self.section(node, key, ("id", "host", "sim", "managers", "end_manager", "nav"),
+                             ("id", "sim", "managers"))
+        if items is None:
             return None
-        c.unknown(items, ("id", "host", "sim", "managers", "end_manager", "nav"), key)
-        c.required(items, ("id", "sim", "managers"), node, key)
         vid = self.get(items, "id", key, "")
         problem = vehicle_id_problem(vid) if "id" in items else ""
         if problem:
