@@ -167,3 +167,12 @@ clean:
 	rm -rf $(BUILD)
 distclean: clean
 	rm -rf $(VENV)
+
+# `make fuzz` also fuzzes the configuration readers (simulator config and
+# scenario) by seeded mutation of the shipped files; a short seeded run is in
+# `make test` (tests/fuzz/test_config_fuzz.py).
+fuzz: fuzz-config
+.PHONY: fuzz-config
+fuzz-config: $(VENV_STAMP) $(GEN_PY_STAMP)
+	@mkdir -p $(BUILD)/fuzz
+	cd $(BUILD)/fuzz && $(abspath $(VPY)) $(abspath tests/fuzz/config_fuzz.py) --seconds $(FUZZ_SECONDS) --seed $$RANDOM

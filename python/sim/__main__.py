@@ -46,7 +46,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.clock:
         cfg.sim.clock = args.clock
     if args.warp is not None:
-        if args.warp <= 0:
+        if not 0 < args.warp < float("inf"):
             ap.error("--warp must be > 0")
         cfg.sim.warp = args.warp
     if args.fast:

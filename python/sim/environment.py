@@ -14,6 +14,8 @@ import random
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from confcheck import setting
+
 from sim.bathymetry import Bathymetry
 
 G = 9.81
@@ -37,7 +39,7 @@ class Transponder:
     north_m: float
     east_m: float
     depth_m: float
-    turnaround_s: float = 0.0
+    turnaround_s: float = setting(0.0, ge=0.0)
 
 
 @dataclass
@@ -48,12 +50,12 @@ class EnvParams:
     origin_longitude_deg: float = -70.67
     current: list[CurrentLayer] = field(default_factory=list)
     current_variation_mps: float = 0.0
-    current_variation_period_s: float = 43200.0
-    wave_height_m: float = 0.0
-    wave_period_s: float = 8.0
+    current_variation_period_s: float = setting(43200.0, ge=0.0)
+    wave_height_m: float = setting(0.0, ge=0.0)
+    wave_period_s: float = setting(8.0, ge=0.0)
     wave_direction_rad: float = 0.0
     bathymetry_ref: str = "flat:depth=50"
-    sound_speed_mps: float = 1500.0
+    sound_speed_mps: float = setting(1500.0, gt=0.0)
     sound_speed_gradient_per_m: float = 0.0
     transponders: list[Transponder] = field(default_factory=list)
 

@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, fields
 
+from confcheck import setting
+
 G = 9.81
 
 
@@ -45,18 +47,18 @@ def _remus_hydro() -> dict[str, float]:
 @dataclass
 class VehicleParams:
     name: str = "REMUS 100 (Prestero 2001)"
-    mass_kg: float = 30.48
-    buoyancy_n: float = 306.0
-    length_m: float = 1.33
-    diameter_m: float = 0.191
+    mass_kg: float = setting(30.48, gt=0.0)
+    buoyancy_n: float = setting(306.0, gt=0.0)
+    length_m: float = setting(1.33, gt=0.0)
+    diameter_m: float = setting(0.191, gt=0.0)
     # CG relative to the CB (the body origin) [m]
     cg_m: tuple[float, float, float] = (0.0, 0.0, 0.0196)
     inertia_kgm2: tuple[float, float, float] = (0.177, 3.45, 3.45)
     hydro: dict[str, float] = field(default_factory=_remus_hydro)
 
     # fins
-    fin_max_rad: float = math.radians(20.0)      # MSS REMUS 100 figure
-    fin_rate_radps: float = math.radians(40.0)   # servo slew limit (assumed)
+    fin_max_rad: float = setting(math.radians(20.0), ge=0.0)      # MSS REMUS 100 figure
+    fin_rate_radps: float = setting(math.radians(40.0), ge=0.0)   # servo slew limit (assumed)
     # The channel contract (actuators_t) says positive rudder turns the bow to
     # starboard. This factor maps a commanded rudder angle onto the model's
     # fin coefficients; set it to -1 for a vehicle whose coefficients use the
@@ -69,8 +71,8 @@ class VehicleParams:
     prop_nominal_rpm: float = 1500.0
     prop_nominal_thrust_n: float = 3.86
     prop_nominal_torque_nm: float = -0.543
-    prop_max_rpm: float = 2000.0
-    prop_time_constant_s: float = 0.3
+    prop_max_rpm: float = setting(2000.0, ge=0.0)
+    prop_time_constant_s: float = setting(0.3, ge=0.0)
 
     @property
     def weight_n(self) -> float:

@@ -31,7 +31,7 @@ import lcm  # noqa: E402
 
 from auvlcm.url import check_local, default_url, with_receive_buffer  # noqa: E402
 from tools.annotate import Annotator  # noqa: E402
-from tools.marked_yaml import YamlError  # noqa: E402
+from confcheck import ConfigError  # noqa: E402
 from tools.mission_watch import MissionWatch  # noqa: E402
 from tools.procs import Child  # noqa: E402
 from tools.scenario import Scenario, load_scenario  # noqa: E402
@@ -274,12 +274,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
     args = ap.parse_args(argv)
+    if args.warp is not None and not 0 < args.warp < float("inf"):
+        ap.error(f"--warp must be a number > 0, got {args.warp}")
+    if not 0 <= args.progress < float("inf"):
+        ap.error(f"--progress must be a number >= 0, got {args.progress}")
     try:
         sc = load_scenario(args.scenario)
         if args.host is not None and args.host not in sc.hosts:
-            raise YamlError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
+            raise ConfigError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
         url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
-    except YamlError as exc:
+    except ConfigError as exc:
         print("\n".join(exc.errors), file=sys.stderr)
         print(f"launch: {args.scenario}: {len(exc.errors)} error(s)", file=sys.stderr)
         return 2

@@ -9,9 +9,13 @@
 
 Nested arrays are flattened into columns named as in C (position_cov_m2[0][1]);
 variable-length arrays go into one column, elements joined by ';' (arrays of
-structs are left out of CSV and named on stderr). Exit status: 0 on success,
-1 if the log holds events that do not decode (counted and reported, never
-fatal), 2 on a usage or file error.
+structs are left out of CSV and named on stderr). A damaged log is read past
+the damage (auvlcm.eventlog): what was skipped is printed on stderr.
+
+Exit status: 0 on success; 1 if the log holds events that do not decode or
+channel names that are not UTF-8 (counted and reported, never fatal); 3 if
+events were lost to a damaged or truncated file (skipped, counted, the rest
+read); 2 on a usage or file error (including a file that is not an LCM log).
 """
 
 from __future__ import annotations
@@ -27,16 +31,37 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import numpy as np  # noqa: E402
 
 from auvlcm.arrays import ChannelArrays, LogArrays, load_log  # noqa: E402
-from auvlcm.log import read_events  # noqa: E402
+from auvlcm.log import EXIT_EVENTS_LOST, LogStats, damage_lines, read_events  # noqa: E402
 from tools.timeline import state_timeline  # noqa: E402
+
+
+def _show(ch: str) -> str:
+    """A channel name safe to print (control characters escaped)."""
+    return ch if ch.isprintable() else ch.encode("unicode_escape").decode("ascii")
+
+
+def _file_name(ch: str) -> str:
+    """A channel name as a file name inside the output folder (never a path)."""
+    name = re.sub(r"[^A-Za-z0-9_.-]", "_", ch)
+    return "_" + name if name.startswith(".") or not name else name
+
+
+def _damage(path: Path, stats: LogStats) -> int:
+    """Print what a damaged log made us skip; the exit status it calls for."""
+    for line in damage_lines(path, stats):
+        print(line, file=sys.stderr)
+    if stats.damage.lost_events:
+        return EXIT_EVENTS_LOST
+    return 1 if stats.damage.bad_channel_names else 0
 
 
 def _report_bad(log: LogArrays) -> int:
     for ch, n in sorted(log.undecodable.items()):
-        print(f"{log.path}: {n} undecodable event(s) on {ch}", file=sys.stderr)
+        print(f"{log.path}: {n} undecodable event(s) on {_show(ch)}", file=sys.stderr)
     for ch, n in sorted(log.type_conflicts.items()):
-        print(f"{log.path}: {n} event(s) of another type on {ch} (dropped)", file=sys.stderr)
-    return 1 if log.stats.undecodable else 0
+        print(f"{log.path}: {n} event(s) of another type on {_show(ch)} (dropped)", file=sys.stderr)
+    code = _damage(log.path, log.stats)
+    return code or (1 if log.stats.undecodable else 0)
 
 
 def summary(path: Path) -> int:
@@ -48,7 +73,7 @@ def summary(path: Path) -> int:
     for ch in sorted(s.per_channel):
         arr = log.channels.get(ch)
         span = f"{arr.t.max() - arr.t.min():18.3f}" if arr is not None and len(arr) else f"{'-':>18}"
-        print(f"{ch:32} {arr.type_name if arr else '?':24} {s.per_channel[ch]:7d} {span}")
+        print(f"{_show(ch):32} {arr.type_name if arr else '?':24} {s.per_channel[ch]:7d} {span}")
     return _report_bad(log)
 
 
@@ -88,7 +113,7 @@ def to_csv(path: Path, channel: str | None, out: Path) -> int:
     else:
         out.mkdir(parents=True, exist_ok=True)
         for ch, arr in log.channels.items():
-            write_csv(arr, out / f"{ch}.csv")
+            write_csv(arr, out / f"{_file_name(ch)}.csv")
     return _report_bad(log)
 
 
@@ -114,7 +139,8 @@ def is_file_annotation(a) -> bool:
 
 def annotations(path: Path, extract: Path | None) -> int:
     n = 0
-    for ev in read_events(path):
+    stats = LogStats()
+    for ev in read_events(path, stats):
         if ev.msg is None or type(ev.msg).__name__ != "log_annotation_t":
             continue
         a = ev.msg
@@ -129,7 +155,7 @@ def annotations(path: Path, extract: Path | None) -> int:
             dest.write_text(a.text)
     if extract is not None:
         print(f"extracted into {extract}/")
-    return 0 if n else 1
+    return _damage(path, stats) or (0 if n else 1)
 
 
 def states(path: Path, pattern: str) -> int:
@@ -164,9 +190,33 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("log", type=Path)
     p.add_argument("pattern", nargs="?", default=r".*\.CHASM\..*")
     args = parser.parse_args(argv)
-    if not args.log.is_file():
-        print(f"lcmlog: {args.log}: no such log file", file=sys.stderr)
+    problem = not_a_log(args.log)
+    if problem:
+        print(f"lcmlog: {args.log}: {problem}", file=sys.stderr)
         return 2
+    try:
+        return _run(args, parser)
+    except OSError as exc:
+        print(f"lcmlog: {exc.filename or args.log}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
+
+
+def not_a_log(path: Path) -> str:
+    """Why path cannot be read as an LCM log ("" if it can be tried)."""
+    from auvlcm.eventlog import SYNC_BYTES
+    if not path.is_file():
+        return "no such log file"
+    try:
+        with open(path, "rb") as f:
+            head = f.read(1 << 20)
+    except OSError as exc:
+        return f"cannot read: {exc.strerror}"
+    if head and SYNC_BYTES not in head:
+        return "not an LCM log (no event header in its first MiB)"
+    return ""
+
+
+def _run(args, parser) -> int:
     if args.cmd == "summary":
         return summary(args.log)
     if args.cmd == "csv":

@@ -83,9 +83,18 @@ def scenario_dict(name: str, out: Path, ids, sv: Survey, starts, args, lim: Limi
                  "rate": 20},
                 {"name": "NAVIGATOR", "plan": f"{vid}.chasm", "bind": _rel(args.nav_bind, out), "rate": 10},
             ]})
-    world = yaml.safe_load(args.world.read_text()) if args.world else {}
+    world = read_world(args.world) if args.world else {}
     return {"name": name, "seed": args.seed, "world": world or {},
             "time": {"mode": "fast", "limit": round(1.5 * longest + 900)}, "vehicles": vehicles}
+
+
+def read_world(path: Path) -> dict:
+    """The --world file, read and checked like every configuration (confcheck)."""
+    from confcheck import Checker
+    c = Checker.from_file(path)
+    world = c.plain(c.root)
+    c.raise_errors()
+    return world if isinstance(world, dict) else {}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -120,12 +129,14 @@ def main(argv: list[str] | None = None) -> int:
         if len(ids) != args.vehicles:
             raise GeometryError(f"--ids names {len(ids)} vehicles, --vehicles says {args.vehicles}")
         starts = parse_polygon_points(args.starts, args.vehicles) if args.starts else None
+        if args.world:
+            read_world(args.world)      # refused here, before anything is written
         sv = plan_survey(polygon, args.vehicles, math.radians(args.heading), Sonar(args.range, args.nadir_gap),
                          args.overlap, args.run_in, args.margin, starts)
         for k, v in enumerate(sv.vehicles):
             if not v.legs:
                 raise GeometryError(f"vehicle {k + 1} got no lines")
-    except (GeometryError, OSError) as exc:
+    except (GeometryError, OSError, ValueError) as exc:     # ValueError: ConfigError of --world
         print(f"plan_survey: {exc}", file=sys.stderr)
         return 2
     starts = starts or auto_starts(sv)

@@ -7,6 +7,11 @@ probability of detection and false alarms, contacts (<V>.CONTACTS) against
 the true target field (SIM.TARGETS) with an association radius; navigation
 error (<V>.NAV against <V>.TRUTH). Writes report.txt, report.json and, unless
 --no-plots, the plots (PNG and SVG) into --out (default: beside the log).
+
+A damaged log is read past the damage (auvlcm.eventlog); what was skipped is
+printed and kept in report.json ("log_damage"). Exit status: 0 done; 3 the
+report was written but events were lost to damage; 2 usage error, no such
+file, not an LCM log, or no vehicle in it.
 """
 
 from __future__ import annotations
@@ -22,6 +27,7 @@ sys.path.insert(0, str(ROOT / "python"))
 
 import numpy as np  # noqa: E402
 
+from auvlcm.log import EXIT_EVENTS_LOST, damage_lines  # noqa: E402
 from tools.coverage import coverage_grid, point_in_polygon  # noqa: E402
 from tools.run_data import RunData, interp_truth, load_run  # noqa: E402
 
@@ -108,7 +114,10 @@ def outcome_of(run: RunData) -> dict:
 def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[dict, object]:
     rep: dict = {"log": str(run.log.path), "vehicles": run.vehicles, **outcome_of(run),
                  "duration_s": run.duration_s(),
-                 "log_events": run.log.stats.events, "undecodable_events": run.log.stats.undecodable}
+                 "log_events": run.log.stats.events, "undecodable_events": run.log.stats.undecodable,
+                 "log_damage": {"skipped_bytes": run.log.stats.damage.skipped_bytes,
+                                "lost_events": run.log.stats.damage.lost_events,
+                                "bad_channel_names": run.log.stats.damage.bad_channel_names}}
     grid = None
     if run.survey:
         sv = run.survey
@@ -140,7 +149,9 @@ def report_text(rep: dict) -> str:
     lines = [f"Mission report: {rep['log']}",
              f"outcome   {rep['outcome'] or '-'}" + (f" ({rep['reason']})" if rep.get("reason") else ""),
              f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
-             f"{rep['undecodable_events']} undecodable"]
+             f"{rep['undecodable_events']} undecodable"
+             + (f"; DAMAGED LOG: {rep['log_damage']['lost_events']} event(s) lost, "
+                f"{rep['log_damage']['skipped_bytes']} byte(s) skipped" if rep["log_damage"]["skipped_bytes"] else "")]
     for vid, o in rep["vehicle_outcomes"].items():
         lines.append(f"  {vid}: {o or 'unfinished'}")
     c = rep.get("coverage")
@@ -181,13 +192,22 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--cell", type=float, default=2.0, help="coverage grid cell [m]")
     ap.add_argument("--no-plots", action="store_true")
     args = ap.parse_args(argv)
-    if not args.log.is_file():
-        print(f"report: {args.log}: no such log file", file=sys.stderr)
+    from tools.lcmlog import not_a_log
+    problem = not_a_log(args.log)
+    if problem:
+        print(f"report: {args.log}: {problem}", file=sys.stderr)
         return 2
     if args.radius <= 0 or args.cell <= 0 or not math.isfinite(args.radius + args.cell):
         print("report: --radius and --cell must be > 0", file=sys.stderr)
         return 2
-    run = load_run(args.log, args.survey)
+    try:
+        run = load_run(args.log, args.survey)
+    except (OSError, ValueError) as exc:     # an unreadable log, a --survey that is not JSON
+        print(f"report: {exc}", file=sys.stderr)
+        return 2
+    damage = damage_lines(args.log, run.log.stats)
+    for line in damage:
+        print(line, file=sys.stderr)
     if not run.vehicles:
         print(f"report: {args.log}: no vehicle ground truth (<V>.TRUTH) in the log", file=sys.stderr)
         return 2
@@ -203,7 +223,7 @@ def main(argv: list[str] | None = None) -> int:
     print(text, end="")
     print(f"report: {out / 'report.txt'}, {out / 'report.json'}"
           + (f", {len(rep['plots'])} plot files" if "plots" in rep else ""))
-    return 0
+    return EXIT_EVENTS_LOST if run.log.stats.events_lost else 0
 
 
 if __name__ == "__main__":

@@ -62,17 +62,26 @@ class RunData:
             return None
 
 
+def _json(text: str) -> dict | None:
+    """An annotation's JSON; None if it does not parse (a damaged or foreign log)."""
+    try:
+        value = json.loads(text)
+    except ValueError:
+        return None
+    return value if isinstance(value, dict) else None
+
+
 def load_run(log_path: str | Path, survey_path: str | Path | None = None) -> RunData:
     log = load_log(log_path, keep_messages=KEEP)
     vehicles = sorted(c.split(".")[0] for c in log.matching(r"[A-Z][A-Z0-9]*\.TRUTH"))
     run = RunData(log, vehicles)
     for a in log.messages.get("SIM.ANNOTATION", []):
         if a.kind == 0 and a.name.endswith("survey.json") and run.survey is None:
-            run.survey = json.loads(a.text)
+            run.survey = _json(a.text)
         elif a.kind == 1 and a.vehicle and a.name.endswith(".sim.yaml"):
             run.sim_configs[a.vehicle] = a.text
         elif a.kind == 4 and a.name == "end":
-            run.outcome = json.loads(a.text)
+            run.outcome = _json(a.text)
     if survey_path is not None:
         run.survey = json.loads(Path(survey_path).read_text())
     for ch in log.matching(r"[A-Z][A-Z0-9]*\.CHASM\.[A-Z0-9_]+"):

@@ -1,34 +1,43 @@
 """The scenario file: what the launcher starts (docs/scenarios.md).
 
-Checked key by key; every error is reported at once as
-`file:line:col: key: message`, unknown keys with a did-you-mean hint.
-Relative paths are relative to the scenario file.
+Read and checked by confcheck like every configuration: every error is
+reported at once as `file:line:col: key: message`, unknown keys with a
+did-you-mean hint. Relative paths are relative to the scenario file.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from tools.marked_yaml import MDict, MList, YamlError, load, where
+import yaml
 
-VEHICLE_ID = re.compile(r"[A-Z][A-Z0-9]{0,15}")
-MANAGER_NAME = re.compile(r"[A-Z][A-Z0-9_]{0,23}")
-HOST_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}")
+from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
+from confcheck.checker import control_character
+from tools.plan_params import declared_params
+
+
+MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
+PARAM_NAME = r"[A-Za-z_][A-Za-z0-9_]{0,63}"
+HOST_NAME = r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}"
 TIME_MODES = ("realtime", "scaled", "fast")
 CLOCK_SOURCES = ("launcher", "simulators")
+NAV_SOURCES = ("ins", "ekf")
 DEFAULT_HOST = "local"
+MAX_PARAM_CHARS = 1000       # a -D value on a command line
 
 
 @dataclass
 class Manager:
-    name: str
-    plan: Path
-    bind: Path
-    rate_hz: float = 10.0
+    name: str = setting("", pattern=MANAGER_NAME, pattern_hint="upper-case letters, digits and _, "
+                        "starting with a letter")
+    plan: Path = Path()
+    bind: Path = Path()
+    rate_hz: float = setting(10.0, gt=0.0, key="rate")
     params: dict[str, str] = field(default_factory=dict)    # -D name=value
     plugin_path: list[Path] = field(default_factory=list)
     where: str = ""
@@ -37,9 +46,9 @@ class Manager:
 @dataclass
 class NavChoice:
     """What publishes the vehicle's <ID>.NAV (docs/navigation.md)."""
-    source: str = "ins"                   # "ins": the simulator's black-box INS; "ekf": auv-nav
+    source: str = setting("ins", one_of=NAV_SOURCES)   # "ins": the simulator's INS; "ekf": auv-nav
     config: Path | None = None            # auv-nav's nav config; None: derived from the sim config
-    rate_hz: float = 20.0
+    rate_hz: float = setting(20.0, gt=0.0, key="rate")
 
 
 @dataclass
@@ -47,22 +56,23 @@ class Vehicle:
     id: str
     host: str
     sim_config: Path                      # base simulator configuration
-    sim_overrides: MDict                  # merged over it (same sections as the sim's YAML)
+    sim_overrides: dict                   # merged over it (same sections as the sim's YAML)
     managers: list[Manager]
     end_manager: str = "NAVIGATOR"        # whose status ends this vehicle's mission
     where: str = ""
     nav: NavChoice = field(default_factory=NavChoice)
+    sim_node: Any = None                  # the `sim:` mapping node, for error positions
 
 
 @dataclass
 class TimeSettings:
-    mode: str = "scaled"
-    warp: float = 10.0
-    step_s: float = 0.05                  # SIM.CLOCK tick [sim s]
-    limit_s: float = 3600.0               # mission time limit [sim s]
-    wall_limit_s: float = 0.0             # 0 = none [wall s]
+    mode: str = setting("scaled", one_of=TIME_MODES)
+    warp: float = setting(10.0, gt=0.0)
+    step_s: float = setting(0.05, gt=0.0, key="step")          # SIM.CLOCK tick [sim s]
+    limit_s: float = setting(3600.0, gt=0.0, key="limit")      # mission time limit [sim s]
+    wall_limit_s: float = setting(0.0, ge=0.0, key="wall_limit")   # 0 = none [wall s]
     host: str = DEFAULT_HOST              # the host that runs the clock
-    source: str = "launcher"              # or "simulators": their multi-HIL nodes keep the time
+    source: str = setting("launcher", one_of=CLOCK_SOURCES)   # or "simulators": their multi-HIL nodes
 
 
 @dataclass
@@ -71,7 +81,7 @@ class Scenario:
     name: str
     seed: int
     lcm_url: str
-    world: MDict                          # merged into every simulator's `environment`
+    world: dict                           # merged into every simulator's `environment`
     time: TimeSettings
     log_enabled: bool
     log_file: str
@@ -80,214 +90,240 @@ class Scenario:
     vehicles: list[Vehicle]
     text: str = ""
     survey: Path | None = None            # the planner's survey.json, for reports and plots
+    world_node: Any = None                # the `world:` mapping node, for error positions
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
 
 
-class _Checker:
-    def __init__(self, path: Path) -> None:
-        self.path, self.base, self.errors = path, path.parent, []
+def position(path: Path, node: Any, parts: list[str]) -> tuple[str, bool]:
+    """file:line:col of the deepest key of `parts` found under a mapping node,
+    and whether all of them were found."""
+    best, found = node, 0
+    for part in parts:
+        if not isinstance(node, yaml.MappingNode):
+            break
+        hit = next((v for k, v in node.value if isinstance(k, yaml.ScalarNode) and k.value == part), None)
+        if hit is None:
+            break
+        best = node = hit
+        found += 1
+    m = best.start_mark if best is not None else None
+    return (f"{path}:{m.line + 1}:{m.column + 1}" if m else str(path)), found == len(parts) and found > 0
 
-    def err(self, pos: str, key: str, msg: str) -> None:
-        self.errors.append(f"{pos or self.path}: {key}: {msg}")
 
-    def mapping(self, value: Any, pos: str, key: str, allowed: tuple[str, ...], required=()) -> MDict:
-        if value is None:
-            value = MDict()
-            value.where, value.key_where = pos, {}
-        if not isinstance(value, MDict):
-            self.err(pos, key, "expected a mapping of keys")
-            empty = MDict()
-            empty.where, empty.key_where = pos, {}
-            return empty
-        for k in value:
-            if k not in allowed:
-                hint = difflib.get_close_matches(k, allowed, n=1)
-                self.err(where(value, k), f"{key}.{k}" if key else k,
-                         f"unknown key; did you mean '{hint[0]}'?" if hint
-                         else f"unknown key; expected one of: {', '.join(allowed)}")
-        for k in required:
-            if k not in value:
-                self.err(value.where, key or "scenario", f"missing required key '{k}'")
-        return value
+class _Scenario:
+    """The checks of one scenario file (errors collect in self.c)."""
 
-    def get(self, m: MDict, k: str, key: str, kind: type | tuple, default: Any, check=None) -> Any:
-        if k not in m:
+    def __init__(self, c: Checker) -> None:
+        self.c, self.base = c, c.path.parent
+
+    def get(self, items: dict, k: str, key: str, default: Any, rule: Rule = Rule()) -> Any:
+        if k not in items:
             return default
-        v = m[k]
-        if kind is float and isinstance(v, int) and not isinstance(v, bool):
-            v = float(v)
-        if not isinstance(v, kind) or (kind is not bool and isinstance(v, bool)):
-            names = {str: "a string", float: "a number", int: "an integer", bool: "true/false"}
-            self.err(where(m, k), f"{key}.{k}" if key else k,
-                     f"expected {names.get(kind, getattr(kind, '__name__', 'a value'))}, got {v!r}")
-            return default
-        if check is not None:
-            problem = check(v)
-            if problem:
-                self.err(where(m, k), f"{key}.{k}" if key else k, problem)
-                return default
-        return v
+        v = self.c.value(items[k][1], join(key, k), default, rule)
+        return default if v is dataclasses.MISSING else v
 
-    def file(self, m: MDict, k: str, key: str) -> Path | None:
-        """A file path relative to the scenario; a missing key is reported by mapping()."""
-        v = self.get(m, k, key, str, None)
-        if v is None:
+    def file(self, items: dict, k: str, key: str) -> Path | None:
+        v = self.get(items, k, key, "")
+        if not v:
             return None
         p = (self.base / v).resolve()
         if not p.is_file():
-            self.err(where(m, k), f"{key}.{k}" if k != key else k, f"no such file: {p}")
+            self.c.err(items[k][1], join(key, k), f"no such file: {p}")
         return p
 
+    def params(self, node, key: str, plan: Path | None) -> dict[str, str]:
+        c, out = self.c, {}
+        items = c.mapping(node, key)
+        declared = declared_params(plan) if plan is not None and plan.is_file() else None
+        for pk, (knode, vnode) in items.items():
+            pkey = join(key, pk)
+            if not re.fullmatch(PARAM_NAME, pk):
+                c.err(knode, pkey, "a parameter name is letters, digits and _, starting with a letter")
+                continue
+            if declared is not None and pk not in declared:
+                hint = difflib.get_close_matches(pk, sorted(declared), n=1)
+                c.err(knode, pkey, f"the plan {plan.name} declares no parameter '{pk}'"
+                      + (f"; did you mean '{hint[0]}'?" if hint else
+                         f"; it declares: {', '.join(sorted(declared)) or 'none'}"))
+                continue
+            if not isinstance(vnode, yaml.ScalarNode) or c.is_empty(vnode):
+                c.err(vnode, pkey, "expected a value such as 12 or '12 m'")
+                continue
+            v = c.scalar(vnode)
+            text = str(v).lower() if isinstance(v, bool) else v if isinstance(v, str) else vnode.value
+            if len(text) > MAX_PARAM_CHARS:
+                c.err(vnode, pkey, f"longer than {MAX_PARAM_CHARS} characters")
+                continue
+            bad = control_character(text)
+            if bad:
+                c.err(vnode, pkey, f"must not hold {bad} (the value goes into the plan as -D {pk}=...)")
+                continue
+            out[pk] = text
+        return out
 
-def _positive(v: float) -> str:
-    return "" if v > 0 else "must be > 0"
+    def section(self, node, key: str, allowed: tuple, required: tuple) -> dict | None:
+        """A mapping's items, its keys checked; None if it is not a mapping (reported)."""
+        items = self.c.mapping(node, key)
+        if not isinstance(node, yaml.MappingNode):
+            return None
+        self.c.unknown(items, allowed, key)
+        self.c.required(items, required, node, key)
+        return items
 
+    def manager(self, node, key: str) -> Manager | None:
+        c = self.c
+        items = self.section(node, key, ("name", "plan", "bind", "rate", "params", "plugin_path"),
+                             ("name", "plan", "bind"))
+        if items is None:
+            return None
+        m = Manager(where=c.where(node))
+        m.name = self.get(items, "name", key, "", rule_of(Manager, "name"))
+        plan, bind = self.file(items, "plan", key), self.file(items, "bind", key)
+        m.rate_hz = self.get(items, "rate", key, 10.0, rule_of(Manager, "rate_hz"))
+        if "params" in items:
+            m.params = self.params(items["params"][1], join(key, "params"), plan)
+        pp: list = []
+        if "plugin_path" in items:
+            pnode = items["plugin_path"][1]
+            if isinstance(pnode, yaml.ScalarNode):
+                one = self.get(items, "plugin_path", key, "")
+                pp = [one] if one else []
+            else:
+                got = c.value(pnode, join(key, "plugin_path"), [""])
+                pp = [] if got is dataclasses.MISSING else got
+        if not m.name or plan is None or bind is None:
+            return None
+        m.plan, m.bind, m.plugin_path = plan, bind, [(self.base / p).resolve() for p in pp]
+        return m
 
-def _nonneg(v: float) -> str:
-    return "" if v >= 0 else "must be >= 0"
+    def nav(self, items: dict, key: str) -> NavChoice:
+        """`nav: ins` (default), `nav: ekf`, or `nav: {source: ekf, config: FILE.nav, rate: 20}`."""
+        nav = NavChoice()
+        if "nav" not in items:
+            return nav
+        node = items["nav"][1]
+        if isinstance(node, yaml.ScalarNode):
+            nav.source = self.get(items, "nav", key, "ins", Rule(one_of=NAV_SOURCES))
+            return nav
+        n = self.c.mapping(node, join(key, "nav"))
+        self.c.required(n, ("source",), node, join(key, "nav"))
+        self.c.fill(node, join(key, "nav"), nav, skip=("config",))     # config: a file, below
+        nav.config = self.file(n, "config", join(key, "nav")) if "config" in n else None
+        return nav
 
-
-def _manager(c: _Checker, m: Any, pos: str, key: str) -> Manager | None:
-    m = c.mapping(m, pos, key, ("name", "plan", "bind", "rate", "params", "plugin_path"),
-                  required=("name", "plan", "bind"))
-    name = c.get(m, "name", key, str, "", lambda v: "" if MANAGER_NAME.fullmatch(v) else
-                 "upper-case letters, digits and _, starting with a letter")
-    plan, bind = c.file(m, "plan", key), c.file(m, "bind", key)
-    rate = c.get(m, "rate", key, float, 10.0, _positive)
-    params = c.mapping(m.get("params"), where(m, "params"), f"{key}.params",
-                       tuple(m.get("params") or ()))
-    dparams = {}
-    for pk, pv in params.items():
-        if isinstance(pv, (dict, list)) or pv is None:
-            c.err(where(params, pk), f"{key}.params.{pk}", "expected a value such as 12 or '12 m'")
-        else:
-            dparams[pk] = str(pv).lower() if isinstance(pv, bool) else str(pv)
-    pp = m.get("plugin_path", [])
-    if isinstance(pp, str):
-        pp = [pp]
-    if not isinstance(pp, list) or not all(isinstance(x, str) for x in pp):
-        c.err(where(m, "plugin_path"), f"{key}.plugin_path", "expected a directory or a list of them")
-        pp = []
-    if not name or plan is None or bind is None:
-        return None
-    return Manager(name, plan, bind, rate, dparams, [(c.base / p).resolve() for p in pp], pos)
-
-
-NAV_SOURCES = ("ins", "ekf")
-
-
-def _nav(c: _Checker, v: MDict, key: str) -> NavChoice:
-    """`nav: ins` (default), `nav: ekf`, or `nav: {source: ekf, config: FILE.nav, rate: 20}`."""
-    raw = v.get("nav", "ins")
-    check = lambda s: "" if s in NAV_SOURCES else f"expected one of: {', '.join(NAV_SOURCES)}"  # noqa: E731
-    if isinstance(raw, str):
-        return NavChoice(c.get(v, "nav", key, str, "ins", check))
-    m = c.mapping(raw, where(v, "nav"), f"{key}.nav", ("source", "config", "rate"), required=("source",))
-    nav = NavChoice(c.get(m, "source", f"{key}.nav", str, "ins", check))
-    nav.config = c.file(m, "config", f"{key}.nav") if "config" in m else None
-    nav.rate_hz = c.get(m, "rate", f"{key}.nav", float, nav.rate_hz, _positive)
-    return nav
-
-
-def _vehicle(c: _Checker, v: Any, pos: str, key: str, hosts: list[str]) -> Vehicle | None:
-    v = c.mapping(v, pos, key, ("id", "host", "sim", "managers", "end_manager", "nav"),
-                  required=("id", "sim", "managers"))
-    vid = c.get(v, "id", key, str, "", lambda s: "" if VEHICLE_ID.fullmatch(s) else
-                "upper-case letters and digits, starting with a letter, at most 16")
-    host = c.get(v, "host", key, str, hosts[0])
-    if host not in hosts:
-        c.err(where(v, "host"), f"{key}.host", f"unknown host '{host}'; hosts are: {', '.join(hosts)}")
-    sim = v.get("sim")
-    if not isinstance(sim, MDict):
-        if "sim" in v:
-            c.err(where(v, "sim"), f"{key}.sim", "expected a mapping with 'config' and overrides")
-        return None
-    cfg = c.file(sim, "config", f"{key}.sim")
-    overrides = MDict({k: x for k, x in sim.items() if k != "config"})
-    overrides.where, overrides.key_where = sim.where, dict(sim.key_where)
-    mgrs_raw = v.get("managers")
-    managers = []
-    if not isinstance(mgrs_raw, MList) or not mgrs_raw:
-        if "managers" in v:
-            c.err(where(v, "managers"), f"{key}.managers", "expected a non-empty list of managers")
-    else:
-        for i, m in enumerate(mgrs_raw):
-            mgr = _manager(c, m, where(mgrs_raw, i), f"{key}.managers[{i}]")
+    def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
+        c = self.c
+        items = self.section(node, key, ("id", "host", "sim", "managers", "end_manager", "nav"),
+                             ("id", "sim", "managers"))
+        if items is None:
+            return None
+        vid = self.get(items, "id", key, "")
+        problem = vehicle_id_problem(vid) if "id" in items else ""
+        if problem:
+            c.err(items["id"][1], join(key, "id"), problem)
+            vid = ""
+        host = self.host(items, "host", key, hosts)
+        cfg, overrides, sim_node = None, {}, None
+        if "sim" in items:
+            sim_node = items["sim"][1]
+            sim = c.mapping(sim_node, join(key, "sim"))
+            if isinstance(sim_node, yaml.MappingNode):
+                c.required(sim, ("config",), sim_node, join(key, "sim"))
+                cfg = self.file(sim, "config", join(key, "sim"))
+                overrides = {k: c.plain(v, join(join(key, "sim"), k)) for k, (_, v) in sim.items() if k != "config"}
+        managers = []
+        mnodes = c.sequence(items["managers"][1], join(key, "managers")) if "managers" in items else []
+        if "managers" in items and not mnodes and isinstance(items["managers"][1], yaml.SequenceNode):
+            c.err(items["managers"][1], join(key, "managers"), "expected a non-empty list of managers")
+        for i, mn in enumerate(mnodes):
+            mgr = self.manager(mn, f"{key}.managers[{i}]")
             if mgr is not None:
                 managers.append(mgr)
         names = [m.name for m in managers]
         for dup in sorted({n for n in names if names.count(n) > 1}):
-            c.err(where(v, "managers"), f"{key}.managers", f"manager name '{dup}' used twice")
-    end = c.get(v, "end_manager", key, str, "NAVIGATOR")
-    if managers and end not in [m.name for m in managers]:
-        c.err(where(v, "end_manager") if "end_manager" in v else where(v, "managers"),
-              f"{key}.end_manager", f"no manager named '{end}' (its status ends the mission)")
-    nav = _nav(c, v, key)
-    if not vid or cfg is None or not managers:
-        return None
-    return Vehicle(vid, host, cfg, overrides, managers, end, pos, nav)
+            c.err(items["managers"][1], join(key, "managers"), f"manager name '{dup}' used twice")
+        end = self.get(items, "end_manager", key, "NAVIGATOR")
+        if managers and end not in names:
+            c.err((items.get("end_manager") or items["managers"])[1], join(key, "end_manager"),
+                  f"no manager named '{end}' (its status ends the mission)")
+        nav = self.nav(items, key)
+        if not vid or cfg is None or not managers:
+            return None
+        return Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node)
 
+    def host(self, items: dict, k: str, key: str, hosts: list[str]) -> str:
+        """One of the scenario's hosts (the first if not given)."""
+        h = self.get(items, k, key, hosts[0])
+        if h not in hosts:
+            self.c.err(items[k][1], join(key, k), f"unknown host '{h}'; hosts are: {', '.join(hosts)}")
+            return hosts[0]
+        return h
 
-def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:
-    t = c.mapping(t, pos, "time", ("mode", "warp", "step", "limit", "wall_limit", "host", "source"))
-    ts = TimeSettings(host=hosts[0])
-    ts.mode = c.get(t, "mode", "time", str, ts.mode, lambda v: "" if v in TIME_MODES else
-                    f"expected one of: {', '.join(TIME_MODES)}")
-    ts.warp = c.get(t, "warp", "time", float, ts.warp, _positive)
-    ts.step_s = c.get(t, "step", "time", float, ts.step_s, _positive)
-    ts.limit_s = c.get(t, "limit", "time", float, ts.limit_s, _positive)
-    ts.wall_limit_s = c.get(t, "wall_limit", "time", float, ts.wall_limit_s, _nonneg)
-    ts.host = c.get(t, "host", "time", str, ts.host, lambda h: "" if h in hosts else f"unknown host '{h}'")
-    ts.source = c.get(t, "source", "time", str, ts.source, lambda v: "" if v in CLOCK_SOURCES else
-                      f"expected one of: {', '.join(CLOCK_SOURCES)}")
-    return ts
+    def hosts(self, items: dict) -> list[str]:
+        if "hosts" not in items:
+            return [DEFAULT_HOST]
+        got = self.c.value(items["hosts"][1], "hosts", [""], Rule(pattern=HOST_NAME,
+                           pattern_hint="a host name (letters, digits, _.-)"))
+        if got is dataclasses.MISSING or not got:
+            if got == []:
+                self.c.err(items["hosts"][1], "hosts", "expected a non-empty list of host names")
+            return [DEFAULT_HOST]
+        return got
 
 
 TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey")
 
 
 def load_scenario(path: str | Path) -> Scenario:
-    """Read and check a scenario; YamlError lists every problem."""
+    """Read and check a scenario; ConfigError lists every problem."""
     path = Path(path).resolve()
-    c = _Checker(path)
-    doc = load(path)
-    doc = c.mapping(doc, f"{path}:1:1", "", TOP_KEYS, required=("vehicles",))
-    hosts_raw = doc.get("hosts", [DEFAULT_HOST])
-    if not isinstance(hosts_raw, list) or not hosts_raw or not all(
-            isinstance(h, str) and HOST_NAME.fullmatch(h) for h in hosts_raw):
-        c.err(where(doc, "hosts"), "hosts", "expected a list of host names (letters, digits, _.-)")
-        hosts_raw = [DEFAULT_HOST]
-    hosts = list(hosts_raw)
-    world = c.mapping(doc.get("world"), where(doc, "world"), "world", tuple(doc.get("world") or ()))
-    time = _time(c, doc.get("time"), where(doc, "time"), hosts)
-    lg = c.mapping(doc.get("logging"), where(doc, "logging"), "logging", ("enabled", "file", "host"))
+    c = Checker.from_file(path)
+    s = _Scenario(c)
+    top = c.mapping(c.root, "")
+    if not isinstance(c.root, yaml.MappingNode):
+        c.raise_errors()
+    c.unknown(top, TOP_KEYS, "")
+    c.required(top, ("vehicles",), c.root, "")
+    hosts = s.hosts(top)
+    world_node = top["world"][1] if "world" in top else None
+    world = c.plain(world_node, "world") if world_node is not None else {}
+    if world_node is not None and not isinstance(world, dict):
+        c.err(world_node, "world", "expected a mapping of keys")
+        world = {}
+    time = TimeSettings(host=hosts[0])
+    tnode = top["time"][1] if "time" in top else None
+    t_items = c.mapping(tnode, "time")
+    c.fill(tnode, "time", time, skip=("host",))
+    time.host = s.host(t_items, "host", "time", hosts)
+    lg_items = c.mapping(top["logging"][1], "logging") if "logging" in top else {}
+    c.unknown(lg_items, ("enabled", "file", "host"), "logging")
     vehicles = []
-    vraw = doc.get("vehicles")
-    if not isinstance(vraw, MList) or not vraw:
-        if "vehicles" in doc:
-            c.err(where(doc, "vehicles"), "vehicles", "expected a non-empty list of vehicles")
-    else:
-        for i, v in enumerate(vraw):
-            veh = _vehicle(c, v, where(vraw, i), f"vehicles[{i}]", hosts)
+    if "vehicles" in top:
+        vnode = top["vehicles"][1]
+        vnodes = c.sequence(vnode, "vehicles")
+        if not vnodes and isinstance(vnode, yaml.SequenceNode) or c.is_empty(vnode):
+            c.err(vnode, "vehicles", "expected a non-empty list of vehicles")
+        for i, n in enumerate(vnodes):
+            veh = s.vehicle(n, f"vehicles[{i}]", hosts)
             if veh is not None:
                 vehicles.append(veh)
         ids = [v.id for v in vehicles]
         for dup in sorted({i for i in ids if ids.count(i) > 1}):
-            c.err(where(doc, "vehicles"), "vehicles", f"vehicle id '{dup}' used twice")
+            c.err(vnode, "vehicles", f"vehicle id '{dup}' used twice")
     sc = Scenario(
         path=path,
-        name=c.get(doc, "name", "", str, path.stem),
-        seed=c.get(doc, "seed", "", int, 1),
-        lcm_url=c.get(doc, "lcm_url", "", str, ""),
+        name=s.get(top, "name", "", path.stem, Rule(pattern=r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}",
+                   pattern_hint="letters, digits, _.- (it names the run folder)")),
+        seed=s.get(top, "seed", "", 1, Rule(ge=0, le=2 ** 31 - 1)),
+        lcm_url=s.get(top, "lcm_url", "", ""),
         world=world, time=time,
-        log_enabled=c.get(lg, "enabled", "logging", bool, True),
-        log_file=c.get(lg, "file", "logging", str, "run.lcmlog"),
-        log_host=c.get(lg, "host", "logging", str, hosts[0]),
-        hosts=hosts, vehicles=vehicles, text=path.read_text(), survey=c.file(doc, "survey", "survey"))
-    if sc.log_host not in hosts:
-        c.err(where(lg, "host"), "logging.host", f"unknown host '{sc.log_host}'")
-    if c.errors:
-        raise YamlError(c.errors)
+        log_enabled=s.get(lg_items, "enabled", "logging", True),
+        log_file=s.get(lg_items, "file", "logging", "run.lcmlog", Rule(pattern=r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,127}",
+                       pattern_hint="a file name in the run folder")),
+        log_host=s.host(lg_items, "host", "logging", hosts),
+        hosts=hosts, vehicles=vehicles, text=c.text, survey=s.file(top, "survey", ""),
+        world_node=world_node)
+    c.raise_errors()
     return sc

@@ -6,12 +6,10 @@ from __future__ import annotations
 
 import re
 from pathlib import Path
-from typing import Any
 
-import yaml
-
-from tools.marked_yaml import MDict, plain, where
-from tools.scenario import Scenario, Vehicle
+from confcheck import ConfigError, Checker
+from confcheck.reader import dump_yaml
+from tools.scenario import Scenario, Vehicle, position
 
 
 def merge(base: dict, over: dict) -> dict:
@@ -31,9 +29,17 @@ def _absolute_grid(env: dict, base: Path) -> dict:
     return env
 
 
+def _base(v: Vehicle) -> dict:
+    """The vehicle's base simulator configuration as plain data (read and
+    checked for YAML limits like every file; its keys are checked after the merge)."""
+    c = Checker.from_file(v.sim_config)
+    data = c.plain(c.root)
+    c.raise_errors()
+    return data if isinstance(data, dict) else {}
+
+
 def _has_sonar(v: Vehicle) -> bool:
-    base = yaml.safe_load(v.sim_config.read_text()) or {}
-    return "sonar" in base or "sonar" in v.sim_overrides
+    return "sonar" in _base(v) or "sonar" in v.sim_overrides
 
 
 def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
@@ -69,51 +75,59 @@ def vehicle_config(sc: Scenario, v: Vehicle, index: int) -> dict:
 
 
 def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
-    base = yaml.safe_load(v.sim_config.read_text()) or {}
+    base = _base(v)
     if isinstance(base.get("environment"), dict):
         base["environment"] = _absolute_grid(base["environment"], v.sim_config.parent)
     cfg = merge(base, {"environment": {"seed": sc.seed}})
-    cfg = merge(cfg, {"environment": _absolute_grid(plain(sc.world), sc.path.parent)})
+    cfg = merge(cfg, {"environment": _absolute_grid(sc.world, sc.path.parent)})
     # Every vehicle's sensors get their own noise: the world seed decides the
     # environment, seed + index + 1 each vehicle's sensors (unless set).
     cfg = merge(cfg, {"simulation": {"seed": sc.seed * 100 + index + 1}})
-    cfg = merge(cfg, plain(v.sim_overrides))
+    cfg = merge(cfg, v.sim_overrides)
     cfg = merge(cfg, {"vehicle": {"id": v.id}})
     return cfg
 
 
-def _scenario_position(v: Vehicle, key: str, sc: Scenario) -> str:
-    """Where in the scenario the simulator key `a.b.c` came from, if it came from there."""
-    node: Any = v.sim_overrides
-    pos = v.sim_overrides.where
-    parts = key.split(".")
-    if parts and parts[0] == "environment" and parts[1:2] and parts[1] in sc.world:
-        node, pos, parts = sc.world, where(sc.world, parts[1]), parts[1:]
-    for part in parts:
-        if isinstance(node, MDict) and part in node:
-            pos, node = where(node, part), node[part]
-        else:
-            break
-    return pos
+def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:
+    """Where the simulator key `a.b.c` came from: the scenario's world or the
+    vehicle's `sim:` overrides if it is there, else the vehicle's base file."""
+    parts = [p for p in re.split(r"[.\[\]]", key) if p and not p.isdigit()]
+    if parts[:1] == ["environment"] and sc.world_node is not None:
+        pos, found = position(sc.path, sc.world_node, parts[1:])
+        if found:
+            return pos
+    pos, found = position(sc.path, v.sim_node, parts)
+    if found:
+        return pos
+    try:
+        base = Checker.from_file(v.sim_config)
+        bpos, bfound = position(v.sim_config, base.root, parts)
+        return bpos if bfound else pos
+    except ConfigError:
+        return pos
 
 
 def write_configs(sc: Scenario, vehicles: list[Vehicle], out_dir: Path) -> tuple[dict[str, Path], list[str]]:
     """Write <ID>.sim.yaml per vehicle; return their paths and the scenario errors."""
-    from sim.config import ConfigError, load
+    from sim.config import load
     paths, errors = {}, []
     for v in vehicles:
         index = sc.vehicles.index(v)
         path = out_dir / f"{v.id}.sim.yaml"
-        text = (f"# {v.id}: {v.sim_config} merged with the scenario {sc.path.name} by the launcher\n"
-                + yaml.safe_dump(vehicle_config(sc, v, index), sort_keys=False))
-        path.write_text(text)
         try:
-            cfg = load(path)
-        except ConfigError as exc:  # point each error at the scenario line it came from
+            merged = vehicle_config(sc, v, index)
+        except ConfigError as exc:      # the base file itself was refused (its own positions)
+            errors += [f"{line} (the sim config of vehicles[{index}])" for line in exc.errors]
+            continue
+        path.write_text(f"# {v.id}: {v.sim_config} merged with the scenario {sc.path.name} by the launcher\n"
+                        + dump_yaml(merged))
+        try:
+            load(path)
+        except ConfigError as exc:  # point each error at the line it came from
             for line in exc.errors:
                 m = re.match(r".*?:\d+:\d+: ([\w.\[\]]+): (.*)", line)
                 key, msg = (m.group(1), m.group(2)) if m else ("sim", line)
-                errors.append(f"{_scenario_position(v, key, sc)}: vehicles[{index}].sim: {key}: {msg}")
+                errors.append(f"{_source_position(v, key, sc)}: vehicles[{index}].sim: {key}: {msg}")
             continue
         paths[v.id] = path
     return paths, errors

@@ -24,6 +24,7 @@ overridden file is written next to the log and annotated into it).
 from __future__ import annotations
 
 import argparse
+import re
 import math
 import sys
 import time
@@ -35,7 +36,6 @@ if str(ROOT / "python") not in sys.path:
 
 import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
 import lcm  # noqa: E402
-import yaml  # noqa: E402
 from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
 
 from auvlcm.rx import Receiver  # noqa: E402
@@ -47,9 +47,16 @@ DEFAULT_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 STEP_S = 0.1
 
 
-def apply_overrides(text: str, sets: list[str]) -> str:
-    """The YAML text with each `a.b.c=value` set (value parsed as YAML)."""
-    doc = yaml.safe_load(text) or {}
+def apply_overrides(text: str, sets: list[str], path: Path = Path("<config>")) -> str:
+    """The YAML text with each `a.b.c=value` set (value parsed as YAML). The text
+    and every value are read by confcheck (limits, no aliases, no control
+    characters); ConfigError (a ValueError to callers' except) on a bad one."""
+    from confcheck import Checker
+    from confcheck.reader import dump_yaml
+    c = Checker.from_text(text, path)
+    doc = c.plain(c.root)
+    c.raise_errors()
+    doc = doc if isinstance(doc, dict) else {}
     if any(item.startswith("sensors.") for item in sets) and not doc.get("sensors"):
         # an absent section means "every sensor at its defaults"; a listed one
         # means "only these": list them all before changing one
@@ -57,7 +64,7 @@ def apply_overrides(text: str, sets: list[str]) -> str:
         doc["sensors"] = {name: {} for name in REGISTRY}
     for item in sets:
         key, sep, value = item.partition("=")
-        if not sep:
+        if not sep or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*", key):
             raise ValueError(f"--set {item!r}: expected key.path=value")
         node = doc
         parts = key.split(".")
@@ -65,8 +72,11 @@ def apply_overrides(text: str, sets: list[str]) -> str:
             node = node.setdefault(p, {})
             if not isinstance(node, dict):
                 raise ValueError(f"--set {item!r}: {p} is not a section")
-        node[parts[-1]] = yaml.safe_load(value)
-    return yaml.safe_dump(doc, sort_keys=False)
+        v = Checker.from_text(value, Path(f"--set {key}")) if value.strip() else None
+        node[parts[-1]] = v.plain(v.root) if v is not None else None
+        if v is not None:
+            v.raise_errors()
+    return dump_yaml(doc)
 
 
 class Stepper:
@@ -148,10 +158,11 @@ def run(args: argparse.Namespace) -> int:
     url = check_local(args.url)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    cfg_text = apply_overrides(Path(args.config).read_text(), args.set)
+    cfg_text = apply_overrides(Path(args.config).read_text(encoding="utf-8"), args.set, Path(args.config))
     cfg_path = out.with_suffix(".sim.yaml")
     cfg_path.write_text(cfg_text)
-    vehicle = (yaml.safe_load(cfg_text).get("vehicle") or {}).get("id", "AUV1")
+    from sim.config import load
+    vehicle = load(cfg_path).vehicle_id     # checked before anything starts (ConfigError: exit 2)
     survey = Survey(length_m=args.length, spacing_m=args.spacing, lines=args.lines, depth_m=args.depth,
                     surface_s=args.surface_s, final_surface=args.final_surface,
                     surface_crossovers=args.surface_crossovers)

@@ -157,4 +157,4 @@ def test_yes_no_words_stay_words_for_string_keys():
     cfg = loads("simulation: {publish_clock: yes}\nsonar: {publish_targets: no}\n")
     assert cfg.sim.publish_clock == "yes" and cfg.sonar.publish_targets == "no"
     errs = errors("simulation:\n  publish_clock: true\n")
-    assert errs == ["cfg.yaml:2:18: simulation.publish_clock: one of auto, yes, no"]
+    assert errs == ["cfg.yaml:2:18: simulation.publish_clock: expected one of: auto, yes, no, got 'true'"]

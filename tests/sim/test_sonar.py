@@ -200,7 +200,7 @@ def test_sonar_config_errors_name_key_and_line(tmp_path):
         "c.yaml:3:18: sonar.knee_fraction: must be in [0, 1]",
         "c.yaml:5:12: sonar.targets.mines: expected an integer, got '2.5'",
         "c.yaml:6:12: sonar.targets.area.widht_m: unknown key; did you mean 'width_m'?",
-        "c.yaml:7:20: sonar.publish_targets: one of auto, yes, no",
+        "c.yaml:7:20: sonar.publish_targets: expected one of: auto, yes, no, got 'maybe'",
     ]
     (tmp_path / "t.csv").write_text("id,north_m,east_m,kind,length_m\n1,0,0,rock,1\n")
     cfgfile = tmp_path / "s.yaml"

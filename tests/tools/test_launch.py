@@ -216,7 +216,7 @@ vehicles:
     err = run.stderr
     assert f"{bad}:3:9: time.mode: expected one of: realtime, scaled, fast" in err
     assert f"{bad}:4:9: time.warp: must be > 0" in err
-    assert f"{bad}:7:9: vehicles[0].id: upper-case letters" in err
+    assert f"{bad}:7:9: vehicles[0].id: must be upper-case letters" in err
     assert f"{bad}:8:11: vehicles[0].host: unknown host 'b'" in err
     assert "vehicles[0].managers[0].plan: no such file" in err
     assert "vehicles[0].managers[1].rat: unknown key; did you mean 'rate'?" in err

@@ -12,20 +12,25 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+from confcheck import setting
+
 from sim.model import Truth
 from sim.noise import Noise
 from sim.wire import encoder_for
 
 TWO_PI = 2.0 * math.pi
+# A channel suffix a sensor may be moved to: <VEHICLE>.<this>
+CHANNEL_SUFFIX = r"[A-Z][A-Z0-9_]{0,31}"
+CHANNEL_HINT = "a channel name (upper-case letters, digits, '_', e.g. NAV or NAV_INS)"
 
 
 @dataclass
 class SensorConfig:
     enabled: bool = True
-    rate_hz: float = 1.0
-    noise: float = 0.0        # 1-sigma white noise, in the sensor's unit
+    rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
+    noise: float = setting(0.0, ge=0.0)        # 1-sigma white noise, in the sensor's unit
     bias: float = 0.0         # constant offset, in the sensor's unit
-    dropout: float = 0.0      # probability that one sample is lost [0, 1)
+    dropout: float = setting(0.0, ge=0.0, lt=1.0)      # probability that one sample is lost [0, 1)
     phase_s: float = 0.0      # offset of the first sample, to spread load
 
 

@@ -14,31 +14,33 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from confcheck import setting
+
 from auv import nav_solution_t
 
 from sim.model import Truth
-from sim.sensors.base import Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
+from sim.sensors.base import CHANNEL_HINT, CHANNEL_SUFFIX, Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
 from sim.wire import Encoder
 
 
 @dataclass
 class InsConfig(SensorConfig):
-    rate_hz: float = 20.0
-    noise: float = 0.05                  # white position noise [m]
+    rate_hz: float = setting(20.0, gt=0.0, unit="Hz")
+    noise: float = setting(0.05, ge=0.0)                  # white position noise [m]
     bias: float = math.radians(0.05)     # heading bias [rad]
-    heading_noise: float = math.radians(0.02)        # [rad]
-    heading_random_walk: float = math.radians(0.002)  # [rad/sqrt(s)]
-    velocity_noise: float = 0.005         # [m/s]
+    heading_noise: float = setting(math.radians(0.02), ge=0.0)        # [rad]
+    heading_random_walk: float = setting(math.radians(0.002), ge=0.0)  # [rad/sqrt(s)]
+    velocity_noise: float = setting(0.005, ge=0.0)         # [m/s]
     velocity_scale_error: float = 0.001   # [-], along-track
-    position_random_walk: float = 0.005   # [m/sqrt(s)]
-    attitude_noise: float = math.radians(0.02)  # roll, pitch [rad]
+    position_random_walk: float = setting(0.005, ge=0.0)   # [m/sqrt(s)]
+    attitude_noise: float = setting(math.radians(0.02), ge=0.0)  # roll, pitch [rad]
     gps_aiding: bool = True               # reset drift at the surface
-    gps_sigma_m: float = 2.0              # position error after a surface fix
+    gps_sigma_m: float = setting(2.0, ge=0.0)              # position error after a surface fix
     surface_depth_m: float = 0.2
-    dvl_max_altitude_m: float = 30.0      # bottom-lock aiding (status bits only)
+    dvl_max_altitude_m: float = setting(30.0, ge=0.0)      # bottom-lock aiding (status bits only)
     # <VEHICLE>.<channel> it publishes on; "off" publishes nothing (the onboard
     # filter then owns <VEHICLE>.NAV: one writer per channel)
-    channel: str = "NAV"
+    channel: str = setting("NAV", pattern=CHANNEL_SUFFIX, one_of=("off",), pattern_hint=CHANNEL_HINT)
 
 
 class Ins(Sensor):

@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from confcheck import setting
+
 from auv import ahrs_t, altimeter_t, depth_t, dvl_t, gps_fix_t
 
 from sim.model import Truth
@@ -18,11 +20,11 @@ G = 9.81
 
 @dataclass
 class AhrsConfig(SensorConfig):
-    rate_hz: float = 20.0
-    noise: float = math.radians(0.5)         # heading noise [rad]
+    rate_hz: float = setting(20.0, gt=0.0, unit="Hz")
+    noise: float = setting(math.radians(0.5), ge=0.0)         # heading noise [rad]
     bias: float = math.radians(1.0)          # heading bias [rad]
-    attitude_noise: float = math.radians(0.1)  # roll / pitch noise [rad]
-    rate_noise: float = math.radians(0.05)   # gyro noise [rad/s]
+    attitude_noise: float = setting(math.radians(0.1), ge=0.0)  # roll / pitch noise [rad]
+    rate_noise: float = setting(math.radians(0.05), ge=0.0)   # gyro noise [rad/s]
 
 
 class Ahrs(Sensor):
@@ -59,8 +61,8 @@ class Ahrs(Sensor):
 
 @dataclass
 class DepthConfig(SensorConfig):
-    rate_hz: float = 10.0
-    noise: float = 0.02          # [m]
+    rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
+    noise: float = setting(0.02, ge=0.0)          # [m]
     bias: float = 0.0            # [m]
     water_temperature_c: float = 12.0
 
@@ -87,15 +89,15 @@ class DepthSensor(Sensor):
 
 @dataclass
 class DvlConfig(SensorConfig):
-    rate_hz: float = 5.0
-    noise: float = 0.01          # per-axis velocity noise [m/s]
+    rate_hz: float = setting(5.0, gt=0.0, unit="Hz")
+    noise: float = setting(0.01, ge=0.0)          # per-axis velocity noise [m/s]
     bias: float = 0.0            # per-axis velocity offset [m/s]
     scale_error: float = 0.0     # fractional scale factor error [-]
-    max_altitude_m: float = 30.0  # bottom lock only below this altitude
+    max_altitude_m: float = setting(30.0, ge=0.0)  # bottom lock only below this altitude
     min_altitude_m: float = 0.5   # too close to the bottom: no lock either
     water_track: bool = True      # above the limit: water track, else nothing
     beam_angle_rad: float = math.radians(30.0)
-    range_noise: float = 0.05     # per-beam range noise [m]
+    range_noise: float = setting(0.05, ge=0.0)     # per-beam range noise [m]
 
 
 class Dvl(Sensor):
@@ -163,10 +165,10 @@ class Dvl(Sensor):
 
 @dataclass
 class AltimeterConfig(SensorConfig):
-    rate_hz: float = 5.0
-    noise: float = 0.05          # [m]
+    rate_hz: float = setting(5.0, gt=0.0, unit="Hz")
+    noise: float = setting(0.05, ge=0.0)          # [m]
     bias: float = 0.0            # [m]
-    max_range_m: float = 50.0
+    max_range_m: float = setting(50.0, ge=0.0)
 
 
 class Altimeter(Sensor):
@@ -197,10 +199,10 @@ class Altimeter(Sensor):
 
 @dataclass
 class GpsConfig(SensorConfig):
-    rate_hz: float = 1.0
-    noise: float = 2.0           # horizontal 1-sigma per axis [m]
+    rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
+    noise: float = setting(2.0, ge=0.0)           # horizontal 1-sigma per axis [m]
     bias: float = 0.0            # [m], added to north and east
-    max_depth_m: float = 0.2     # antenna out of the water above this depth
+    max_depth_m: float = setting(0.2, ge=0.0)     # antenna out of the water above this depth
     hdop: float = 1.0
     satellites: int = 9
 
