@@ -149,5 +149,6 @@ class SimHook:
                  f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "
                  f"{n.samples_received} env samples, {n.sample_mismatches} mismatches, "
                  f"{n.election.elections_won} elections won, {n.election.step_downs} step-downs, "
-                 f"{n.rx.decode_errors} decode errors")
+                 f"{n.rx.decode_errors} decode errors, {n.election.gaps} gaps, "
+                 f"{n.drops.summary()}")
         n.stop()
