@@ -1,0 +1,126 @@
+"""A node that was not running (SIGSTOP, a GC pause, a swapped-out VM) acts on
+nothing it knew before until it re-confirmed it (issue 12, item 4). The
+election's own rules, on a clock the test moves: deterministic."""
+
+from __future__ import annotations
+
+from sim.multihil.election import Election, Timing
+
+
+class Wall:
+    def __init__(self) -> None:
+        self.t = 500.0
+
+    def __call__(self) -> float:
+        return self.t
+
+
+def node(my_id: str, prio: int, wall: Wall) -> Election:
+    return Election(my_id, prio, Timing(join_window_s=0.2, failover_timeout_s=0.5,
+                                        election_wait_s=0.5, peer_timeout_s=2.5), clock=wall)
+
+
+def run(e: Election, wall: Wall, seconds: float, step: float = 0.05) -> list[str]:
+    """The node's loop: check_gap() and poll() every step."""
+    events = []
+    end = wall.t + seconds
+    while wall.t < end:
+        wall.t += step
+        e.check_gap()
+        ev = e.poll()
+        if ev:
+            events.append(ev)
+    return events
+
+
+def server(wall: Wall) -> Election:
+    s = node("A", 9, wall)
+    assert run(s, wall, 0.3) == ["become_server"] and s.server_term == 1
+    return s
+
+
+def test_a_short_pause_changes_nothing():
+    wall = Wall()
+    s = server(wall)
+    wall.t += 0.4                                     # under the failover timeout
+    assert not s.check_gap() and s.poll() == "" and s.role == "server"
+
+
+def test_a_paused_server_stops_serving_and_follows_the_one_that_took_over():
+    wall = Wall()
+    s = server(wall)
+    wall.t += 3.0                                     # SIGSTOP 3 s, SIGCONT
+    assert s.check_gap()
+    assert s.role == "reconfirming" and s.gaps == 1 and abs(s.last_gap_s - 3.0) < 1e-9
+    assert s.poll() == "paused"
+    assert run(s, wall, 0.3) == [] and s.role == "reconfirming"   # listens, serves nothing
+    assert s.on_heartbeat("B", term=2, priority=5) == "follow"
+    assert s.role == "client" and s.server_id == "B" and s.server_term == 2
+    wall.t += 0.1
+    s.on_heartbeat("B", term=2, priority=5)
+    s.check_gap()
+    assert s.poll() == "" and s.role == "client" and s.server_id == "B"
+
+
+def test_a_heartbeat_handled_before_the_first_poll_after_the_pause_is_followed():
+    wall = Wall()
+    s = server(wall)
+    wall.t += 3.0
+    # the loop resumes inside lc.handle(): the handler calls check_gap() first
+    assert s.check_gap()
+    assert s.on_heartbeat("B", term=2, priority=5) == "follow" and s.role == "client"
+    assert s.poll() == "paused"                       # reported once, then business as usual
+    assert s.poll() == ""
+
+
+def test_alone_after_a_pause_it_serves_again_only_after_the_window_and_in_a_new_term():
+    wall = Wall()
+    s = server(wall)
+    wall.t += 3.0
+    s.check_gap()
+    assert s.poll() == "paused"
+    t0 = wall.t
+    events = []
+    while not events:
+        wall.t += 0.05
+        s.check_gap()
+        ev = s.poll()
+        if ev:
+            events.append(ev)
+    assert events == ["become_server"]
+    assert wall.t - t0 >= s.timing.reconfirm_s - 1e-9   # a full window with nobody serving
+    assert s.server_term == 2                          # the old term is never served again
+
+
+def test_a_paused_client_does_not_declare_its_server_lost_before_listening():
+    wall = Wall()
+    c = node("C", 1, wall)
+    c.check_gap()                                      # its loop ran
+    assert c.on_heartbeat("S", term=4, priority=9) == "follow"
+    wall.t += 3.0                                      # the client was frozen
+    c.check_gap()
+    assert c.poll() == "paused"
+    wall.t += 0.1
+    c.check_gap()
+    assert c.poll() == "" and c.server_id == "S"       # not lost, not a candidate: listening
+    c.on_heartbeat("S", term=4, priority=9)            # the server's queued heartbeats
+    assert c.poll() == "" and c.server_id == "S"
+
+
+def test_a_paused_client_claims_nothing_while_its_peers_look_dead():
+    """After 3 s every peer looks silent (peer timeout 2.5 s): without the window
+    the frozen client would make itself server at once, before it hears anyone."""
+    wall = Wall()
+    c = node("C", 9, wall)
+    c.check_gap()
+    c.heard("D", 1)
+    c.on_heartbeat("S", term=1, priority=5)
+    wall.t += 3.0
+    c.check_gap()
+    assert c.poll() == "paused"
+    for _ in range(10):                                # 0.5 s: the server speaks meanwhile
+        wall.t += 0.05
+        c.on_heartbeat("S", term=1, priority=5)
+        c.check_gap()
+        assert c.poll() == ""
+    assert c.role == "client" and c.server_id == "S"
