@@ -112,7 +112,7 @@ class Simulator:
         self.deliver_command = self._apply_command
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
-        if s.clock == "stepped":
+        if s.clock == "stepped" and not cfg.multihil.enabled:   # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
         self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops,
                                 self.clock_now_us)
@@ -160,8 +160,8 @@ class Simulator:
     def clock_now_us(self) -> int | float | None:
         """The global time this simulator judges stamps against (None: it has none yet):
         the SIM.CLOCK it follows (stepped), the world's clock (multi-HIL), else its own."""
-        if self.mh is not None and not self.mh.lockstep:
-            return self.mh.node.global_now_us()
+        if self.mh is not None:
+            return self.mh.node.global_now_us()     # lockstep: its last accepted SIM.CLOCK
         if self.cfg.sim.clock == "stepped":
             return self.clock_gate.now
         return utime(self.model.t)
@@ -188,9 +188,12 @@ class Simulator:
             print(f"sim: {self.vid}: commands resumed at t={self.model.t:.2f}s", flush=True)
 
     def _on_clock(self, _channel: str, msg) -> None:
-        if not self.clock_gate.offer(msg.utime, msg.term):
-            return
-        t = msg.utime / 1e6
+        if self.clock_gate.offer(msg.utime, msg.term):
+            self.follow_clock(msg.utime)
+
+    def follow_clock(self, utime_us: int) -> None:
+        """Stepped: advance up to this (accepted) global time, joining the world at the first."""
+        t = utime_us / 1e6
         if not self._clock_started:
             self.join_at(t)
         self.pacer.target_t = t

@@ -6,7 +6,7 @@ set up here so that hil.py carries only those lines:
 - free-running (realtime, scaled): the simulator's steps are paced by the
   node's global clock, and it joins the world at the global time;
 - lockstep (simulation.clock: stepped): the simulator follows SIM.CLOCK as in
-  stepped mode, registers as participant `<VEHICLE>.sim`, reports each step
+  stepped mode (each clock the node accepted: one time rule, one count), registers as participant `<VEHICLE>.sim`, reports each step
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
   whichever arrives first: the clock or the command).
@@ -63,7 +63,9 @@ class SimHook:
         self.node = EnvNode(ncfg, sim.lc, sim.model.env,
                             LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
                             position=self._position, on_env=self._adopt, log=self.log,
-                            drops=sim.time_drops)
+                            drops=sim.time_drops,
+                            on_clock=(lambda m: sim.follow_clock(m.utime)) if self.lockstep
+                            else None)
         sim.publish_clock = False        # the world's server publishes SIM.CLOCK
         self.joined = False
         self.env_errors = 0

@@ -63,7 +63,8 @@ class EnvNode:
                  local: LocalClock | None = None,
                  position: Callable[[], tuple[float, float, float, float] | None] | None = None,
                  on_env: Callable[[env_model_t], bool] | None = None, log=print,
-                 drops: TimeDrops | None = None) -> None:
+                 drops: TimeDrops | None = None,
+                 on_clock: Callable[[sim_clock_t], None] | None = None) -> None:
         self.cfg = cfg
         self.lc = lc
         self.env = env
@@ -73,6 +74,7 @@ class EnvNode:
         self.sync = SyncEstimator(self.clock.warp)
         self.position = position
         self.on_env = on_env
+        self.on_clock = on_clock         # each SIM.CLOCK accepted (the lockstep simulator follows it)
         self.election = Election(cfg.client_id, cfg.priority, cfg.timing)
         self.tracker = LockstepTracker(cfg.lockstep_timeout_s, log)
         self.stepper = LockstepServer(self.tracker, int(round(cfg.step_s * 1e6)),
@@ -328,9 +330,6 @@ class EnvNode:
 
     def _on_clock(self, _ch: str, m: sim_clock_t) -> None:
         self.election.check_gap()
-        if not self.clock_gate.offer(m.utime, m.term):
-            return
-        self.clock_messages += 1
         if (m.mode == sim_clock_t.MODE_LOCKSTEP) != self.lockstep:
             self.mode_conflicts += 1
             if self.mode_conflicts == 1:
@@ -338,9 +337,14 @@ class EnvNode:
                          f"{'lockstep' if m.mode == 2 else 'free-running'}, but this simulator "
                          f"runs {self.cfg.mode}: every simulator of a world needs the same mode")
             return
+        if not self.clock_gate.offer(m.utime, m.term):
+            return
+        self.clock_messages += 1
         self.last_clock = m
         if self.lockstep and self.role != "server":
             self.joined = True
+        if self.on_clock is not None:
+            self.on_clock(m)
 
     def _on_sync(self, _ch: str, m: clock_sync_t) -> None:
         self.election.check_gap()
