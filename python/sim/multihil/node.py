@@ -254,6 +254,7 @@ class EnvNode:
             self._next_tick_us = (int(self.clock.now() // period) + 1) * period
         self.joined = True
         self._next_env_us = 0.0
+        self.clock_gate.raise_term(el.server_term)      # its own clocks: a term it knows began
         g = self.global_now_us()
         self.log(f"multihil: {self.cfg.client_id}: server for term {el.server_term} "
                  f"(priority {self.cfg.priority}) at global "
