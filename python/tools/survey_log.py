@@ -201,7 +201,9 @@ def run(args: argparse.Namespace) -> int:
             recorder.close()
     print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
           f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}"
-          + ("" if not stepper.time_drops.total else f", {stepper.time_drops.summary()}"))
+          + ("" if not stepper.time_drops.total else f", {stepper.time_drops.summary()}")
+          + ("" if not stepper.rx.decode_errors else f", {stepper.rx.decode_errors} undecodable "
+             "message(s) dropped"))
     # One truth message per 0.1 s step: fewer in the log means the recording
     # lost messages (a starved logger), and the log is not the run.
     logged, steps = count_truth(out, vehicle), t_us // int(STEP_S * 1e6) + 1
