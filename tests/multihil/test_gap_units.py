@@ -124,3 +124,50 @@ def test_a_paused_client_claims_nothing_while_its_peers_look_dead():
         c.check_gap()
         assert c.poll() == ""
     assert c.role == "client" and c.server_id == "S"
+
+
+def test_a_resumed_server_node_sends_nothing_before_it_reconfirmed(monkeypatch):
+    """The issue's path, in one process on a moved clock: the server's loop runs
+    (poll) before it has read anything after a 3 s stop. It used to send one
+    SIM.CLOCK 6 s of global time (x2) behind, in its old term; now it sends no
+    heartbeat, clock or world until it follows whoever serves."""
+    import time
+
+    from auv import env_heartbeat_t, sim_clock_t
+
+    from auvlcm.offline import OfflineLcm
+    from sim.environment import EnvParams, Environment
+    from sim.multihil.node import EnvNode, NodeConfig
+
+    wall = Wall()
+    monkeypatch.setattr(time, "monotonic", wall)
+    monkeypatch.setattr(time, "monotonic_ns", lambda: int(wall() * 1e9))
+    lc = OfflineLcm()
+    node = EnvNode(NodeConfig("A-sim", "A", 9, mode="scaled", warp=2.0,
+                              timing=Timing(join_window_s=0.2)), lc, Environment(EnvParams()),
+                   log=lambda _line: None)
+    node.election.clock = wall
+    node.election.decide_at = node.election.waiting_since = wall.t + 0.2
+    for _ in range(50):                                # 1 s: it serves term 1
+        wall.t += 0.02
+        node.poll()
+    ticks = [sim_clock_t.decode(d) for ch, d in lc.published if ch == "SIM.CLOCK"]
+    assert node.role == "server" and len(ticks) >= 15 and {c.term for c in ticks} == {1}
+    wall.t += 3.0                                      # SIGSTOP 3 s, SIGCONT
+    lc.published.clear()
+    for _ in range(10):
+        wall.t += 0.02
+        node.poll()
+    late = [sim_clock_t.decode(d) for ch, d in lc.published if ch == "SIM.CLOCK"]
+    assert not late, [(c.utime - ticks[-1].utime, c.term) for c in late]
+    assert not [ch for ch, _ in lc.published if ch in ("SIM.ENV_HEARTBEAT", "SIM.ENV")]
+    assert node.role == "reconfirming"
+    hb = env_heartbeat_t()
+    hb.utime, hb.server_id, hb.priority, hb.term = ticks[-1].utime + 6_500_000, "B-sim", 1, 2
+    sub = next(s for s in node.rx.subscriptions if s.channel == "SIM.ENV_HEARTBEAT")
+    sub.on_raw("SIM.ENV_HEARTBEAT", hb.encode())
+    assert node.role == "client" and node.election.server_id == "B-sim"
+    for _ in range(10):
+        wall.t += 0.02
+        node.poll()
+    assert not [ch for ch, _ in lc.published if ch == "SIM.CLOCK"]
