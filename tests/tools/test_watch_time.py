@@ -1,6 +1,7 @@
 """The launcher's mission watch against hostile stamps (issue 12, item 3): one
 SIM.CLOCK at INT64_MAX must not end a mission on its time limit, one report
-stamped 10^18 must not open the clock gate for good. In-process, through the
+stamped 10^18 must not open the clock gate for good; garbage on any channel is
+counted (item 6). In-process, through the
 watch's own typed subscriptions (decode, then the time rule), no network."""
 
 from __future__ import annotations
@@ -61,7 +62,12 @@ def test_hostile_stamps_neither_end_the_mission_nor_open_the_clock_gate(tmp_path
     assert watch.clock_limit_us() == limit == 1_000_000 + SIM_LEAD_US
     feed(watch, "SIM.CLOCK", clock(1_100_000))                   # and the world goes on
     assert watch.sim_time_us == 1_100_000
-    assert watch.dropped() == {"decode_errors": 0, "time": {
+    for sub in watch.rx.subscriptions:                            # garbage on every channel
+        sub.on_raw(sub.channel, b"\x00" * 7)
+        sub.on_raw(sub.channel, clock(1).encode()[:-1])
+    assert watch.sim_time_us == 1_100_000
+    n = 2 * len(watch.rx.subscriptions)
+    assert watch.dropped() == {"decode_errors": n, "time": {
         "invalid": 12, "future": 1, "out_of_order": 1, "regression": 1, "jump": 1}}
 
 
