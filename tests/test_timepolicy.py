@@ -114,3 +114,25 @@ def test_data_held_before_the_clock_is_judged_once_it_has_one():
     assert gate.offer(10**15, None)                 # no clock yet: held
     assert not gate.judge_held(5_000_000) and d.counts["future"] == 1
     assert gate.offer(5_000_000, 5_000_000)         # and it no longer blocks newer values
+
+
+@pytest.mark.parametrize("first", [(4_000_000_000_000_000, 1), (1_000_000, 2**31 - 1)])
+def test_a_corrupt_first_clock_cannot_stop_time(first):
+    """Nothing to compare the first value with: it is taken, provisionally. Two
+    consistent messages that contradict it replace it; then the rule holds again."""
+    d, _ = drops()
+    gate = ClockGate(d)
+    assert gate.offer(*first)
+    assert not gate.offer(2_000_000, 1)             # contradicts it: held, counted
+    assert gate.offer(2_100_000, 1)                 # confirmed: the clock is back on its line
+    assert gate.now == 2_100_000 and gate.term == 1
+    assert not gate.offer(2_000_000, 1)             # and never backwards again
+    assert not gate.offer(1_000_000, 1)
+
+
+def test_a_good_first_clock_is_confirmed_by_the_next():
+    d, _ = drops()
+    gate = ClockGate(d)
+    assert gate.offer(1_000_000, 1) and gate.offer(1_100_000, 1)
+    assert not gate.offer(500_000, 1) and not gate.offer(600_000, 1)   # no longer provisional
+    assert gate.now == 1_100_000

@@ -71,12 +71,18 @@ class TimeDrops:
 class ClockGate:
     """A receiver's clock: what it accepts from a stream of (utime, term).
 
-    The first valid value sets it (there is nothing to compare it with).
+    The first valid value sets it (there is nothing to compare it with; a
+    lockstep world publishes each step once, so it cannot wait for a second).
     Afterwards: an older term, a value behind the clock, or an unconfirmed
     jump is dropped. A new term is taken when its message is accepted: the
     next term (or one the process knows started) at once, a term further on
     (a node that missed elections, or a corrupt message) only once a second
-    message of it confirms it.
+    message of it confirms it. The first value stays provisional until a
+    message consistent with it arrives: if it was corrupt (2096, a term of
+    2^31 - 1), two consistent messages replace it, so even a bad first
+    message cannot stop the clock (the receiver's clock then steps back once,
+    the only way it ever does). A term the process knows started
+    (raise_term) is never undercut.
     """
 
     def __init__(self, drops: TimeDrops, what: str = "SIM.CLOCK",
@@ -88,6 +94,7 @@ class ClockGate:
         self.term = 0
         self.term_floor = 0                     # raised by what else the process knows
         self._pending: tuple[int, int] | None = None   # (utime, term) waiting for confirmation
+        self._provisional = False               # the first value, not yet confirmed
 
     def raise_term(self, term: int) -> None:
         """A term known to have started (e.g. its server's heartbeat): older ones are over."""
@@ -98,28 +105,41 @@ class ClockGate:
         if not valid_utime(utime):
             self.drops.drop(INVALID, self.what, f"utime {utime} outside [0, {UTIME_MAX}]")
             return False
-        if term < max(self.term, self.term_floor):
-            self.drops.drop(OLD_TERM, self.what, f"term {term} after term "
-                            f"{max(self.term, self.term_floor)} (utime {utime})")
+        if term < self.term_floor:
+            self.drops.drop(OLD_TERM, self.what, f"term {term} after term {self.term_floor} "
+                            f"(utime {utime})")
             return False
         if self.now is None:
-            return self._take(utime, term)
-        if utime < self.now:
-            self.drops.drop(REGRESSION, self.what, f"utime {utime} behind the clock's {self.now}")
-            return False
-        if utime - self.now <= self.max_jump_us and term <= max(self.term, self.term_floor) + 1:
-            return self._take(utime, term)
+            self._take(utime, term)
+            self._provisional = True
+            return True
+        reason, detail = self._refusal(utime, term)
+        if not reason:
+            self._take(utime, term)
+            return True
+        confirmable = reason == JUMP or self._provisional
         p = self._pending
-        if p is not None and p[1] == term and 0 <= utime - p[0] <= self.max_jump_us:
-            return self._take(utime, term)       # the second message confirms the first
-        self._pending = (utime, term)
-        self.drops.drop(JUMP, self.what, f"utime {utime} term {term} from {self.now} term "
-                        f"{self.term}: waits for a second message to confirm it")
+        if confirmable and p is not None and p[1] == term and 0 <= utime - p[0] <= self.max_jump_us:
+            self._take(utime, term)             # the second message confirms the first
+            return True
+        if confirmable:
+            self._pending = (utime, term)
+            detail += ": waits for a second message to confirm it"
+        self.drops.drop(reason, self.what, detail)
         return False
 
-    def _take(self, utime: int, term: int) -> bool:
-        self.now, self.term, self._pending = utime, term, None
-        return True
+    def _refusal(self, utime: int, term: int) -> tuple[str, str]:
+        assert self.now is not None
+        if term < self.term:
+            return OLD_TERM, f"term {term} after term {self.term} (utime {utime})"
+        if utime < self.now:
+            return REGRESSION, f"utime {utime} behind the clock's {self.now}"
+        if utime - self.now > self.max_jump_us or term > max(self.term, self.term_floor) + 1:
+            return JUMP, f"utime {utime} term {term} from {self.now} term {self.term}"
+        return "", ""
+
+    def _take(self, utime: int, term: int) -> None:
+        self.now, self.term, self._pending, self._provisional = utime, term, None, False
 
 
 class InputGate:

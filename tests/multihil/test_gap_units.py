@@ -171,3 +171,37 @@ def test_a_resumed_server_node_sends_nothing_before_it_reconfirmed(monkeypatch):
         wall.t += 0.02
         node.poll()
     assert not [ch for ch, _ in lc.published if ch == "SIM.CLOCK"]
+
+
+def test_a_sync_reply_far_off_the_worlds_clock_cannot_set_a_clients_clock():
+    """A forged or corrupt SIM.CLOCK_SYNC reply (right ids and seq, stamps in 2096)
+    would set a joining client's global time; it is dropped (jump) and counted."""
+    from auv import clock_sync_t, env_heartbeat_t, sim_clock_t
+
+    from auvlcm.offline import OfflineLcm
+    from sim.environment import EnvParams, Environment
+    from sim.multihil.node import EnvNode, NodeConfig
+
+    lc = OfflineLcm()
+    node = EnvNode(NodeConfig("C-sim", "C", 1), lc, Environment(EnvParams()),
+                   log=lambda _line: None)
+
+    def feed(channel, msg):
+        next(s for s in node.rx.subscriptions if s.channel == channel).on_raw(channel, msg.encode())
+
+    hb = env_heartbeat_t()
+    hb.utime, hb.server_id, hb.priority, hb.term = 5_000_000, "S-sim", 9, 1
+    feed("SIM.ENV_HEARTBEAT", hb)
+    c = sim_clock_t()
+    c.utime, c.server_id, c.term, c.warp = 5_000_000, "S-sim", 1, 1.0
+    feed("SIM.CLOCK", c)
+    for _ in range(8):
+        node._next["sync"] = 0.0
+        node.poll()                                    # a request goes out
+        req = clock_sync_t.decode(next(d for ch, d in reversed(lc.published)
+                                       if ch == "SIM.CLOCK_SYNC"))
+        req.kind, req.server_id = clock_sync_t.KIND_REPLY, "S-sim"
+        req.t2_server_recv_us = req.t3_server_send_us = 4_000_000_000_000_000
+        feed("SIM.CLOCK_SYNC", req)
+    assert node.sync.count == 0 and not node.clock.is_set and not node.joined
+    assert node.drops.counts["jump"] == 8

@@ -26,8 +26,8 @@ from auv import (clock_offset_t, clock_sync_t, env_election_t, env_heartbeat_t, 
                  env_needs_t, env_sample_t, lockstep_t, sim_clock_t)
 
 from auvlcm.rx import Receiver
-from auvlcm.timepolicy import (FUTURE, INVALID, OLD_TERM, REGRESSION, ClockGate, InputGate,
-                               TimeDrops, valid_utime)
+from auvlcm.timepolicy import (FUTURE, INVALID, JUMP, MAX_CLOCK_JUMP_US, OLD_TERM, REGRESSION,
+                               ClockGate, InputGate, TimeDrops, valid_utime)
 from sim.environment import Environment
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
@@ -365,6 +365,11 @@ class EnvNode:
         if not (valid_utime(m.t2_server_recv_us) and valid_utime(m.t3_server_send_us)):
             self.drops.drop(INVALID, "SIM.CLOCK_SYNC", f"reply stamps {m.t2_server_recv_us}, "
                             f"{m.t3_server_send_us} outside the valid range")
+            return
+        ref = self.clock_gate.now      # the world's clock: a reply far off it cannot be its server's
+        if ref is not None and abs(m.t3_server_send_us - ref) > MAX_CLOCK_JUMP_US:
+            self.drops.drop(JUMP, "SIM.CLOCK_SYNC", f"reply at {m.t3_server_send_us}, the "
+                            f"world's clock is at {ref}")
             return
         t1 = self._pending_sync.pop(m.seq, None)
         if t1 is None or self.lockstep:
