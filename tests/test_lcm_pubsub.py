@@ -100,3 +100,24 @@ def test_python_receiver_counts_and_drops(lcm_url):
     assert (sub.stats.delivered, sub.stats.wrong_fingerprint, sub.stats.malformed) == (2, 2, 2)
     assert rx.decode_errors == 4
     assert "depth_t" in sub.stats.last_error
+
+
+def test_a_message_its_handler_cannot_use_is_counted_not_fatal(lcm_url, capfd):
+    """A value no handler foresaw (here: a depth its handler refuses) is counted with
+    the undecodable ones and reported, and lc.handle() goes on (issue 12, item 6)."""
+    lc = lcm.LCM(lcm_url)
+    rx = Receiver(lc)
+    got = []
+
+    def handler(_c, m):
+        got.append(1.0 / m.depth_m)          # ZeroDivisionError on a depth of 0
+
+    sub = rx.subscribe("AUV3.DEPTH", depth_t, handler)
+    msg = depth_t()
+    for depth in (2.0, 0.0, 4.0):
+        msg.depth_m = depth
+        lc.publish("AUV3.DEPTH", msg.encode())
+    assert pump(lc, lambda: sub.stats.received == 3, timeout=5)
+    assert got == [0.5, 0.25]
+    assert sub.stats.handler_errors == 1 and rx.decode_errors == 1
+    assert "ZeroDivisionError" in capfd.readouterr().err

@@ -2,7 +2,11 @@
 
 A bad message (another type on the channel, a truncated or corrupt payload)
 never reaches the handler and never raises out of lc.handle(): it is counted
-in the subscription's stats, and the first few are reported on stderr.
+in the subscription's stats, and the first few are reported on stderr. A
+message that decodes but that its handler cannot use (it raises: a value no
+handler foresaw) is counted too (`handler_errors`, part of `decode_errors`:
+"received, not usable") and reported the same way, instead of ending the
+process with a traceback.
 """
 
 from __future__ import annotations
@@ -24,11 +28,13 @@ class RxStats:
     delivered: int = 0
     wrong_fingerprint: int = 0
     malformed: int = 0
+    handler_errors: int = 0
     last_error: str = ""
 
     @property
     def decode_errors(self) -> int:
-        return self.wrong_fingerprint + self.malformed
+        """Messages received and not usable: undecodable, or refused by their handler."""
+        return self.wrong_fingerprint + self.malformed + self.handler_errors
 
 
 @dataclass
@@ -53,7 +59,18 @@ class Subscription:
                       file=sys.stderr)
             return
         self.stats.delivered += 1
-        self.handler(channel, msg)
+        try:
+            self.handler(channel, msg)
+        except Exception as exc:     # noqa: BLE001  (one message must not end the process)
+            self.stats.handler_errors += 1
+            self.stats.last_error = f"{type(exc).__name__}: {exc}"
+            if self.stats.handler_errors <= self.REPORT_FIRST:
+                tb = exc.__traceback__
+                while tb is not None and tb.tb_next is not None:
+                    tb = tb.tb_next
+                where = f" at {tb.tb_frame.f_code.co_filename}:{tb.tb_lineno}" if tb else ""
+                print(f"lcm_rx: {channel}: dropped a message its handler could not use "
+                      f"({type(exc).__name__}: {exc}{where})", file=sys.stderr)
 
 
 class Receiver:

@@ -5,6 +5,12 @@ that sensor's rate, ground truth on <VEHICLE>.TRUTH, what the actuators do on
 <VEHICLE>.ACTUATOR_STATE, its health on <VEHICLE>.HEALTH, and (when it runs
 the world alone in real-time or scaled mode) the global clock on SIM.CLOCK.
 It consumes <VEHICLE>.ACTUATORS and, in stepped mode, SIM.CLOCK.
+
+Time stamps follow the project's rule (auvlcm.timepolicy, docs/simulator.md):
+a SIM.CLOCK that goes back, jumps unconfirmed or is out of range is dropped;
+a command stamped outside the valid range, more than the tolerance ahead of
+the simulator's clock, or older than the last one applied is dropped. Drops
+are counted per reason (the summary line) and logged the first time.
 """
 
 from __future__ import annotations
@@ -19,6 +25,7 @@ import lcm
 from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 
 from auvlcm.rx import Receiver
+from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from auvlcm.sender import ThreadedLcm, open_lcm
 from auvlcm.url import check_local, default_url
 from sim.actuators import Command
@@ -98,11 +105,17 @@ class Simulator:
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
+        self.time_drops = TimeDrops(f"sim: {self.vid}", lambda line: print(line, flush=True))
+        self.clock_gate = ClockGate(self.time_drops)     # stepped: the SIM.CLOCK followed
+        self._cmd_gate = InputGate(self.time_drops, f"{self.vid}.ACTUATORS")
+        # where a command that passed the checks goes (multi-HIL lockstep holds it)
+        self.deliver_command = self._apply_command
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
-        if s.clock == "stepped":
+        if s.clock == "stepped" and not cfg.multihil.enabled:   # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
-        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish)
+        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops,
+                                self.clock_now_us)
         self._fd = self.lc.fileno()
         poller = select.poll()
         poller.register(self._fd, select.POLLIN)
@@ -144,11 +157,26 @@ class Simulator:
             self.mh = SimHook(self)
 
     # ------------------------------------------------------------ handlers
+    def clock_now_us(self) -> int | float | None:
+        """The global time this simulator judges stamps against (None: it has none yet):
+        the SIM.CLOCK it follows (stepped), the world's clock (multi-HIL), else its own."""
+        if self.mh is not None:
+            return self.mh.node.global_now_us()     # lockstep: its last accepted SIM.CLOCK
+        if self.cfg.sim.clock == "stepped":
+            return self.clock_gate.now
+        return utime(self.model.t)
+
     def _on_actuators(self, _channel: str, msg) -> None:
         vals = (msg.rudder_rad, msg.stern_plane_rad, msg.prop_rpm)
         if msg.vehicle != self.vid or not all(math.isfinite(v) for v in vals):
             self.rejected_commands += 1
             return
+        if not self._cmd_gate.offer(msg.utime, self.clock_now_us()):
+            return
+        self.deliver_command(_channel, msg)
+
+    def _apply_command(self, _channel: str, msg) -> None:
+        vals = (msg.rudder_rad, msg.stern_plane_rad, msg.prop_rpm)
         if self._last_seq is not None and msg.seq > self._last_seq + 1:
             self.missed_commands += msg.seq - self._last_seq - 1
         self._last_seq = msg.seq     # a pilot restart (seq going back) just resyncs
@@ -160,7 +188,12 @@ class Simulator:
             print(f"sim: {self.vid}: commands resumed at t={self.model.t:.2f}s", flush=True)
 
     def _on_clock(self, _channel: str, msg) -> None:
-        t = msg.utime / 1e6
+        if self.clock_gate.offer(msg.utime, msg.term):
+            self.follow_clock(msg.utime)
+
+    def follow_clock(self, utime_us: int) -> None:
+        """Stepped: advance up to this (accepted) global time, joining the world at the first."""
+        t = utime_us / 1e6
         if not self._clock_started:
             self.join_at(t)
         self.pacer.target_t = t
@@ -177,6 +210,9 @@ class Simulator:
         for extra in self.extras:
             extra.restart(t)
         self._t_start = t
+        if not self._cmd_gate.judge_held(utime(t)):     # a command from before the clock
+            self.model.command = Command(0.0, 0.0, self.cfg.initial.prop_rpm)
+            self.last_cmd_utime = 0
         self._outputs()
 
     # -------------------------------------------------------------- output
@@ -260,12 +296,20 @@ class Simulator:
         load = ((cpu.user + cpu.system) - (self._cpu0.user + self._cpu0.system)) / wall if wall > 0 else 0.0
         self._cpu0, self._wall_health = cpu, now
         self._publish(self._ch_health, self._enc_health.pack(
-            utime(self.model.t), os.getpid(), sum(s.stats.received for s in self.rx.subscriptions),
-            self.rx.decode_errors, self.missed_commands, load))
+            utime(self.model.t), os.getpid(), self.messages_received(),
+            self.decode_errors(), self.missed_commands, load))
         if isinstance(self.lc, ThreadedLcm):     # sends fail on the sender thread: say so here
             line = self.lc.new_errors()
             if line:
                 print(f"sim: {self.vid}: {line}", flush=True)
+
+    def decode_errors(self) -> int:
+        """Undecodable messages on every subscription of the process, the node's included."""
+        return self.rx.decode_errors + (self.mh.node.rx.decode_errors if self.mh is not None else 0)
+
+    def messages_received(self) -> int:
+        rxs = (self.rx, self.mh.node.rx) if self.mh is not None else (self.rx,)
+        return sum(s.stats.received for rx in rxs for s in rx.subscriptions)
 
     # ---------------------------------------------------------------- loop
     def _drain(self, timeout_s: float) -> None:
@@ -354,9 +398,9 @@ class Simulator:
         steps = self.model.steps - steps0
         print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
               f"{wall:.2f}s wall ({steps * self.dt / wall if wall > 0 else 0:.1f}x real time), "
-              f"{self.published} messages published, {self.rx.decode_errors} decode errors, "
-              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events"
-              f"{sender}", flush=True)
+              f"{self.published} messages published, {self.decode_errors()} decode errors, "
+              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events, "
+              f"{self.time_drops.summary()}{sender}", flush=True)
         if self.modem is not None:
             print(self.modem.summary(), flush=True)
         return 0

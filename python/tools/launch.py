@@ -259,7 +259,8 @@ class Launcher:
     def summary(self, result: str) -> dict:
         return {"scenario": self.sc.name, "host": self.host, "outcome": result, "exit_code": EXIT[result],
                 "reason": self.stop_reason, "sim_time_s": self.watch.sim_time_us / 1e6,
-                "vehicles": self.watch.vehicle_summary(), "log": str(self.log_path) if self.own_log else None}
+                "vehicles": self.watch.vehicle_summary(), "log": str(self.log_path) if self.own_log else None,
+                "dropped": self.watch.dropped()}
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -322,6 +323,10 @@ def main(argv: list[str] | None = None) -> int:
     print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {run.stop_reason}" if run.stop_reason else ""))
     for vid, v in s["vehicles"].items():
         print(f"  {vid}: {v['outcome'] or 'unfinished'}  last state {v['path'] or '-'}  ({v['condition']})")
+    drop = s["dropped"]
+    if drop["decode_errors"] or drop["time"]:
+        print(f"launch: dropped {drop['decode_errors']} undecodable message(s), "
+              f"{run.watch.time_drops.summary()}")
     if run.own_log:
         print(f"log: {run.log_path}")
     return EXIT[result]

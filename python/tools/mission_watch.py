@@ -12,6 +12,13 @@
   aborted or failed. A plan whose `abort when` rule fired and then ended
   normally (the surfacing state completed) counts as aborted: the plan's abort
   targets are read from its text.
+
+Stamps follow the project's rule (auvlcm.timepolicy): the SIM.CLOCK the watch
+follows never goes back or jumps unconfirmed (one message at INT64_MAX cannot
+end a mission on its time limit), and a report stamped outside the valid
+range, from the future of that clock, or older than the last one from the
+same process is dropped (one bad stamp cannot open the clock gate). Drops are
+counted per reason in the launcher's summary and logged the first time.
 """
 
 from __future__ import annotations
@@ -24,6 +31,7 @@ import lcm
 from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
 
 from auvlcm.rx import Receiver
+from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from tools.annotate import plan_files
 from tools.scenario import Scenario
 
@@ -68,6 +76,9 @@ class MissionWatch:
     def __init__(self, lc: lcm.LCM, sc: Scenario) -> None:
         self.lc = lc
         self.rx = Receiver(lc)
+        self.time_drops = TimeDrops("launch", lambda line: print(line, flush=True))
+        self.clock = ClockGate(self.time_drops)
+        self._gates: dict[str, InputGate] = {}
         self.vehicles: dict[str, VehicleState] = {}
         self.seen: set[str] = set()
         self.expected: set[str] = set()
@@ -93,18 +104,31 @@ class MissionWatch:
                 self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
-    def _on_sim(self, _ch: str, m) -> None:
+    def _fresh(self, channel: str, utime: int) -> bool:
+        """The stamp of a report on channel passes the time rule (against the watch's clock)."""
+        gate = self._gates.get(channel)
+        if gate is None:
+            gate = self._gates[channel] = InputGate(self.time_drops, channel)
+        return gate.offer(utime, self.clock.now)
+
+    def _on_sim(self, ch: str, m) -> None:
+        if not self._fresh(ch, m.utime):
+            return
         self.seen.add(f"{m.vehicle}.sim")
         v = self.vehicles.get(m.vehicle)
         if v is not None:
             v.sim_us = m.utime
 
-    def _on_nav_status(self, _ch: str, m) -> None:
+    def _on_nav_status(self, ch: str, m) -> None:
+        if not self._fresh(ch, m.utime):
+            return
         self.seen.add(f"{m.vehicle}.NAV")
         if m.vehicle in self.nav_status_us:
             self.nav_status_us[m.vehicle] = max(self.nav_status_us[m.vehicle] or 0, m.utime)
 
-    def _on_nav(self, _ch: str, m) -> None:
+    def _on_nav(self, ch: str, m) -> None:
+        if not self._fresh(f"{ch} (source {m.source})", m.utime):   # the INS may share it
+            return
         if m.vehicle in self.nav_solution_us and m.source == nav_solution_t.SOURCE_EKF:
             self.nav_solution_us[m.vehicle] = max(self.nav_solution_us[m.vehicle] or 0, m.utime)
 
@@ -117,6 +141,8 @@ class MissionWatch:
         return None if status is None else status + NAV_STATUS_PERIOD_US
 
     def _on_status(self, ch: str, m) -> None:
+        if not self._fresh(ch, m.utime):
+            return
         key = f"{m.vehicle}.{m.manager}"
         self.seen.add(key)
         if key in self.manager_us:
@@ -131,7 +157,13 @@ class MissionWatch:
         v.condition = m.last_condition
 
     def _on_clock(self, _ch: str, m) -> None:
-        self.sim_time_us = max(self.sim_time_us, m.utime)
+        if self.clock.offer(m.utime, m.term):
+            self.sim_time_us = m.utime
+
+    def dropped(self) -> dict:
+        """What the watch counted and dropped: undecodable messages, stamps per reason."""
+        return {"decode_errors": self.rx.decode_errors,
+                "time": {r: n for r, n in self.time_drops.counts.items() if n}}
 
     def handle(self, timeout_s: float) -> None:
         """Handle every message that is waiting, waiting up to timeout_s for the first."""

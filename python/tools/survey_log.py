@@ -39,6 +39,7 @@ import lcm  # noqa: E402
 from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
 
 from auvlcm.rx import Receiver  # noqa: E402
+from auvlcm.timepolicy import InputGate, TimeDrops  # noqa: E402
 from auvlcm.url import check_local, default_url, with_receive_buffer  # noqa: E402
 from tools.procs import Child  # noqa: E402
 from tools.survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
@@ -89,6 +90,9 @@ class Stepper:
         self.have_nav = False
         self.sim_utime = -1
         self.seq = 0
+        self.clock_utime: int | None = None      # the last SIM.CLOCK this script published
+        self.time_drops = TimeDrops("survey_log")
+        self._state_gate = InputGate(self.time_drops, f"{vehicle}.ACTUATOR_STATE")
         self.rx.subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=200)
         self.rx.subscribe(f"{vehicle}.ACTUATOR_STATE", actuator_state_t, self._on_state, queue_capacity=200)
 
@@ -97,12 +101,14 @@ class Stepper:
         self.have_nav = True
 
     def _on_state(self, _ch: str, m) -> None:
-        self.sim_utime = max(self.sim_utime, m.utime)
+        if self._state_gate.offer(m.utime, self.clock_utime):   # 10^18 must not end a step
+            self.sim_utime = m.utime
 
     def clock(self, utime: int) -> None:
         c = sim_clock_t()
         c.utime, c.server_id, c.mode, c.warp, c.step_us = utime, "survey_log", sim_clock_t.MODE_LOCKSTEP, 0.0, int(STEP_S * 1e6)
         self.lc.publish("SIM.CLOCK", c.encode())
+        self.clock_utime = utime
 
     def step_to(self, utime: int, timeout_s: float) -> None:
         """Release the simulator up to utime and wait until it got there."""
@@ -205,7 +211,10 @@ def run(args: argparse.Namespace) -> int:
         if recorder is not None:
             recorder.close()
     print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
-          f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}")
+          f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}"
+          + ("" if not stepper.time_drops.total else f", {stepper.time_drops.summary()}")
+          + ("" if not stepper.rx.decode_errors else f", {stepper.rx.decode_errors} undecodable "
+             "message(s) dropped"))
     # One truth message per 0.1 s step: fewer in the log means the recording
     # lost messages (a starved logger), and the log is not the run.
     logged, steps = count_truth(out, vehicle), t_us // int(STEP_S * 1e6) + 1

@@ -6,6 +6,13 @@ In:  <VEHICLE>.MODEM_TX (frames from the vehicle software),
 Out: SIM.ACOUSTIC (our accepted frames, with our true position),
      <VEHICLE>.MODEM_RX, <VEHICLE>.PEER.<OTHER>, <VEHICLE>.MODEM_STATUS.
 
+Every stamp it receives follows the project's rule (auvlcm.timepolicy): a
+request, a report or a frame stamped outside the valid range, from the
+future of the simulator's clock, or older than the last one accepted from
+the same source is dropped and counted per reason (the simulator's
+summary line), logged the first time. A frame from 10^18 never waits in the
+water for ever.
+
 The simulator calls step() after every physics step with the new truth; the
 handlers run between steps and use the truth of the latest step, which is
 the simulator's current time.
@@ -19,6 +26,7 @@ from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
 
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver as LcmReceiver
+from auvlcm.timepolicy import InputGate, TimeDrops
 from sim.environment import Environment
 from sim.modem.config import ModemConfig
 from sim.modem.peers import heard_report, report_frame
@@ -31,7 +39,9 @@ REPORT_FIRST = 3     # refusals printed; the rest are only counted
 
 class ModemNode:
     def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment,
-                 rx: LcmReceiver, publish: Callable[[str, bytes], None]) -> None:
+                 rx: LcmReceiver, publish: Callable[[str, bytes], None],
+                 drops: TimeDrops | None = None,
+                 clock_now_us: Callable[[], float | None] | None = None) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.status = modem_status_t()
@@ -46,6 +56,10 @@ class ModemNode:
         self.reports_heard = 0
         self.bad_reports = 0
         self.refusals_printed = 0
+        self.drops = drops or TimeDrops(f"sim: {vehicle}: modem")
+        # the simulator's clock (None before it has one); alone: the time of the last step
+        self.clock_now_us = clock_now_us or (lambda: None if self._t is None else utime(self._t))
+        self._gates: dict[str, InputGate] = {}
         rx.subscribe(f"{vehicle}.MODEM_TX", modem_tx_t, self._on_tx, queue_capacity=200)
         rx.subscribe("SIM.ACOUSTIC", acoustic_frame_t, self._on_frame, queue_capacity=2000)
         if cfg.peer_reports:
@@ -53,12 +67,21 @@ class ModemNode:
                          queue_capacity=200)
 
     # ------------------------------------------------------------ handlers
-    def _on_tx(self, _channel: str, msg: modem_tx_t) -> None:
-        self._send(msg)
+    def _stamp_ok(self, what: str, stamp: int) -> bool:
+        gate = self._gates.get(what)
+        if gate is None:
+            gate = self._gates[what] = InputGate(self.drops, what)
+        return gate.offer(stamp, self.clock_now_us())
 
-    def _on_report(self, _channel: str, msg: peer_report_t) -> None:
+    def _on_tx(self, channel: str, msg: modem_tx_t) -> None:
+        if self._stamp_ok(channel, msg.utime):
+            self._send(msg)
+
+    def _on_report(self, channel: str, msg: peer_report_t) -> None:
         if msg.seq <= 0 or msg.seq == self.last_report_seq:
             return                       # not due: the behavior repeats it every cycle
+        if not self._stamp_ok(channel, msg.utime):
+            return
         self.last_report_seq = msg.seq
         if msg.vehicle not in ("", self.vehicle):
             self._refused(self.tx.refuse("refused_invalid", msg.seq, f"report of vehicle "
@@ -66,8 +89,11 @@ class ModemNode:
             return
         self._send(report_frame(msg, self.vehicle))
 
-    def _on_frame(self, _channel: str, frame: acoustic_frame_t) -> None:
-        self.rx.hear(frame)
+    def _on_frame(self, channel: str, frame: acoustic_frame_t) -> None:
+        if frame.src_vehicle == self.vehicle:
+            return                      # our own: not a stamp to judge
+        if self._stamp_ok(f"{channel} from {frame.src_vehicle[:40]!r}", frame.utime):
+            self.rx.hear(frame)
 
     def _send(self, msg: modem_tx_t) -> None:
         if self._t is None:
@@ -125,10 +151,11 @@ class ModemNode:
                 f"{self.reports_heard} peer reports heard")
 
 
-def make_modem(cfg, env: Environment, rx: LcmReceiver,
-               publish: Callable[[str, bytes], None]) -> ModemNode | None:
+def make_modem(cfg, env: Environment, rx: LcmReceiver, publish: Callable[[str, bytes], None],
+               drops: TimeDrops | None = None,
+               clock_now_us: Callable[[], float | None] | None = None) -> ModemNode | None:
     """The modem of a simulator configuration (sim.config.SimConfig), if it has one."""
     m = cfg.modem
     if m is None or not m.enabled:
         return None
-    return ModemNode(m, cfg.vehicle_id, m.seed, env, rx, publish)
+    return ModemNode(m, cfg.vehicle_id, m.seed, env, rx, publish, drops, clock_now_us)

@@ -15,6 +15,14 @@ it hears and acts on what it decides, so the rules are testable alone.
   its peers' priorities from their announcements).
 - A server that hears a better one -- higher term, then priority, then
   smaller id -- steps down and becomes its client.
+- A node that was not running for longer than the failover timeout (SIGSTOP,
+  a long GC pause, a swapped-out VM: check_gap(), called by the node at each
+  turn of its loop and before each message it handles) acts on
+  nothing it knew before: a server drops to "reconfirming" and serves no
+  more, every node listens for a re-confirm window before it declares a
+  server lost or claims the role. A re-confirming node follows the first
+  server it hears; if nobody serves within the window it stands like any
+  node, and a win gives it a new term: an old term is never served again.
 """
 
 from __future__ import annotations
@@ -44,6 +52,12 @@ class Timing:
     election_wait_s: float = 0.5     # how long to wait for a better node to take over
     peer_timeout_s: float = 2.5      # a peer not heard for this long is not counted
 
+    @property
+    def reconfirm_s(self) -> float:
+        """How long a node listens after a gap before it acts: a live server is heard
+        within the failover timeout, a better candidate takes over within the wait."""
+        return self.failover_timeout_s + self.election_wait_s
+
 
 @dataclass
 class Election:
@@ -61,6 +75,11 @@ class Election:
     waiting_since: float = 0.0
     elections_won: int = 0
     step_downs: int = 0
+    gaps: int = 0                    # times this node was not running for a failover timeout
+    last_gap_s: float = 0.0
+    reconfirm_until: float = 0.0     # after a gap: listen, decide nothing, until then
+    last_active: float | None = None   # when check_gap() last saw this node running
+    _paused: bool = False            # a gap not yet reported by poll()
     clock: Callable[[], float] = field(default=time.monotonic, repr=False)   # wall seconds; tests pass their own
 
     def __post_init__(self) -> None:
@@ -84,6 +103,11 @@ class Election:
             return "ignore"
         self.max_term = max(self.max_term, term)
         theirs = (term, rank(priority, server_id))
+        if self.role == "reconfirming":      # paused while serving: whoever serves now wins
+            self.role = "client"
+            self.step_downs += 1
+            self._follow(server_id, term, priority)
+            return "follow"
         if self.role == "server":
             if theirs > (self.server_term, rank(self.my_priority, self.my_id)):
                 self.role = "client"
@@ -123,9 +147,28 @@ class Election:
         """True while there is no server: the node announces its candidacy."""
         return self.role != "server" and not self.server_id
 
-    def poll(self) -> str:
-        """Time passes; returns 'lost' (server gone), 'become_server', or ''."""
+    def check_gap(self) -> bool:
+        """The node runs: called at each turn of its loop and before it handles a message.
+        True when it was not running for longer than the failover timeout (see the module):
+        it then acts on nothing it knew (a server stops serving) until it re-confirmed."""
         now = self.clock()
+        last, self.last_active = self.last_active, now
+        if last is None or now - last <= self.timing.failover_timeout_s:
+            return False
+        self._after_gap(now, now - last)
+        return True
+
+    def poll(self) -> str:
+        """Time passes; returns 'lost' (server gone), 'become_server', 'paused' (check_gap()
+        found a gap since the last poll), or ''."""
+        now = self.clock()
+        if self._paused:
+            self._paused = False
+            return "paused"
+        if now < self.reconfirm_until:
+            return ""
+        if self.role == "reconfirming":      # nobody served in the window: stand like anyone
+            self.role = "client"
         if self.role == "server":
             return ""
         if self.server_id and now - self.last_heartbeat > self.timing.failover_timeout_s:
@@ -148,6 +191,18 @@ class Election:
             self._suspect(best_id, now)
             self.waiting_since = now
         return ""
+
+    def _after_gap(self, now: float, gap: float) -> None:
+        self.gaps += 1
+        self._paused = True
+        self.last_gap_s = gap
+        self.reconfirm_until = now + self.timing.reconfirm_s
+        if self.role == "server":
+            self.role = "reconfirming"
+            self.server_id = ""
+        elif self.server_id:
+            self.last_heartbeat = now        # its silence during our gap proves nothing
+        self.decide_at = self.waiting_since = self.reconfirm_until
 
     def _suspect(self, node_id: str, now: float) -> None:
         if node_id in self.peers:

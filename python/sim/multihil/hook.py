@@ -6,7 +6,7 @@ set up here so that hil.py carries only those lines:
 - free-running (realtime, scaled): the simulator's steps are paced by the
   node's global clock, and it joins the world at the global time;
 - lockstep (simulation.clock: stepped): the simulator follows SIM.CLOCK as in
-  stepped mode, registers as participant `<VEHICLE>.sim`, reports each step
+  stepped mode (each clock the node accepted: one time rule, one count), registers as participant `<VEHICLE>.sim`, reports each step
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
   whichever arrives first: the clock or the command).
@@ -62,7 +62,10 @@ class SimHook:
         self.log = lambda line: print(line, flush=True)
         self.node = EnvNode(ncfg, sim.lc, sim.model.env,
                             LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
-                            position=self._position, on_env=self._adopt, log=self.log)
+                            position=self._position, on_env=self._adopt, log=self.log,
+                            drops=sim.time_drops,
+                            on_clock=(lambda m: sim.follow_clock(m.utime)) if self.lockstep
+                            else None)
         sim.publish_clock = False        # the world's server publishes SIM.CLOCK
         self.joined = False
         self.env_errors = 0
@@ -72,10 +75,9 @@ class SimHook:
             self._seen_clocks = 0
             self._held: list[tuple[float, int, tuple]] = []   # (t, seq, (channel, msg))
             self._held_seq = 0
-            for sub in sim.rx.subscriptions:
-                if sub.channel == f"{sim.vid}.ACTUATORS":
-                    self._apply_command = sub.handler
-                    sub.handler = self._hold_command
+            # a command that passed the simulator's checks waits for its time stamp
+            self._apply_command = sim.deliver_command
+            sim.deliver_command = self._hold_command
         else:
             sim.pacer.global_now = self._global_now_s
 
@@ -149,5 +151,6 @@ class SimHook:
                  f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "
                  f"{n.samples_received} env samples, {n.sample_mismatches} mismatches, "
                  f"{n.election.elections_won} elections won, {n.election.step_downs} step-downs, "
-                 f"{n.rx.decode_errors} decode errors")
+                 f"{n.rx.decode_errors} decode errors, {n.election.gaps} gaps "
+                 "(time drops: the simulator's summary)")
         n.stop()

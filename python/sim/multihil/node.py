@@ -7,6 +7,12 @@ serves SIM.ENV_SAMPLE.<client>; as a client it synchronises its clock,
 announces its needs and adopts the server's environment. Control-plane
 timers (heartbeats, failure detection, clock sync) run on wall time; what
 reaches the vehicles (clock, environment, samples) runs on global time.
+
+Time stamps it receives follow the project's rule (auvlcm.timepolicy): the
+SIM.CLOCK it follows never runs backwards and refuses older terms; world
+messages (SIM.ENV, samples) of an older term than its server's are dropped;
+needs and sync replies with impossible stamps are dropped. Each drop is
+counted per reason (`drops`) and logged the first time.
 """
 
 from __future__ import annotations
@@ -20,6 +26,8 @@ from auv import (clock_offset_t, clock_sync_t, env_election_t, env_heartbeat_t, 
                  env_needs_t, env_sample_t, lockstep_t, sim_clock_t)
 
 from auvlcm.rx import Receiver
+from auvlcm.timepolicy import (FUTURE, INVALID, JUMP, MAX_CLOCK_JUMP_US, OLD_TERM, REGRESSION,
+                               ClockGate, InputGate, TimeDrops, valid_utime)
 from sim.environment import Environment
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
@@ -54,7 +62,9 @@ class EnvNode:
     def __init__(self, cfg: NodeConfig, lc: lcm.LCM, env: Environment,
                  local: LocalClock | None = None,
                  position: Callable[[], tuple[float, float, float, float] | None] | None = None,
-                 on_env: Callable[[env_model_t], bool] | None = None, log=print) -> None:
+                 on_env: Callable[[env_model_t], bool] | None = None, log=print,
+                 drops: TimeDrops | None = None,
+                 on_clock: Callable[[sim_clock_t], None] | None = None) -> None:
         self.cfg = cfg
         self.lc = lc
         self.env = env
@@ -64,6 +74,7 @@ class EnvNode:
         self.sync = SyncEstimator(self.clock.warp)
         self.position = position
         self.on_env = on_env
+        self.on_clock = on_clock         # each SIM.CLOCK accepted (the lockstep simulator follows it)
         self.election = Election(cfg.client_id, cfg.priority, cfg.timing)
         self.tracker = LockstepTracker(cfg.lockstep_timeout_s, log)
         self.stepper = LockstepServer(self.tracker, int(round(cfg.step_s * 1e6)),
@@ -72,10 +83,11 @@ class EnvNode:
         self.joined = False              # has a global time (as client or server)
         self.vehicles: dict[str, str] = {}    # client id -> vehicle, from announcements
         self.clients: dict[str, float] = {}   # client id -> wall time last heard (server)
-        self.last_clock: sim_clock_t | None = None
-        self.max_clock_utime = -1
-        self.clock_regressions = 0
-        self.clock_messages = 0
+        self.last_clock: sim_clock_t | None = None     # the newest SIM.CLOCK accepted
+        self.drops = drops or TimeDrops(f"multihil: {cfg.client_id}", log)
+        self.clock_gate = ClockGate(self.drops)
+        self._needs_gates: dict[str, InputGate] = {}
+        self.clock_messages = 0          # accepted ones
         self.samples_received = 0
         self.sample_mismatches = 0
         self.env_adoptions = 0
@@ -100,6 +112,11 @@ class EnvNode:
 
     # ------------------------------------------------------------ queries
     @property
+    def clock_regressions(self) -> int:
+        """SIM.CLOCK values refused because they were behind the clock or of an older term."""
+        return self.drops.counts[REGRESSION] + self.drops.counts[OLD_TERM]
+
+    @property
     def role(self) -> str:
         return self.election.role
 
@@ -119,12 +136,21 @@ class EnvNode:
     # ------------------------------------------------------------ polling
     def poll(self) -> None:
         now = time.monotonic()
+        self.election.check_gap()
         event = self.election.poll()
         if event == "lost":
             self.log(f"multihil: {self.cfg.client_id}: lost server (no heartbeat for "
                      f"{self.cfg.timing.failover_timeout_s:g} s)")
         elif event == "become_server":
             self._take_over()
+        elif event == "paused":
+            was = self.stepper.started
+            self.stepper.started = False
+            self.log(f"multihil: {self.cfg.client_id}: not running for "
+                     f"{self.election.last_gap_s:.2f} s (more than the failover timeout): "
+                     + ("stopped serving term " f"{self.term}; " if self.role == "reconfirming"
+                        else "") + f"listening {self.cfg.timing.reconfirm_s:g} s before acting"
+                     + (" (lockstep paused)" if was else ""))
         if self.election.standing() and now >= self._next["candidate"]:
             self._next["candidate"] = now + 0.1
             self._election_msg(env_election_t.KIND_CANDIDATE, self.election.max_term + 1)
@@ -145,10 +171,12 @@ class EnvNode:
         else:
             g = self.clock.now()
             if g >= self._next_tick_us:
+                # the newest tick due (a late loop skips ticks, never sends an old one)
                 period = 1e6 / self.cfg.clock_rate_hz
-                tick = self._next_tick_us
-                self._next_tick_us = tick + period * max(1, int((g - tick) // period) + 1)
-                self._publish_clock(int(tick), 0)
+                tick = self._next_tick_us + period * int((g - self._next_tick_us) // period)
+                self._next_tick_us = tick + period
+                if self.clock_gate.now is None or tick >= self.clock_gate.now:
+                    self._publish_clock(int(tick), 0)
         g = self.global_now_us()
         if g is not None and g >= self._next_env_us:
             self._next_env_us = g + 1e6
@@ -226,6 +254,7 @@ class EnvNode:
             self._next_tick_us = (int(self.clock.now() // period) + 1) * period
         self.joined = True
         self._next_env_us = 0.0
+        self.clock_gate.raise_term(el.server_term)      # its own clocks: a term it knows began
         g = self.global_now_us()
         self.log(f"multihil: {self.cfg.client_id}: server for term {el.server_term} "
                  f"(priority {self.cfg.priority}) at global "
@@ -271,10 +300,13 @@ class EnvNode:
 
     # ---------------------------------------------------------- handlers
     def _on_heartbeat(self, _ch: str, m: env_heartbeat_t) -> None:
+        self.election.check_gap()       # a message after a pause: re-confirm first
         if m.server_id == self.cfg.client_id:
             return
         before = self.election.server_id
         action = self.election.on_heartbeat(m.server_id, m.term, m.priority)
+        if action in ("follow", "step_down"):
+            self.clock_gate.raise_term(m.term)     # its clock is the world's: older terms are over
         if action == "step_down":
             self.log(f"multihil: {self.cfg.client_id}: stepping down for {m.server_id} "
                      f"(term {m.term}, priority {m.priority})")
@@ -287,6 +319,7 @@ class EnvNode:
             self.log(f"multihil: {self.cfg.client_id}: client of {m.server_id} (term {m.term})")
 
     def _on_election(self, _ch: str, m: env_election_t) -> None:
+        self.election.check_gap()
         if m.candidate_id == self.cfg.client_id:
             return
         if m.kind == env_election_t.KIND_ELECTED:
@@ -297,10 +330,7 @@ class EnvNode:
             self._heartbeat()                       # someone lost us: be heard at once
 
     def _on_clock(self, _ch: str, m: sim_clock_t) -> None:
-        self.clock_messages += 1
-        if m.utime < self.max_clock_utime:
-            self.clock_regressions += 1
-        self.max_clock_utime = max(self.max_clock_utime, m.utime)
+        self.election.check_gap()
         if (m.mode == sim_clock_t.MODE_LOCKSTEP) != self.lockstep:
             self.mode_conflicts += 1
             if self.mode_conflicts == 1:
@@ -308,11 +338,17 @@ class EnvNode:
                          f"{'lockstep' if m.mode == 2 else 'free-running'}, but this simulator "
                          f"runs {self.cfg.mode}: every simulator of a world needs the same mode")
             return
+        if not self.clock_gate.offer(m.utime, m.term):
+            return
+        self.clock_messages += 1
         self.last_clock = m
         if self.lockstep and self.role != "server":
             self.joined = True
+        if self.on_clock is not None:
+            self.on_clock(m)
 
     def _on_sync(self, _ch: str, m: clock_sync_t) -> None:
+        self.election.check_gap()
         if m.kind == clock_sync_t.KIND_REQUEST:
             self.election.heard(m.client_id)
             t2 = self.global_now_us()
@@ -325,6 +361,15 @@ class EnvNode:
                 self._publish("SIM.CLOCK_SYNC", m)
             return
         if m.client_id != self.cfg.client_id or m.server_id != self.election.server_id:
+            return
+        if not (valid_utime(m.t2_server_recv_us) and valid_utime(m.t3_server_send_us)):
+            self.drops.drop(INVALID, "SIM.CLOCK_SYNC", f"reply stamps {m.t2_server_recv_us}, "
+                            f"{m.t3_server_send_us} outside the valid range")
+            return
+        ref = self.clock_gate.now      # the world's clock: a reply far off it cannot be its server's
+        if ref is not None and abs(m.t3_server_send_us - ref) > MAX_CLOCK_JUMP_US:
+            self.drops.drop(JUMP, "SIM.CLOCK_SYNC", f"reply at {m.t3_server_send_us}, the "
+                            f"world's clock is at {ref}")
             return
         t1 = self._pending_sync.pop(m.seq, None)
         if t1 is None or self.lockstep:
@@ -344,7 +389,10 @@ class EnvNode:
             self.log(f"multihil: {self.cfg.client_id}: joined at global {target / 1e6:.3f} s")
 
     def _on_env_model(self, _ch: str, m: env_model_t) -> None:
+        self.election.check_gap()
         if m.server_id != self.election.server_id or self.role == "server":
+            return
+        if not self._current_term(m.term, m.utime, "SIM.ENV"):
             return
         params = Environment.params_from_env_model(m)
         if params == self.env.params:
@@ -364,15 +412,35 @@ class EnvNode:
         self.log(f"multihil: {self.cfg.client_id}: adopted world {m.world!r} (seed {m.seed}) "
                  f"from {m.server_id}")
 
+    def _current_term(self, term: int, utime: int, what: str) -> bool:
+        """A world message of the server this node follows, in its term, with a valid stamp."""
+        if not valid_utime(utime):
+            self.drops.drop(INVALID, what, f"utime {utime} outside the valid range")
+            return False
+        if term < self.election.server_term:
+            self.drops.drop(OLD_TERM, what, f"term {term} after term {self.election.server_term}")
+            return False
+        return True
+
     def _on_needs(self, _ch: str, m: env_needs_t) -> None:
+        self.election.check_gap()
         self.vehicles[m.client_id] = m.vehicle
         self.election.heard(m.client_id, m.priority)
         if self.role != "server":
             return
+        gate = self._needs_gates.get(m.client_id)
+        if gate is None:
+            gate = self._needs_gates[m.client_id] = InputGate(
+                self.drops, f"SIM.ENV_NEEDS from {m.client_id}")
+        if not gate.offer(m.utime, self.global_now_us()):
+            return          # evaluated at its stamp: the world at 10^18 s is nobody's business
         self.clients[m.client_id] = time.monotonic()
         self._publish(f"SIM.ENV_SAMPLE.{m.client_id}", evaluate(self.env, m, self.term))
 
     def _on_sample(self, _ch: str, s: env_sample_t) -> None:
+        self.election.check_gap()
+        if not self._current_term(s.term, s.utime, f"SIM.ENV_SAMPLE.{self.cfg.client_id}"):
+            return
         self.samples_received += 1
         t = s.utime / 1e6
         if s.valid_mask & env_sample_t.HAS_BATHYMETRY and abs(
@@ -384,4 +452,13 @@ class EnvNode:
                 self.sample_mismatches += 1
 
     def _on_lockstep(self, _ch: str, m: lockstep_t) -> None:
+        self.election.check_gap()
+        if m.kind == lockstep_t.KIND_STEP_DONE:
+            known = max(self.last_clock.step if self.last_clock else -1,
+                        self.stepper.step if self.role == "server" else -1)
+            if not 0 <= m.step <= known + 1:     # done with a step nobody published: a lie
+                # (+ 1: the participant's report may overtake the clock across a relay)
+                self.drops.drop(FUTURE, "SIM.LOCKSTEP", f"{m.participant} done with step "
+                                f"{m.step}, the newest published is {known}")
+                return
         self.tracker.on_message(m)

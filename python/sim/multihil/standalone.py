@@ -106,5 +106,6 @@ def main(argv: list[str]) -> int:
     print(f"multihil: node {a.id} stopped: role {node.role} term {node.term}, "
           f"{node.clock_messages} clock messages, {node.clock_regressions} regressions, "
           f"{node.samples_received} samples, {node.sample_mismatches} mismatches, "
-          f"{node.rx.decode_errors} decode errors", flush=True)
+          f"{node.rx.decode_errors} decode errors, {node.election.gaps} gaps, "
+          f"{node.drops.summary()}", flush=True)
     return 0
