@@ -161,13 +161,17 @@ class Environment:
 
     def wave_kinematics(self, t: float, north: float, east: float, depth: float
                         ) -> tuple[float, float, float, float]:
-        """Deep-water (Airy) velocity and local acceleration of the water:
-        along the wave direction and down [m/s, m/s^2]. Per component of
-        amplitude a, frequency w, wavenumber k = w^2/g and phase th = k s - w t + ph:
-        u = a w e^-kz cos th, w_down = -a w e^-kz sin th, and their time derivatives."""
+        """Deep-water (Airy) velocity and acceleration of the water: along the
+        wave direction and down [m/s, m/s^2]. Per component of amplitude a,
+        frequency w, wavenumber k = w^2/g, phase th = k s - w t + ph:
+        u = a w e^-kz cos th, w_down = -a w e^-kz sin th. The acceleration is
+        the particles' own, Du/Dt = du/dt + (u . grad) u: with the local
+        derivative alone, a body that follows the water (Froude-Krylov plus
+        added mass) would drift down through the wave field."""
         s = north * self._wave_cos + east * self._wave_sin
         d = max(depth, 0.0)
         uh = uv = ah = av = 0.0
+        gc = gs = 0.0          # sums of a w k e^-kz cos th and of ... sin th
         exp, cos, sin = math.exp, math.cos, math.sin
         for aw, nk, k, w, ph in self._orbital:
             decay = exp(nk * d)
@@ -180,7 +184,10 @@ class Environment:
             uv -= v * sn
             ah += v * w * sn
             av += v * w * c
-        return uh, uv, ah, av
+            gc += v * k * c
+            gs += v * k * sn
+        # grad: d(uh)/ds = -gs, d(uh)/dz = -gc, d(uv)/ds = -gc, d(uv)/dz = gs
+        return uh, uv, ah - uh * gs - uv * gc, av - uh * gc + uv * gs
 
     def wave_pressure(self, t: float, north: float, east: float, depth: float) -> float:
         """Dynamic pressure of the waves at a depth [Pa], linear theory:

@@ -206,7 +206,8 @@ def table(figs: list[Figure]) -> str:
     return "\n".join(lines)
 
 
-def run(vp: VehicleParams = REMUS100, quick: bool = False, out=sys.stdout) -> list[Figure]:
+def run(vp: VehicleParams = REMUS100, quick: bool = False, out=None) -> list[Figure]:
+    out = out or sys.stdout
     print(f"Validation of {vp.name} (RK4, dt = {v.DT} s; pilot gains from missions/pilot/pilot.chasm)"
           + (" [quick subset]" if quick else ""), file=out)
     figs = waves() + speeds(vp, quick)
@@ -237,6 +238,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     vp = REMUS100
     if args.config:
+        import auvlcm  # noqa: F401  (the configuration's sensors need the generated types)
         from sim.config import ConfigError, load
         try:
             vp = load(Path(args.config)).vehicle
