@@ -139,7 +139,12 @@ class PilotModel:
         pitch_cmd = self.depth.step(depth - target, self._rate or 0.0, 0.0, dt)
         return self.stern_for_pitch(pitch_cmd, pitch, q)
 
-    def prop(self, speed_cmd: float, u: float) -> float:
+    def prop(self, speed_cmd: float, u: float, through_water: bool = False) -> float:
+        """rpm for speed_cmd; through the water: the rpm law alone (setpoint_t)."""
+        if through_water:
+            self.speed.integral = 0.0
+            return self.speed.step(0.0, 0.0, self.g.rpm_per_mps * max(speed_cmd, 0.0), self.dt, 0.0) \
+                if speed_cmd > 0.0 else self.speed.step(0.0, 0.0, 0.0, self.dt, 0.0)
         if not speed_cmd > 0.0:
             self.speed.integral = 0.0
             return self.speed.step(0.0, 0.0, 0.0, self.dt, 0.0)

@@ -97,6 +97,7 @@ extern const chasm_behavior_spec pilot_altitude_behavior;
 extern const chasm_behavior_spec pilot_pitch_behavior;
 extern const chasm_behavior_spec pilot_speed_behavior;
 extern const chasm_behavior_spec pilot_rpm_behavior;
+extern const chasm_behavior_spec pilot_watch_behavior;
 
 /* Fails a behavior's start with a message in the manager's log. */
 int pilot_reject(chasm_ctx *c, const char *behavior, const char *reason);
