@@ -11,9 +11,9 @@
 #include "plugins/pilot/pilot.h"
 
 #define RPM_LIMIT_PARAMS                                                                                   \
-    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
-    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 2000, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
-    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 0, 500, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
+    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
+    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
+    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
 #define PROP_OUT {"prop", CHASM_WRITES, CHASM_DOUBLE, "", 0, 0, "actuators.prop_rpm", 0, 0, 0, "prop command [rpm]"}
 
 typedef struct {
@@ -46,11 +46,11 @@ static const chasm_param_spec speed_params[] = {
     {"reference", CHASM_READS, CHASM_INT, "", 0, 0, "setpoint.speed_reference", 0, 0, 0,
      "setpoint_t.SPEED_OVER_GROUND (0): PI on the measured speed; SPEED_THROUGH_WATER (1): the rpm law alone"},
     PROP_OUT,
-    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000,
+    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000,
      "feed-forward: prop rpm per m/s of setpoint"},
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 60, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
-    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 0, 300, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
+    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
     RPM_LIMIT_PARAMS,
 };
 

@@ -2,6 +2,7 @@
  * stepped against scripted inputs: signs, limits, slew, anti-windup, wrap
  * at north, and the loader's parameter checks (file:line:col). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "../common/plugin_test.h"
 #include "pilot_tests.h"
@@ -39,11 +40,82 @@ static const char *IO =
     "output pilot.last_ignored_reason : int\n"
     "output pilot.last_ignored_utime : int\n"; /* 27 lines */
 
-/* A plan of IO plus one state running `action` (line 29). */
+/* The plugin has no default gains (the pilot plan sets every one): the
+ * tests' own values, the ones they were written against, for every
+ * parameter an action leaves out. */
+static const struct {
+    const char *behavior, *gains;
+} GAINS[] = {
+    {"heading_control", "kp = 2, ki = 0.1, kd = 4, max_turn_rate = 6 deg/s, max_rudder = 20 deg, "
+                        "rudder_slew = 30 deg/s, i_limit = 5 deg, i_zone = 10 deg"},
+    {"depth_control", "kp = 0.25, ki = 0.02, kd = 0, max_pitch = 15 deg, pitch_slew = 5 deg/s, max_depth = 100 m, "
+                      "depth_rate_tau = 1 s, pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, "
+                      "plane_slew = 30 deg/s, plane_i_limit = 10 deg"},
+    {"altitude_control", "altitude_tau = 1 s, search_rate = 0.2 m/s, kp = 0.25, ki = 0.02, kd = 0, "
+                         "max_pitch = 15 deg, pitch_slew = 5 deg/s, max_depth = 100 m, depth_rate_tau = 1 s, "
+                         "pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, plane_slew = 30 deg/s, "
+                         "plane_i_limit = 10 deg"},
+    {"pitch_control", "max_pitch = 30 deg, pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, "
+                      "plane_slew = 30 deg/s, plane_i_limit = 10 deg"},
+    {"speed_control", "rpm_per_mps = 1000, kp = 1000, ki = 60, i_limit = 300, min_rpm = 0, max_rpm = 2000, "
+                      "rpm_slew = 500"},
+    {"rpm_control", "min_rpm = 0, max_rpm = 2000, rpm_slew = 500"},
+};
+
+/* Whether `args` (the text inside the parentheses) names parameter `name`. */
+static int names(const char *args, const char *name, size_t len)
+{
+    for (const char *p = strstr(args, name); p; p = strstr(p + 1, name)) {
+        const char *after = p + len;
+        while (*after == ' ')
+            after++;
+        if ((p == args || p[-1] == ' ' || p[-1] == '(' || p[-1] == ',') && *after == '=')
+            return 1;
+    }
+    return 0;
+}
+
+/* `action` with the test gains it leaves out appended. */
+static const char *with_gains(const char *action)
+{
+    static char out[2048];
+    snprintf(out, sizeof out, "%s", action);
+    const char *open = strchr(action, '(');
+    char *close = strrchr(out, ')');
+    if (!open || !close)
+        return out;
+    for (size_t i = 0; i < sizeof GAINS / sizeof GAINS[0]; i++) {
+        size_t blen = strlen(GAINS[i].behavior);
+        if ((size_t)(open - action) != blen || strncmp(action, GAINS[i].behavior, blen) != 0)
+            continue;
+        char extra[1024] = "";
+        const char *g = GAINS[i].gains;
+        while (*g) {
+            const char *end = strchr(g, ',');
+            size_t n = end ? (size_t)(end - g) : strlen(g);
+            size_t name_len = strcspn(g, " =");
+            char name[64];
+            snprintf(name, sizeof name, "%.*s", (int)name_len, g);
+            if (!names(open, name, name_len))
+                snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "%s%.*s", extra[0] ? ", " : "",
+                         (int)n, g);
+            g += n;
+            while (*g == ',' || *g == ' ')
+                g++;
+        }
+        if (extra[0]) {
+            int empty = close[-1] == '(';
+            snprintf(close, sizeof out - (size_t)(close - out), "%s%s)", empty ? "" : ", ", extra);
+        }
+    }
+    return out;
+}
+
+/* A plan of IO plus one state running `action` (line 29), gains filled in. */
 static const char *plan_with(const char *action)
 {
-    static char buf[4096];
-    snprintf(buf, sizeof buf, "%sstate s {\n    do %s\n}\nstate stopped {\n}\n", IO, action);
+    static char buf[8192];
+    snprintf(buf, sizeof buf, "%sstate s {\n    do %s\n}\nstate stopped {\n}\n", IO, with_gains(action));
     return buf;
 }
 
@@ -95,6 +167,14 @@ void pilot_param_errors(void)
     CHECK_HAS(e, "t.chasm:6:8: error: 'heading_control' reads variable 'nav.r_radps' (its default for 'yaw_rate')");
     /* and the good plan loads */
     CHECK(strcmp(pt_errors(plan_with("heading_control(kp = 2, kd = 4, max_rudder = 15 deg)")), "") == 0);
+    /* no gain has a default: the pilot plan is the one place they are set */
+    char plan[4096];
+    snprintf(plan, sizeof plan, "%sstate s {\n    do heading_control(kp = 2)\n}\n", IO);
+    e = pt_errors(plan);
+    CHECK_HAS(e, "t.chasm:29:8: error: 'heading_control' needs parameter 'kd'");
+    CHECK_HAS(e, "'heading_control' needs parameter 'max_rudder'");
+    snprintf(plan, sizeof plan, "%sstate s {\n    do speed_control()\n}\n", IO);
+    CHECK_HAS(pt_errors(plan), "'speed_control' needs parameter 'rpm_per_mps'");
 }
 
 static double rudder_for(double heading_deg, double setpoint_deg)
@@ -370,7 +450,7 @@ void pilot_bad_rpm_limits_fail_at_start(void)
      * loader cannot see it; the behavior fails at start, with the reason in
      * the log, and the plan's `when failed` catches it. */
     char plan[4096];
-    snprintf(plan, sizeof plan, "%sstate s {\n    do rpm_control(min_rpm = 500, max_rpm = 100)\n"
+    snprintf(plan, sizeof plan, "%sstate s {\n    do rpm_control(min_rpm = 500, max_rpm = 100, rpm_slew = 500)\n"
                                 "    when failed -> stopped\n}\nstate stopped {\n}\n", IO);
     chasm_machine *m = pt_load(plan);
     if (!m)
