@@ -139,7 +139,7 @@ SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))
 HAVE_JAVAC := $(shell command -v javac >/dev/null 2>&1 && echo yes)
 JAR_TARGET := $(if $(HAVE_JAVAC),$(TYPES_JAR))
 
-.PHONY: all build sanitize test demo spy bench clean distclean setup
+.PHONY: all build sanitize test demo spy bench clean distclean setup validate
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET)
 sanitize: $(SAN_OUTPUTS)
@@ -151,6 +151,11 @@ all: build
 PYTEST_ARGS ?=
 test: build sanitize
 	tests/isolated_net.sh $(VPY) -m pytest $(PYTEST_ARGS)
+
+# The simulator's validation report (docs/simulator.md): measured against
+# reference, PASS/FAIL, non-zero exit on a failure. No LCM.
+validate: $(GEN_PY_STAMP)
+	cd python && ../$(VPY) -m sim.validate
 
 demo: build
 	tests/isolated_net.sh --only-if-needed $(VPY) python/tools/demo.py --out $(BUILD)/demo

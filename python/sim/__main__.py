@@ -21,11 +21,11 @@ import auvlcm  # noqa: E402,F401  (puts build/gen/python on sys.path)
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "validate":
-        from sim.validation import main as vmain
+        from sim.validate import main as vmain
         return vmain(argv[1:])
     ap = argparse.ArgumentParser(prog="python -m sim",
                                  description="CHASM-AUV vehicle simulator (one vehicle, over LCM). "
-                                 "`python -m sim validate` prints the validation report.")
+                                 "`python -m sim.validate` (or `python -m sim validate`) prints the validation report.")
     ap.add_argument("config", help="simulator configuration (YAML), e.g. missions/sim/remus100.yaml")
     ap.add_argument("--clock", choices=("realtime", "scaled", "stepped"), help="override simulation.clock")
     ap.add_argument("--warp", type=float, help="override simulation.warp (scaled mode)")

@@ -8,6 +8,8 @@ written out term by term in Prestero's coefficient form: his "combined"
 coefficients (Y_ur, M_uw, ...) already hold the C_A entries that are linear
 in u, so building C_A from M_A as well would count the Munk moment twice.
 Hydrodynamic terms use the velocity relative to the water nu_r = nu - nu_c;
+a wave field's acceleration adds the Froude-Krylov force rho V a and the
+added-mass force M_A a of the accelerating water (not only its velocity);
 rigid-body terms use nu over ground. For a current fixed in NED,
 M_A nu_r_dot = M_A nu_dot - M_A nu_c_dot with nu_c_dot = v_c^b x omega, which
 is added to the right-hand side so a turning vehicle in a current feels no
@@ -26,7 +28,7 @@ from math import cos, sin
 
 import numpy as np
 
-from sim.vehicle import VehicleParams
+from sim.vehicle import G, VehicleParams
 
 ETA = ("north_m", "east_m", "down_m", "roll_rad", "pitch_rad", "yaw_rad")
 TWO_PI = 2.0 * math.pi
@@ -101,6 +103,9 @@ class Dynamics:
         self.thrust = 0.0
         self.torque = 0.0
         self.current_ned = (0.0, 0.0, 0.0)
+        # the water's acceleration (NED, m/s^2; waves): Froude-Krylov plus
+        # added-mass inertia, held over a step like the current
+        self.water_accel_ned = (0.0, 0.0, 0.0)
         self.external_tau: list[float] | None = None  # optional extra body forces (tests, tow)
         self._f = make_rhs(self._k, self._minv)
 
@@ -127,7 +132,8 @@ class Dynamics:
         dt = self.dt
         h = 0.5 * dt
         cn, ce, cd = self.current_ned
-        u = (cn, ce, cd, self.rudder, self.stern, self.thrust, self.torque, self.external_tau)
+        u = (cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust, self.torque,
+             self.external_tau)
         f = self._f
         x0, x1, x2, x3, x4, x5, x6, x7, x8, x9, x10, x11 = x = self.x
         k1 = a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11 = f(x, *u)
@@ -165,8 +171,8 @@ class Dynamics:
     def _deriv(self, x):
         """x_dot for state x with the inputs held now (the validation's Jacobian)."""
         cn, ce, cd = self.current_ned
-        return self._f(x, cn, ce, cd, self.rudder, self.stern, self.thrust, self.torque,
-                       self.external_tau)
+        return self._f(x, cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust,
+                       self.torque, self.external_tau)
 
 
 def make_rhs(k: tuple, minv: tuple):
@@ -190,7 +196,7 @@ def make_rhs(k: tuple, minv: tuple):
      i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
      i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = minv
 
-    def rhs(x, cn, ce, cd, dr, ds, thrust, torque, et):
+    def rhs(x, cn, ce, cd, acc, dr, ds, thrust, torque, et):
         _, _, z, phi, theta, psi, u, v, w, p, q, r = x
         cphi, sphi = cos(phi), sin(phi)
         cth, sth = cos(theta), sin(theta)
@@ -259,6 +265,21 @@ def make_rhs(k: tuple, minv: tuple):
             Z += ma_w * acw
             Mm += ma_qw * acw
             N += ma_rv * acv
+        # The water accelerates (waves): the pressure gradient that drives it
+        # pushes on the displaced volume (Froude-Krylov, rho V a, acting at the
+        # CB, the body origin, so no moment) and the added mass follows the
+        # water, + M_A R^T a (its w and v columns couple into pitch and yaw).
+        an, ae, ad = acc
+        if an or ae or ad:
+            rho_v = (W - fw) / G                     # displaced mass, less when surfacing
+            abx = r00 * an + r10 * ae + r20 * ad
+            aby = r01 * an + r11 * ae + r21 * ad
+            abz = r02 * an + r12 * ae + r22 * ad
+            X += (rho_v + ma_u) * abx
+            Y += (rho_v + ma_v) * aby
+            Z += (rho_v + ma_w) * abz
+            Mm += ma_qw * abz
+            N += ma_rv * aby
         if et is not None:
             X, Y, Z = X + et[0], Y + et[1], Z + et[2]
             K, Mm, N = K + et[3], Mm + et[4], N + et[5]

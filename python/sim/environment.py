@@ -19,6 +19,7 @@ from confcheck import setting
 from sim.bathymetry import Bathymetry
 
 G = 9.81
+RHO_SEAWATER = 1025.0   # kg/m^3, the depth sensor's conversion too
 # Spatial wavelength of the slow current variation [m]: large against a
 # vehicle's range, so the variation reads as "the tide turning".
 CURRENT_VARIATION_WAVELENGTH_M = 10_000.0
@@ -95,6 +96,17 @@ class Environment:
         # per wave component: a w (orbital speed amplitude at the surface), -k, k, w, phase
         self._orbital = [(a * w, -k, k, w, ph) for a, w, k, ph in self._waves]
 
+    def set_regular_wave(self, height_m: float, period_s: float, phase: float = 0.0) -> None:
+        """Replace the spectrum with one regular wave (checks against linear theory)."""
+        w = 2.0 * math.pi / period_s
+        k = w * w / G
+        self._waves = [(height_m / 2.0, w, k, phase)]
+        self._orbital = [(height_m / 2.0 * w, -k, k, w, phase)]
+
+    @property
+    def has_waves(self) -> bool:
+        return bool(self._waves)
+
     # ------------------------------------------------------------- currents
     def current_profile(self, depth: float) -> tuple[float, float, float]:
         ls = self._layers
@@ -110,6 +122,13 @@ class Environment:
 
     def current(self, t: float, north: float, east: float, depth: float) -> tuple[float, float, float]:
         """Water velocity (NED) from the profile, the slow variation and the waves."""
+        return self.water(t, north, east, depth)[0]
+
+    def water(self, t: float, north: float, east: float, depth: float
+              ) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """The water's velocity and acceleration (NED) at a point, in one call
+        (the simulator's hot path). Only the waves accelerate it: the tide's
+        variation is hours slow."""
         cn, ce, cd = self.current_profile(depth)
         if self._varies:
             p = self.params
@@ -121,11 +140,10 @@ class Environment:
             cn += amp * vc
             ce += amp * vs
         if self._orbital:
-            wh, wv = self.wave_orbital(t, north, east, depth)
-            cn += wh * self._wave_cos
-            ce += wh * self._wave_sin
-            cd += wv
-        return cn, ce, cd
+            wh, wv, ah, av = self.wave_kinematics(t, north, east, depth)
+            wc, ws = self._wave_cos, self._wave_sin
+            return (cn + wh * wc, ce + wh * ws, cd + wv), (ah * wc, ah * ws, av)
+        return (cn, ce, cd), (0.0, 0.0, 0.0)
 
     # ---------------------------------------------------------------- waves
     def wave_orbital(self, t: float, north: float, east: float, depth: float) -> tuple[float, float]:
@@ -142,6 +160,44 @@ class Environment:
             uh += aw * decay * cos(th)
             uv -= aw * decay * sin(th)
         return uh, uv
+
+    def wave_kinematics(self, t: float, north: float, east: float, depth: float
+                        ) -> tuple[float, float, float, float]:
+        """Deep-water (Airy) velocity and acceleration of the water: along the
+        wave direction and down [m/s, m/s^2]. Per component of amplitude a,
+        frequency w, wavenumber k = w^2/g, phase th = k s - w t + ph:
+        u = a w e^-kz cos th, w_down = -a w e^-kz sin th. The acceleration is
+        the particles' own, Du/Dt = du/dt + (u . grad) u: with the local
+        derivative alone, a body that follows the water (Froude-Krylov plus
+        added mass) would drift down through the wave field."""
+        s = north * self._wave_cos + east * self._wave_sin
+        d = max(depth, 0.0)
+        uh = uv = ah = av = 0.0
+        gc = gs = 0.0          # sums of a w k e^-kz cos th and of ... sin th
+        exp, cos, sin = math.exp, math.cos, math.sin
+        for aw, nk, k, w, ph in self._orbital:
+            decay = exp(nk * d)
+            if decay < 1e-4:
+                continue
+            th = k * s - w * t + ph
+            c, sn = cos(th), sin(th)
+            v = aw * decay
+            uh += v * c
+            uv -= v * sn
+            ah += v * w * sn
+            av += v * w * c
+            gc += v * k * c
+            gs += v * k * sn
+        # grad: d(uh)/ds = -gs, d(uh)/dz = -gc, d(uv)/ds = -gc, d(uv)/dz = gs
+        return uh, uv, ah - uh * gs - uv * gc, av - uh * gc + uv * gs
+
+    def wave_pressure(self, t: float, north: float, east: float, depth: float) -> float:
+        """Dynamic pressure of the waves at a depth [Pa], linear theory:
+        rho g sum a e^-kz cos th (in phase with the surface above)."""
+        s = north * self._wave_cos + east * self._wave_sin
+        d = max(depth, 0.0)
+        return RHO_SEAWATER * G * sum(a * math.exp(-k * d) * math.cos(k * s - w * t + ph)
+                                      for a, w, k, ph in self._waves)
 
     def wave_elevation(self, t: float, north: float, east: float) -> float:
         """Sea-surface elevation, positive up [m]."""

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from sim.actuators import Actuators, Command
 from sim.dynamics import Dynamics
-from sim.environment import Environment
+from sim.environment import G, RHO_SEAWATER, Environment
 from sim.geo import LocalFrame
 from sim.vehicle import VehicleParams
 
@@ -28,10 +28,17 @@ class Truth:
     altitude_m: float = 0.0
     latitude_deg: float = 0.0
     longitude_deg: float = 0.0
+    wave_pressure_pa: float = 0.0   # the waves' dynamic pressure at the vehicle
 
     @property
     def depth(self) -> float:
         return self.eta[2]
+
+    @property
+    def pressure_depth(self) -> float:
+        """The depth a pressure gauge reads: the true depth plus the waves'
+        dynamic pressure head (linear theory: the swell above, decayed)."""
+        return self.eta[2] + self.wave_pressure_pa / (RHO_SEAWATER * G)
 
     def velocity_ned(self) -> tuple[float, float, float]:
         """Velocity over ground in NED [m/s]."""
@@ -69,9 +76,10 @@ class VehicleModel:
         """One physics step: actuators, the water at the vehicle, RK4."""
         d = self.dyn
         x = d.x
-        # The current is sampled once per step (zero-order hold): it varies
-        # over metres and seconds, far slower than one 20 ms step.
-        d.current_ned = self.env.current(d.t, x[0], x[1], x[2])
+        # The water's velocity and acceleration are sampled once per step
+        # (zero-order hold): they vary over metres and seconds, far slower
+        # than one 20 ms step.
+        d.current_ned, d.water_accel_ned = self.env.water(d.t, x[0], x[1], x[2])
         self.act.step(self.command)
         self.act.apply(d)
         d.step()
@@ -98,4 +106,5 @@ class VehicleModel:
         tr.water_depth_m = self.env.water_depth(x[0], x[1])
         tr.altitude_m = tr.water_depth_m - x[2]
         tr.latitude_deg, tr.longitude_deg = self.frame.to_latlon(x[0], x[1])
+        tr.wave_pressure_pa = self.env.wave_pressure(d.t, x[0], x[1], x[2]) if self.env.has_waves else 0.0
         return tr

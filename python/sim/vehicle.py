@@ -25,11 +25,12 @@ def _remus_hydro() -> dict[str, float]:
         "Xuu": -1.62,
         # added mass
         "Xud": -0.93, "Yvd": -35.5, "Zwd": -35.5, "Yrd": 1.93, "Zqd": -1.93,
-        "Mwd": -1.93, "Nvd": 1.93, "Mqd": -4.88, "Nrd": -4.88, "Kpd": -1.41e-2,
-        # cross-flow drag (the thesis table values; see remus100.md on the
-        # transcription that has -1310 / -188 / -94)
-        "Yvv": -131.0, "Zww": -131.0, "Yrr": 0.632, "Zqq": -0.632,
-        "Mww": 3.18, "Nvv": -3.18, "Mqq": -9.40, "Nrr": -9.40, "Kpp": -1.30e-3,
+        "Mwd": -1.93, "Nvd": 1.93, "Mqd": -4.88, "Nrd": -4.88, "Kpd": -7.04e-2,
+        # cross-flow drag and rolling resistance, thesis Tables C.2/C.3 as
+        # printed. Asymmetric on purpose (Y_v|v| = 10 Z_w|w|, M_q|q| = 2 N_r|r|):
+        # that is the published data (docs/simulator.md, "The default vehicle").
+        "Yvv": -1310.0, "Zww": -131.0, "Yrr": 0.632, "Zqq": -0.632,
+        "Mww": 3.18, "Nvv": -3.18, "Mqq": -188.0, "Nrr": -94.0, "Kpp": -0.130,
         # added-mass cross terms (the entries of C_A(nu_r) nu_r not already in
         # the combined coefficients below)
         "Xwq": -35.5, "Xqq": -1.93, "Xvr": 35.5, "Xrr": -1.93,
@@ -71,7 +72,7 @@ class VehicleParams:
     prop_nominal_rpm: float = 1500.0
     prop_nominal_thrust_n: float = 3.86
     prop_nominal_torque_nm: float = -0.543
-    prop_max_rpm: float = setting(2000.0, ge=0.0)
+    prop_max_rpm: float = setting(2450.0, ge=0.0)    # about 2.5 m/s, the published maximum
     prop_time_constant_s: float = setting(0.3, ge=0.0)
 
     @property

@@ -23,7 +23,8 @@ ROOT = Path(__file__).resolve().parents[2]
 PY = sys.executable
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
 # What the committed scenario was planned with (its header); --polygon replans with these.
-PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "8", "--overlap", "0.1", "--fix-every-min", "30",
+PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "11.5", "--overlap", "0.1", "--fix-every-min", "30",
+             "--depth-m", "4",
              "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7",
              "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--nav", "ekf"]
 

@@ -1,7 +1,8 @@
 """Write one vehicle's survey as a CHASM navigator plan (docs/chasm.md).
 
 Shape (the vehicle software contract): dive to the first line, then one
-state per line (`track` + `hold_altitude`) and per turn between lines; a GPS
+state per line (`track` + `hold_altitude`, or `hold_depth` with a survey
+depth) and per turn between lines; a GPS
 fix (`surface_fix`) every `fix_every` of survey, resuming the same line;
 safety from the shared rules (missions/common/safety.chasm, root `abort
 when` transitions to `emergency`, which surfaces): max depth, min altitude,
@@ -27,6 +28,7 @@ SAFETY = ROOT / "missions" / "common" / "safety.chasm"     # the shared `abort w
 class Limits:
     speed_mps: float = 1.5
     altitude_m: float = 8.0
+    depth_m: float = 0.0            # > 0: fly the survey at this depth (hold_depth), not at altitude_m
     fix_every_min: float = 20.0
     fix_timeout_s: float = 300.0    # floating up from survey altitude takes minutes
     max_depth_m: float = 60.0
@@ -40,7 +42,7 @@ def estimated_duration_s(v: VehicleSurvey, start, lim: Limits) -> float:
     transit = ((start[0] - v.legs[0].start[0]) ** 2 + (start[1] - v.legs[0].start[1]) ** 2) ** 0.5
     run_s = (v.length_m() + transit) / lim.speed_mps
     fixes = int(run_s // (lim.fix_every_min * 60))
-    return run_s + fixes * (lim.fix_timeout_s / 2 + 2 * lim.altitude_m / 0.2)
+    return run_s + fixes * (lim.fix_timeout_s / 2 + 2 * (lim.depth_m or lim.altitude_m) / 0.2)
 
 
 def _f(x: float) -> str:
@@ -53,6 +55,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
     include = os.path.relpath(NAVIGATOR_IO, plan_path.parent)
     safety = os.path.relpath(SAFETY, plan_path.parent)
     s = survey.sonar
+    vertical = "hold_depth(depth = $depth)" if lim.depth_m > 0 else "hold_altitude(altitude = $altitude)"
     out = [
         f"# {vid}: share {v.index + 1} of {len(survey.vehicles)} of a sidescan survey, written by",
         "# python/tools/plan_survey.py (re-run it rather than edit this file).",
@@ -67,7 +70,8 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         "use guidance",
         "",
         f"param speed        = {lim.speed_mps:g} m/s",
-        f"param altitude     = {lim.altitude_m:g} m",
+        (f"param depth        = {lim.depth_m:g} m" if lim.depth_m > 0 else
+         f"param altitude     = {lim.altitude_m:g} m"),
         f"param fix_every    = {lim.fix_every_min:g} min",
         f"param fix_timeout  = {lim.fix_timeout_s:g} s",
         "",
@@ -85,7 +89,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         "state mission {",
         "    state dive {",
         f"        do goto(north = {_f(v.legs[0].start[0])} m, east = {_f(v.legs[0].start[1])} m, speed = $speed)",
-        "        do hold_altitude(altitude = $altitude)",
+        f"        do {vertical}",
         "        next survey",
         "    }",
         "    state survey {",
@@ -103,7 +107,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
             f"        state {names[i]} {{",
             f"            do track(from_north = {_f(leg.start[0])} m, from_east = {_f(leg.start[1])} m, "
             f"to_north = {_f(leg.end[0])} m, to_east = {_f(leg.end[1])} m, speed = $speed)",
-            "            do hold_altitude(altitude = $altitude)",
+            f"            do {vertical}",
             f"            next {nxt}",
             "        }",
         ]

@@ -66,7 +66,7 @@ def sim_cmd(config: Path, url: str, *extra) -> list:
     return [sys.executable, ROOT / "python" / "sim", config, "--lcm-url", url, "--multihil", *extra]
 
 
-def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_alt_damping.yaml",
+def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_multihil.yaml",
                    **initial) -> Path:
     """A simulator configuration for another vehicle id, from a shipped one."""
     text = (ROOT / "missions" / "sim" / base).read_text().replace("id: AUV1", f"id: {vehicle}")

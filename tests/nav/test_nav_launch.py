@@ -16,7 +16,7 @@ from auvlcm.log import read_events
 from conftest import ROOT
 
 LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
-SIM = str(ROOT / "missions" / "sim" / "remus100_alt_damping.yaml")
+SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")     # 1500 rpm for N cycles, then done
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 

@@ -20,7 +20,7 @@ from typing import Callable
 import lcm
 import yaml
 
-from auv import actuators_t, chasm_status_t, ground_truth_t, setpoint_t, sim_clock_t
+from auv import actuators_t, chasm_status_t, ground_truth_t, pilot_status_t, setpoint_t, sim_clock_t
 from auvlcm.rx import Receiver
 from lcm_proc import pump, stop, wait_for_line
 
@@ -41,6 +41,8 @@ class Setpoint:
     speed_mode: int = setpoint_t.SPEED_MPS
     speed: float = 0.0
     rpm: float = 0.0
+    speed_reference: int = setpoint_t.SPEED_OVER_GROUND
+    utime: int | None = None        # the stamp to send (None: the tick's time)
 
 
 @dataclass
@@ -79,6 +81,8 @@ class World:
         self.truth: list = []
         self.status: list = []
         self.commands: list = []
+        self.pilot_status: list = []
+        self.rx.subscribe("AUV1.PILOT_STATUS", pilot_status_t, lambda c, m: self.pilot_status.append(m), 5000)
         self.rx.subscribe("AUV1.TRUTH", ground_truth_t, lambda c, m: self.truth.append(m), 5000)
         self.rx.subscribe("AUV1.CHASM.PILOT", chasm_status_t, lambda c, m: self.status.append(m), 5000)
         self.rx.subscribe("AUV1.ACTUATORS", actuators_t, lambda c, m: self.commands.append(m), 5000)
@@ -135,10 +139,11 @@ class World:
 
     def _publish_setpoint(self, sp: Setpoint) -> None:
         m = setpoint_t()
-        m.utime, m.vehicle = self.utime, "AUV1"
+        m.utime, m.vehicle = (self.utime if sp.utime is None else sp.utime), "AUV1"
         m.heading_rad, m.vertical_mode = sp.heading % (2 * math.pi), sp.vertical_mode
         m.depth_m, m.altitude_m, m.pitch_rad = sp.depth, sp.altitude, sp.pitch
         m.speed_mode, m.speed_mps, m.prop_rpm = sp.speed_mode, sp.speed, sp.rpm
+        m.speed_reference = sp.speed_reference
         self.lc.publish("AUV1.SETPOINT", m.encode())
 
     def _sample(self) -> None:

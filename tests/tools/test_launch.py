@@ -22,7 +22,7 @@ from tools.timeline import state_timeline
 
 HERE = Path(__file__).resolve().parent / "scenarios"
 LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
-SIM = str(ROOT / "missions" / "sim" / "remus100_alt_damping.yaml")
+SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 

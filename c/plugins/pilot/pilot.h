@@ -28,17 +28,17 @@
 /* ---- pitch loop: pitch command -> stern plane */
 enum { PL_KP, PL_KI, PL_KD, PL_MAX_PLANE, PL_PLANE_SLEW, PL_I_LIMIT, PL_COUNT };
 #define PILOT_PITCH_LOOP_PARAMS                                                                                  \
-    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1.5, NULL, 1, 0, 50,                                          \
+    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 50,                                          \
      "stern plane per pitch error [rad/rad]"},                                                                  \
-    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.6, NULL, 1, 0, 20,                                         \
+    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 20,                                         \
      "stern plane per integrated pitch error [rad/(rad s)]"},                                                   \
-    {"pitch_kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 5.0, NULL, 1, 0, 50,                                         \
+    {"pitch_kd", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 50,                                         \
      "stern plane per pitch rate: the damping [rad/(rad/s)]"},                                                  \
-    {"max_plane", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 20 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
+    {"max_plane", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
      "stern plane limit"},                                                                                      \
-    {"plane_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 30 * PILOT_DEG, NULL, 1, 0, 1000 * PILOT_DEG,         \
+    {"plane_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0, 1000 * PILOT_DEG,         \
      "stern plane slew limit (0: none)"},                                                                       \
-    {"plane_i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 10 * PILOT_DEG, NULL, 1, 0, 60 * PILOT_DEG,          \
+    {"plane_i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0, 60 * PILOT_DEG,          \
      "largest stern plane the pitch integrator may hold (trim)"}
 
 typedef struct {
@@ -56,17 +56,17 @@ double pilot_pitch_step(pilot_pitch_loop *l, const pu_pid_config *cfg, double pi
 /* ---- depth loop: depth target -> pitch command (then the pitch loop) */
 enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_TAU, DL_COUNT };
 #define PILOT_DEPTH_LOOP_PARAMS                                                                                  \
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.25, NULL, 1, 0, 10, "pitch per metre of depth error [rad/m]"},    \
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.02, NULL, 1, 0, 5,                                               \
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 10, "pitch per metre of depth error [rad/m]"},    \
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 5,                                               \
      "pitch per integrated depth error [rad/(m s)]"},                                                          \
-    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0.0, NULL, 1, 0, 20, "pitch per depth rate [rad/(m/s)]"},            \
-    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 15 * PILOT_DEG, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
+    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 20, "pitch per depth rate [rad/(m/s)]"},            \
+    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
      "pitch command limit"},                                                                                    \
-    {"pitch_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 5 * PILOT_DEG, NULL, 1, 0, 1000 * PILOT_DEG,          \
+    {"pitch_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0, 1000 * PILOT_DEG,          \
      "pitch command slew limit (0: none)"},                                                                     \
-    {"max_depth", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 100, NULL, 1, 0, 11000,                                    \
+    {"max_depth", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0, 11000,                                    \
      "depth targets are clamped to [0, max_depth]"},                                                            \
-    {"depth_rate_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 0, 1.0, NULL, 1, 0, 60,                                  \
+    {"depth_rate_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 1, 0, NULL, 1, 0, 60,                                  \
      "low-pass time constant of the depth rate used by kd"}
 
 typedef struct {
@@ -97,6 +97,7 @@ extern const chasm_behavior_spec pilot_altitude_behavior;
 extern const chasm_behavior_spec pilot_pitch_behavior;
 extern const chasm_behavior_spec pilot_speed_behavior;
 extern const chasm_behavior_spec pilot_rpm_behavior;
+extern const chasm_behavior_spec pilot_watch_behavior;
 
 /* Fails a behavior's start with a message in the manager's log. */
 int pilot_reject(chasm_ctx *c, const char *behavior, const char *reason);

@@ -12,7 +12,7 @@ int pilot_reject(chasm_ctx *c, const char *behavior, const char *reason)
 }
 
 /* The descriptor wants a contiguous array; the specs live with their code. */
-static chasm_behavior_spec behaviors[6];
+static chasm_behavior_spec behaviors[7];
 
 __attribute__((constructor)) static void collect(void)
 {
@@ -22,6 +22,7 @@ __attribute__((constructor)) static void collect(void)
     behaviors[3] = pilot_pitch_behavior;
     behaviors[4] = pilot_speed_behavior;
     behaviors[5] = pilot_rpm_behavior;
+    behaviors[6] = pilot_watch_behavior;
 }
 
 CHASM_PLUGIN_EXPORT("pilot", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);

@@ -11,9 +11,9 @@
 #include "plugins/pilot/pilot.h"
 
 #define RPM_LIMIT_PARAMS                                                                                   \
-    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
-    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 0, 2000, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
-    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 0, 500, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
+    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
+    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
+    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
 #define PROP_OUT {"prop", CHASM_WRITES, CHASM_DOUBLE, "", 0, 0, "actuators.prop_rpm", 0, 0, 0, "prop command [rpm]"}
 
 typedef struct {
@@ -38,17 +38,19 @@ static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const
 
 /* ------------------------------------------------------------ speed_control */
 
-enum { S_SPEED, S_SETPOINT, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW };
+enum { S_SPEED, S_SETPOINT, S_REFERENCE, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW };
 
 static const chasm_param_spec speed_params[] = {
     {"speed", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "nav.u_mps", 0, 0, 0, "measured surge speed"},
     {"setpoint", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "setpoint.speed_mps", 0, 0, 0, "desired speed"},
+    {"reference", CHASM_READS, CHASM_INT, "", 0, 0, "setpoint.speed_reference", 0, 0, 0,
+     "setpoint_t.SPEED_OVER_GROUND (0): PI on the measured speed; SPEED_THROUGH_WATER (1): the rpm law alone"},
     PROP_OUT,
-    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000,
+    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000,
      "feed-forward: prop rpm per m/s of setpoint"},
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 0, 1000, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 0, 60, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
-    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 0, 300, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
+    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
+    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
+    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
     RPM_LIMIT_PARAMS,
 };
 
@@ -67,6 +69,13 @@ static chasm_status_code speed_step(chasm_ctx *c, void *st)
         .i_limit = chasm_param_double(c, S_I_LIMIT),
     };
     double rpm;
+    if (chasm_read_int(c, S_REFERENCE) == 1) {
+        /* through the water: the calibrated propeller law is the speed through
+         * the water; closing the loop on the (over-ground) navigation speed
+         * would fight or ride a current. No stored integral either. */
+        s->pid.integral = 0.0;
+        cfg.kp = cfg.ki = 0.0;
+    }
     if (!(sp > 0.0)) {
         /* stop means stop: no PI fighting a drifting vehicle, no stored integral */
         s->pid.integral = 0.0;

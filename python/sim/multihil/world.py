@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[3]
-BASE_CONFIG = ROOT / "missions" / "sim" / "remus100_alt_damping.yaml"
+BASE_CONFIG = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 PLAN = ROOT / "missions" / "demo" / "depth_band.chasm"
 BIND = ROOT / "missions" / "bindings" / "direct_actuators.bind"
 

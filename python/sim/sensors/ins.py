@@ -113,7 +113,8 @@ class Ins(Sensor):
             altitude = -1.0
         north = eta[0] + self.err_n + gauss(noise)
         east = eta[1] + self.err_e + gauss(noise)
-        depth = eta[2] + gauss(noise)
+        # depth comes from a pressure sensor: it sees the waves' dynamic pressure
+        depth = tr.pressure_depth + gauss(noise)
         lat, lon = self.frame.to_latlon(north, east)
         att = c.attitude_noise
         roll = wrap_pi(eta[3] + gauss(att))

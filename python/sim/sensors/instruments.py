@@ -76,7 +76,8 @@ class DepthSensor(Sensor):
         c = self.cfg
         m = depth_t()
         m.utime, m.vehicle, m.valid = utime(tr.t), self.vehicle, True
-        m.depth_m = tr.depth + c.bias + self.gauss(c.noise)
+        # a pressure gauge: the hydrostatic head plus the waves' dynamic pressure
+        m.depth_m = tr.pressure_depth + c.bias + self.gauss(c.noise)
         m.pressure_pa = P_ATM + RHO_SEAWATER * G * max(m.depth_m, 0.0)
         m.temperature_c = c.water_temperature_c
         return m

@@ -25,5 +25,7 @@ void pilot_altitude_target_and_search(void);
 void pilot_speed_feed_forward_and_stop(void);
 void pilot_rpm_limits(void);
 void pilot_bad_rpm_limits_fail_at_start(void);
+void pilot_speed_through_the_water(void);
+void pilot_setpoint_watch_counts_ignored(void);
 
 #endif

@@ -2,6 +2,7 @@
  * stepped against scripted inputs: signs, limits, slew, anti-windup, wrap
  * at north, and the loader's parameter checks (file:line:col). */
 #include <stdlib.h>
+#include <string.h>
 
 #include "../common/plugin_test.h"
 #include "pilot_tests.h"
@@ -27,13 +28,94 @@ static const char *IO =
     "input setpoint.prop_rpm : double\n"
     "output actuators.rudder_rad : double rad\n"
     "output actuators.stern_plane_rad : double rad\n"
-    "output actuators.prop_rpm : double\n"; /* 17 lines */
+    "output actuators.prop_rpm : double\n"
+    "input setpoint.speed_reference : int\n"
+    "input setpoint.utime : int\n"
+    "input setpoint.vertical_mode : int\n"
+    "input setpoint.speed_mode : int\n"
+    "output pilot.state : int\n"
+    "output pilot.speed_reference : int\n"
+    "output pilot.setpoints_ignored : int\n"
+    "output pilot.ignoring : bool\n"
+    "output pilot.last_ignored_reason : int\n"
+    "output pilot.last_ignored_utime : int\n"; /* 27 lines */
 
-/* A plan of IO plus one state running `action` (line 19). */
+/* The plugin has no default gains (the pilot plan sets every one): the
+ * tests' own values, the ones they were written against, for every
+ * parameter an action leaves out. */
+static const struct {
+    const char *behavior, *gains;
+} GAINS[] = {
+    {"heading_control", "kp = 2, ki = 0.1, kd = 4, max_turn_rate = 6 deg/s, max_rudder = 20 deg, "
+                        "rudder_slew = 30 deg/s, i_limit = 5 deg, i_zone = 10 deg"},
+    {"depth_control", "kp = 0.25, ki = 0.02, kd = 0, max_pitch = 15 deg, pitch_slew = 5 deg/s, max_depth = 100 m, "
+                      "depth_rate_tau = 1 s, pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, "
+                      "plane_slew = 30 deg/s, plane_i_limit = 10 deg"},
+    {"altitude_control", "altitude_tau = 1 s, search_rate = 0.2 m/s, kp = 0.25, ki = 0.02, kd = 0, "
+                         "max_pitch = 15 deg, pitch_slew = 5 deg/s, max_depth = 100 m, depth_rate_tau = 1 s, "
+                         "pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, plane_slew = 30 deg/s, "
+                         "plane_i_limit = 10 deg"},
+    {"pitch_control", "max_pitch = 30 deg, pitch_kp = 1.5, pitch_ki = 0.6, pitch_kd = 5, max_plane = 20 deg, "
+                      "plane_slew = 30 deg/s, plane_i_limit = 10 deg"},
+    {"speed_control", "rpm_per_mps = 1000, kp = 1000, ki = 60, i_limit = 300, min_rpm = 0, max_rpm = 2000, "
+                      "rpm_slew = 500"},
+    {"rpm_control", "min_rpm = 0, max_rpm = 2000, rpm_slew = 500"},
+};
+
+/* Whether `args` (the text inside the parentheses) names parameter `name`. */
+static int names(const char *args, const char *name, size_t len)
+{
+    for (const char *p = strstr(args, name); p; p = strstr(p + 1, name)) {
+        const char *after = p + len;
+        while (*after == ' ')
+            after++;
+        if ((p == args || p[-1] == ' ' || p[-1] == '(' || p[-1] == ',') && *after == '=')
+            return 1;
+    }
+    return 0;
+}
+
+/* `action` with the test gains it leaves out appended. */
+static const char *with_gains(const char *action)
+{
+    static char out[2048];
+    snprintf(out, sizeof out, "%s", action);
+    const char *open = strchr(action, '(');
+    char *close = strrchr(out, ')');
+    if (!open || !close)
+        return out;
+    for (size_t i = 0; i < sizeof GAINS / sizeof GAINS[0]; i++) {
+        size_t blen = strlen(GAINS[i].behavior);
+        if ((size_t)(open - action) != blen || strncmp(action, GAINS[i].behavior, blen) != 0)
+            continue;
+        char extra[1024] = "";
+        const char *g = GAINS[i].gains;
+        while (*g) {
+            const char *end = strchr(g, ',');
+            size_t n = end ? (size_t)(end - g) : strlen(g);
+            size_t name_len = strcspn(g, " =");
+            char name[64];
+            snprintf(name, sizeof name, "%.*s", (int)name_len, g);
+            if (!names(open, name, name_len))
+                snprintf(extra + strlen(extra), sizeof extra - strlen(extra), "%s%.*s", extra[0] ? ", " : "",
+                         (int)n, g);
+            g += n;
+            while (*g == ',' || *g == ' ')
+                g++;
+        }
+        if (extra[0]) {
+            int empty = close[-1] == '(';
+            snprintf(close, sizeof out - (size_t)(close - out), "%s%s)", empty ? "" : ", ", extra);
+        }
+    }
+    return out;
+}
+
+/* A plan of IO plus one state running `action` (line 29), gains filled in. */
 static const char *plan_with(const char *action)
 {
-    static char buf[4096];
-    snprintf(buf, sizeof buf, "%sstate s {\n    do %s\n}\nstate stopped {\n}\n", IO, action);
+    static char buf[8192];
+    snprintf(buf, sizeof buf, "%sstate s {\n    do %s\n}\nstate stopped {\n}\n", IO, with_gains(action));
     return buf;
 }
 
@@ -65,26 +147,34 @@ static void run(chasm_machine *m, int n, double dt)
 void pilot_param_errors(void)
 {
     const char *e = pt_errors(plan_with("heading_control(kp = 100)"));
-    CHECK_HAS(e, "t.chasm:19:29: error: parameter 'kp' of 'heading_control' is 100");
+    CHECK_HAS(e, "t.chasm:29:29: error: parameter 'kp' of 'heading_control' is 100");
     CHECK_HAS(e, "outside its range [0, 20]");
     e = pt_errors(plan_with("heading_control(max_rudder = 20)"));
-    CHECK_HAS(e, "t.chasm:19:37: error: parameter 'max_rudder' of 'heading_control' needs a unit: it is an angle");
+    CHECK_HAS(e, "t.chasm:29:37: error: parameter 'max_rudder' of 'heading_control' needs a unit: it is an angle");
     e = pt_errors(plan_with("heading_control(max_rudder = 90 deg)"));
-    CHECK_HAS(e, "t.chasm:19:37: error: parameter 'max_rudder' of 'heading_control' is 1.5708 rad, outside its range");
+    CHECK_HAS(e, "t.chasm:29:37: error: parameter 'max_rudder' of 'heading_control' is 1.5708 rad, outside its range");
     e = pt_errors(plan_with("heading_control(rudder = actuators.prop_rpm)"));
-    CHECK_HAS(e, "t.chasm:19:33: error: parameter 'rudder' of 'heading_control' expects a variable in 'rad'");
+    CHECK_HAS(e, "t.chasm:29:33: error: parameter 'rudder' of 'heading_control' expects a variable in 'rad'");
     e = pt_errors(plan_with("depth_control(kpp = 1)"));
-    CHECK_HAS(e, "t.chasm:19:22: error: unknown parameter 'kpp' for 'depth_control' (did you mean 'kp'?)");
+    CHECK_HAS(e, "t.chasm:29:22: error: unknown parameter 'kpp' for 'depth_control' (did you mean 'kp'?)");
     e = pt_errors(plan_with("speed_control(rpm_slew = -5)"));
-    CHECK_HAS(e, "t.chasm:19:33: error: parameter 'rpm_slew' of 'speed_control' is -5");
+    CHECK_HAS(e, "t.chasm:29:33: error: parameter 'rpm_slew' of 'speed_control' is -5");
     e = pt_errors(plan_with("altitude_control(search_rate = 1 m)"));
-    CHECK_HAS(e, "t.chasm:19:39: error: parameter 'search_rate' of 'altitude_control' is a speed (m/s), but 'm' is a length");
+    CHECK_HAS(e, "t.chasm:29:39: error: parameter 'search_rate' of 'altitude_control' is a speed (m/s), but 'm' is a length");
     /* the default variables must be declared: a plan without nav.r_radps */
     e = pt_errors("use pilot\ninput nav.heading_rad : double rad\ninput setpoint.heading_rad : double rad\n"
                   "output actuators.rudder_rad : double rad\nstate s {\n    do heading_control()\n}\n");
     CHECK_HAS(e, "t.chasm:6:8: error: 'heading_control' reads variable 'nav.r_radps' (its default for 'yaw_rate')");
     /* and the good plan loads */
     CHECK(strcmp(pt_errors(plan_with("heading_control(kp = 2, kd = 4, max_rudder = 15 deg)")), "") == 0);
+    /* no gain has a default: the pilot plan is the one place they are set */
+    char plan[4096];
+    snprintf(plan, sizeof plan, "%sstate s {\n    do heading_control(kp = 2)\n}\n", IO);
+    e = pt_errors(plan);
+    CHECK_HAS(e, "t.chasm:29:8: error: 'heading_control' needs parameter 'kd'");
+    CHECK_HAS(e, "'heading_control' needs parameter 'max_rudder'");
+    snprintf(plan, sizeof plan, "%sstate s {\n    do speed_control()\n}\n", IO);
+    CHECK_HAS(pt_errors(plan), "'speed_control' needs parameter 'rpm_per_mps'");
 }
 
 static double rudder_for(double heading_deg, double setpoint_deg)
@@ -360,7 +450,7 @@ void pilot_bad_rpm_limits_fail_at_start(void)
      * loader cannot see it; the behavior fails at start, with the reason in
      * the log, and the plan's `when failed` catches it. */
     char plan[4096];
-    snprintf(plan, sizeof plan, "%sstate s {\n    do rpm_control(min_rpm = 500, max_rpm = 100)\n"
+    snprintf(plan, sizeof plan, "%sstate s {\n    do rpm_control(min_rpm = 500, max_rpm = 100, rpm_slew = 500)\n"
                                 "    when failed -> stopped\n}\nstate stopped {\n}\n", IO);
     chasm_machine *m = pt_load(plan);
     if (!m)
@@ -369,5 +459,60 @@ void pilot_bad_rpm_limits_fail_at_start(void)
     pt_step(m, 0.05);
     CHECK(strcmp(pt_leaf(m), "stopped") == 0);
     CHECK_HAS(pt_log, "rpm_control: min_rpm (500) is above max_rpm (100)");
+    chasm_free(m);
+}
+
+void pilot_speed_through_the_water(void)
+{
+    /* setpoint_t.SPEED_THROUGH_WATER: the rpm law alone, whatever the
+     * (over-ground) navigation speed says: a head current is not fought */
+    chasm_machine *m = machine("speed_control(rpm_slew = 0)");
+    if (!m)
+        return;
+    pt_set_int(m, "setpoint.speed_reference", 1, 0);
+    pt_set(m, "nav.u_mps", 1.2, 0);
+    pt_set(m, "setpoint.speed_mps", 1.5, 0);
+    run(m, 40, 0.05);
+    CHECK_NEAR(pt_get(m, "actuators.prop_rpm"), 1500, 1e-9);
+    pt_set_int(m, "setpoint.speed_reference", 0, t_now);        /* over ground: PI on the 0.3 m/s */
+    run(m, 2, 0.05);
+    CHECK(pt_get(m, "actuators.prop_rpm") > 1500 + 250);
+    chasm_free(m);
+}
+
+void pilot_setpoint_watch_counts_ignored(void)
+{
+    chasm_machine *m = machine("setpoint_watch(timeout = 1 s, flying = true)");
+    if (!m)
+        return;
+    run(m, 3, 0.05);                                            /* no setpoint yet: nothing to judge */
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 0 && pt_get(m, "pilot.state") == 1);
+    pt_set_int(m, "setpoint.utime", 0, 0);                       /* stamped 0, as the manager does */
+    pt_set(m, "setpoint.heading_rad", 1.0, 0);
+    run(m, 3, 0.05);                                            /* seen once, counted once */
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 1 && pt_get(m, "pilot.ignoring") == 1);
+    CHECK(pt_get(m, "pilot.last_ignored_reason") == 1);
+    CHECK_HAS(pt_log, "setpoint ignored (utime 0, utime 0); 1 so far");
+    pt_set(m, "setpoint.heading_rad", 2.0, 0);                  /* another one, still stamped 0 */
+    run(m, 1, 0.05);
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 2);
+    long fresh = (long)(t_now * 1e6);
+    pt_set_int(m, "setpoint.utime", fresh, t_now);              /* a good one: not counted */
+    run(m, 1, 0.05);
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 2 && pt_get(m, "pilot.ignoring") == 0);
+    long old = (long)((t_now - 5.0) * 1e6);
+    pt_set_int(m, "setpoint.utime", old, t_now - 5.0);          /* 5 s old on arrival */
+    run(m, 1, 0.05);
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 3 && pt_get(m, "pilot.last_ignored_reason") == 2);
+    CHECK(pt_get(m, "pilot.last_ignored_utime") == (double)old);
+    chasm_free(m);
+    /* the count lives in the output: a new instance (idle <-> fly) carries it on */
+    m = machine("setpoint_watch(timeout = 1 s, flying = false)");
+    if (!m)
+        return;
+    pt_set_int(m, "pilot.setpoints_ignored", 7, 0);
+    pt_set_int(m, "setpoint.utime", 0, 0);
+    run(m, 1, 0.05);
+    CHECK(pt_get(m, "pilot.setpoints_ignored") == 8 && pt_get(m, "pilot.state") == 0);
     chasm_free(m);
 }

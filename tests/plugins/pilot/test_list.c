@@ -26,5 +26,7 @@ const plugin_test plugin_tests[] = {
     {"pilot_speed_feed_forward_and_stop", pilot_speed_feed_forward_and_stop},
     {"pilot_rpm_limits", pilot_rpm_limits},
     {"pilot_bad_rpm_limits_fail_at_start", pilot_bad_rpm_limits_fail_at_start},
+    {"pilot_speed_through_the_water", pilot_speed_through_the_water},
+    {"pilot_setpoint_watch_counts_ignored", pilot_setpoint_watch_counts_ignored},
 };
 const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];
