@@ -40,6 +40,14 @@ def abort_targets(plan) -> set[str]:
     return out
 
 
+def fired(status) -> str:
+    """What ended a mission early, from the status of the transition: the tests
+    named in its condition that were true (`nav_stale`, `leak, too_deep`), or
+    the condition's text when none of its terms is a named test."""
+    names = [n for n, val in zip(status.test_name, status.test_value) if val]
+    return ", ".join(names) or status.last_condition
+
+
 @dataclass
 class VehicleState:
     end_manager: str
@@ -49,6 +57,9 @@ class VehicleState:
     run_state: int = -1
     entered_abort: bool = False
     sim_us: int | None = None
+    cause: str = ""                 # why the mission ended early: the tests that fired
+    abort_condition: str = ""       # the whole condition of that transition
+    abort_at_s: float | None = None
 
     @property
     def outcome(self) -> str | None:
@@ -127,7 +138,13 @@ class MissionWatch:
         v.run_state = m.run_state
         if m.path_len:
             v.path = "/".join(m.active_path)
-            v.entered_abort |= any(s in v.abort_states for s in m.active_path)
+            if not v.entered_abort and any(s in v.abort_states for s in m.active_path):
+                v.entered_abort = True
+                v.cause, v.abort_condition = fired(m), m.last_condition
+                v.abort_at_s = m.last_transition_utime / 1e6
+        if m.run_state in (chasm_status_t.RUN_ABORTED, chasm_status_t.RUN_FAILED) and not v.cause:
+            v.cause, v.abort_condition = fired(m) or FINAL[m.run_state], m.last_condition
+            v.abort_at_s = m.utime / 1e6
         v.condition = m.last_condition
 
     def _on_clock(self, _ch: str, m) -> None:
@@ -175,5 +192,7 @@ class MissionWatch:
 
     def vehicle_summary(self) -> dict:
         return {vid: {"outcome": v.outcome, "path": v.path, "condition": v.condition,
+                      "cause": v.cause if v.outcome in ("aborted", "failed") else "",
+                      "abort_condition": v.abort_condition, "abort_at_s": v.abort_at_s,
                       "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6}
                 for vid, v in self.vehicles.items()}

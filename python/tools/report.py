@@ -95,8 +95,10 @@ def record_completeness(run: RunData) -> dict:
 
 def outcome_of(run: RunData) -> dict:
     if run.outcome is not None:
+        vehicles = run.outcome.get("vehicles", {})
         return {"outcome": run.outcome.get("outcome"), "reason": run.outcome.get("reason", ""),
-                "vehicle_outcomes": {k: v.get("outcome") for k, v in run.outcome.get("vehicles", {}).items()}}
+                "vehicle_outcomes": {k: v.get("outcome") for k, v in vehicles.items()},
+                "vehicle_causes": {k: v.get("cause", "") for k, v in vehicles.items() if v.get("cause")}}
     per = {}
     for key, segs in run.timelines.items():
         vid, mgr = key.split(".", 1)
@@ -142,7 +144,8 @@ def report_text(rep: dict) -> str:
              f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
              f"{rep['undecodable_events']} undecodable"]
     for vid, o in rep["vehicle_outcomes"].items():
-        lines.append(f"  {vid}: {o or 'unfinished'}")
+        cause = rep.get("vehicle_causes", {}).get(vid)
+        lines.append(f"  {vid}: {o or 'unfinished'}" + (f" (cause: {cause})" if cause else ""))
     c = rep.get("coverage")
     if c:
         lines += [f"coverage  survey area {c['survey_area_m2'] / 1e6:.4f} km2 (raster {c['cell_m']:g} m cells)",
