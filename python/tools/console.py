@@ -35,7 +35,7 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(prog="console.py", description=__doc__.split("\n\n")[0])
     ap.add_argument("--url", default=None, help="LCM URL (default $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--bind", default="127.0.0.1", help="address to serve on (default 127.0.0.1)")
-    ap.add_argument("--port", type=int, default=8765, help="port (default 8765; 0 picks a free one)")
+    ap.add_argument("--port", type=int, default=8770, help="port (default 8770; 0 picks a free one)")
     ap.add_argument("--scenario", type=Path, help="scenario YAML: survey, seabed and LBL net from the start")
     ap.add_argument("--log", type=Path, help="open a finished log instead of live LCM")
     ap.add_argument("--rate", type=float, default=5.0, help="page updates per second at most (default 5)")

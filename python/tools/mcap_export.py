@@ -30,20 +30,7 @@ from auvlcm.json_schema import schema_of, to_json
 from auvlcm.log import LCM_INTERNAL_CHANNELS
 from auvlcm.types import type_of
 
-DERIVED = "derived/"
-LOCATION_FIX = {
-    "$schema": "https://json-schema.org/draft/2020-12/schema", "title": "foxglove.LocationFix",
-    "type": "object", "required": ["timestamp", "frame_id", "latitude", "longitude", "altitude"],
-    "properties": {
-        "timestamp": {"type": "object", "required": ["sec", "nsec"],
-                      "properties": {"sec": {"type": "integer"}, "nsec": {"type": "integer"}}},
-        "frame_id": {"type": "string"},
-        "latitude": {"type": "number"}, "longitude": {"type": "number"}, "altitude": {"type": "number"},
-        "position_covariance": {"type": "array", "items": {"type": "number"}, "minItems": 9, "maxItems": 9},
-        "position_covariance_type": {"type": "integer", "minimum": 0, "maximum": 3}}}
-GEOJSON = {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "foxglove.GeoJSON",
-           "type": "object", "required": ["geojson"], "properties": {"geojson": {"type": "string"}}}
-
+from tools.foxglove_topics import DERIVED, GEOJSON, LOCATION_FIX, geojson, location_fix
 
 @dataclass
 class ExportStats:
@@ -116,54 +103,19 @@ def export(log_path: Path, out_path: Path) -> ExportStats:
                 elif name in ("nav_solution_t", "ground_truth_t"):
                     kind = "nav_position" if name == "nav_solution_t" else "true_position"
                     topic = f"{DERIVED}{ev.channel.split('.')[0]}/{kind}"
-                    out.write(topic, "foxglove.LocationFix", LOCATION_FIX,
-                              _fix(msg, pub_ns), log_ns, pub_ns)
-                    stats.derived[topic] = stats.derived.get(topic, 0) + 1
+                    fix = location_fix(msg, pub_ns)
+                    if fix is not None:
+                        out.write(topic, "foxglove.LocationFix", LOCATION_FIX, fix, log_ns, pub_ns)
+                        stats.derived[topic] = stats.derived.get(topic, 0) + 1
         finally:
             log.close()
         if geo is not None and (survey or targets):
             topic = f"{DERIVED}survey_geojson"
             out.write(topic, "foxglove.GeoJSON", GEOJSON,
-                      {"geojson": json.dumps(_geojson(geo, survey or {}, targets))}, last_ns, last_ns)
+                      {"geojson": json.dumps(geojson(geo, survey or {}, targets))}, last_ns, last_ns)
             stats.derived[topic] = 1
         writer.finish()
     return stats
-
-
-def _fix(msg: Any, pub_ns: int) -> dict[str, Any]:
-    """Both types carry WGS-84 positions (from the world origin) and a depth."""
-    if type(msg).__name__ == "nav_solution_t":
-        d = msg.depth_m
-        cov = [msg.position_cov_m2[i][j] for i in (1, 0, 2) for j in (1, 0, 2)]   # east, north, up order
-        cov_type = 3
-    else:
-        d = msg.eta[2]
-        cov, cov_type = [0.0] * 9, 0
-    lat, lon = msg.latitude_deg, msg.longitude_deg
-    return {"timestamp": {"sec": pub_ns // 1_000_000_000, "nsec": pub_ns % 1_000_000_000},
-            "frame_id": "world", "latitude": lat, "longitude": lon, "altitude": -d,
-            "position_covariance": [c if c == c else 0.0 for c in cov], "position_covariance_type": cov_type}
-
-
-def _geojson(geo: Any, survey: dict, targets: list) -> dict[str, Any]:
-    def ring(pts: list) -> list:
-        out = [list(reversed(geo.to_latlon(n, e))) for n, e in pts]
-        return out + out[:1]
-    feats = []
-    for key, name in (("polygon", "survey area"), ("operating_area", "operating area")):
-        if survey.get(key):
-            feats.append({"type": "Feature", "properties": {"name": name},
-                          "geometry": {"type": "Polygon", "coordinates": [ring(survey[key])]}})
-    for vid, plan in (survey.get("vehicles") or {}).items():
-        lines = [[list(reversed(geo.to_latlon(*leg["start"]))), list(reversed(geo.to_latlon(*leg["end"])))]
-                 for leg in plan.get("legs", []) if leg.get("kind") == "line"]
-        if lines:
-            feats.append({"type": "Feature", "properties": {"name": f"{vid} lines"},
-                          "geometry": {"type": "MultiLineString", "coordinates": lines}})
-    for n, e, kind, tid in targets:
-        feats.append({"type": "Feature", "properties": {"name": f"target {tid} ({kind})"},
-                      "geometry": {"type": "Point", "coordinates": list(reversed(geo.to_latlon(n, e)))}})
-    return {"type": "FeatureCollection", "features": feats}
 
 
 # ----------------------------------------------------------------- lcmlog.py hook
