@@ -40,7 +40,8 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'running'", what="AUV1 NAVIGATOR running")
         assert browser.eval(_panel("AUV2", "NAVIGATOR", "path")) == "run"
         assert browser.eval(_panel("AUV1", "WATCHER", "run")) in ("running", "done")
-        browser.wait_for("S.world && S.world.seabed && S.world.seabed.depth.length === 40 && S.world.bathymetry_ref.startsWith('slope:')",
+        browser.wait_for("S.world && S.world.seabed && S.world.seabed.depth.length === 40"
+                         " && S.world.bathymetry_ref.startsWith('slope:')",
                          what="the seabed from the scenario")
         browser.screenshot(ARTIFACTS / "live.png")
 

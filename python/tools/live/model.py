@@ -138,11 +138,13 @@ class Model:
             self._cache = (self.version, json.dumps(now, separators=(",", ":")))
         return self._cache[1]
 
-    def series_since(self, cursors: dict[str, int]) -> dict[str, Any]:
-        """New trail points and contacts for one page; cursors are updated in place."""
+    def series_since(self, cursors: dict[str, int], fresh: bool = False) -> dict[str, Any]:
+        """New trail points and contacts for one page; cursors are updated in place.
+        fresh: the page starts over (first push, or the model was cleared), so
+        every series is sent whole with reset set, empty ones included."""
         out: dict[str, Any] = {}
         for name, series in list(self.trails.items()) + [("contacts", self.contacts)]:
-            reset, items = series.since(cursors.get(name, 0))
+            reset, items = series.since(-1 if fresh else cursors.get(name, 0))
             if reset or items:
                 out[name] = {"reset": reset, "add": items}
             cursors[name] = series.end

@@ -156,10 +156,11 @@ class Handler(BaseHTTPRequestHandler):
                     if model.version == version:
                         chunk = b": keepalive\n\n"
                     else:
-                        if model.epoch != epoch:
-                            cursors, epoch = {}, model.epoch
+                        fresh = model.epoch != epoch
+                        epoch = model.epoch
+                        series = model.series_since(cursors, fresh)
                         parts = ['{"now":', model.now_json(),
-                                 ',"series":', json.dumps(model.series_since(cursors), separators=(",", ":"))]
+                                 ',"series":', json.dumps(series, separators=(",", ":"))]
                         if model.world_version != world_version:
                             parts += [',"world":', json.dumps(model.world, separators=(",", ":"))]
                             world_version = model.world_version
