@@ -50,9 +50,10 @@ def test_the_summary_outcome_and_report_name_what_fired(tmp_path, lcm_url, child
     assert a2["cause"] == "nav_stale or elapsed > 2 s" and abs(a2["abort_at_s"] - 2.0) < 0.25
     assert out["reason"] == "AUV1 too_deep; AUV2 nav_stale or elapsed > 2 s"
 
-    rep = subprocess.run(REPORT + [str(tmp_path / "run" / "run.lcmlog"), "--out", str(tmp_path / "rep"),
-                                   "--no-plots"], env=child_env, capture_output=True, text=True, timeout=120)
+    rep = subprocess.run(REPORT + [str(tmp_path / "run" / "run.lcmlog"), "--out", str(tmp_path / "rep")],
+                         env=child_env, capture_output=True, text=True, timeout=180)
     assert rep.returncode == 0, rep.stdout + rep.stderr
     text = (tmp_path / "rep" / "report.txt").read_text()
     assert "AUV1: aborted (cause: too_deep)" in text and "outcome   aborted (AUV1 too_deep;" in text
     assert json.loads((tmp_path / "rep" / "report.json").read_text())["vehicle_causes"]["AUV1"] == "too_deep"
+    assert (tmp_path / "rep" / "states.png").stat().st_size > 5000    # aborts marked with their cause
