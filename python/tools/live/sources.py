@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import bisect
 import re
+import struct
 import threading
 from pathlib import Path
 from typing import Any
@@ -25,6 +26,8 @@ from tools.live.model import CHANNELS, Model
 from tools.live.world import WorldBuilder
 
 WORLD_TYPES = ("log_annotation_t", "env_model_t")
+THINNED = (".TRUTH", ".NAV")     # high-rate channels a log keeps every THIN_US only
+THIN_US = 100_000
 
 
 def decode(data: bytes) -> Any | None:
@@ -99,12 +102,22 @@ class LogSource:
         self.times: list[float] = []
         self.events: list[tuple[str, Any]] = []
         self.decode_errors = 0
+        self.thinned = 0
+        last_kept: dict[str, int] = {}
         t = 0.0
         log = lcm.EventLog(str(path), "r")
         try:
             for ev in log:
                 if not keep.fullmatch(ev.channel):
                     continue
+                if ev.channel.endswith(THINNED) and len(ev.data) >= 16:
+                    # the map needs positions every THIN_US, not at the sensors' rate: read
+                    # utime (the first field of both types) without decoding the rest
+                    utime = struct.unpack(">q", ev.data[8:16])[0]
+                    if 0 <= utime - last_kept.get(ev.channel, -THIN_US) < THIN_US:
+                        self.thinned += 1
+                        continue
+                    last_kept[ev.channel] = utime
                 msg = decode(ev.data)
                 if msg is None:
                     self.decode_errors += 1
