@@ -80,7 +80,7 @@ class WorldBuilder:
             if msg.bathymetry_ref != self.bathymetry_ref or tps != self.transponders:
                 self.bathymetry_ref, self.transponders, changed = msg.bathymetry_ref, tps, True
             if msg.world and not self.name:
-                self.name = msg.world
+                self.name, changed = msg.world, True
         if changed:
             self.publish()
 

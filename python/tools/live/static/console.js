@@ -24,7 +24,9 @@ const esc = s => String(s).replace(/[&<>"]/g, c => ({ '&': '&amp;', '<': '&lt;',
 const fmt = (x, d = 1) => (x === null || x === undefined || Number.isNaN(x)) ? '–' : Number(x).toFixed(d);
 
 // ------------------------------------------------------------------ stream
-fetch('/api/info').then(r => r.json()).then(info => { S.info = info; setupMode(); });
+// the mode (live or log) decides how the panels are built: know it before the first update
+fetch('/api/info').then(r => r.json()).then(info => { S.info = info; setupMode(); openStream(); });
+function openStream() {
 const stream = new EventSource('/api/events');
 stream.onmessage = ev => {
   const d = JSON.parse(ev.data);
@@ -40,6 +42,8 @@ stream.onmessage = ev => {
   updatePanel();
 };
 stream.onerror = () => { $('mode').textContent = 'disconnected: retrying…'; };
+stream.onopen = () => { $('mode').textContent = S.info.mode === 'log' ? `log ${S.info.log}` : 'live'; };
+}
 
 function setupMode() {
   $('mode').textContent = S.info.mode === 'log' ? `log ${S.info.log}` : 'live';
@@ -117,7 +121,7 @@ function updatePanel() {
 function vehicleHtml(v) {
   const out = [];
   const pos = v.truth || v.nav;
-  if (pos) out.push(`<div>N ${fmt(pos.n)} E ${fmt(pos.e)} · depth ${fmt(pos.depth)} m · alt ${fmt(pos.altitude)} m · hdg ${fmt(deg(pos.heading), 0)}°</div>`);
+  if (pos) out.push(`<div>N ${fmt(pos.n)} E ${fmt(pos.e)} · depth ${fmt(pos.depth)} m · alt ${fmt(pos.altitude)} m · hdg ${(Math.round(deg(pos.heading)) % 360 + 360) % 360}°</div>`);
   if (v.nav) {
     const flags = v.nav.flags.map(f => f === f.toUpperCase() ? `<span class="bad">${f}</span>` : f).join(' ');
     let q = `nav: ${flags || 'no aids'} · σ ${fmt(v.nav.sigma)} m`;
