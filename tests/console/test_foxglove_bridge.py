@@ -112,16 +112,18 @@ def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
         ws.send_text(json.dumps({"op": "subscribe", "subscriptions": [
             {"id": sid, "channelId": channels[t]["id"]} for sid, t in subs.items()]}))
         got: dict[str, dict] = {}
+        frames: list[tuple[int, int]] = []
         deadline = time.monotonic() + 30
         while len(got) < len(subs) and time.monotonic() < deadline:
             op, data = ws.recv()
+            frames.append((op, data[0] if data else -1))
             if op == 2 and data[0] == 0x01:               # messageData: op, subscription, time, payload
                 sid = struct.unpack("<I", data[1:5])[0]
                 topic = subs[sid]
                 obj = json.loads(data[13:])
                 jsonschema.validate(obj, json.loads(channels[topic]["schema"]))
                 got[topic] = obj
-        assert set(got) == set(subs.values())
+        assert set(got) == set(subs.values()), (sorted(got), frames[-20:], len(frames))
         assert got["AUV1.NAV"]["vehicle"] == "AUV1" and got["derived/AUV1/nav_position"]["latitude"] == 41.5
         feats = json.loads(got["derived/survey_geojson"]["geojson"])["features"]
         assert feats[0]["properties"]["name"] == "survey area"
