@@ -129,6 +129,17 @@ def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env
         assert ack == {"seq": seq, "manager": "NAVIGATOR", "message": "paused", "result": "ok"}
         page.until(lambda n: n["vehicles"]["AUV1"]["managers"]["NAVIGATOR"]["run"] == "paused", what="paused")
 
+        # load a plan: its text travels in the command, the manager answers
+        from manager_world import HERE
+        status, body = page.post("/api/command", {"vehicle": "AUV1", "manager": "NAVIGATOR", "command": "load",
+                                                  "plan_name": "again.chasm",
+                                                  "plan_text": (HERE / "dive.chasm").read_text()})
+        assert status == 200, body
+        now = page.until(lambda n: any(a["seq"] == body["seq"] for a in n["vehicles"]["AUV1"]["acks"]),
+                         what="the load ack")
+        ack = next(a for a in now["vehicles"]["AUV1"]["acks"] if a["seq"] == body["seq"])
+        assert (ack["result"], ack["message"]) == ("ok", "plan loaded")
+
         # refusals: a clear error each, nothing published
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "explode"})[0] == 400
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "load"})[0] == 400   # no plan text
