@@ -27,6 +27,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 import lcm  # noqa: E402
 
 from auvlcm.url import check_local, default_url  # noqa: E402

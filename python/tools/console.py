@@ -24,6 +24,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 from auvlcm.url import check_local, default_url  # noqa: E402
 from tools.live.model import Model  # noqa: E402
 from tools.live.server import ConsoleServer  # noqa: E402

@@ -27,6 +27,10 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 import foxglove  # noqa: E402
 import lcm  # noqa: E402
 

@@ -24,6 +24,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
