@@ -97,6 +97,9 @@ class Browser:
         self.send("Emulation.setDeviceMetricsOverride",
                   {"width": self.width, "height": self.height, "deviceScaleFactor": 1, "mobile": False})
         self.send("Page.enable")
+        # a created tab starts in the background, where the compositor makes no new
+        # frames: screenshots would show a stale picture of the canvas
+        self.send("Page.bringToFront")
         self.send("Page.navigate", {"url": url})
 
     def eval(self, expression: str) -> Any:

@@ -5,6 +5,7 @@
 
 const COLORS = ['#4fc3f7', '#ffb74d', '#81c784', '#f06292', '#ba68c8', '#fff176', '#4db6ac', '#e57373'];
 const CLASS_COLORS = { mine_like: '#ff5252', clutter: '#9e9e9e', unknown: '#ffd54f' };
+const IDENTIFY_M = 5;   // a true target is drawn identified once a contact lies this close (the report's radius)
 const S = { info: null, now: null, world: null, series: {}, epoch: null, dirty: true,
             view: { cn: 0, ce: 0, scale: 1, fitted: false }, pending: {}, colors: {}, built: {} };
 const $ = id => document.getElementById(id);
@@ -266,7 +267,7 @@ function drawSeabed(sb) {
     }
   }
   $('legend').innerHTML = `seabed ${fmt(lo)}–${fmt(hi)} m · <span style="color:#ff5252">●</span> mine-like ` +
-    `<span style="color:#9e9e9e">●</span> clutter <span style="color:#ffd54f">●</span> unknown · ◇ targets · △ LBL`;
+    `<span style="color:#9e9e9e">●</span> clutter <span style="color:#ffd54f">●</span> unknown · ◇ true target (◆ identified) · △ LBL`;
 }
 
 function drawGrid() {
@@ -334,10 +335,13 @@ function draw() {
   drawSeabed(w.seabed);
   drawGrid();
   drawWorld(w);
-  for (const t of now.targets) {   // the true field (simulation only)
+  const contactsNow = S.series.contacts || [];
+  for (const t of now.targets) {   // the true field (simulation only); filled once a contact is within 5 m
     const [x, y] = toScreen(t.n, t.e), s = 6 * r;
-    ctx.strokeStyle = CLASS_COLORS[t.kind] || '#fff'; ctx.lineWidth = 1.5 * r;
-    ctx.beginPath(); ctx.moveTo(x, y - s); ctx.lineTo(x + s, y); ctx.lineTo(x, y + s); ctx.lineTo(x - s, y); ctx.closePath(); ctx.stroke();
+    const identified = contactsNow.some(c => Math.hypot(c.n - t.n, c.e - t.e) <= IDENTIFY_M);
+    ctx.strokeStyle = ctx.fillStyle = CLASS_COLORS[t.kind] || '#fff'; ctx.lineWidth = 1.5 * r;
+    ctx.beginPath(); ctx.moveTo(x, y - s); ctx.lineTo(x + s, y); ctx.lineTo(x, y + s); ctx.lineTo(x - s, y); ctx.closePath();
+    if (identified) ctx.fill(); else ctx.stroke();
   }
   for (const c of S.series.contacts || []) {
     const [x, y] = toScreen(c.n, c.e);
