@@ -257,9 +257,12 @@ class Launcher:
             self.logger.stop()
 
     def summary(self, result: str) -> dict:
+        vehicles = self.watch.vehicle_summary()
+        # an aborted or failed mission names what fired: "AUV1 nav_stale; AUV3 leak"
+        causes = "; ".join(f"{vid} {v['cause']}" for vid, v in vehicles.items() if v["cause"])
         return {"scenario": self.sc.name, "host": self.host, "outcome": result, "exit_code": EXIT[result],
-                "reason": self.stop_reason, "sim_time_s": self.watch.sim_time_us / 1e6,
-                "vehicles": self.watch.vehicle_summary(), "log": str(self.log_path) if self.own_log else None,
+                "reason": self.stop_reason or causes, "sim_time_s": self.watch.sim_time_us / 1e6,
+                "vehicles": vehicles, "log": str(self.log_path) if self.own_log else None,
                 "dropped": self.watch.dropped()}
 
 
@@ -320,9 +323,10 @@ def main(argv: list[str] | None = None) -> int:
         run.stop_all(result)
     s = run.summary(result)
     (args.out / (f"outcome.{args.host}.json" if args.host else "outcome.json")).write_text(json.dumps(s, indent=2))
-    print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {run.stop_reason}" if run.stop_reason else ""))
+    print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {s['reason']}" if s["reason"] else ""))
     for vid, v in s["vehicles"].items():
-        print(f"  {vid}: {v['outcome'] or 'unfinished'}  last state {v['path'] or '-'}  ({v['condition']})")
+        why = f" ({v['cause']} at t={v['abort_at_s']:.1f} s)" if v.get("cause") else ""
+        print(f"  {vid}: {v['outcome'] or 'unfinished'}{why}  last state {v['path'] or '-'}  ({v['condition']})")
     drop = s["dropped"]
     if drop["decode_errors"] or drop["time"]:
         print(f"launch: dropped {drop['decode_errors']} undecodable message(s), "

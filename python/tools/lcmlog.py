@@ -6,6 +6,7 @@
     lcmlog.py npz LOG OUT.npz               every channel's columns, keys "CHANNEL/column"
     lcmlog.py annotations LOG [--extract DIR]   what the log says about itself
     lcmlog.py states LOG [CHANNEL_REGEX]    each CHASM's state timeline
+    lcmlog.py mcap LOG OUT.mcap             the log as MCAP for Foxglove (tools/mcap_export.py)
 
 Nested arrays are flattened into columns named as in C (position_cov_m2[0][1]);
 variable-length arrays go into one column, elements joined by ';' (arrays of
@@ -32,6 +33,7 @@ import numpy as np  # noqa: E402
 
 from auvlcm.arrays import ChannelArrays, LogArrays, load_log  # noqa: E402
 from auvlcm.log import EXIT_EVENTS_LOST, LogStats, damage_lines, read_events  # noqa: E402
+from tools import mcap_export  # noqa: E402
 from tools.timeline import state_timeline  # noqa: E402
 
 
@@ -189,6 +191,7 @@ def main(argv: list[str] | None = None) -> int:
     p = sub.add_parser("states", help="state timeline of each CHASM")
     p.add_argument("log", type=Path)
     p.add_argument("pattern", nargs="?", default=r".*\.CHASM\..*")
+    mcap_export.add_parser(sub)
     args = parser.parse_args(argv)
     problem = not_a_log(args.log)
     if problem:
@@ -227,6 +230,8 @@ def _run(args, parser) -> int:
         return to_csv(args.log, args.channel, args.out)
     if args.cmd == "npz":
         return to_npz(args.log, args.out)
+    if args.cmd == "mcap":
+        return mcap_export.run(args)
     if args.cmd == "annotations":
         return annotations(args.log, args.extract)
     return states(args.log, args.pattern)

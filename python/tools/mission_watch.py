@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import re
 import select
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import lcm
 from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
@@ -48,6 +48,30 @@ def abort_targets(plan) -> set[str]:
     return out
 
 
+_PARAM = re.compile(r"^\s*param\s+([A-Za-z_]\w*)\s*=\s*(.*?)\s*(?:#.*)?$", re.M)
+
+
+def plan_params(plan, overrides: dict[str, str]) -> dict[str, str]:
+    """The plan's `param` values (its defaults, then the scenario's -D overrides)."""
+    out: dict[str, str] = {}
+    for p in plan_files(plan):
+        out.update(_PARAM.findall(p.read_text()))
+    return {**out, **{k: str(v) for k, v in overrides.items()}}
+
+
+def expand(text: str, params: dict[str, str]) -> str:
+    """`elapsed > $abort_at` as the plan ran it: `elapsed > 2 s`."""
+    return re.sub(r"\$([A-Za-z_]\w*)", lambda m: params.get(m.group(1), m.group(0)), text)
+
+
+def fired(status) -> str:
+    """What ended a mission early, from the status of the transition: the tests
+    named in its condition that were true (`nav_stale`, `leak, too_deep`), or
+    the condition's text when none of its terms is a named test."""
+    names = [n for n, val in zip(status.test_name, status.test_value) if val]
+    return ", ".join(names) or status.last_condition
+
+
 @dataclass
 class VehicleState:
     end_manager: str
@@ -57,6 +81,10 @@ class VehicleState:
     run_state: int = -1
     entered_abort: bool = False
     sim_us: int | None = None
+    params: dict = field(default_factory=dict)     # the end manager's plan parameters
+    cause: str = ""                 # why the mission ended early: the tests that fired
+    abort_condition: str = ""       # the whole condition of that transition
+    abort_at_s: float | None = None
 
     @property
     def outcome(self) -> str | None:
@@ -89,7 +117,8 @@ class MissionWatch:
         self.nav_status_us: dict[str, int | None] = {}     # ... and status
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
-            self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan))
+            self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan),
+                                               params=plan_params(end.plan, end.params))
             self.expected.add(f"{v.id}.sim")
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             if v.nav.source == "ekf":
@@ -153,7 +182,14 @@ class MissionWatch:
         v.run_state = m.run_state
         if m.path_len:
             v.path = "/".join(m.active_path)
-            v.entered_abort |= any(s in v.abort_states for s in m.active_path)
+            if not v.entered_abort and any(s in v.abort_states for s in m.active_path):
+                v.entered_abort = True
+                v.cause, v.abort_condition = expand(fired(m), v.params), expand(m.last_condition, v.params)
+                v.abort_at_s = m.last_transition_utime / 1e6
+        if m.run_state in (chasm_status_t.RUN_ABORTED, chasm_status_t.RUN_FAILED) and not v.cause:
+            v.cause = expand(fired(m), v.params) or FINAL[m.run_state]
+            v.abort_condition = expand(m.last_condition, v.params)
+            v.abort_at_s = m.utime / 1e6
         v.condition = m.last_condition
 
     def _on_clock(self, _ch: str, m) -> None:
@@ -207,5 +243,7 @@ class MissionWatch:
 
     def vehicle_summary(self) -> dict:
         return {vid: {"outcome": v.outcome, "path": v.path, "condition": v.condition,
+                      "cause": v.cause if v.outcome in ("aborted", "failed") else "",
+                      "abort_condition": v.abort_condition, "abort_at_s": v.abort_at_s,
                       "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6}
                 for vid, v in self.vehicles.items()}

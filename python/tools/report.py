@@ -28,6 +28,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import numpy as np  # noqa: E402
 
 from auvlcm.log import EXIT_EVENTS_LOST, damage_lines  # noqa: E402
+from tools.association import associate  # noqa: E402
 from tools.coverage import coverage_grid, point_in_polygon  # noqa: E402
 from tools.run_data import RunData, interp_truth, load_run  # noqa: E402
 
@@ -40,21 +41,15 @@ def detection_stats(run: RunData, radius: float, covered=None) -> dict | None:
     contacts = [(vid, c) for vid in run.vehicles for c in run.contacts(vid)]
     if not targets and not contacts:
         return None
+    a = associate(targets, contacts, radius)
     tpos = np.array([(t.north_m, t.east_m) for t in targets]).reshape(-1, 2)
-    mine = np.array([t.kind == 0 for t in targets], bool)
-    hit = np.zeros(len(targets), bool)
-    false_alarms, on_clutter = 0, 0
+    mine, hit = a.mine, a.hit
+    false_alarms = int(a.false_alarm.sum())
+    on_clutter = int(sum(1 for k in a.nearest if k >= 0 and not mine[k]))
     per_vehicle = {vid: {"contacts": 0, "false_alarms": 0} for vid in run.vehicles}
-    for vid, c in contacts:
+    for (vid, _c), k in zip(contacts, a.nearest):
         per_vehicle[vid]["contacts"] += 1
-        d = np.hypot(tpos[:, 0] - c.north_m, tpos[:, 1] - c.east_m) if len(tpos) else np.array([])
-        if len(d) and d.min() <= radius:
-            k = int(d.argmin())
-            hit[k] = True
-            on_clutter += int(not mine[k])
-        else:
-            false_alarms += 1
-            per_vehicle[vid]["false_alarms"] += 1
+        per_vehicle[vid]["false_alarms"] += int(k < 0)
     out = {"association_radius_m": radius, "mine_like_targets": int(mine.sum()), "clutter_objects": int((~mine).sum()),
            "contacts": len(contacts), "mine_like_detected": int((hit & mine).sum()),
            "pd": float((hit & mine).sum() / mine.sum()) if mine.any() else None,
@@ -101,8 +96,10 @@ def record_completeness(run: RunData) -> dict:
 
 def outcome_of(run: RunData) -> dict:
     if run.outcome is not None:
+        vehicles = run.outcome.get("vehicles", {})
         return {"outcome": run.outcome.get("outcome"), "reason": run.outcome.get("reason", ""),
-                "vehicle_outcomes": {k: v.get("outcome") for k, v in run.outcome.get("vehicles", {}).items()}}
+                "vehicle_outcomes": {k: v.get("outcome") for k, v in vehicles.items()},
+                "vehicle_causes": {k: v.get("cause", "") for k, v in vehicles.items() if v.get("cause")}}
     per = {}
     for key, segs in run.timelines.items():
         vid, mgr = key.split(".", 1)
@@ -153,7 +150,8 @@ def report_text(rep: dict) -> str:
              + (f"; DAMAGED LOG: {rep['log_damage']['lost_events']} event(s) lost, "
                 f"{rep['log_damage']['skipped_bytes']} byte(s) skipped" if rep["log_damage"]["skipped_bytes"] else "")]
     for vid, o in rep["vehicle_outcomes"].items():
-        lines.append(f"  {vid}: {o or 'unfinished'}")
+        cause = rep.get("vehicle_causes", {}).get(vid)
+        lines.append(f"  {vid}: {o or 'unfinished'}" + (f" (cause: {cause})" if cause else ""))
     c = rep.get("coverage")
     if c:
         lines += [f"coverage  survey area {c['survey_area_m2'] / 1e6:.4f} km2 (raster {c['cell_m']:g} m cells)",

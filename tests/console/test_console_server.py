@@ -1,0 +1,232 @@
+"""The console's model, layers and server without a browser: the state a page
+gets over the event stream, a command to a real chasm-manager and its ack, a
+log opened with seeks, and the refusals."""
+
+from __future__ import annotations
+
+import http.client
+import json
+import time
+from urllib.parse import urlparse
+
+import pytest
+
+from console_fixtures import Console
+from conftest import ROOT
+from manager_world import ManagerWorld
+from tools.live.model import Model, Series, Trail
+from tools.live.world import WorldBuilder, WorldError
+
+
+class Page:
+    """What a browser does: read the event stream, post commands."""
+
+    def __init__(self, url: str) -> None:
+        u = urlparse(url)
+        self.host, self.port = u.hostname, u.port
+        self.conn = http.client.HTTPConnection(self.host, self.port, timeout=30)
+        self.conn.request("GET", "/api/events")
+        self.stream = self.conn.getresponse()
+        assert self.stream.status == 200 and self.stream.getheader("Content-Type") == "text/event-stream"
+        self.world = None
+        self.series: dict[str, list] = {}
+
+    def next(self) -> dict:
+        while True:
+            line = self.stream.readline()
+            assert line, "the event stream ended"
+            if line.startswith(b"data: "):
+                d = json.loads(line[6:])
+                self.world = d.get("world", self.world)
+                for name, part in d["series"].items():
+                    if part["reset"]:
+                        self.series[name] = []
+                    self.series.setdefault(name, []).extend(part["add"])
+                return d["now"]
+
+    def until(self, pred, timeout: float = 20.0, what: str = "") -> dict:
+        deadline = time.monotonic() + timeout
+        now = None
+        while time.monotonic() < deadline:
+            now = self.next()
+            if pred(now):
+                return now
+        raise AssertionError(f"{what}: not seen in {timeout} s; last {json.dumps(now)[:600]}")
+
+    def post(self, path: str, body) -> tuple[int, dict]:
+        conn = http.client.HTTPConnection(self.host, self.port, timeout=10)
+        conn.request("POST", path, body=body if isinstance(body, bytes) else json.dumps(body).encode(),
+                     headers={"Content-Type": "application/json"})
+        r = conn.getresponse()
+        return r.status, json.loads(r.read())
+
+    def get(self, path: str) -> tuple[int, bytes]:
+        conn = http.client.HTTPConnection(self.host, self.port, timeout=10)
+        conn.request("GET", path)
+        r = conn.getresponse()
+        return r.status, r.read()
+
+
+def test_series_give_each_reader_what_is_new_and_reset_a_reader_left_behind():
+    s = Series(limit=20)
+    for i in range(15):
+        s.append(i)
+    assert s.since(0) == (False, list(range(15)))
+    assert s.since(10) == (False, [10, 11, 12, 13, 14])
+    for i in range(15, 30):
+        s.append(i)
+    reset, items = s.since(3)                  # 3 was dropped: the reader starts over
+    assert reset and items == s.items and items[-1] == 29 and len(items) <= 20
+    assert s.since(s.end) == (False, [])
+    t = Trail(min_step_m=1.0)
+    for e in (0.0, 0.3, 0.9, 1.2, 1.5, 2.4):
+        t.add(0.0, e)
+    assert [p[1] for p in t.items] == [0.0, 1.2, 2.4]
+
+
+def test_layers_come_from_the_scenario_with_its_survey_and_seabed():
+    model = Model()
+    world = WorldBuilder(model)
+    world.load_scenario(ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml")
+    w = model.world
+    assert len(w["survey_area"]) == 5 and len(w["operating_area"]) > 10
+    assert set(w["lines"]) == {"AUV1", "AUV2", "AUV3"} and all(len(v) >= 3 for v in w["lines"].values())
+    assert [t["id"] for t in w["transponders"]] == [1, 2, 3]
+    sb = w["seabed"]
+    n, e = sb["north0"] + 0.5 * sb["dn"], sb["east0"] + 0.5 * sb["de"]
+    assert sb["depth"][0][0] == pytest.approx(25 + 0.02 * n + 0.01 * e, abs=0.01)   # slope:depth=25,dn=0.02,de=0.01
+
+
+def test_a_bad_scenario_is_a_clear_error(tmp_path, child_env):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: x\nsurvey: missing.json\n")
+    with pytest.raises(WorldError, match="missing.json"):
+        WorldBuilder(Model()).load_scenario(bad)
+    import subprocess
+    import sys
+    run = subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "console.py"), "--scenario", str(bad),
+                          "--port", "0"], env=child_env, capture_output=True, text=True, timeout=30)
+    assert run.returncode == 2 and "missing.json" in run.stderr and "Traceback" not in run.stderr
+
+
+def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env):
+    world = ManagerWorld(lcm_url, child_env)
+    console = Console(["--url", lcm_url], child_env)
+    try:
+        page = Page(console.url)
+        now = page.until(lambda n: n["vehicles"].get("AUV1", {}).get("managers", {}).get("NAVIGATOR"),
+                         what="AUV1 NAVIGATOR")
+        nav = now["vehicles"]["AUV1"]["managers"]["NAVIGATOR"]
+        assert nav["run"] == "running" and nav["path"] == "dive" and nav["plan"].endswith("dive.chasm")
+        page.until(lambda n: n["vehicles"]["AUV1"]["nav"], what="AUV1 nav")
+        assert page.series["AUV1.nav"][0] == [10.0, 5.0]
+
+        status, body = page.post("/api/command", {"vehicle": "AUV1", "manager": "NAVIGATOR", "command": "pause"})
+        assert status == 200, body
+        seq = body["seq"]
+        now = page.until(lambda n: any(a["seq"] == seq for a in n["vehicles"]["AUV1"]["acks"]), what="the ack")
+        ack = next(a for a in now["vehicles"]["AUV1"]["acks"] if a["seq"] == seq)
+        assert ack == {"seq": seq, "manager": "NAVIGATOR", "message": "paused", "result": "ok"}
+        page.until(lambda n: n["vehicles"]["AUV1"]["managers"]["NAVIGATOR"]["run"] == "paused", what="paused")
+
+        # load a plan: its text travels in the command, the manager answers
+        from manager_world import HERE
+        status, body = page.post("/api/command", {"vehicle": "AUV1", "manager": "NAVIGATOR", "command": "load",
+                                                  "plan_name": "again.chasm",
+                                                  "plan_text": (HERE / "dive.chasm").read_text()})
+        assert status == 200, body
+        now = page.until(lambda n: any(a["seq"] == body["seq"] for a in n["vehicles"]["AUV1"]["acks"]),
+                         what="the load ack")
+        ack = next(a for a in now["vehicles"]["AUV1"]["acks"] if a["seq"] == body["seq"])
+        assert (ack["result"], ack["message"]) == ("ok", "plan loaded")
+
+        # refusals: a clear error each, nothing published
+        assert page.post("/api/command", {"vehicle": "AUV1", "command": "explode"})[0] == 400
+        assert page.post("/api/command", {"vehicle": "AUV1", "command": "load"})[0] == 400   # no plan text
+        assert page.post("/api/command", b"not json")[0] == 400
+        assert page.post("/api/seek", {"t": 3})[0] == 409
+        assert page.get("/static/../server.py")[0] == 404
+        assert page.get("/nothing")[0] == 404
+        status, html = page.get("/")
+        assert status == 200 and b"console.js" in html and b"http" not in html.replace(b"http-equiv", b"")
+    finally:
+        assert console.stop() == 0
+        assert world.close() == 0
+
+
+def _write_run_log(path) -> None:
+    """Two vehicles over 6 s of sim time: truth, nav, navigator status (running, then
+    AUV2 aborted at 4 s), a contact, a heard modem frame; logged 50 ms apart."""
+    import lcm as _lcm
+    from auv import chasm_status_t, ground_truth_t, modem_rx_t, nav_solution_t, sidescan_contact_t
+    log = _lcm.EventLog(str(path), "w", overwrite=True)
+    for i in range(60):
+        utime = i * 100_000
+        for k, vid in enumerate(("AUV1", "AUV2")):
+            tr = ground_truth_t()
+            tr.utime, tr.vehicle, tr.eta = utime, vid, [i * 1.0, 20.0 * k, 5.0, 0.0, 0.0, 0.0]
+            nav = nav_solution_t()
+            nav.utime, nav.vehicle, nav.north_m, nav.east_m = utime, vid, i * 1.0 + 0.5, 20.0 * k
+            st = chasm_status_t()
+            st.utime, st.vehicle, st.manager, st.cycle = utime, vid, "NAVIGATOR", i
+            aborted = vid == "AUV2" and i >= 40
+            st.run_state = 4 if aborted else 1
+            st.active_path, st.path_len, st.time_in_state_s = (["emergency"] if aborted else ["run"]), 1, [0.0]
+            for ch, m in ((f"{vid}.TRUTH", tr), (f"{vid}.NAV", nav), (f"{vid}.CHASM.NAVIGATOR", st)):
+                log.write_event(1_000_000 + i * 50_000 + k, ch, m.encode())
+        if i == 30:
+            c = sidescan_contact_t()
+            c.utime, c.vehicle, c.classification, c.north_m = utime, "AUV1", "mine_like", 12.0
+            log.write_event(1_000_000 + i * 50_000 + 5, "AUV1.CONTACTS", c.encode())
+            rx = modem_rx_t()
+            rx.utime, rx.vehicle, rx.src_vehicle = utime, "AUV2", "AUV1"
+            log.write_event(1_000_000 + i * 50_000 + 6, "AUV2.MODEM_RX", rx.encode())
+    log.close()
+
+
+def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
+    import subprocess
+    from lcm_proc import lcm_tool
+    _write_run_log(tmp_path / "r.lcmlog")
+    console = Console(["--url", lcm_url], child_env)
+    player = None
+    try:
+        page = Page(console.url)
+        player = subprocess.Popen([lcm_tool("lcm-logplayer"), f"--lcm-url={lcm_url}", "--speed=1",
+                                   str(tmp_path / "r.lcmlog")], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        now = page.until(lambda n: n["vehicles"].get("AUV2", {}).get("managers", {}).get("NAVIGATOR", {})
+                         .get("run") == "aborted", timeout=30, what="AUV2 aborted in the replay")
+        assert sorted(now["vehicles"]) == ["AUV1", "AUV2"]
+        assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["path"] == "emergency"
+        assert len(page.series["AUV1.true"]) > 10 and page.series["contacts"][0]["class"] == "mine_like"
+    finally:
+        if player:
+            player.wait(timeout=30)
+        assert console.stop() == 0
+
+
+def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
+    _write_run_log(tmp_path / "r.lcmlog")
+    console = Console(["--log", str(tmp_path / "r.lcmlog")], child_env)
+    try:
+        page = Page(console.url)
+        status, info = page.get("/api/info")
+        info = json.loads(info)
+        assert info["mode"] == "log" and info["start"] == 0.0 and abs(info["end"] - 5.9) < 1e-6
+        now = page.until(lambda n: n["t"] == info["end"], what="the end of the log")
+        assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["run"] == "aborted"
+        assert len(page.series["AUV1.true"]) == 60 and len(page.series["contacts"]) == 1
+        assert page.post("/api/seek", {"t": 2.0}) == (200, {"t": 2.0})      # back: the model starts over
+        now = page.until(lambda n: n["t"] == 2.0, what="t = 2 s")
+        assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["run"] == "running"
+        assert len(page.series["AUV1.true"]) == 21 and page.series.get("contacts", []) == []
+        assert now["vehicles"]["AUV1"]["truth"]["n"] == 20.0
+        assert page.post("/api/seek", {"t": 3.05})[1] == {"t": 3.05}        # forward: only what is new
+        now = page.until(lambda n: n["t"] == 3.05, what="t = 3.05 s")
+        assert len(page.series["AUV1.true"]) == 31 and len(page.series["contacts"]) == 1
+        assert [ln["src"] for ln in now["links"]] == ["AUV1"]
+        assert page.post("/api/seek", {"t": 1e9})[1] == {"t": info["end"]}  # clamped
+        assert page.post("/api/seek", {"t": "soon"})[0] == 400
+        assert page.post("/api/command", {"vehicle": "AUV1", "command": "pause"})[0] == 409
+    finally:
+        assert console.stop() == 0
