@@ -19,6 +19,7 @@ VEHICLE_ID = re.compile(r"[A-Z][A-Z0-9]{0,15}")
 MANAGER_NAME = re.compile(r"[A-Z][A-Z0-9_]{0,23}")
 HOST_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}")
 TIME_MODES = ("realtime", "scaled", "fast")
+RECORDERS = ("auv-recorder", "lcm-logger")   # what records the run's log (docs/tools.md, "Recorder")
 CLOCK_SOURCES = ("launcher", "simulators")
 DEFAULT_HOST = "local"
 
@@ -76,6 +77,7 @@ class Scenario:
     log_enabled: bool
     log_file: str
     log_host: str
+    log_recorder: str
     hosts: list[str]
     vehicles: list[Vehicle]
     text: str = ""
@@ -262,7 +264,7 @@ def load_scenario(path: str | Path) -> Scenario:
     hosts = list(hosts_raw)
     world = c.mapping(doc.get("world"), where(doc, "world"), "world", tuple(doc.get("world") or ()))
     time = _time(c, doc.get("time"), where(doc, "time"), hosts)
-    lg = c.mapping(doc.get("logging"), where(doc, "logging"), "logging", ("enabled", "file", "host"))
+    lg = c.mapping(doc.get("logging"), where(doc, "logging"), "logging", ("enabled", "file", "host", "recorder"))
     vehicles = []
     vraw = doc.get("vehicles")
     if not isinstance(vraw, MList) or not vraw:
@@ -285,6 +287,8 @@ def load_scenario(path: str | Path) -> Scenario:
         log_enabled=c.get(lg, "enabled", "logging", bool, True),
         log_file=c.get(lg, "file", "logging", str, "run.lcmlog"),
         log_host=c.get(lg, "host", "logging", str, hosts[0]),
+        log_recorder=c.get(lg, "recorder", "logging", str, RECORDERS[0], lambda v: "" if v in RECORDERS else
+                           f"expected one of: {', '.join(RECORDERS)}"),
         hosts=hosts, vehicles=vehicles, text=path.read_text(), survey=c.file(doc, "survey", "survey"))
     if sc.log_host not in hosts:
         c.err(where(lg, "host"), "logging.host", f"unknown host '{sc.log_host}'")
