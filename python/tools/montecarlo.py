@@ -34,7 +34,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "python"))
 
-from tools.montecarlo_summary import metrics_of, plot, summarize, summary_text  # noqa: E402
+from tools.montecarlo_summary import plot, summarize, summary_text  # noqa: E402
 
 BASE_PORT = 7900        # without namespaces, run k listens on BASE_PORT + k
 
@@ -42,11 +42,14 @@ BASE_PORT = 7900        # without namespaces, run k listens on BASE_PORT + k
 def run_one(spec: dict) -> dict:
     """One seed: launch, report, figures. Runs on whichever machine executes it."""
     root, out, seed = Path(spec["root"]), Path(spec["out"]), spec["seed"]
+    if str(root / "python") not in sys.path:     # on a Dask worker started anywhere
+        sys.path.insert(0, str(root / "python"))
+    from tools.montecarlo_summary import metrics_of
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ)
     env.pop("AUV_IN_ISOLATED_NET", None)     # a namespace of its own even inside an isolated parent
     env["PYTHONPATH"] = os.pathsep.join([str(root / "python"), str(Path(spec["build"]) / "gen" / "python")])
-    py = spec.get("python") or sys.executable
+    py = spec["python"] if spec.get("python") and Path(spec["python"]).exists() else sys.executable
     url = f"udpm://239.255.76.67:{BASE_PORT + spec['index']}?ttl=0"
     launch = [py, str(root / "python/tools/launch.py"), spec["scenario"], "--seed", str(seed), "--out",
               str(out / "run"), "--url", url, "--build", spec["build"], "--progress", "0"]
