@@ -31,6 +31,8 @@ sys.path.insert(0, str(ROOT / "python"))
 from tools.demo import PLAN_ARGS  # noqa: E402
 
 TICK = os.sysconf("SC_CLK_TCK")
+# py-spy from requirements.txt (the venv's bin), else one on PATH
+PYSPY = next((str(p) for p in [Path(sys.executable).parent / "py-spy"] if p.exists()), None) or shutil.which("py-spy")
 KINDS = ("simulator", "managers", "filter", "recorder", "clock", "other")
 
 
@@ -132,8 +134,8 @@ def run_case(n: int, args, out: Path) -> dict:
             last[pid] = ticks
             if pid not in kinds:
                 kinds[pid] = kind_of(cmdline(pid))
-                if args.profile and spy is None and kinds[pid] == "simulator" and shutil.which("py-spy"):
-                    spy = subprocess.Popen(["py-spy", "record", "--pid", str(pid), "--format", "raw", "--rate",
+                if args.profile and spy is None and kinds[pid] == "simulator" and PYSPY:
+                    spy = subprocess.Popen([PYSPY, "record", "--pid", str(pid), "--format", "raw", "--rate",
                                             "200", "--nonblocking", "-o", str(case / "sim.pyspy.txt")],
                                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         time.sleep(0.25)
@@ -156,6 +158,7 @@ def run_case(n: int, args, out: Path) -> dict:
            "cpu_total_s": (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime),
            "processes": Counter(kinds.values()), "recorder": outcome.get("recorder"),
            "reason": outcome.get("reason", "")}
+    res["load_avg"] = os.getloadavg()[0]
     if outcome.get("outcome") != "done":
         res["tail"] = text.strip().splitlines()[-5:]
     prof = case / "sim.pyspy.txt"
@@ -179,7 +182,10 @@ def main() -> int:
     except ValueError:
         ap.error("--vehicles: comma-separated integers")
     args.out.mkdir(parents=True, exist_ok=True)
-    print(f"scale_bench: {os.cpu_count()} cores; shares of {args.length:g} m x {args.width:g} m each")
+    print(f"scale_bench: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start; "
+          f"shares of {args.length:g} m x {args.width:g} m each")
+    if args.profile and not PYSPY:
+        print("scale_bench: --profile: py-spy not found (pip install -r requirements.txt)")
     print(f"{'veh':>3} {'sim s':>7} {'wall s':>7} {'RTF':>6} {'veh-s/s':>8}  cpu s: "
           + " ".join(f"{k:>9}" for k in KINDS) + "   outcome")
     results = []
