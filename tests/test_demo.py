@@ -1,6 +1,6 @@
 """`make demo` at reduced size: the demo driver plans a small survey for two
 vehicles, runs it with the launcher over real LCM (simulators, pilots,
-navigators, logger), writes the report and plots, and prints the summary."""
+navigators, auv-recorder), writes the report and plots, and prints the summary."""
 
 from __future__ import annotations
 
@@ -23,7 +23,13 @@ def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
     rep = json.loads((tmp_path / "report.json").read_text())
     # every vehicle's navigator ran its plan to the end (not aborted, not timed out)
     assert rep["vehicle_outcomes"] == {"AUV1": "done", "AUV2": "done"}, rep["vehicle_outcomes"]
-    assert json.loads((tmp_path / "run" / "outcome.json").read_text())["outcome"] == "done"
+    outcome = json.loads((tmp_path / "run" / "outcome.json").read_text())
+    assert outcome["outcome"] == "done"
+    # The record is complete: the recorder lost nothing, and no TRUTH sample is missing.
+    rec = outcome["recorder"]
+    assert rec["dropped"] == 0 and rec["missed"] == 0 and rec["written"] == rec["received"] > 0, rec
+    assert all(r["missing"] == 0 for r in rep["record"].values()), rep["record"]
+    assert "record    AUV1 0 of" in run.stdout and "AUV2 0 of" in run.stdout
     for name in ["report.txt", "tracks.png", "coverage.svg", "contacts.png", "depth.png", "states.svg"]:
         assert (tmp_path / name).stat().st_size > 500, name
     # The planner spaces lines so that the area is seen even 2 m off track; the

@@ -39,39 +39,78 @@ def _pd(p: float | None) -> str:
 
 
 def summary(rep: dict) -> str:
-    cov, det = rep["coverage"], rep["detection"]
+    """The demo's summary; a scenario without a survey or targets has no coverage or detection line."""
     lines = [f"outcome   {rep['outcome']}: " + ", ".join(f"{v} {o}" for v, o in rep["vehicle_outcomes"].items()),
-             f"duration  {rep['duration_s'] / 60:.1f} min of sim time",
-             f"coverage  {cov['survey_area_m2'] / 1e6:.4f} km2: once {100 * cov['fraction_once']:.1f} %, "
-             f"twice {100 * cov['fraction_twice']:.1f} %",
-             f"detection {det['mine_like_detected']} of {det['mine_like_targets']} mine-like targets "
-             f"(PD {_pd(det['pd'])}; in the covered area {det['mine_like_in_covered_area']}, "
-             f"PD {_pd(det['pd_in_covered_area'])}); {det['contacts']} contacts, "
-             f"{det['contacts_on_clutter']} on clutter, {det['false_alarms']} false alarms",
-             "nav error " + ", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})"
-                                      for v, e in rep["navigation_error"].items()),
-             "record    " + ", ".join(f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
-                                      for v, r in rep["record"].items())]
+             f"duration  {rep['duration_s'] / 60:.1f} min of sim time"]
+    cov, det = rep.get("coverage"), rep.get("detection")
+    if cov:
+        lines.append(f"coverage  {cov['survey_area_m2'] / 1e6:.4f} km2: once {_pct(cov['fraction_once'])}, "
+                     f"twice {_pct(cov['fraction_twice'])}")
+    if det:
+        lines.append(f"detection {det['mine_like_detected']} of {det['mine_like_targets']} mine-like targets "
+                     f"(PD {_pd(det['pd'])}" + (f"; in the covered area {det['mine_like_in_covered_area']}, "
+                                                f"PD {_pd(det['pd_in_covered_area'])}" if "pd_in_covered_area" in det
+                                                else "") +
+                     f"); {det['contacts']} contacts, {det['contacts_on_clutter']} on clutter, "
+                     f"{det['false_alarms']} false alarms")
+    lines += ["nav error " + (", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})"
+                                        for v, e in rep["navigation_error"].items()) or "-"),
+              "record    " + (", ".join(f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
+                                        for v, r in rep["record"].items()) or "-")]
     return "\n".join(lines)
 
 
-def main() -> int:
+def result_text(rep: dict, out: Path, log: Path, wall_s: float) -> str:
+    """What the demo prints at the end: the summary and where the files are."""
+    lines = ["", summary(rep), f"wall time {wall_s:.0f} s", "",
+             f"report    {out / 'report.txt'}  {out / 'report.json'}"]
+    lines += [f"plot      {p}  (and .svg)" for p in rep.get("plots", []) if p.endswith(".png")]   # none with --no-plots
+    lines.append(f"log       {log}   (replay: lcm-logplayer, watch: make spy)")
+    return "\n".join(lines)
+
+
+def _pct(x: float | None) -> str:
+    return "n/a" if x is None else f"{100 * x:.1f} %"
+
+
+def main(argv: list[str] | None = None) -> int:
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        print("demo: interrupted", file=sys.stderr)
+        return 130
+
+
+def _main(argv: list[str] | None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "demo")
     ap.add_argument("--polygon", help="plan this survey area instead (\"n,e; n,e; ...\" metres)")
-    ap.add_argument("--vehicles", type=int, default=3, help="with --polygon")
+    ap.add_argument("--vehicles", type=int, help="with --polygon (default 3)")
     ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
-    args = ap.parse_args()
-    args.out.mkdir(parents=True, exist_ok=True)
+    ap.add_argument("--plan-only", action="store_true",
+                    help="with --polygon: plan the survey and check its plans with the plugins, then stop")
+    args = ap.parse_args(argv)
+    if args.plan_only and not args.polygon:
+        ap.error("--plan-only needs --polygon")
+    if args.vehicles is not None and not args.polygon:
+        ap.error("--vehicles needs --polygon (the committed scenario has its own vehicles)")
+    if args.vehicles is not None and args.vehicles < 1:
+        ap.error("--vehicles must be at least 1")
+    try:
+        args.out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        print(f"demo: --out {args.out}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     wall0 = time.monotonic()
     scenario = SCENARIO
     if args.polygon:
         plan_dir = args.out / "plan"
         rc = run([PY, ROOT / "python/tools/plan_survey.py", "--polygon", args.polygon, "--vehicles",
-                  args.vehicles, *PLAN_ARGS, "--name", "mcm_demo", "--out", plan_dir], "planning the survey")
-        if rc:
+                  args.vehicles or 3, *PLAN_ARGS, "--name", "mcm_demo", "--out", plan_dir]
+                 + (["--build", args.build] if args.build else []), "planning the survey")
+        if rc or args.plan_only:
             return rc
         scenario = plan_dir / "mcm_demo.yaml"
     run_dir = args.out / "run"
@@ -88,12 +127,7 @@ def main() -> int:
     if rc:
         return rc
     rep = json.loads((args.out / "report.json").read_text())
-    print(f"\n{summary(rep)}\nwall time {time.monotonic() - wall0:.0f} s\n")
-    print(f"report    {args.out / 'report.txt'}  {args.out / 'report.json'}")
-    for plot in rep["plots"]:
-        if plot.endswith(".png"):
-            print(f"plot      {plot}  (and .svg)")
-    print(f"log       {log}   (replay: lcm-logplayer, watch: make spy)")
+    print(result_text(rep, args.out, log, time.monotonic() - wall0))
     return launch_rc
 
 

@@ -2,7 +2,7 @@
 
     launch.py SCENARIO.yaml [--host NAME] [--out DIR] [--url URL]
 
-Order: lcm-logger, the files the run uses annotated into the log, the
+Order: the recorder (auv-recorder, or lcm-logger if chosen), the files the run uses annotated into the log, the
 simulators, the onboard navigation filters (vehicles with `nav: ekf`), the
 managers; then the global clock starts. The mission ends when
 every vehicle's navigator is done, aborted or failed, or at the time limit;
@@ -34,7 +34,7 @@ from tools.annotate import Annotator  # noqa: E402
 from confcheck import ConfigError  # noqa: E402
 from tools.mission_watch import MissionWatch  # noqa: E402
 from tools.procs import Child  # noqa: E402
-from tools.scenario import Scenario, load_scenario  # noqa: E402
+from tools.scenario import RECORDERS, Scenario, load_scenario  # noqa: E402
 from tools.simconfig import write_configs  # noqa: E402
 from tools.worldclock import WorldClock  # noqa: E402
 
@@ -111,6 +111,8 @@ class Launcher:
         self.children: list[Child] = []
         self.stop_reason = ""
         self.log_path = self.out / sc.log_file
+        self.recorder = args.recorder or sc.log_recorder
+        self.recorder_stats = self.out / "recorder.json"
 
     # ------------------------------------------------------------ start
     def _start(self, child: Child) -> Child:
@@ -121,26 +123,38 @@ class Launcher:
         return child
 
     def start_logger(self) -> None:
-        lcm_bin = Path(lcm.LCM_BIN_DIR).resolve()
+        """The recorder: auv-recorder (c/recorder, loses nothing it receives,
+        counts what it could not) or lcm-logger (its subscription queue holds
+        30 messages and drops 1-2 % of a busy fast-time run)."""
         self.log_path.unlink(missing_ok=True)
-        # A large socket buffer against bursts. lcm-logger still drops 1-2 % of
-        # a 3-vehicle fast-time run on 2 busy cores (its LCM subscription
-        # queue, which it does not let us size); the report counts what the
-        # record lacks (report.py: record).
-        self.logger = Child("logger", [str(lcm_bin / "lcm-logger"), f"--lcm-url={with_receive_buffer(self.url)}",
-                                       "--quiet",
-                                       "--flush-interval=100", "-f", str(self.log_path)], self.out / "logger.out")
+        url = with_receive_buffer(self.url)
+        if self.recorder == "lcm-logger":
+            lcm_bin = Path(lcm.LCM_BIN_DIR).resolve()
+            cmd = [str(lcm_bin / "lcm-logger"), f"--lcm-url={url}", "--quiet", "--flush-interval=100",
+                   "-f", str(self.log_path)]
+        else:
+            self.recorder_stats.unlink(missing_ok=True)
+            cmd = [str(self.build / "bin" / "auv-recorder"), "--url", url, "-f", str(self.log_path),
+                   "--stats", str(self.recorder_stats)]
+        self.logger = Child("logger", cmd, self.out / "logger.out")
         self.logger.start()
         # Listening once its file exists; recording once our probe shows up in it.
         deadline = time.monotonic() + 20
         while time.monotonic() < deadline and self.logger.poll() is None:
             if self.log_path.exists():
-                self.notes.event("logger", f"lcm-logger pid {self.logger.pid} recording {self.log_path.name}")
+                self.notes.event("logger", f"{self.recorder} pid {self.logger.pid} recording {self.log_path.name}")
                 time.sleep(0.3)
                 if self.log_path.stat().st_size > 0:
                     return
             time.sleep(0.05)
-        raise RuntimeError(f"lcm-logger did not start recording: {self.logger.tail()}")
+        raise RuntimeError(f"{self.recorder} did not start recording: {self.logger.tail()}")
+
+    def recorder_counts(self) -> dict | None:
+        """auv-recorder's counts at exit (received, written, dropped, missed), if it ran."""
+        try:
+            return json.loads(self.recorder_stats.read_text())
+        except (OSError, ValueError):
+            return None
 
     def annotate(self) -> None:
         from auv import log_annotation_t as A
@@ -253,7 +267,10 @@ class Launcher:
                 self.notes.event("exit", f"{c.name} pid {c.pid} stopped, status {rc}", utime=self.watch.sim_time_us)
         self.notes.event("end", json.dumps(self.summary(result)), utime=self.watch.sim_time_us)
         if self.logger is not None:
-            time.sleep(0.3)   # the logger flushes every 100 ms: let the end reach the file
+            # lcm-logger flushes every 100 ms: let the end reach the file (auv-recorder
+            # itself takes in everything on its way before it writes out and exits)
+            if self.recorder == "lcm-logger":
+                time.sleep(0.3)
             self.logger.stop()
 
     def summary(self, result: str) -> dict:
@@ -274,7 +291,10 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--warp", type=float, help="override time.warp")
+    ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
+    ap.add_argument("--recorder", choices=RECORDERS,
+                    help="what records the log (default: the scenario's logging.recorder, auv-recorder)")
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
     args = ap.parse_args(argv)
@@ -294,6 +314,8 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"launch: {exc}", file=sys.stderr)
         return 2
+    if args.seed is not None:
+        sc.seed = args.seed
     args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)
@@ -322,6 +344,9 @@ def main(argv: list[str] | None = None) -> int:
     finally:
         run.stop_all(result)
     s = run.summary(result)
+    counts = run.recorder_counts() if run.own_log and run.recorder == "auv-recorder" else None
+    if counts is not None:
+        s["recorder"] = counts
     (args.out / (f"outcome.{args.host}.json" if args.host else "outcome.json")).write_text(json.dumps(s, indent=2))
     print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {s['reason']}" if s["reason"] else ""))
     for vid, v in s["vehicles"].items():
@@ -333,6 +358,9 @@ def main(argv: list[str] | None = None) -> int:
               f"{run.watch.time_drops.summary()}")
     if run.own_log:
         print(f"log: {run.log_path}")
+        if counts is not None:
+            print(f"record: {counts['written']} of {counts['received']} messages received written, "
+                  f"{counts['dropped']} dropped, {counts['missed']} missed (kernel socket drops)")
     return EXIT[result]
 
 

@@ -25,6 +25,7 @@ sys.path.insert(0, str(ROOT / "python"))
 import yaml  # noqa: E402
 
 from tools.plan_text import Limits, estimated_duration_s, plan_text  # noqa: E402
+from tools.plugin_limits import LimitsError, build_dir, check_plan, polygon_limits  # noqa: E402
 from tools.survey_geometry import GeometryError, format_polygon, parse_polygon  # noqa: E402
 from tools.survey_plan import Sonar, Survey, plan_survey  # noqa: E402
 
@@ -115,6 +116,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--world", type=Path, help="YAML file: the scenario's world section")
     ap.add_argument("--nav", choices=("ins", "ekf"), default="ins",
                     help="what each vehicle steers by: the simulator's INS, or the onboard filter auv-nav")
+    ap.add_argument("--build", type=Path, default=build_dir(),
+                    help="build folder whose plugins set the limits and check the plans (default: the repository's)")
     lim = Limits()
     for key, default in vars(lim).items():
         ap.add_argument("--" + key.replace("_", "-"), type=float, default=default)
@@ -131,21 +134,34 @@ def main(argv: list[str] | None = None) -> int:
         starts = parse_polygon_points(args.starts, args.vehicles) if args.starts else None
         if args.world:
             read_world(args.world)      # refused here, before anything is written
+        area_limits = polygon_limits(args.build)
         sv = plan_survey(polygon, args.vehicles, math.radians(args.heading), Sonar(args.range, args.nadir_gap),
-                         args.overlap, args.run_in, args.margin, starts)
+                         args.overlap, args.run_in, args.margin, starts, area_limits.max_vertices)
+        if len(format_polygon(sv.operating_area)) > area_limits.max_chars:
+            raise GeometryError(f"the operating area's text is longer than the {area_limits.max_chars} "
+                                "characters outside_area accepts")
         for k, v in enumerate(sv.vehicles):
             if not v.legs:
                 raise GeometryError(f"vehicle {k + 1} got no lines")
-    except (GeometryError, OSError, ValueError) as exc:     # ValueError: ConfigError of --world
+    except (GeometryError, LimitsError, OSError, ValueError) as exc:     # ValueError: ConfigError of --world
         print(f"plan_survey: {exc}", file=sys.stderr)
         return 2
     starts = starts or auto_starts(sv)
     out = args.out.resolve()
     out.mkdir(parents=True, exist_ok=True)
     name = args.name or out.name
+    errors, refused = [], 0
     for vid, v, st in zip(ids, sv.vehicles, starts):
         path = out / f"{vid}.chasm"
         path.write_text(plan_text(sv, v, vid, st, lim, path))
+        problems = check_plan(path, args.build)     # what the launcher would refuse, refused now
+        refused += bool(problems)
+        errors += problems
+    if errors:
+        print("\n".join(errors), file=sys.stderr)
+        print(f"plan_survey: {refused} plan(s) do not load with the plugins of {args.build}; "
+              "no scenario written", file=sys.stderr)
+        return 2
     (out / "survey.json").write_text(json.dumps(survey_json(sv, ids, starts, lim), indent=1))
     sc = scenario_dict(name, out, ids, sv, starts, args, lim)
     sc["survey"] = "survey.json"

@@ -181,6 +181,17 @@ def report_text(rep: dict) -> str:
     return "\n".join(lines) + "\n"
 
 
+def survey_problem(sv) -> str:
+    """Why a survey description (plan_survey.py's survey.json) cannot be used; "" if it can."""
+    try:
+        poly = sv["polygon"]
+        ok = len(poly) >= 3 and all(len(p) == 2 and all(math.isfinite(float(x)) for x in p) for p in poly)
+        float(sv["area_m2"]), float(sv["sonar"]["range_m"]), float(sv["sonar"]["nadir_gap_m"])
+    except (KeyError, TypeError, ValueError, IndexError) as exc:
+        return f"not a survey description (plan_survey.py's survey.json): {type(exc).__name__} {exc}"
+    return "" if ok else "its polygon needs at least 3 finite 'north, east' vertices"
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("log", type=Path)
@@ -198,6 +209,14 @@ def main(argv: list[str] | None = None) -> int:
     if args.radius <= 0 or args.cell <= 0 or not math.isfinite(args.radius + args.cell):
         print("report: --radius and --cell must be > 0", file=sys.stderr)
         return 2
+    if args.survey is not None:
+        try:
+            problem = survey_problem(json.loads(args.survey.read_text()))
+        except (OSError, ValueError) as exc:
+            problem = getattr(exc, "strerror", None) or str(exc)
+        if problem:
+            print(f"report: --survey {args.survey}: {problem}", file=sys.stderr)
+            return 2
     try:
         run = load_run(args.log, args.survey)
     except (OSError, ValueError) as exc:     # an unreadable log, a --survey that is not JSON
@@ -209,8 +228,16 @@ def main(argv: list[str] | None = None) -> int:
     if not run.vehicles:
         print(f"report: {args.log}: no vehicle ground truth (<V>.TRUTH) in the log", file=sys.stderr)
         return 2
+    if run.survey is not None and (problem := survey_problem(run.survey)):
+        print(f"report: {args.log}: the survey annotated in the log is unusable ({problem}): "
+              "no coverage figures", file=sys.stderr)
+        run.survey = None
     out = args.out or args.log.parent
-    out.mkdir(parents=True, exist_ok=True)
+    try:
+        out.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        print(f"report: --out {out}: {exc.strerror or exc}", file=sys.stderr)
+        return 2
     rep, grid = build_report(run, args.radius, args.cell)
     if not args.no_plots:
         from tools.plots import make_plots
@@ -225,4 +252,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        print("report: interrupted", file=sys.stderr)
+        sys.exit(130)

@@ -25,6 +25,7 @@ MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
 PARAM_NAME = r"[A-Za-z_][A-Za-z0-9_]{0,63}"
 HOST_NAME = r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}"
 TIME_MODES = ("realtime", "scaled", "fast")
+RECORDERS = ("auv-recorder", "lcm-logger")   # what records the run's log (docs/tools.md, "Recorder")
 CLOCK_SOURCES = ("launcher", "simulators")
 NAV_SOURCES = ("ins", "ekf")
 DEFAULT_HOST = "local"
@@ -86,6 +87,7 @@ class Scenario:
     log_enabled: bool
     log_file: str
     log_host: str
+    log_recorder: str
     hosts: list[str]
     vehicles: list[Vehicle]
     text: str = ""
@@ -298,7 +300,7 @@ def load_scenario(path: str | Path) -> Scenario:
     c.fill(tnode, "time", time, skip=("host",))
     time.host = s.host(t_items, "host", "time", hosts)
     lg_items = c.mapping(top["logging"][1], "logging") if "logging" in top else {}
-    c.unknown(lg_items, ("enabled", "file", "host"), "logging")
+    c.unknown(lg_items, ("enabled", "file", "host", "recorder"), "logging")
     vehicles = []
     if "vehicles" in top:
         vnode = top["vehicles"][1]
@@ -323,6 +325,7 @@ def load_scenario(path: str | Path) -> Scenario:
         log_file=s.get(lg_items, "file", "logging", "run.lcmlog", Rule(pattern=r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,127}",
                        pattern_hint="a file name in the run folder")),
         log_host=s.host(lg_items, "host", "logging", hosts),
+        log_recorder=s.get(lg_items, "recorder", "logging", RECORDERS[0], Rule(one_of=RECORDERS)),
         hosts=hosts, vehicles=vehicles, text=c.text, survey=s.file(top, "survey", ""),
         world_node=world_node)
     c.raise_errors()

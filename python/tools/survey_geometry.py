@@ -192,3 +192,41 @@ def buffer_convex(hull: list[Point], margin: float, segments: int = 3) -> list[P
             if not out or math.dist(out[-1], q) > 0.5:   # a straight corner adds one point, not several
                 out.append(q)
     return out if math.dist(out[0], out[-1]) > 0.5 else out[:-1]
+
+
+def simplify_convex_outer(poly: list[Point], max_vertices: int) -> list[Point]:
+    """A convex polygon with at most max_vertices vertices that contains poly
+    (itself convex): repeatedly drop the edge whose two neighbours, extended
+    until they meet, add the least area. Growing, never cutting, keeps every
+    margin the caller built into poly. GeometryError if it cannot get there."""
+    if max_vertices < 3:
+        raise GeometryError(f"a polygon limit of {max_vertices} vertices is below 3")
+    pts = list(poly)
+    if sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(pts, pts[1:] + pts[:1])) < 0:
+        pts.reverse()                                   # counter-clockwise in (north, east)
+    while len(pts) > max_vertices:
+        n, best = len(pts), None
+        for i in range(n):
+            p0, p1, p2, p3 = pts[i - 1], pts[i], pts[(i + 1) % n], pts[(i + 2) % n]
+            d1 = (p1[0] - p0[0], p1[1] - p0[1])
+            d2 = (p2[0] - p3[0], p2[1] - p3[1])
+            den = d1[0] * d2[1] - d1[1] * d2[0]
+            if abs(den) < 1e-12:
+                continue
+            # p1 + s d1 = p2 + t d2, with s, t >= 0: the extensions meet beyond the edge
+            s = ((p2[0] - p1[0]) * d2[1] - (p2[1] - p1[1]) * d2[0]) / den
+            t = ((p2[0] - p1[0]) * d1[1] - (p2[1] - p1[1]) * d1[0]) / den
+            if s < 0 or t < 0:
+                continue
+            x = (p1[0] + s * d1[0], p1[1] + s * d1[1])
+            added = area([p1, x, p2])
+            if best is None or added < best[0]:
+                best = (added, i, x)
+        if best is None:
+            raise GeometryError(f"cannot bound the operating area by {max_vertices} vertices")
+        _, i, x = best
+        if i + 1 < n:
+            pts[i:i + 2] = [x]
+        else:                                           # the edge from the last vertex to the first
+            pts = [x] + pts[1:-1]
+    return pts

@@ -19,7 +19,7 @@ import math
 from dataclasses import dataclass, field
 
 from tools.survey_geometry import (Frame, GeometryError, Point, area, band_extent, buffer_convex, check_polygon,
-                                   clip_v, convex_hull, split_by_area)
+                                   clip_v, convex_hull, simplify_convex_outer, split_by_area)
 
 
 @dataclass
@@ -128,8 +128,10 @@ def _legs(poly_uv: list[Point], frame: Frame, strip: tuple[float, float], offset
 
 def plan_survey(polygon: list[Point], vehicles: int, heading_rad: float, sonar: Sonar, overlap: float,
                 run_in_m: float = 20.0, area_margin_m: float | None = None,
-                starts: list[Point] | None = None) -> Survey:
-    """Split the polygon among `vehicles` (equal areas, cuts along the lines) and lay each one's lines."""
+                starts: list[Point] | None = None, area_max_vertices: int | None = None) -> Survey:
+    """Split the polygon among `vehicles` (equal areas, cuts along the lines) and lay each one's lines.
+    The operating area (every leg, grown by area_margin_m) is bounded by
+    area_max_vertices: the most the plugin that tests it accepts."""
     check_polygon(polygon)
     if vehicles < 1:
         raise GeometryError("the number of vehicles must be at least 1")
@@ -160,5 +162,7 @@ def plan_survey(polygon: list[Point], vehicles: int, heading_rad: float, sonar: 
     if area_margin_m is None:
         area_margin_m = reach + 50.0
     hull = convex_hull(polygon + [p for v in out for leg in v.legs for p in (leg.start, leg.end)])
-    return Survey(polygon, heading_rad, sonar, overlap, spacing, margin, run_in_m, out,
-                  buffer_convex(hull, area_margin_m))
+    operating = buffer_convex(hull, area_margin_m)
+    if area_max_vertices is not None:
+        operating = simplify_convex_outer(operating, area_max_vertices)
+    return Survey(polygon, heading_rad, sonar, overlap, spacing, margin, run_in_m, out, operating)

@@ -52,6 +52,10 @@ def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_
     assert run.returncode == 0, run.stdout + run.stderr
     outcome = json.loads((tmp_path / "run" / "outcome.json").read_text())
     assert outcome["outcome"] == "done" and set(outcome["vehicles"]) == {"AUV1", "AUV2"}
+    rec = outcome["recorder"]                                  # auv-recorder, the default: nothing lost
+    assert rec["dropped"] == 0 and rec["missed"] == 0 and rec["written"] == rec["received"] > 0, rec
+    assert f"record: {rec['written']} of {rec['received']} messages received written, 0 dropped, 0 missed" \
+        in run.stdout
 
     log = load_log(tmp_path / "run" / "run.lcmlog", keep_messages="SIM.ANNOTATION")
     assert log.stats.undecodable == 0
@@ -239,3 +243,20 @@ vehicles:
     (tmp_path / "syntax.yaml").write_text("vehicles: [\n")
     run = launch(tmp_path / "syntax.yaml", tmp_path / "run4", lcm_url, child_env)
     assert run.returncode == 2 and f"{tmp_path / 'syntax.yaml'}:2:1: YAML syntax" in run.stderr
+
+
+def test_lcm_logger_stays_selectable(tmp_path, lcm_url, child_env):
+    """--recorder lcm-logger, or logging.recorder in the scenario; an unknown recorder is a scenario error."""
+    path = write_scenario(tmp_path, [vehicle("AUV1", cycles=20)])
+    run = launch(path, tmp_path / "run", lcm_url, child_env, "--recorder", "lcm-logger")
+    assert run.returncode == 0, run.stdout + run.stderr
+    assert "recorder" not in json.loads((tmp_path / "run" / "outcome.json").read_text())
+    notes = [ev.msg.text for ev in read_events(tmp_path / "run" / "run.lcmlog")
+             if ev.channel == "SIM.ANNOTATION" and ev.msg.name == "logger"]
+    assert notes and notes[0].startswith("lcm-logger pid")
+    assert len(load_log(tmp_path / "run" / "run.lcmlog")["AUV1.TRUTH"]) > 10
+    doc = yaml.safe_load(path.read_text())
+    doc["logging"] = {"recorder": "tape"}
+    path.write_text(yaml.safe_dump(doc))
+    run = launch(path, tmp_path / "bad", lcm_url, child_env)
+    assert run.returncode == 2 and "logging.recorder" in run.stderr and "auv-recorder, lcm-logger" in run.stderr

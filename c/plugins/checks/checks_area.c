@@ -25,11 +25,19 @@
 #include "plugins/checks/checks.h"
 #include "plugins/lib/pu_polygon.h"
 
+#define TEXT_MAX_CHARS 4095           /* longest polygon text */
+#define TEXT_MAX (TEXT_MAX_CHARS + 1)
+#define STR_(x) #x
+#define STR(x) STR_(x)
+
 enum { POLYGON, NORTH, EAST, LENGTH, WIDTH, HEADING, MARGIN, AT_NORTH, AT_EAST };
 
 static const chasm_param_spec params[] = {
+    /* The limits are in the description so that planners read them from
+     * `chasm describe checks` (python/tools/plugin_limits.py), not a copy. */
     {"polygon", CHASM_PARAM, CHASM_STRING, "", 0, 0, "", 0, 0, 0,
-     "vertices \"north,east; ...\" in metres (or give a box)"},
+     "vertices \"north,east; ...\" in metres (or give a box); at most " STR(PU_POLYGON_MAX)
+     " vertices and " STR(TEXT_MAX_CHARS) " characters"},
     {"north", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, -1e7, 1e7, "box corner, north"},
     {"east", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, -1e7, 1e7, "box corner, east"},
     {"length", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, 0, 1e7, "box side along heading"},
@@ -43,7 +51,6 @@ static const chasm_param_spec params[] = {
 };
 
 #define CACHE_SLOTS 16
-#define TEXT_MAX 4096
 
 typedef struct {
     const char *key;          /* the plan's string (stable for the machine's life) */

@@ -1,0 +1,209 @@
+"""Scaling benchmark: the full stack with 1, 2, 4, 8, 16 vehicles.
+
+For each N, a survey of N equal shares (N x the area of one) is planned by
+python/tools/plan_survey.py with the demo's settings and flown by the
+launcher in fast time: simulators, PILOT and NAVIGATOR managers, auv-nav,
+the recorder, the launcher's clock. Prints per N: sim time, wall time,
+real-time factor, vehicle-seconds per wall second, outcome, and the CPU
+seconds of each kind of process (read from /proc while the run goes: the
+simulator, managers, filter, recorder, clock = the launcher); with
+--profile, where one simulator's time goes (py-spy, sampled for the run).
+Prints figures, asserts nothing (a run that did not finish says so).
+
+Run: tests/isolated_net.sh .venv/bin/python bench/scale_bench.py [--vehicles 1,2,4] [--all] [--profile]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import resource
+import shutil
+import subprocess
+import sys
+import time
+from collections import Counter, defaultdict
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "python"))
+from tools.demo import PLAN_ARGS  # noqa: E402
+
+TICK = os.sysconf("SC_CLK_TCK")
+# py-spy from requirements.txt (the venv's bin), else one on PATH
+PYSPY = next((str(p) for p in [Path(sys.executable).parent / "py-spy"] if p.exists()), None) or shutil.which("py-spy")
+KINDS = ("simulator", "managers", "filter", "recorder", "clock", "other")
+
+
+def kind_of(cmd: str) -> str:
+    if "python/sim" in cmd:
+        return "simulator"
+    if "chasm-manager" in cmd:
+        return "managers"
+    if "auv-nav" in cmd:
+        return "filter"
+    if "auv-recorder" in cmd or "lcm-logger" in cmd:
+        return "recorder"
+    if "launch.py" in cmd:
+        return "clock"
+    return "other"
+
+
+def _stat(pid: int) -> tuple[int, int] | None:
+    """(parent pid, utime + stime in ticks) of a process, or None if gone."""
+    try:
+        s = Path(f"/proc/{pid}/stat").read_text()
+    except OSError:
+        return None
+    f = s[s.rindex(")") + 2:].split()
+    return int(f[1]), int(f[11]) + int(f[12])
+
+
+def descendants(root: int) -> dict[int, int]:
+    """pid -> cpu ticks of root and everything below it."""
+    stats = {}
+    for d in os.listdir("/proc"):
+        if d.isdigit() and (st := _stat(int(d))) is not None:
+            stats[int(d)] = st
+    children = defaultdict(list)
+    for pid, (ppid, _) in stats.items():
+        children[ppid].append(pid)
+    out, todo = {}, [root]
+    while todo:
+        p = todo.pop()
+        if p in stats:
+            out[p] = stats[p][1]
+            todo += children[p]
+    return out
+
+
+def cmdline(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")
+    except OSError:
+        return ""
+
+
+def polygon(n: int, length: float, width: float) -> str:
+    """n shares of length x width side by side: equal area each."""
+    w = width * n
+    return f"0,0; {length:g},0; {length:g},{w:g}; 0,{w:g}"
+
+
+def profile_summary(raw: Path, top: int = 15) -> list[str]:
+    """Self and inclusive shares of the sampled frames (py-spy raw: 'f1;f2;... count')."""
+    self_n, incl, total = Counter(), Counter(), 0
+    for line in raw.read_text().splitlines():
+        stack, _, count = line.rpartition(" ")
+        if not count.isdigit():
+            continue
+        frames = stack.split(";")
+        c = int(count)
+        total += c
+        self_n[frames[-1]] += c
+        for f in set(frames):
+            incl[f] += c
+    if not total:
+        return ["  (no samples)"]
+    lines = [f"  {total} samples; self time (top {top}):"]
+    lines += [f"    {100 * c / total:5.1f} %  {f}" for f, c in self_n.most_common(top)]
+    lines.append(f"  inclusive (top {top}):")
+    lines += [f"    {100 * c / total:5.1f} %  {f}" for f, c in incl.most_common(top + 5)[5:top + 5]]
+    return lines
+
+
+def run_case(n: int, args, out: Path) -> dict:
+    case = out / f"v{n}"
+    shutil.rmtree(case, ignore_errors=True)
+    plan = subprocess.run([sys.executable, str(ROOT / "python/tools/plan_survey.py"),
+                           "--polygon", polygon(n, args.length, args.width), "--vehicles", str(n), *PLAN_ARGS,
+                           "--name", f"scale{n}", "--out", str(case / "plan")], capture_output=True, text=True)
+    if plan.returncode:
+        return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
+    launch = [sys.executable, str(ROOT / "python/tools/launch.py"), str(case / "plan" / f"scale{n}.yaml"),
+              "--out", str(case / "run"), "--progress", "0"] + (["--url", args.url] if args.url else [])
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    wall0 = time.monotonic()
+    proc = subprocess.Popen(launch, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    last: dict[int, int] = {}
+    kinds: dict[int, str] = {}
+    spy = None
+    while proc.poll() is None:
+        for pid, ticks in descendants(proc.pid).items():
+            last[pid] = ticks
+            if pid not in kinds:
+                kinds[pid] = kind_of(cmdline(pid))
+                if args.profile and spy is None and kinds[pid] == "simulator" and PYSPY:
+                    spy = subprocess.Popen([PYSPY, "record", "--pid", str(pid), "--format", "raw", "--rate",
+                                            "200", "--nonblocking", "-o", str(case / "sim.pyspy.txt")],
+                                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(0.25)
+    wall = time.monotonic() - wall0
+    text = proc.stdout.read()
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if spy is not None:
+        spy.wait(30)
+    cpu = Counter()
+    for pid, ticks in last.items():
+        cpu[kinds.get(pid, "other")] += ticks / TICK
+    try:
+        outcome = json.loads((case / "run" / "outcome.json").read_text())
+    except (OSError, ValueError):
+        outcome = {"outcome": "no outcome", "sim_time_s": 0.0}
+    sim = outcome.get("sim_time_s", 0.0)
+    res = {"vehicles": n, "outcome": outcome.get("outcome"), "sim_time_s": sim, "wall_s": wall,
+           "rtf": sim / wall if wall else 0.0, "vehicle_s_per_s": n * sim / wall if wall else 0.0,
+           "cpu_s": {k: round(cpu[k], 2) for k in KINDS},
+           "cpu_total_s": (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime),
+           "processes": Counter(kinds.values()), "recorder": outcome.get("recorder"),
+           "reason": outcome.get("reason", "")}
+    res["load_avg"] = os.getloadavg()[0]
+    if outcome.get("outcome") != "done":
+        res["tail"] = text.strip().splitlines()[-5:]
+    prof = case / "sim.pyspy.txt"
+    if prof.exists():
+        res["profile"] = profile_summary(prof)
+    return res
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--vehicles", default="1,2", help="comma-separated vehicle counts (default 1,2: quick)")
+    ap.add_argument("--all", action="store_true", help="1, 2, 4, 8, 16")
+    ap.add_argument("--length", type=float, default=150.0, help="each share's length [m] (north)")
+    ap.add_argument("--width", type=float, default=60.0, help="each share's width [m] (east)")
+    ap.add_argument("--profile", action="store_true", help="py-spy one simulator of each run")
+    ap.add_argument("--url", help="LCM URL for the launcher")
+    ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
+    args = ap.parse_args()
+    try:
+        counts = [1, 2, 4, 8, 16] if args.all else [int(x) for x in args.vehicles.split(",")]
+    except ValueError:
+        ap.error("--vehicles: comma-separated integers")
+    args.out.mkdir(parents=True, exist_ok=True)
+    print(f"scale_bench: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start; "
+          f"shares of {args.length:g} m x {args.width:g} m each")
+    if args.profile and not PYSPY:
+        print("scale_bench: --profile: py-spy not found (pip install -r requirements.txt)")
+    print(f"{'veh':>3} {'sim s':>7} {'wall s':>7} {'RTF':>6} {'veh-s/s':>8}  cpu s: "
+          + " ".join(f"{k:>9}" for k in KINDS) + "   outcome")
+    results = []
+    for n in counts:
+        r = run_case(n, args, args.out)
+        results.append(r)
+        if "cpu_s" not in r:
+            print(f"{n:>3}  {r['outcome']}: {r.get('error', '')}")
+            continue
+        print(f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
+              + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS) + f"   {r['outcome']}"
+              + (f" ({r['reason']})" if r["outcome"] != "done" else ""), flush=True)
+        for line in r.get("profile", []):
+            print(line)
+    (args.out / "scale.json").write_text(json.dumps(results, indent=1))
+    print(f"scale_bench: {args.out / 'scale.json'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,84 @@
+"""montecarlo.py: a short survey over two seeds on a local Dask cluster (two
+worker processes), each run in its own network namespace, summarised as
+mean and 95 % interval with a plot; the statistics on their own; usage."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import lcm
+import pytest
+
+from auv import ground_truth_t
+from conftest import BUILD, ROOT
+from tools.montecarlo_summary import interval, summarize
+
+MC = [sys.executable, str(ROOT / "python" / "tools" / "montecarlo.py")]
+# One vehicle, two short lines over part of the demo's target field: a few minutes of sim time.
+PLAN = ["--polygon", "150,120; 190,120; 190,150; 150,150", "--vehicles", "1", "--heading", "0", "--range", "40",
+        "--nadir-gap", "8", "--overlap", "0.1", "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"),
+        "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--fix-every-min", "60"]
+
+
+def test_interval_is_the_t_interval_of_the_mean():
+    s = interval([1.0, 2.0, 3.0, 4.0])
+    assert s["mean"] == 2.5 and s["min"] == 1.0 and s["max"] == 4.0
+    half = 3.182 * (1.6666666666666667 ** 0.5) / 2          # t(0.975, 3) * sd / sqrt(n)
+    assert s["lo"] == pytest.approx(2.5 - half) and s["hi"] == pytest.approx(2.5 + half)
+    assert interval([5.0])["lo"] == interval([5.0])["hi"] == 5.0
+    runs = [{"seed": 1, "metrics": {"outcome": "done", "coverage": 0.9, "pd": None, "false_alarms": 2,
+                                    "nav_error_rms_m": 1.0, "mission_time_s": 100.0}},
+            {"seed": 2, "error": "launcher exit 5"}]
+    s = summarize(runs)
+    assert s["reported"] == 1 and s["failed_runs"] == {"2": "launcher exit 5"} and "pd" not in s["metrics"]
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--seeds", "0"], "must be at least 1"),
+    (["--dask", "tcp://x:1", "--dask-local", "2"], "exclude each other"),
+])
+def test_usage_errors(tmp_path, args, message, child_env):
+    sc = tmp_path / "s.yaml"
+    sc.write_text("vehicles: []\n")
+    run = subprocess.run(MC + [sc, *args, "--out", tmp_path / "o"], capture_output=True, text=True, env=child_env)
+    assert run.returncode == 2 and message in run.stderr and "Traceback" not in run.stderr
+    run = subprocess.run(MC + [tmp_path / "missing.yaml"], capture_output=True, text=True, env=child_env)
+    assert run.returncode == 2 and "no such scenario" in run.stderr
+
+
+def _truth_and_targets(log):
+    times, targets = [], None
+    for ev in lcm.EventLog(str(log), "r"):
+        if ev.channel == "AUV1.TRUTH":
+            times.append(ground_truth_t.decode(ev.data).utime)
+        elif ev.channel == "SIM.TARGETS" and targets is None:
+            targets = ev.data
+    return times, targets
+
+
+def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
+    plan = subprocess.run([sys.executable, ROOT / "python/tools/plan_survey.py", *PLAN, "--out", tmp_path / "sc",
+                           "--name", "mc", "--build", BUILD], capture_output=True, text=True, timeout=120)
+    assert plan.returncode == 0, plan.stderr
+    out = tmp_path / "mc"
+    run = subprocess.run(MC + [tmp_path / "sc" / "mc.yaml", "--seeds", "2", "--first-seed", "3", "--dask-local", "2",
+                               "--out", out, "--build", BUILD, "--timeout", "500"],
+                         capture_output=True, text=True, timeout=900, env=child_env)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    s = json.loads((out / "summary.json").read_text())
+    assert s["runs"] == s["reported"] == 2 and s["outcomes"] == {"done": 2}, s
+    for key in ("coverage", "nav_error_rms_m", "mission_time_s", "false_alarms"):
+        m = s["metrics"][key]
+        assert m["n"] == 2 and m["lo"] <= m["mean"] <= m["hi"], (key, m)
+    assert "95 % interval" in run.stdout and (out / "montecarlo.png").stat().st_size > 1000
+    runs = json.loads((out / "runs.json").read_text())
+    assert sorted(r["seed"] for r in runs) == [3, 4]
+    worlds = []
+    for seed in (3, 4):
+        times, targets = _truth_and_targets(out / f"seed_{seed}" / "run" / "run.lcmlog")
+        # one simulator per world: a second world's AUV1 would interleave its own times
+        assert len(times) > 100 and all(b > a for a, b in zip(times, times[1:])), seed
+        worlds.append(targets)
+    assert worlds[0] is not None and worlds[0] != worlds[1]     # the seed changed the target field
