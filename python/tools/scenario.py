@@ -2,7 +2,8 @@
 
 Checked key by key; every error is reported at once as
 `file:line:col: key: message`, unknown keys with a did-you-mean hint.
-Relative paths are relative to the scenario file.
+Relative paths are relative to the scenario file (or to `base`: a scenario a
+host agent received over LCM resolves them from its sender's folder).
 """
 
 from __future__ import annotations
@@ -86,8 +87,8 @@ class Scenario:
 
 
 class _Checker:
-    def __init__(self, path: Path) -> None:
-        self.path, self.base, self.errors = path, path.parent, []
+    def __init__(self, path: Path, base: Path | None = None) -> None:
+        self.path, self.base, self.errors = path, base or path.parent, []
 
     def err(self, pos: str, key: str, msg: str) -> None:
         self.errors.append(f"{pos or self.path}: {key}: {msg}")
@@ -248,10 +249,10 @@ def _time(c: _Checker, t: Any, pos: str, hosts: list[str]) -> TimeSettings:
 TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey")
 
 
-def load_scenario(path: str | Path) -> Scenario:
+def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
     """Read and check a scenario; YamlError lists every problem."""
     path = Path(path).resolve()
-    c = _Checker(path)
+    c = _Checker(path, base)
     doc = load(path)
     doc = c.mapping(doc, f"{path}:1:1", "", TOP_KEYS, required=("vehicles",))
     hosts_raw = doc.get("hosts", [DEFAULT_HOST])
