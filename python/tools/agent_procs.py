@@ -128,4 +128,5 @@ class Supervised:
         if self.child is not None and self.state == RUNNING:
             self.exit_code = self.child.stop(timeout) or 0
             self.log(f"{self.name}: pid {self.child.pid} stopped, status {self.exit_code}")
-        self.state = STOPPED
+        if self.state in (RUNNING, BACKOFF):    # a failed or exited process keeps saying so
+            self.state = STOPPED
