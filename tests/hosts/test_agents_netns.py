@@ -18,7 +18,9 @@ import pytest
 
 from agents import AGENTCTL, AgentProc, alive, vehicle, wait_until, write_scenario
 from conftest import ROOT
-from netns import Hosts, unavailable
+
+sys.path.insert(0, str(ROOT / "tests" / "multihil"))   # the namespace hosts of the multi-HIL tests
+from netns import Hosts, unavailable  # noqa: E402
 
 URL = "udpm://239.255.76.67:7667?ttl=1"
 
