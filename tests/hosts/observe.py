@@ -7,6 +7,7 @@ position (time, north, east).
 """
 
 import json
+import signal
 import sys
 import time
 
@@ -40,9 +41,14 @@ lc.subscribe("SIM.CLOCK", on_clock)
 for v in vehicles:
     lc.subscribe(f"{v}.CHASM.NAVIGATOR", on_nav)
     lc.subscribe(f"{v}.TRUTH", on_truth)
+signal.signal(signal.SIGINT, lambda *_: sys.exit(0))
+signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
 next_print = 0.0
 while True:
-    lc.handle_timeout(50)
+    try:
+        lc.handle_timeout(50)
+    except OSError:         # interrupted by a signal: the handler exits
+        continue
     if time.monotonic() >= next_print:
         next_print = time.monotonic() + 0.3
         print(json.dumps(view), flush=True)

@@ -119,8 +119,12 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
                 wait_until(lambda: "server for term 1" in sim.out.read_text(), 60, "AUV1-sim serves", step=0.2)
 
         def view() -> dict:
-            lines = observer.read_text().splitlines()
-            return json.loads(lines[-1]) if lines else {"servers": [], "clock_s": 0, "nav": {}, "truth": {}}
+            for line in reversed(observer.read_text().splitlines()[-2:]):
+                try:
+                    return json.loads(line)
+                except ValueError:      # the line being written
+                    continue
+            return {"servers": [], "clock_s": 0, "nav": {}, "truth": {}}
 
         def flying(v, vids) -> bool:
             return all(v["nav"].get(x, [0])[0] == 1 for x in vids)
