@@ -113,6 +113,7 @@ def six(out: Path, seconds: float) -> None:
             if s.vehicle == "AUV1":
                 wait_for(lambda: "server for term 1" in worlds["A"].output("AUV1.sim"), 30)
         time.sleep(seconds)
+        before_stop = {s.vehicle: worlds[site].output(f"{s.vehicle}.sim") for site, s in specs}
     finally:
         for w in worlds.values():
             w.stop()
@@ -120,10 +121,10 @@ def six(out: Path, seconds: float) -> None:
     joined, servers, mism = [], [], []
     for site, s in specs:
         text = worlds[site].output(f"{s.vehicle}.sim")
-        servers += re.findall(r"(\S+): server for term (\d+)", text)
+        servers += re.findall(r"(\S+): server for term (\d+)", before_stop[s.vehicle])
         joined += [f"{s.vehicle}@{site}"] if "client of AUV1-sim" in text or s.vehicle == "AUV1" else []
         mism += [int(m) for m in re.findall(r"(\d+) mismatches", text)]
-    print(f"six vehicles, 3 per site, scaled x2, {seconds:.0f} s: servers {servers}; in AUV1-sim's world: "
+    print(f"six vehicles, 3 per site, scaled x2, {seconds:.0f} s: servers before the stop {servers}; in AUV1-sim's world: "
           f"{len(joined)}/6; environment sample mismatches {sum(mism)}")
     for name in ("A", "B"):
         lines = (out / f"bridge.{name}.out").read_text().strip().splitlines()
