@@ -273,11 +273,23 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
+    ap.add_argument("--agents", action="store_true", help="run every host's part through its host agent "
+                    "(docs/hosts.md); this process keeps the clock and the watch")
+    ap.add_argument("--restart", action="append", default=[], metavar="RULE", help="with --agents: restart rule")
+    ap.add_argument("--deadman", type=float, default=10.0, help="with --agents: the agents' dead-man time [s]")
+    ap.add_argument("--agent-timeout", type=float, default=30.0, help="with --agents: seconds to wait for answers")
     args = ap.parse_args(argv)
     try:
         sc = load_scenario(args.scenario)
         if args.host is not None and args.host not in sc.hosts:
             raise YamlError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
+        if args.agents:
+            from tools.agentctl import parse_rule
+            if args.host is not None:
+                raise ValueError("--agents runs every host's part: leave out --host")
+            [parse_rule(r) for r in args.restart]
+            if not 0 <= args.deadman < float("inf"):
+                raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
         url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
     except YamlError as exc:
         print("\n".join(exc.errors), file=sys.stderr)
@@ -301,6 +313,11 @@ def main(argv: list[str] | None = None) -> int:
     flag = {"stop": False}
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, lambda *_: flag.update(stop=True))
+    if args.agents:
+        from tools.agent_launch import run_on_agents
+        args.stop_flag = flag
+        result, run = run_on_agents(sc, args, url, sim_configs, navs)
+        return _finish(run, args, result)
     run = Launcher(sc, args, url, sim_configs, navs)
     print(f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
           f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
@@ -313,6 +330,10 @@ def main(argv: list[str] | None = None) -> int:
         run.stop_reason = str(exc)
     finally:
         run.stop_all(result)
+    return _finish(run, args, result)
+
+
+def _finish(run: Launcher, args, result: str) -> int:
     s = run.summary(result)
     (args.out / (f"outcome.{args.host}.json" if args.host else "outcome.json")).write_text(json.dumps(s, indent=2))
     print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {run.stop_reason}" if run.stop_reason else ""))

@@ -179,3 +179,51 @@ def test_a_dead_agent_leaves_no_process_and_a_new_one_starts_clean(tmp_path, lcm
         assert status.returncode == 0 and '"run": ""' in status.stdout
     finally:
         again.stop()
+
+
+def test_launch_through_agents_runs_the_mission_on_its_clock(tmp_path, lcm_url, child_env, two_agents):
+    import json
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+    agents, tables = two_agents
+    sc = write_scenario(tmp_path / "via.yaml", [vehicle("AUV1", "alpha"), vehicle("AUV2", "beta", east=40, cycles=80)],
+                        ["alpha", "beta"])
+    run = subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+                          "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
+                         env=child_env, capture_output=True, text=True, timeout=180)
+    assert run.returncode == 0, run.stdout + run.stderr
+    out = json.loads((tmp_path / "run" / "outcome.json").read_text())
+    assert out["outcome"] == "done" and {v["outcome"] for v in out["vehicles"].values()} == {"done"}
+    for h in ("alpha", "beta"):           # every part stopped at the end
+        t = wait_until(lambda: (t := tables.latest(h)).status.startswith("stopped") and t, 20, f"{h} stopped")
+        assert t.procs and all(p.state == STOPPED for p in t.procs)
+    assert "alpha: ok: started 4 process(es)" in run.stdout and "beta: ok: stopped 3 process(es)" in run.stdout
+    log = tmp_path / "agents" / "alpha" / "via" / "run.lcmlog"     # recorded by alpha's agent
+    from auvlcm.arrays import load_log
+    arrays = load_log(log, keep_messages="SIM.ANNOTATION")
+    assert len(arrays["AUV2.TRUTH"]) > 50
+    assert any(n.name == "end" for n in arrays.messages["SIM.ANNOTATION"])
+
+
+def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_url, child_env, two_agents):
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+    agents, tables = two_agents
+    sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"])
+    launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+                                 "--deadman", "3", "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress",
+                                 "0"], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        rows = wait_until(lambda: running(tables, "beta", ["AUV1.sim", "AUV1.NAVIGATOR"]), 60, "parts running")
+        time.sleep(4.0)                  # longer than the dead-man time: the keepalives hold the run
+        assert running(tables, "beta", ["AUV1.sim", "AUV1.NAVIGATOR"]), tables.latest("beta").status
+    finally:
+        launcher.kill()
+        launcher.wait()
+    t = wait_until(lambda: (t := tables.latest("beta")).status.startswith("stopped") and t, 30, "dead-man")
+    assert "dead-man" in t.status and not any(alive(r.pid) for r in rows.values())
+    assert agents[1].p.poll() is None    # the agent itself lives on
