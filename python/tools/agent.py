@@ -43,6 +43,7 @@ C = agent_command_t
 TABLE_PERIOD_S = 1.0
 MAX_MESSAGE = 8000          # characters of errors in one ack
 MAX_CHANNEL = 63            # an LCM limit
+RESULT_WORDS = ("ok", "refused", "failed")
 
 
 def channels(host: str) -> tuple[str, str, str]:
@@ -84,8 +85,8 @@ class Agent:
             self.acks[key] = ack
             if len(self.acks) > 1000:
                 self.acks.pop(next(iter(self.acks)))
-            self.log(f"{['START', 'STOP', 'KEEPALIVE'][cmd.command] if 0 <= cmd.command <= 2 else cmd.command} "
-                     f"from {cmd.sender} seq {cmd.seq}: {['ok', 'refused', 'failed'][result]}: {message}")
+            kind = {C.CMD_START: "START", C.CMD_STOP: "STOP"}.get(cmd.command, f"command {cmd.command}")
+            self.log(f"{kind} from {cmd.sender} seq {cmd.seq}: {RESULT_WORDS[result]}: {message}")
         self.lc.publish(self.ack_ch, ack.encode())
         self.publish_table()
 
@@ -182,7 +183,10 @@ class Agent:
         self.log(f"listening on {self.cmd_ch} over {self.url}")
         self.publish_table()
         while not stop():
-            self.lc.handle_timeout(100)
+            try:
+                self.lc.handle_timeout(100)
+            except OSError:         # a signal interrupted the wait: the loop checks stop()
+                pass
             self.tick()
         self.stop_run("agent ending")
         self.publish_table()

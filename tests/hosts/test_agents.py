@@ -144,6 +144,8 @@ def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_a
     run = ctl(lcm_url, child_env, "stop", "--host", "nobody", "--timeout", "2")
     assert run.returncode == 4 and "nobody: no answer" in run.stderr
     assert ctl(lcm_url, child_env, "stop", "--host", "alpha").returncode == 0
+    # SIGTERM ends an agent cleanly
+    assert agents[0].stop() == 0 and "Traceback" not in agents[0].text(), agents[0].text()
 
 
 def test_deadman_stops_a_run_whose_launcher_went_silent(tmp_path, lcm_url, child_env, two_agents):
