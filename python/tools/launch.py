@@ -297,6 +297,11 @@ def main(argv: list[str] | None = None) -> int:
                     help="what records the log (default: the scenario's logging.recorder, auv-recorder)")
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
+    ap.add_argument("--agents", action="store_true", help="run every host's part through its host agent "
+                    "(docs/hosts.md); this process keeps the clock and the watch")
+    ap.add_argument("--restart", action="append", default=[], metavar="RULE", help="with --agents: restart rule")
+    ap.add_argument("--deadman", type=float, default=10.0, help="with --agents: the agents' dead-man time [s]")
+    ap.add_argument("--agent-timeout", type=float, default=30.0, help="with --agents: seconds to wait for answers")
     args = ap.parse_args(argv)
     if args.warp is not None and not 0 < args.warp < float("inf"):
         ap.error(f"--warp must be a number > 0, got {args.warp}")
@@ -306,6 +311,13 @@ def main(argv: list[str] | None = None) -> int:
         sc = load_scenario(args.scenario)
         if args.host is not None and args.host not in sc.hosts:
             raise ConfigError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
+        if args.agents:
+            from tools.agentctl import parse_rule
+            if args.host is not None:
+                raise ValueError("--agents runs every host's part: leave out --host")
+            [parse_rule(r) for r in args.restart]
+            if not 0 <= args.deadman < float("inf"):
+                raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
         url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
     except ConfigError as exc:
         print("\n".join(exc.errors), file=sys.stderr)
@@ -331,6 +343,11 @@ def main(argv: list[str] | None = None) -> int:
     flag = {"stop": False}
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, lambda *_: flag.update(stop=True))
+    if args.agents:
+        from tools.agent_launch import run_on_agents
+        args.stop_flag = flag
+        result, run = run_on_agents(sc, args, url, sim_configs, navs)
+        return _finish(run, args, result)
     run = Launcher(sc, args, url, sim_configs, navs)
     print(f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
           f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
@@ -343,6 +360,10 @@ def main(argv: list[str] | None = None) -> int:
         run.stop_reason = str(exc)
     finally:
         run.stop_all(result)
+    return _finish(run, args, result)
+
+
+def _finish(run: Launcher, args, result: str) -> int:
     s = run.summary(result)
     counts = run.recorder_counts() if run.own_log and run.recorder == "auv-recorder" else None
     if counts is not None:

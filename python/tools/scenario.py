@@ -2,7 +2,9 @@
 
 Read and checked by confcheck like every configuration: every error is
 reported at once as `file:line:col: key: message`, unknown keys with a
-did-you-mean hint. Relative paths are relative to the scenario file.
+did-you-mean hint. Relative paths are relative to the scenario file (or to
+`base`: a scenario a host agent received over LCM resolves them from its
+sender's folder).
 """
 
 from __future__ import annotations
@@ -117,8 +119,8 @@ def position(path: Path, node: Any, parts: list[str]) -> tuple[str, bool]:
 class _Scenario:
     """The checks of one scenario file (errors collect in self.c)."""
 
-    def __init__(self, c: Checker) -> None:
-        self.c, self.base = c, c.path.parent
+    def __init__(self, c: Checker, base: Path | None = None) -> None:
+        self.c, self.base = c, base or c.path.parent
 
     def get(self, items: dict, k: str, key: str, default: Any, rule: Rule = Rule()) -> Any:
         if k not in items:
@@ -278,11 +280,11 @@ class _Scenario:
 TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey")
 
 
-def load_scenario(path: str | Path) -> Scenario:
+def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
     """Read and check a scenario; ConfigError lists every problem."""
     path = Path(path).resolve()
     c = Checker.from_file(path)
-    s = _Scenario(c)
+    s = _Scenario(c, base)
     top = c.mapping(c.root, "")
     if not isinstance(c.root, yaml.MappingNode):
         c.raise_errors()
