@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import signal
 import sys
 import time
@@ -117,7 +118,7 @@ class Agent:
         if not (cmd.deadman_s >= 0 and cmd.deadman_s < float("inf")):
             errors.append(f"deadman_s {cmd.deadman_s} is not a finite number >= 0")
         run = cmd.run or Path(cmd.scenario_path or "scenario").stem
-        if not HOST_NAME.fullmatch(run):
+        if not re.fullmatch(HOST_NAME, run):
             errors.append(f"run name '{run}' must be letters, digits, _.- (it names a folder)")
         if errors:
             return agent_ack_t.RESULT_REJECTED, "\n".join(errors)
@@ -201,7 +202,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
                     "allows ttl=1 URLs")
     args = ap.parse_args(argv)
-    if not HOST_NAME.fullmatch(args.host) or len(channels(args.host)[2]) > MAX_CHANNEL:
+    if not re.fullmatch(HOST_NAME, args.host) or len(channels(args.host)[2]) > MAX_CHANNEL:
         print(f"agent: --host '{args.host}': letters, digits, _.- and at most "
               f"{MAX_CHANNEL - len('AGENT..PROCS')} characters", file=sys.stderr)
         return 2
