@@ -17,7 +17,7 @@ import yaml
 from conftest import BUILD, ROOT
 
 SCENARIOS = ROOT / "tests" / "tools" / "scenarios"
-SIM = ROOT / "missions" / "sim" / "remus100_alt_damping.yaml"
+SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 BIND = ROOT / "missions" / "bindings" / "direct_actuators.bind"
 CONSOLE = [sys.executable, str(ROOT / "python" / "tools" / "console.py")]
 LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]

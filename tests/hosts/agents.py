@@ -16,7 +16,7 @@ from conftest import ROOT
 AGENT = [sys.executable, str(ROOT / "python" / "tools" / "agent.py")]
 AGENTCTL = [sys.executable, str(ROOT / "python" / "tools" / "agentctl.py")]
 SCEN = ROOT / "tests" / "tools" / "scenarios"
-SIM = str(ROOT / "missions" / "sim" / "remus100_alt_damping.yaml")
+SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 

@@ -14,7 +14,7 @@ from confcheck import ConfigError
 from conftest import ROOT
 
 HERE = ROOT / "tests" / "tools" / "scenarios"
-SIM = ROOT / "missions" / "sim" / "remus100_alt_damping.yaml"
+SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
 NAVCONF = [sys.executable, str(ROOT / "python" / "tools" / "navconf.py")]
 BOMB = (b"a: &a [x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a]\n"

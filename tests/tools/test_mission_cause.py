@@ -16,7 +16,7 @@ from conftest import ROOT
 HERE = Path(__file__).resolve().parent / "scenarios"
 LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
 REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
-SIM = str(ROOT / "missions" / "sim" / "remus100_alt_damping.yaml")
+SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 
