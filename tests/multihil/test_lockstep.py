@@ -41,9 +41,13 @@ def run_world(out, url, child_env, build) -> dict[str, list[bytes]]:
     try:
         for s in specs:
             world.managers(s)
+        # The first simulator to start serves the world (docs/multihil.md): the
+        # second starts once it does, so a loaded machine cannot swap the roles
+        # (the server's id is in SIM.CLOCK, and two runs must match byte for byte).
         for s in specs:
             world.simulator(s, "stepped", {"lockstep_participants": 4, "step_s": 0.1,
                                            "lockstep_timeout_s": 60})
+            assert lst.pump(60.0, until=lambda: lst.servers() == {"AUV1-sim"}), world.output(f"{s.vehicle}.sim")
         done = lst.pump(120.0, until=lambda: any(
             m.utime > CUT_US + 1_000_000 for _, m in lst.msgs["SIM.CLOCK"][-3:]))
         assert done, {n: world.output(n)[-500:] for n in world.procs}
