@@ -35,6 +35,7 @@ class World:
         self.rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, lambda c, m: self.status.append(m), 1000)
         self.rx.subscribe("AUV1.MISSION_ACK", mission_ack_t, lambda c, m: self.acks.append(m), 100)
         self.utime = 0
+        self.term = 0          # the election term of the clock it sends
 
     def tick(self, dt_s: float, depth: float | None = None) -> None:
         """Advance the global clock (and send a NAV fix valid at that time)."""
@@ -45,6 +46,7 @@ class World:
             self.lc.publish("AUV1.NAV", nav.encode())
         clock = sim_clock_t()
         clock.utime, clock.server_id, clock.step_us = self.utime, "test", int(dt_s * 1e6)
+        clock.term = self.term
         self.lc.publish("SIM.CLOCK", clock.encode())
         n = len(self.status)
         due = not self.status or self.utime - self.status[-1].utime >= 100_000
