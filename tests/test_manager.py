@@ -37,6 +37,7 @@ class World:
         self.rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, lambda c, m: self.status.append(m), 1000)
         self.rx.subscribe("AUV1.MISSION_ACK", mission_ack_t, lambda c, m: self.acks.append(m), 100)
         self.utime = 0
+        self.term = 0          # the election term of the clock it sends
 
     def tick(self, dt_s: float, depth: float | None = None) -> None:
         """Advance the global clock (and send a NAV fix valid at that time).
@@ -51,6 +52,7 @@ class World:
             self.lc.publish("AUV1.NAV", nav.encode())
         clock = sim_clock_t()
         clock.utime, clock.server_id, clock.step_us = self.utime, "test", int(dt_s * 1e6)
+        clock.term = self.term
         self.lc.publish("SIM.CLOCK", clock.encode())
         if not self.status:     # not subscribed yet, or still starting: nothing is due
             pump(self.lc, lambda: bool(self.status), timeout=0.05)

@@ -116,6 +116,35 @@ def test_extreme_clock_values_neither_stop_nor_throw_time_nor_speed_up_cycles(lc
     assert rc == 0, mgr.stderr.read()
 
 
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_a_clock_from_an_older_term_is_refused(lcm_url, child_env, sanitized):
+    """A server frozen past the failover timeout resumes and sends one clock of
+    its old term before it hears the new one (issue 12 item 4): whatever time
+    it says, even ahead, the manager's clock must not follow it."""
+    w = World(lcm_url)
+    mgr = start_manager(lcm_url, child_env, sanitized)
+    try:
+        w.wait_for_first_cycle()
+        w.term = 3                                 # a new server took over
+        for _ in range(4):
+            w.tick(0.05, depth=0.0)
+        old = sim_clock_t()
+        old.utime, old.server_id, old.step_us, old.term = w.utime + 30_000_000, "frozen", 50_000, 2
+        w.lc.publish("SIM.CLOCK", old.encode())    # 30 s ahead: within the jump limit
+        n0 = len(w.status)
+        for _ in range(20):
+            w.tick(0.05, depth=0.0)
+        s = w.status[-1]
+        assert s.clock_old_term == 1 and s.clock_jumps == 0 and s.clock_backwards == 0, fields(s)
+        assert all(m.utime <= w.utime for m in w.status[n0:]), [m.utime for m in w.status[n0:]]
+        assert s.utime >= w.utime - 100_000
+    finally:
+        rc = stop(mgr, signal.SIGTERM)
+    err = mgr.stderr.read()
+    assert rc == 0, err
+    assert "clock from an older term" in err
+
+
 def test_a_command_for_another_vehicle_is_refused_not_executed(lcm_url, child_env):
     w = World(lcm_url)
     mgr = start_manager(lcm_url, child_env)

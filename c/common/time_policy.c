@@ -7,7 +7,8 @@
 const char *tp_reason_name(tp_reason r)
 {
     static const char *n[TP_N_REASONS] = {"ok", "invalid time", "from the future", "out of order",
-                                           "clock backwards", "unconfirmed clock jump"};
+                                           "clock backwards", "unconfirmed clock jump",
+                                           "clock from an older term"};
     return (unsigned)r < TP_N_REASONS ? n[r] : "?";
 }
 

@@ -31,6 +31,7 @@ typedef enum {
     TP_OUT_OF_ORDER,    /* older than the newest accepted value of the same input */
     TP_BACKWARDS,       /* a clock value older than the current one */
     TP_JUMP,            /* a clock jump larger than the maximum, not (yet) confirmed */
+    TP_OLD_TERM,        /* a clock from an election term older than one already accepted */
     TP_N_REASONS
 } tp_reason;
 
@@ -58,6 +59,29 @@ typedef struct {
 void tp_clock_init(tp_clock *c, int64_t max_jump_us);
 /* Offer a clock value: TP_OK when accepted (c->now updated), or why not. */
 tp_reason tp_clock_offer(tp_clock *c, int64_t utime);
+
+/* The election term a world's clock comes from (sim_clock_t.term). A server
+ * frozen past the failover timeout can resume and send a clock of its old
+ * term after another node has taken over: a clock from a term older than one
+ * already accepted is refused, whatever its time. Check the term first, offer
+ * the clock value, and accept the term only when the value was accepted. */
+typedef struct {
+    int32_t term;
+    int have;
+} tp_term;
+
+static inline tp_reason tp_term_check(const tp_term *t, int32_t term)
+{
+    return t->have && term < t->term ? TP_OLD_TERM : TP_OK;
+}
+
+static inline void tp_term_accept(tp_term *t, int32_t term)
+{
+    if (!t->have || term > t->term) {
+        t->term = term;
+        t->have = 1;
+    }
+}
 
 /* One input (a channel, a sensor): the newest accepted stamp. */
 typedef struct {

@@ -53,6 +53,7 @@ typedef struct {
     int have_time;
     tp_clock clock;             /* SIM.CLOCK or the system clock, under the time rule */
     tp_counts clock_drops;      /* clock readings refused, per reason */
+    tp_term clock_term;         /* newest election term of an accepted SIM.CLOCK */
     uint64_t commands_refused;
     size_t max_plan_bytes;      /* MGR_MAX_PLAN_BYTES, or less if the receive buffer cannot hold it */
     int started;

@@ -82,8 +82,14 @@ static void on_clock(const char *channel, const void *msg, int64_t recv_utime, v
     const auv_sim_clock_t *c = msg;
     /* Global time never runs backwards for the plan and never leaps on one
      * message, whatever the network does (time rule, docs/channels.md). */
+    tp_reason old = tp_term_check(&mg->clock_term, c->term);
+    if (old != TP_OK) {     /* a server that resumed after a freeze, in its old term */
+        tp_count(&mg->clock_drops, old, mg->opt.name, "SIM.CLOCK", c->utime);
+        return;
+    }
     if (!clock_reading(mg, c->utime, "SIM.CLOCK"))
         return;
+    tp_term_accept(&mg->clock_term, c->term);
     mgr_lockstep_on_clock(&mg->lockstep, mg->lcm, c);
 }
 
@@ -114,6 +120,7 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
         .clock_invalid = (int64_t)ck->n[TP_INVALID],
         .clock_backwards = (int64_t)ck->n[TP_BACKWARDS],
         .clock_jumps = (int64_t)ck->n[TP_JUMP],
+        .clock_old_term = (int64_t)ck->n[TP_OLD_TERM],
         .commands_refused = (int64_t)mg->commands_refused,
     };
     return d;

@@ -52,6 +52,7 @@ void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine
     msg.clock_invalid = clamp32(drops->clock_invalid);
     msg.clock_backwards = clamp32(drops->clock_backwards);
     msg.clock_jumps = clamp32(drops->clock_jumps);
+    msg.clock_old_term = clamp32(drops->clock_old_term);
     msg.commands_refused = clamp32(drops->commands_refused);
     msg.cycle_cost_us = cycle_cost_us;
     auv_chasm_status_t_publish(lcm, s->channel, &msg);

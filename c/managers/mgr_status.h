@@ -17,7 +17,7 @@ typedef struct {
 typedef struct {
     int64_t decode_errors;
     int64_t dropped_invalid_time, dropped_future, dropped_out_of_order, dropped_out_of_range;
-    int64_t clock_invalid, clock_backwards, clock_jumps;
+    int64_t clock_invalid, clock_backwards, clock_jumps, clock_old_term;
     int64_t commands_refused;
 } mgr_drop_counts;
 

@@ -207,6 +207,7 @@ void fill_filter_status(const NavFilter &f, const NavStatus &st, char *vehicle, 
         out.clock_invalid = clamp32(clock_drops->n[TP_INVALID]);
         out.clock_backwards = clamp32(clock_drops->n[TP_BACKWARDS]);
         out.clock_jumps = clamp32(clock_drops->n[TP_JUMP]);
+        out.clock_old_term = clamp32(clock_drops->n[TP_OLD_TERM]);
     }
 }
 

@@ -115,8 +115,15 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
 {
     auto *n = static_cast<NavNode *>(user);
     const auto *c = static_cast<const auv_sim_clock_t *>(msg);
-    // Global time never runs backwards here and never leaps on one message.
-    n->clock_reading(c->utime, "SIM.CLOCK");
+    // Global time never runs backwards here and never leaps on one message;
+    // a clock of an older election term (a server resumed after a freeze) is refused.
+    const tp_reason old = tp_term_check(&n->clock_term_, c->term);
+    if (old != TP_OK) {
+        tp_count(&n->clock_drops_, old, "auv-nav", "SIM.CLOCK", c->utime);
+        return;
+    }
+    if (n->clock_reading(c->utime, "SIM.CLOCK"))
+        tp_term_accept(&n->clock_term_, c->term);
 }
 
 bool NavNode::clock_reading(int64_t t, const char *source)
@@ -222,10 +229,11 @@ void NavNode::print_summary() const
                  (unsigned long long)convert_.implausible, (unsigned long long)fs.out_of_order,
                  (unsigned long long)fs.numeric_resets);
     std::fprintf(stderr, "auv-nav: time rule drops: invalid time %llu, from the future %llu, out of order %llu; "
-                         "clock refused: invalid %llu, backwards %llu, unconfirmed jumps %llu\n",
+                         "clock refused: invalid %llu, backwards %llu, unconfirmed jumps %llu, older term %llu\n",
                  (unsigned long long)time_drops_.n[TP_INVALID], (unsigned long long)time_drops_.n[TP_FUTURE],
                  (unsigned long long)time_drops_.n[TP_OUT_OF_ORDER], (unsigned long long)clock_drops_.n[TP_INVALID],
-                 (unsigned long long)clock_drops_.n[TP_BACKWARDS], (unsigned long long)clock_drops_.n[TP_JUMP]);
+                 (unsigned long long)clock_drops_.n[TP_BACKWARDS], (unsigned long long)clock_drops_.n[TP_JUMP],
+                 (unsigned long long)clock_drops_.n[TP_OLD_TERM]);
     for (int k = 0; k < kSensors; k++) {
         const SensorStats &s = fs.sensor[k];
         std::fprintf(stderr, "auv-nav:   %-5s %llu measurements, %llu accepted, %llu rejected, %llu resets, %llu too old\n",

@@ -84,6 +84,7 @@ private:
     bool have_time_ = false;
     // The time rule (docs/channels.md, "Time and timestamps").
     tp_clock clock_;
+    tp_term clock_term_ = {};
     tp_input order_[kSensors] = {};
     tp_input alt_order_ = {};
     tp_counts time_drops_ = {};
