@@ -68,7 +68,7 @@ class World:
         for k, v in fields.items():
             setattr(msg, k, v)
         self.lc.publish("AUV1.MISSION_CMD", msg.encode())
-        assert pump(self.lc, lambda: any(a.seq == seq for a in self.acks), timeout=5), f"no ack {seq}"
+        assert pump(self.lc, lambda: any(a.seq == seq for a in self.acks), timeout=30), f"no ack {seq}"
         return next(a for a in self.acks if a.seq == seq)
 
     def wait_for_status(self, running: bool = True, timeout_s: float = 60.0) -> None:
@@ -186,7 +186,7 @@ def test_plugin_uploads_are_checked_before_anything_is_written(lcm_url, child_en
             up.utime, up.vehicle, up.seq, up.plugin_name, up.plugin_version = w.utime, "AUV1", seq, "fake", "1"
             up.sha256_hex, up.n_bytes, up.data = digest, len(payload), payload
             w.lc.publish("AUV1.PLUGIN_UPLOAD", up.encode())
-            assert pump(w.lc, lambda: any(a.seq == seq for a in w.acks), timeout=5)
+            assert pump(w.lc, lambda: any(a.seq == seq for a in w.acks), timeout=30)
             return next(a for a in w.acks if a.seq == seq)
 
         ack = upload(10, data, "0" * 64)
