@@ -36,7 +36,8 @@ FILES = {
     "control char": (b"name: a\x07b\n", "not allowed in YAML", "1:8"),
     "python tag": (b"name: !!python/object:os.system x\n", "tag", "1:7"),
     "not a mapping": (b"- a\n- b\n", "expected a mapping", "1:1"),
-    "huge": (b"#" + b"x" * (1 << 20) + b"\n", "larger than 1048576 (the limit)", ""),
+    "huge": (b"#" + b"x" * (256 << 10) + b"\n", "larger than 262144 (the limit)", ""),
+    "many values": (b"a: [" + b"1, " * 10001 + b"1]\n", "more than 10000 values (the limit)", "1:"),
 }
 
 
