@@ -96,6 +96,11 @@ def parse_text(path: Path, text: str, limits: Limits = LIMITS) -> yaml.Node:
     """The root node of YAML text (ConfigError on any refusal above)."""
     if len(text.encode("utf-8", "surrogatepass")) > limits.max_bytes:
         raise ConfigError([f"{path}: larger than {limits.max_bytes} bytes (the limit)"])
+    try:        # a command-line value holds undecodable bytes as lone surrogates
+        text.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise ConfigError([f"{path}:{_text_position(text, exc.start)}: not UTF-8 "
+                           f"(byte 0x{ord(text[exc.start]) & 0xff:02x})"]) from None
     try:
         _scan(path, text, limits)
         root = yaml.compose(text, Loader=LOADER)
