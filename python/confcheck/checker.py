@@ -44,6 +44,7 @@ class Checker:
         self.path = path
         self.root = root
         self.errors: list[str] = []
+        self._constructor = yaml.constructor.SafeConstructor()    # scalars only (no tags reach it)
 
     @classmethod
     def from_file(cls, path: str | Path, limits: Limits = LIMITS) -> "Checker":
@@ -75,7 +76,7 @@ class Checker:
     def scalar(self, node) -> Any:
         """bool, int, float, str or None of a scalar node (a date stays its text)."""
         try:
-            value = yaml.SafeLoader("").construct_object(node, deep=True)
+            value = self._constructor.construct_object(node, deep=True)
         except yaml.YAMLError:
             return node.value
         return value if isinstance(value, (bool, int, float, str, type(None))) else node.value

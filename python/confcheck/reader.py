@@ -3,7 +3,9 @@
 Every configuration, scenario and override goes through here, so every file
 gets the same refusals, each `file:line:col: message`:
 
-- larger than Limits.max_bytes: refused before it is parsed;
+- larger than Limits.max_bytes: refused before it is parsed; more than
+  Limits.max_nodes values, mappings and lists: refused while parsing (the
+  checkers' time grows with the node count; libyaml parses when PyYAML has it);
 - not UTF-8: the position of the first bad byte;
 - characters YAML does not allow (control characters): their position;
 - nested deeper than Limits.max_depth: refused while parsing (PyYAML's
@@ -27,13 +29,16 @@ import yaml
 
 from confcheck.errors import ConfigError
 
+# libyaml's parser when PyYAML was built with it: 10-50x faster than the pure-Python one
+LOADER = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 CORE_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool", "null", "seq", "map")}
 
 
 @dataclass(frozen=True)
 class Limits:
-    max_bytes: int = 1 << 20      # 1 MiB: the largest shipped file is under 4 KB
+    max_bytes: int = 256 << 10    # 256 KiB: the largest shipped file is under 4 KB
     max_depth: int = 32           # nesting of mappings and lists; shipped files use 5
+    max_nodes: int = 10000        # values, mappings and lists; shipped files hold under 400
 
 
 LIMITS = Limits()
@@ -61,8 +66,8 @@ def _text_position(text: str, index: int) -> str:
 def _scan(path: Path, text: str, limits: Limits) -> None:
     """Walk the event stream (PyYAML's parser keeps its own stack, no recursion)
     and refuse depth, aliases, anchors and tags before anything is composed."""
-    depth = 0
-    for ev in yaml.parse(text, Loader=yaml.SafeLoader):
+    depth, nodes = 0, 0
+    for ev in yaml.parse(text, Loader=LOADER):
         if isinstance(ev, yaml.AliasEvent):
             raise ConfigError([f"{_where(path, ev.start_mark)}: YAML alias '*{ev.anchor}' refused: "
                                "aliases are not supported (write the value out)"])
@@ -73,6 +78,11 @@ def _scan(path: Path, text: str, limits: Limits) -> None:
         if tag is not None and tag != "!" and tag not in CORE_TAGS:
             raise ConfigError([f"{_where(path, ev.start_mark)}: YAML tag '{tag}' refused: "
                                "only plain values, mappings and lists"])
+        if isinstance(ev, (yaml.ScalarEvent, yaml.MappingStartEvent, yaml.SequenceStartEvent)):
+            nodes += 1
+            if nodes > limits.max_nodes:
+                raise ConfigError([f"{_where(path, ev.start_mark)}: more than {limits.max_nodes} values "
+                                   "(the limit)"])
         if isinstance(ev, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
             depth += 1
             if depth > limits.max_depth:
@@ -86,15 +96,24 @@ def parse_text(path: Path, text: str, limits: Limits = LIMITS) -> yaml.Node:
     """The root node of YAML text (ConfigError on any refusal above)."""
     if len(text.encode("utf-8", "surrogatepass")) > limits.max_bytes:
         raise ConfigError([f"{path}: larger than {limits.max_bytes} bytes (the limit)"])
+    try:        # a command-line value holds undecodable bytes as lone surrogates
+        text.encode("utf-8")
+    except UnicodeEncodeError as exc:
+        raise ConfigError([f"{path}:{_text_position(text, exc.start)}: not UTF-8 "
+                           f"(byte 0x{ord(text[exc.start]) & 0xff:02x})"]) from None
     try:
         _scan(path, text, limits)
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
+        root = yaml.compose(text, Loader=LOADER)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         raise ConfigError([f"{_where(path, mark)}: YAML syntax: {exc.problem or exc}"]) from None
     except yaml.reader.ReaderError as exc:
-        raise ConfigError([f"{path}:{_text_position(text, exc.position)}: character "
-                           f"{exc.character!r} is not allowed in YAML (a control character?)"]) from None
+        # PyYAML's reader counts characters, libyaml's bytes
+        at = exc.position if LOADER is yaml.SafeLoader else len(
+            text.encode("utf-8", "surrogatepass")[:exc.position].decode("utf-8", "replace"))
+        bad = text[at] if 0 <= at < len(text) else exc.character
+        raise ConfigError([f"{path}:{_text_position(text, at)}: character {bad!r} is not allowed "
+                           "in YAML (a control character?)"]) from None
     except yaml.YAMLError as exc:
         raise ConfigError([f"{path}: YAML: {exc}"]) from None
     if root is None:

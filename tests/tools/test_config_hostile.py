@@ -36,7 +36,8 @@ FILES = {
     "control char": (b"name: a\x07b\n", "not allowed in YAML", "1:8"),
     "python tag": (b"name: !!python/object:os.system x\n", "tag", "1:7"),
     "not a mapping": (b"- a\n- b\n", "expected a mapping", "1:1"),
-    "huge": (b"#" + b"x" * (1 << 20) + b"\n", "larger than 1048576 (the limit)", ""),
+    "huge": (b"#" + b"x" * (256 << 10) + b"\n", "larger than 262144 (the limit)", ""),
+    "many values": (b"a: [" + b"1, " * 10001 + b"1]\n", "more than 10000 values (the limit)", "1:"),
 }
 
 
@@ -119,7 +120,9 @@ def test_command_line_overrides_are_checked(tmp_path):
     text = DEFAULT_CONFIG.read_text()
     for item, want in (("sensors.gps.noise=*a", "--set sensors.gps.noise:1:1: YAML alias '*a' refused"),
                        ("vehicle.id=\"A\\u0007\"", "must not hold control character U+0007"),
-                       ("a..b=1", "--set 'a..b=1': expected key.path=value")):
+                       ("a..b=1", "--set 'a..b=1': expected key.path=value"),
+                       (b"initial.north_m=2\xff".decode("utf-8", "surrogateescape"),
+                        "--set initial.north_m:1:2: not UTF-8 (byte 0xff)")):
         with pytest.raises(ValueError) as exc:
             apply_overrides(text, [item])
         assert want in str(exc.value), (item, str(exc.value))
