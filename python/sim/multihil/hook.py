@@ -6,7 +6,8 @@ set up here so that hil.py carries only those lines:
 - free-running (realtime, scaled): the simulator's steps are paced by the
   node's global clock, and it joins the world at the global time;
 - lockstep (simulation.clock: stepped): the simulator follows SIM.CLOCK as in
-  stepped mode (each clock the node accepted: one time rule, one count), registers as participant `<VEHICLE>.sim`, reports each step
+  stepped mode (each clock the node accepted: one time rule, one count),
+  registers as participant `<VEHICLE>.sim`, reports each step
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
   whichever arrives first: the clock or the command).
