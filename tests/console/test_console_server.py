@@ -53,10 +53,10 @@ class Page:
                 return now
         raise AssertionError(f"{what}: not seen in {timeout} s; last {json.dumps(now)[:600]}")
 
-    def post(self, path: str, body) -> tuple[int, dict]:
+    def post(self, path: str, body, headers: dict | None = None) -> tuple[int, dict]:
         conn = http.client.HTTPConnection(self.host, self.port, timeout=10)
         conn.request("POST", path, body=body if isinstance(body, bytes) else json.dumps(body).encode(),
-                     headers={"Content-Type": "application/json"})
+                     headers=headers or {"Content-Type": "application/json"})
         r = conn.getresponse()
         return r.status, json.loads(r.read())
 
@@ -145,6 +145,13 @@ def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "load"})[0] == 400   # no plan text
         assert page.post("/api/command", b"not json")[0] == 400
         assert page.post("/api/seek", {"t": 3})[0] == 409
+        # another web site open in the operator's browser cannot command the vehicles
+        pause = {"vehicle": "AUV1", "command": "abort"}
+        assert page.post("/api/command", pause, {"Content-Type": "text/plain"})[0] == 415
+        assert page.post("/api/command", pause, {"Content-Type": "application/json",
+                                                 "Origin": "http://evil.example"})[0] == 403
+        assert page.post("/api/command", pause, {"Content-Type": "application/json",
+                                                 "Origin": f"http://{page.host}:{page.port}"})[0] == 200
         assert page.get("/static/../server.py")[0] == 404
         assert page.get("/nothing")[0] == 404
         status, html = page.get("/")

@@ -17,6 +17,7 @@ from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from pathlib import Path
 from typing import Any
+from urllib.parse import urlparse
 
 from tools.live.model import Model
 from tools.mission_commands import COMMANDS
@@ -101,7 +102,23 @@ class Handler(BaseHTTPRequestHandler):
         else:
             self._json(HTTPStatus.NOT_FOUND, {"error": f"no {path}"})
 
+    def _same_origin_json(self) -> bool:
+        """Commands only from the console's own page: another site open in the
+        operator's browser could otherwise post to it. A JSON content type makes
+        a cross-site request need a CORS preflight, which is never answered,
+        and an Origin header, when sent, must name this server."""
+        if self.headers.get("Content-Type", "").split(";")[0].strip() != "application/json":
+            self._json(HTTPStatus.UNSUPPORTED_MEDIA_TYPE, {"error": "send application/json"})
+            return False
+        origin = self.headers.get("Origin")
+        if origin is not None and urlparse(origin).netloc != self.headers.get("Host", ""):
+            self._json(HTTPStatus.FORBIDDEN, {"error": f"not from this console's page ({origin})"})
+            return False
+        return True
+
     def do_POST(self) -> None:  # noqa: N802
+        if not self._same_origin_json():
+            return
         body = self._body()
         if body is None:
             return

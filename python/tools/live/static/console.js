@@ -58,7 +58,7 @@ function setupMode() {
     if (inflight) return;
     inflight = true;
     const t0 = want; want = null;
-    fetch('/api/seek', { method: 'POST', body: JSON.stringify({ t: t0 }) })
+    fetch('/api/seek', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ t: t0 }) })
       .finally(() => { inflight = false; if (want !== null) seek(want); });
   };
   sl.addEventListener('input', () => seek(Number(sl.value)));
@@ -176,7 +176,7 @@ $('confirm-no').addEventListener('click', () => { $('confirm').hidden = true; co
 function sendCommand(vid, manager, cmd, plan_name = '', plan_text = '') {
   S.pending[vid] = { cmd, seq: null, error: null };
   showAck(vid);
-  fetch('/api/command', { method: 'POST', body: JSON.stringify({ vehicle: vid, manager, command: cmd, plan_name, plan_text }) })
+  fetch('/api/command', { method: 'POST', headers: { 'Content-Type': 'application/json' }, body: JSON.stringify({ vehicle: vid, manager, command: cmd, plan_name, plan_text }) })
     .then(r => r.json().then(j => { if (!r.ok) throw new Error(j.error || r.statusText); return j; }))
     .then(j => { S.pending[vid].seq = j.seq; showAck(vid); })
     .catch(e => { S.pending[vid].error = String(e.message || e); showAck(vid); });
