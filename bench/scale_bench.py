@@ -8,7 +8,10 @@ real-time factor, vehicle-seconds per wall second, outcome, and the CPU
 seconds of each kind of process (read from /proc while the run goes: the
 simulator, managers, filter, recorder, clock = the launcher); with
 --profile, where one simulator's time goes (py-spy, sampled for the run).
-Prints figures, asserts nothing (a run that did not finish says so).
+Also the CPU milliseconds per vehicle-second of sim time, per kind: the
+figure that does not depend on what else the machine runs, and the ceiling it
+puts on throughput (cores x 1000 / ms). Prints figures, asserts nothing (a
+run that did not finish says so).
 
 Run: tests/isolated_net.sh .venv/bin/python bench/scale_bench.py [--vehicles 1,2,4] [--all] [--profile]
 """
@@ -198,6 +201,15 @@ def main() -> int:
         print(f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
               + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS) + f"   {r['outcome']}"
               + (f" ({r['reason']})" if r["outcome"] != "done" else ""), flush=True)
+        if r["sim_time_s"] > 0:
+            # Load-independent: CPU per vehicle-second of sim, and the throughput that
+            # would give if these cores did nothing else (a ceiling, not a measurement).
+            per = {k: 1000 * r["cpu_s"][k] / (n * r["sim_time_s"]) for k in KINDS}
+            total = sum(per.values())
+            r["cpu_ms_per_vehicle_s"] = per
+            print(f"    cpu per vehicle-second: {total:.1f} ms ("
+                  + ", ".join(f"{k} {v:.1f}" for k, v in per.items() if v) + f"); on {os.cpu_count()} idle "
+                  f"cores at most {os.cpu_count() * 1000 / total:.0f} vehicle-s/s", flush=True)
         for line in r.get("profile", []):
             print(line)
     (args.out / "scale.json").write_text(json.dumps(results, indent=1))

@@ -15,6 +15,7 @@
  * the kernel dropped at its socket), printed at exit, in --stats and each
  * health period on SIM.HEALTH. Output: an ordinary LCM event log.
  * Exit: 0 ok, 1 could not record (or a write failed), 2 usage. */
+#include <errno.h>
 #include <lcm/eventlog.h>
 #include <lcm/lcm.h>
 #include <signal.h>
@@ -111,11 +112,19 @@ static void run(recorder *r)
     rec_health h;
     rec_health_init(&h);
     double next_health = mono_s() + r->opt.health_period_s;
+    int failures = 0;
     while (!g_stop) {
         if (lcm_handle_timeout(r->lcm, 50) < 0) {
-            fprintf(stderr, "auv-recorder: lcm_handle failed\n");
-            break;
+            /* a signal interrupts the wait (EINTR): the loop condition decides */
+            if (g_stop || errno == EINTR)
+                continue;
+            if (++failures == 100) {
+                fprintf(stderr, "auv-recorder: lcm_handle keeps failing: %s\n", strerror(errno));
+                break;
+            }
+            continue;
         }
+        failures = 0;
         if (r->opt.lockstep) {
             /* time waits while the writer is far behind */
             while (!g_stop && r->ls.lockstep && !rec_queue_wait_below(&r->q, r->q.capacity / 2, 100))

@@ -6,7 +6,11 @@
 Writes into --out: AUV<k>.chasm (each vehicle's navigator plan), <name>.yaml
 (a scenario for python/tools/launch.py) and survey.json (the geometry: area,
 shares, lines, operating area, for plots and reports). Polygon vertices are
-"north,east" metres in the world's local frame. Exit status 2 on bad input.
+"north,east" metres in the world's local frame. The plugins' limits are read
+from the plugins (`chasm describe`, tools/plugin_limits.py): the operating area
+is bounded to what the `outside_area` test accepts, and every plan is checked
+with `chasm check` before the scenario is written (docs/tools.md, "Limits").
+Exit status 2 on bad input or a plan the plugins refuse.
 """
 
 from __future__ import annotations

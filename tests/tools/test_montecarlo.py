@@ -82,3 +82,26 @@ def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
         assert len(times) > 100 and all(b > a for a, b in zip(times, times[1:])), seed
         worlds.append(targets)
     assert worlds[0] is not None and worlds[0] != worlds[1]     # the seed changed the target field
+
+
+def test_local_jobs_report_runs_that_fail(tmp_path, child_env):
+    """The local path (--jobs): a scenario whose plan does not load makes every
+    run fail at once; the study still ends, names each failed seed, exits 1."""
+    bad = tmp_path / "bad.chasm"
+    bad.write_text("mission \"x\"\nstart nowhere\n")
+    sc = tmp_path / "s.yaml"
+    sc.write_text(f"""name: bad
+time: {{mode: fast, limit: 10}}
+vehicles:
+  - id: AUV1
+    sim: {{config: {ROOT / 'missions/sim/remus100.yaml'}}}
+    managers:
+      - {{name: NAVIGATOR, plan: {bad}, bind: {ROOT / 'missions/bindings/navigator.bind'}}}
+""")
+    run = subprocess.run(MC + [sc, "--seeds", "2", "--jobs", "2", "--out", tmp_path / "o", "--build", BUILD,
+                               "--no-plot"], capture_output=True, text=True, timeout=300, env=child_env)
+    assert run.returncode == 1, run.stdout + run.stderr
+    s = json.loads((tmp_path / "o" / "summary.json").read_text())
+    assert s["runs"] == 2 and s["reported"] == 0 and set(s["failed_runs"]) == {"1", "2"}
+    assert all("launcher exit 2" in e for e in s["failed_runs"].values()), s
+    assert "seed 1: no report" in run.stdout and "Traceback" not in run.stderr

@@ -99,7 +99,7 @@ def test_a_stalled_recorder_loses_nothing_where_lcm_logger_does(tmp_path, lcm_ur
         out, err = rec.communicate()
         stop(logger)
     assert rc_rec == 0, out + err
-    assert "runtime error" not in err and "Sanitizer" not in err, err
+    assert err == "", err             # no sanitizer report, no complaint about the signal that stopped it
     expected = list(range(PER_VEHICLE))
     got = truths(events(rec_log))
     assert got == {f"AUV{v}.TRUTH": expected for v in range(1, VEHICLES + 1)}   # every one, in order
