@@ -229,3 +229,28 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
     t = wait_until(lambda: (t := tables.latest("beta")).status.startswith("stopped") and t, 30, "dead-man")
     assert "dead-man" in t.status and not any(alive(r.pid) for r in rows.values())
     assert agents[1].p.poll() is None    # the agent itself lives on
+
+
+def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, child_env, two_agents):
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+    agents, tables = two_agents
+    sc = write_scenario(tmp_path / "lost.yaml", [vehicle("AUV1", "alpha", cycles=100000),
+                                                 vehicle("AUV2", "beta", cycles=100000)], ["alpha", "beta"])
+    launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+                                 "--agent-timeout", "5", "--out", str(tmp_path / "run"), "--url", lcm_url,
+                                 "--progress", "0"],
+                                env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        wait_until(lambda: running(tables, "beta", ["AUV2.sim", "AUV2.NAVIGATOR"]), 60, "parts running")
+        agents[1].stop(signal.SIGKILL)
+        out = launcher.communicate(timeout=60)[0]
+    finally:
+        if launcher.poll() is None:
+            launcher.kill()
+    assert launcher.returncode == 5, out
+    assert "the agent of host beta is silent for 5 s" in out
+    assert "alpha: ok: stopped" in out and "beta: no answer" in out      # the rest stopped all the same
+    assert all(p.state == STOPPED for p in tables.latest("alpha").procs)
