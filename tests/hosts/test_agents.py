@@ -134,6 +134,31 @@ def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_a
         assert agentctl.main(["start", str(good), "--url", lcm_url, *bad_args]) == 2
         err = capsys.readouterr().err
         assert err.startswith("agentctl: ") and "Traceback" not in err, err
+    # garbage on the command channel is counted and dropped; bad restart rules in a raw command are refused
+    class Raw:
+        def __init__(self, data):
+            self.data = data
+
+        def encode(self):
+            return self.data
+    tables.publish("AGENT.alpha.CMD", Raw(b"\x00" * 7))
+    tables.publish("AGENT.alpha.CMD", Raw(command("alpha", agent_command_t.CMD_STOP, 99).encode()[:-3]))
+    from auv import agent_restart_t
+    rules = []
+    for pattern, policy, limit, backoff in (("", 1, 1, 1.0), ("*", 7, 1, 1.0), ("*", 1, -1, 1.0),
+                                            ("*", 1, 1, float("nan")), ("*", 1, 1, -2.0)):
+        r = agent_restart_t()
+        r.process, r.policy, r.max_restarts, r.backoff_s, r.backoff_max_s = pattern, policy, limit, backoff, 1.0
+        rules.append(r)
+    raw = command("alpha", agent_command_t.CMD_START, 5, path=str(good), text=good.read_text(), deadman_s=-1.0)
+    raw.restart, raw.n_restart = rules, len(rules)
+    tables.publish("AGENT.alpha.CMD", raw)
+    a = ack_for(tables, "alpha", 5)
+    assert a.result == agent_ack_t.RESULT_REJECTED and len(a.message.splitlines()) == 6, a.message
+    for needle in ("empty process pattern", "policy 7", "max_restarts -1", "backoff_s nan", "backoff_s -2.0",
+                   "deadman_s -1.0"):
+        assert needle in a.message, needle
+    assert "lcm_rx: AGENT.alpha.CMD: dropped" in agents[0].text()
     # a second START while running is refused; a resent START is answered, not run twice
     start = command("alpha", agent_command_t.CMD_START, 4, path=str(good), text=good.read_text())
     tables.publish("AGENT.alpha.CMD", start)
