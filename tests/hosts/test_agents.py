@@ -14,6 +14,8 @@ import pytest
 from agents import AgentProc, Tables, alive, ctl, vehicle, wait_until, write_scenario
 from auv import agent_ack_t, agent_command_t, agent_process_t as P
 
+# a mission that outlasts the test: only the test ends it (fast time would reach a time limit)
+ENDLESS = {"mode": "realtime", "limit": 3600, "wall_limit": 600}
 RUNNING, BACKOFF, FAILED, STOPPED = P.STATE_RUNNING, P.STATE_BACKOFF, P.STATE_FAILED, P.STATE_STOPPED
 
 
@@ -239,7 +241,8 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
 
     from conftest import ROOT
     agents, tables = two_agents
-    sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"])
+    sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"],
+                        time=ENDLESS)
     launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
                                  "--deadman", "3", "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress",
                                  "0"], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -262,7 +265,8 @@ def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, 
     from conftest import ROOT
     agents, tables = two_agents
     sc = write_scenario(tmp_path / "lost.yaml", [vehicle("AUV1", "alpha", cycles=100000),
-                                                 vehicle("AUV2", "beta", cycles=100000)], ["alpha", "beta"])
+                                                 vehicle("AUV2", "beta", cycles=100000)], ["alpha", "beta"],
+                        time=ENDLESS)
     launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
                                  "--agent-timeout", "5", "--out", str(tmp_path / "run"), "--url", lcm_url,
                                  "--progress", "0"],

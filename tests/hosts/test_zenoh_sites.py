@@ -56,6 +56,7 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
     side = World(tmp_path / "net", SITE_URL, build_dir, env)       # the router and the bridges
     try:
         side._start("router", [*BRIDGE, "router", "--listen", router_ep], hosts.prefix(3))
+        wait_until(lambda: "router on" in side.output("router"), 60, "the router listens", step=0.1)
         for i, site in ((1, "shipA"), (2, "labB")):
             side._start(f"bridge.{site}", [*BRIDGE, "--site", site, "--realm", "test", "--url", SITE_URL,
                                            "--connect", router_ep, "--mode", "client", "--deny", r".*\.TRUTH",
