@@ -117,13 +117,11 @@ class Agent:
                                                                r.backoff_s, r.backoff_max_s)]
         if not (cmd.deadman_s >= 0 and cmd.deadman_s < float("inf")):
             errors.append(f"deadman_s {cmd.deadman_s} is not a finite number >= 0")
-        run = cmd.run or Path(cmd.scenario_path or "scenario").stem
-        if not re.fullmatch(HOST_NAME, run):
-            errors.append(f"run name '{run}' must be letters, digits, _.- (it names a folder)")
         if errors:
             return agent_ack_t.RESULT_REJECTED, "\n".join(errors)
+        folder = re.sub(r"[^A-Za-z0-9_.-]+", "_", cmd.run or Path(cmd.scenario_path or "scenario").stem)
         try:
-            sc, specs = host_part(cmd.scenario_text, cmd.scenario_path, self.host, self.out / run,
+            sc, specs = host_part(cmd.scenario_text, cmd.scenario_path, self.host, self.out / (folder[:63] or "run"),
                                   self.url, self.build, self.netns)
         except PartError as exc:
             return agent_ack_t.RESULT_REJECTED, "\n".join(exc.errors)

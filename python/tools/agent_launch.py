@@ -3,8 +3,9 @@
 this process keeps the global clock (time.source: launcher) and the mission
 watch, exactly as launch.py does, sends a keepalive every second (the
 agents' dead-man time, --deadman), and at the end stops every part. A
-process that fails on any host (its agent's table says so) ends the run as
-a death does in launch.py (exit 5).
+process that fails on any host (its agent's table says so), an agent silent
+for 5 s, or an agent that no longer runs the run (restarted) ends the run as
+a death does in launch.py (exit 5): the launcher outlives its agents.
 """
 
 from __future__ import annotations
@@ -20,6 +21,9 @@ from tools.agent import channels
 from tools.agentctl import Control, parse_rule, report
 
 
+AGENT_SILENT_S = 5.0        # no process table for this long: the agent (and its part) is gone
+
+
 class Keepalive(threading.Thread):
     """Keepalives out, process tables in, on an LCM object of its own."""
 
@@ -28,11 +32,15 @@ class Keepalive(threading.Thread):
         self.lc, self.ctl, self.hosts, self.run_name = lcm.LCM(url), ctl, hosts, run
         self.failed = ""
         self.done = False
+        self.heard = {h: time.monotonic() for h in hosts}
         for h in hosts:
             self.lc.subscribe(channels(h)[2], self.on_table)
 
     def on_table(self, _c: str, data: bytes) -> None:
         t = agent_table_t.decode(data)
+        self.heard[t.host] = time.monotonic()
+        if t.run != self.run_name and not self.failed:    # a new agent: the part it ran is gone
+            self.failed = f"the agent of host {t.host} no longer runs '{self.run_name}' ({t.status or 'idle'})"
         bad = [p for p in t.procs if p.state == agent_process_t.STATE_FAILED]
         if t.run == self.run_name and bad and not self.failed:
             self.failed = f"{bad[0].name} on host {t.host} failed (exit status {bad[0].exit_code})"
@@ -42,6 +50,9 @@ class Keepalive(threading.Thread):
         while not self.done:
             if time.monotonic() >= next_alive:
                 next_alive = time.monotonic() + 1.0
+                silent = [h for h, t in self.heard.items() if time.monotonic() - t > AGENT_SILENT_S]
+                if silent and not self.failed:
+                    self.failed = f"the agent of host {silent[0]} is silent for {AGENT_SILENT_S:g} s (dead?)"
                 for h in self.hosts:
                     self.lc.publish(channels(h)[0], self.ctl.command(h, C.CMD_KEEPALIVE, run=self.run_name).encode())
             self.lc.handle_timeout(100)

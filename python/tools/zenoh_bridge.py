@@ -4,6 +4,7 @@ their edge (a ship and a lab, cloud runs). docs/zenoh.md.
     zenoh_bridge.py --site SITE [--realm REALM] [--url LCM_URL]
                     [--listen EP]... [--connect EP]... [--mode peer|client]
                     [--allow REGEX]... [--deny REGEX]... [--stats-period S]
+                    [--connect-timeout S]
     zenoh_bridge.py router --listen EP...        (a Zenoh router, nothing else)
 
 Every LCM message of the site whose channel matches an --allow regex (whole
@@ -63,6 +64,23 @@ def zenoh_config(mode: str, listen: list[str], connect: list[str]):
     return c
 
 
+def open_session(config, timeout_s: float):
+    """zenoh.open, retried while the endpoints it must connect to are not up
+    yet (a router that starts after the bridge), for up to timeout_s."""
+    import zenoh
+    deadline, said = time.monotonic() + timeout_s, False
+    while True:
+        try:
+            return zenoh.open(config)
+        except Exception as exc:    # zenoh.ZError: no endpoint answered
+            if time.monotonic() >= deadline:
+                raise
+            if not said:
+                print(f"zenoh_bridge: waiting for the Zenoh endpoints ({exc})", flush=True)
+                said = True
+            time.sleep(0.5)
+
+
 class Rules:
     def __init__(self, allow: list[str], deny: list[str]) -> None:
         self.allow = [re.compile(r) for r in allow or [".*"]]
@@ -82,7 +100,7 @@ class Bridge:
         self.inbox: queue.Queue = queue.Queue(INBOX_CAPACITY)
         self.lc = lcm.LCM(args.url)
         self.lc.subscribe(".*", self.on_lcm).set_queue_capacity(10_000)
-        self.z = zenoh.open(zenoh_config(args.mode, args.listen, args.connect))
+        self.z = open_session(zenoh_config(args.mode, args.listen, args.connect), args.connect_timeout)
         self.sub = self.z.declare_subscriber(f"{self.realm}/*/lcm/**", self.on_zenoh)
         self.publishers: dict[str, object] = {}
 
@@ -166,6 +184,8 @@ def main(argv: list[str] | None = None) -> int:
         ap.add_argument("--stats-period", type=float, default=5.0)
         ap.add_argument("--netns", action="store_true", help="allow ttl=1 (a network namespace made for this run)")
         ap.add_argument("--connect", action="append", default=[], help="Zenoh endpoint, e.g. tcp/10.0.0.1:7447")
+        ap.add_argument("--connect-timeout", type=float, default=30.0,
+                        help="seconds to keep trying the --connect endpoints at start (default 30)")
     ap.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
     args = ap.parse_args(argv[1:] if router else argv)
     flag = {"stop": False}

@@ -14,6 +14,8 @@ import pytest
 from agents import AgentProc, Tables, alive, ctl, vehicle, wait_until, write_scenario
 from auv import agent_ack_t, agent_command_t, agent_process_t as P
 
+# a mission that outlasts the test: only the test ends it (fast time would reach a time limit)
+ENDLESS = {"mode": "realtime", "limit": 3600, "wall_limit": 600}
 RUNNING, BACKOFF, FAILED, STOPPED = P.STATE_RUNNING, P.STATE_BACKOFF, P.STATE_FAILED, P.STATE_STOPPED
 
 
@@ -101,7 +103,8 @@ def ack_for(tables, host, seq):
                                     and a.sender == "test"), None), 30, f"ack {seq} from {host}")
 
 
-def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_agents):
+def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_agents, capsys):
+    from tools import agentctl
     agents, tables = two_agents
     good = write_scenario(tmp_path / "one.yaml", [vehicle("AUV1", "alpha")], ["alpha", "beta"])
     # a command for beta on alpha's channel
@@ -128,9 +131,36 @@ def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_a
     assert a.result == agent_ack_t.RESULT_REJECTED and "'beta' is not one of: gamma" in a.message
     assert tables.latest("alpha").procs == [] and tables.latest("beta").procs == []
     # a bad restart rule and a bad dead-man time never leave agentctl
-    for bad_args in (["--restart", "*=sometimes"], ["--restart", "*=on-failure:x"], ["--deadman", "-1"]):
-        run = ctl(lcm_url, child_env, "start", str(good), *bad_args)
-        assert run.returncode == 2 and "agentctl:" in run.stderr and "Traceback" not in run.stderr
+    for bad_args in (["--restart", "*=sometimes"], ["--restart", "*=on-failure:x"], ["--deadman", "-1"],
+                     ["--restart", "*=on-failure:1:nan"]):
+        assert agentctl.main(["start", str(good), "--url", lcm_url, *bad_args]) == 2
+        err = capsys.readouterr().err
+        assert err.startswith("agentctl: ") and "Traceback" not in err, err
+    # garbage on the command channel is counted and dropped; bad restart rules in a raw command are refused
+    class Raw:
+        def __init__(self, data):
+            self.data = data
+
+        def encode(self):
+            return self.data
+    tables.publish("AGENT.alpha.CMD", Raw(b"\x00" * 7))
+    tables.publish("AGENT.alpha.CMD", Raw(command("alpha", agent_command_t.CMD_STOP, 99).encode()[:-3]))
+    from auv import agent_restart_t
+    rules = []
+    for pattern, policy, limit, backoff in (("", 1, 1, 1.0), ("*", 7, 1, 1.0), ("*", 1, -1, 1.0),
+                                            ("*", 1, 1, float("nan")), ("*", 1, 1, -2.0)):
+        r = agent_restart_t()
+        r.process, r.policy, r.max_restarts, r.backoff_s, r.backoff_max_s = pattern, policy, limit, backoff, 1.0
+        rules.append(r)
+    raw = command("alpha", agent_command_t.CMD_START, 5, path=str(good), text=good.read_text(), deadman_s=-1.0)
+    raw.restart, raw.n_restart = rules, len(rules)
+    tables.publish("AGENT.alpha.CMD", raw)
+    a = ack_for(tables, "alpha", 5)
+    assert a.result == agent_ack_t.RESULT_REJECTED and len(a.message.splitlines()) == 6, a.message
+    for needle in ("empty process pattern", "policy 7", "max_restarts -1", "backoff_s nan", "backoff_s -2.0",
+                   "deadman_s -1.0"):
+        assert needle in a.message, needle
+    assert "lcm_rx: AGENT.alpha.CMD: dropped" in agents[0].text()
     # a second START while running is refused; a resent START is answered, not run twice
     start = command("alpha", agent_command_t.CMD_START, 4, path=str(good), text=good.read_text())
     tables.publish("AGENT.alpha.CMD", start)
@@ -155,12 +185,8 @@ def test_deadman_stops_a_run_whose_launcher_went_silent(tmp_path, lcm_url, child
     assert run.returncode == 0, run.stderr
     assert "alpha: ok: started 1 process(es) of 'dm': logger" in run.stdout   # the log host is the first
     rows = wait_until(lambda: running(tables, "beta", ["AUV1.sim", "AUV1.NAVIGATOR"]), 30, "beta running")
-    # keepalives hold it past the dead-man time
-    for seq in range(10, 16):
-        tables.publish("AGENT.beta.CMD", command("beta", agent_command_t.CMD_KEEPALIVE, seq, run="dm"))
-        time.sleep(1.0)
-    assert running(tables, "beta", ["AUV1.sim"]), tables.latest("beta").status
-    # then silence: the run stops by itself
+    # silence (agentctl has ended): the run stops by itself (keepalives that hold a run:
+    # test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman)
     t = wait_until(lambda: (t := tables.latest("beta")).status.startswith("stopped") and t, 30, "dead-man")
     assert "dead-man" in t.status and all(p.state == STOPPED for p in t.procs)
     assert not any(alive(r.pid) for r in rows.values())
@@ -215,7 +241,8 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
 
     from conftest import ROOT
     agents, tables = two_agents
-    sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"])
+    sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"],
+                        time=ENDLESS)
     launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
                                  "--deadman", "3", "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress",
                                  "0"], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
@@ -229,3 +256,29 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
     t = wait_until(lambda: (t := tables.latest("beta")).status.startswith("stopped") and t, 30, "dead-man")
     assert "dead-man" in t.status and not any(alive(r.pid) for r in rows.values())
     assert agents[1].p.poll() is None    # the agent itself lives on
+
+
+def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, child_env, two_agents):
+    import subprocess
+    import sys
+
+    from conftest import ROOT
+    agents, tables = two_agents
+    sc = write_scenario(tmp_path / "lost.yaml", [vehicle("AUV1", "alpha", cycles=100000),
+                                                 vehicle("AUV2", "beta", cycles=100000)], ["alpha", "beta"],
+                        time=ENDLESS)
+    launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+                                 "--agent-timeout", "5", "--out", str(tmp_path / "run"), "--url", lcm_url,
+                                 "--progress", "0"],
+                                env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    try:
+        wait_until(lambda: running(tables, "beta", ["AUV2.sim", "AUV2.NAVIGATOR"]), 60, "parts running")
+        agents[1].stop(signal.SIGKILL)
+        out = launcher.communicate(timeout=60)[0]
+    finally:
+        if launcher.poll() is None:
+            launcher.kill()
+    assert launcher.returncode == 5, out
+    assert "the agent of host beta is silent for 5 s" in out
+    assert "alpha: ok: stopped" in out and "beta: no answer" in out      # the rest stopped all the same
+    assert all(p.state == STOPPED for p in tables.latest("alpha").procs)

@@ -48,7 +48,7 @@ def test_agents_on_two_machines_fly_a_mission_without_a_launcher(hosts, tmp_path
     try:
         def mh(priority):
             return {"simulation": {"clock": "scaled", "warp": 2.0}, "multihil": {"enabled": True, "priority": priority}}
-        v1, v2 = vehicle("AUV1", "alpha", cycles=40), vehicle("AUV2", "beta", east=40, cycles=60)
+        v1, v2 = vehicle("AUV1", "alpha", cycles=30), vehicle("AUV2", "beta", east=40, cycles=40)
         v1["sim"].update(mh(20))
         v2["sim"].update(mh(10))
         sc = write_scenario(tmp_path / "hil.yaml", [v1, v2], ["alpha", "beta"],

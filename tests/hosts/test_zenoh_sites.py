@@ -1,6 +1,7 @@
 """Two sites joined only through Zenoh (docs/zenoh.md): each site a network
 namespace whose LCM (ttl=0) is its own multicast domain, a Zenoh router on a
-third machine, a bridge at each site. A two-vehicle multi-HIL world split
+third machine, a bridge at each site in client mode (the router is the only
+way between them). A two-vehicle multi-HIL world split
 between the sites keeps one environment and one clock: the remote simulator
 is a client of the local one's server and adopts its world; both navigators
 fly on the one global time; nothing loops (no message arrives twice).
@@ -55,9 +56,11 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
     side = World(tmp_path / "net", SITE_URL, build_dir, env)       # the router and the bridges
     try:
         side._start("router", [*BRIDGE, "router", "--listen", router_ep], hosts.prefix(3))
+        wait_until(lambda: "router on" in side.output("router"), 60, "the router listens", step=0.1)
         for i, site in ((1, "shipA"), (2, "labB")):
             side._start(f"bridge.{site}", [*BRIDGE, "--site", site, "--realm", "test", "--url", SITE_URL,
-                                           "--connect", router_ep, "--deny", r".*\.TRUTH", "--stats-period", "1"],
+                                           "--connect", router_ep, "--mode", "client", "--deny", r".*\.TRUTH",
+                                           "--stats-period", "1"],
                         hosts.prefix(i))
         log_b = tmp_path / "siteB.lcmlog"
         world_b.logger(log_b, hosts.prefix(2))

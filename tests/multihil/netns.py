@@ -64,7 +64,15 @@ class Hosts:
         _run("ip", "link", "add", outer, "type", "veth", "peer", "name", inner)
         self.veths.append(outer)
         deadline = time.monotonic() + 5.0
-        while True:     # unshare must have made the namespace before the move
+        # unshare must have made the namespace before the move: moving a link to
+        # a pid still in our namespace "succeeds" and leaves the link here (seen
+        # on a loaded machine: the host then has no such link to rename)
+        ours = os.readlink("/proc/self/ns/net")
+        while os.readlink(f"/proc/{pid}/ns/net") == ours:
+            if time.monotonic() > deadline:
+                raise RuntimeError(f"unshare -n (pid {pid}) made no network namespace within 5 s")
+            time.sleep(0.02)
+        while True:
             try:
                 _run("ip", "link", "set", inner, "netns", pid)
                 break
