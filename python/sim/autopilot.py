@@ -1,10 +1,10 @@
 """A minimal heading / depth / pitch autopilot in the actuators_t sign convention.
 
-Not the project's pilot (that is a CHASM manager): this one exists so the
-simulator can validate itself closed-loop and tests can script a controller.
-Why closed loop at all: Prestero's REMUS 100 coefficients make the bare hull
-open-loop unstable in yaw and in pitch-heave (the Munk moment outweighs the
-fins' damping), just as the real vehicle is always flown by its autopilot.
+Not the project's pilot (that is a CHASM manager, whose control law with the
+plan's gains is sim.pilot_model, used by the validation): a stateless PD that
+tools and tests call at any rate to script a vehicle (tools/survey_pilot.py,
+tests/sim/test_sim_sender.py). It holds heading well; with no integrator it
+leaves the positively buoyant REMUS some way shallow of a depth target.
 Positive rudder turns the bow to starboard; positive stern plane pitches the
 bow down.
 """

@@ -51,7 +51,12 @@ def nav_config_text(cfg: SimConfig) -> str:
                   f"attitude_noise_rad {ahrs.attitude_noise:.6g}"]
     depth = _sensor(cfg, "depth")
     if depth is not None and depth.enabled:
-        lines.append(f"depth_noise_m {max(math.hypot(depth.noise, depth.bias), 1e-4):.6g}")
+        # The gauge also reads the swell's dynamic pressure head (docs/simulator.md,
+        # "Waves"): its standard deviation is Hs/4 at the surface, less deeper down
+        # (e^-kz); the surface figure is the conservative choice for a filter that
+        # does not know the vehicle's depth in advance.
+        swell = env.wave_height_m / 4.0 if env.wave_period_s > 0.0 else 0.0
+        lines.append(f"depth_noise_m {max(math.hypot(depth.noise, depth.bias, swell), 1e-4):.6g}")
     dvl = _sensor(cfg, "dvl")
     if dvl is not None and dvl.enabled:
         lines.append(f"dvl_noise_mps {max(math.hypot(dvl.noise, dvl.bias), 1e-4):.6g}")

