@@ -19,6 +19,11 @@
  * other traffic. (Measured on loopback: with 425984 bytes granted, a 400 KB
  * message arrives and a 1 MB one does not.) */
 #define FRAGMENT_BYTES (64 * 1024)
+/* What the manager asks for: more than the maximum needs, because a plan over
+ * the maximum must still arrive whole to be refused with its size (an
+ * over-size plan the buffer cannot hold is lost without an answer; a 400 KB
+ * plan into a 393 KB buffer was, on a loaded machine and under ASan). */
+#define RECV_BUFFER_GOAL_BYTES (2 * 1024 * 1024)
 
 static size_t granted_rcvbuf(size_t want)
 {
@@ -39,7 +44,7 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
     if (!base || !*base)
         base = DEFAULT_URL;
     const size_t need = (size_t)MGR_MAX_PLAN_BYTES + 2 * FRAGMENT_BYTES; /* capacity for the maximum */
-    const size_t want = need / 2 + 1;                                            /* what to ask: the kernel doubles */
+    const size_t want = RECV_BUFFER_GOAL_BYTES / 2;                              /* what to ask: the kernel doubles */
     char url[1024];
     int is_udpm = !strncmp(base, "udpm://", 7);
     if (is_udpm && !strstr(base, "recv_buf_size="))

@@ -72,6 +72,9 @@ def main(argv: list[str] | None = None) -> int:
         url = check_local(args.url or default_url())
         if args.cmd == "load":
             plan_text = args.plan.read_text()
+            if len(plan_text.encode()) > mc.MAX_PLAN_BYTES:
+                raise ValueError(f"{args.plan}: {len(plan_text.encode())} bytes, the managers take plans "
+                                 f"of at most {mc.MAX_PLAN_BYTES} bytes")
         if args.cmd == "upload" and not args.plugin.is_file():
             raise OSError(f"{args.plugin}: no such file")
     except (OSError, ValueError, UnicodeDecodeError) as exc:

@@ -20,6 +20,9 @@ COMMANDS = {"start": mission_command_t.CMD_START, "pause": mission_command_t.CMD
             "resume": mission_command_t.CMD_RESUME, "abort": mission_command_t.CMD_ABORT,
             "load": mission_command_t.CMD_LOAD_PLAN, "stop": mission_command_t.CMD_STOP}
 RESULTS = ("ok", "rejected", "failed")
+# The managers' documented maximum (MGR_MAX_PLAN_BYTES, docs/channels.md): a larger
+# plan may be lost in the kernel without an answer, so it is refused before sending.
+MAX_PLAN_BYTES = 256 * 1024
 
 
 def first_seq() -> int:
@@ -37,6 +40,8 @@ def command(vehicle: str, manager: str, name: str, seq: int, utime: int = 0,
         raise ValueError(f"unknown command {name!r}: one of {', '.join(COMMANDS)}")
     if name == "load" and not plan_text:
         raise ValueError("load needs a plan's text")
+    if len(plan_text.encode()) > MAX_PLAN_BYTES:
+        raise ValueError(f"the plan is {len(plan_text.encode())} bytes, the managers take at most {MAX_PLAN_BYTES}")
     msg = mission_command_t()
     msg.utime = utime or int(time.time() * 1e6)
     msg.vehicle, msg.manager, msg.seq, msg.command = vehicle, manager, seq, COMMANDS[name]

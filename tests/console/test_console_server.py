@@ -10,6 +10,7 @@ import time
 from urllib.parse import urlparse
 
 import pytest
+import yaml
 
 from console_fixtures import Console
 from conftest import ROOT
@@ -87,14 +88,18 @@ def test_series_give_each_reader_what_is_new_and_reset_a_reader_left_behind():
 def test_layers_come_from_the_scenario_with_its_survey_and_seabed():
     model = Model()
     world = WorldBuilder(model)
-    world.load_scenario(ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml")
+    scenario = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
+    world.load_scenario(scenario)
     w = model.world
     assert len(w["survey_area"]) == 5 and len(w["operating_area"]) > 10
     assert set(w["lines"]) == {"AUV1", "AUV2", "AUV3"} and all(len(v) >= 3 for v in w["lines"].values())
     assert [t["id"] for t in w["transponders"]] == [1, 2, 3]
     sb = w["seabed"]
     n, e = sb["north0"] + 0.5 * sb["dn"], sb["east0"] + 0.5 * sb["de"]
-    assert sb["depth"][0][0] == pytest.approx(25 + 0.02 * n + 0.01 * e, abs=0.01)   # slope:depth=25,dn=0.02,de=0.01
+    spec = yaml.safe_load(scenario.read_text())["world"]["bathymetry"]       # slope:depth=D,dn=A,de=B
+    assert spec.startswith("slope:")
+    k = {key: float(v) for key, v in (kv.split("=") for kv in spec[len("slope:"):].split(","))}
+    assert sb["depth"][0][0] == pytest.approx(k["depth"] + k["dn"] * n + k["de"] * e, abs=0.01)
 
 
 def test_a_bad_scenario_is_a_clear_error(tmp_path, child_env):

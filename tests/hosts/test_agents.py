@@ -119,7 +119,7 @@ def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_a
                                               text=bad.read_text()))
     a = ack_for(tables, "alpha", 2)
     assert a.result == agent_ack_t.RESULT_REJECTED
-    assert f"{bad}:2:7: sede: unknown key; did you mean 'seed'?" in a.message   # the sender's path
+    assert f"{bad}:2:1: sede: unknown key; did you mean 'seed'?" in a.message   # the sender's path
     assert "unknown host 'gamma'" in a.message
     # a host the scenario does not have
     three = write_scenario(tmp_path / "three.yaml", [vehicle("AUV1", "gamma")], ["gamma"])

@@ -12,6 +12,7 @@ from collections import defaultdict
 from pathlib import Path
 
 import lcm
+import pytest
 
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
@@ -145,3 +146,15 @@ class Recorder(_Background):
         sub = self.lc.subscribe(".*", lambda ch, data: self.events.append((ch, data)))
         sub.set_queue_capacity(1_000_000)
         self._thread.start()
+
+
+@pytest.fixture
+def procs():
+    """Processes a test starts (Proc), killed at its end; a stopped one (SIGSTOP,
+    a frozen server) is continued first so that it can die. Tests import it."""
+    started: list[Proc] = []
+    yield started
+    for p in started:
+        if p.p.poll() is None:
+            os.killpg(p.p.pid, signal.SIGCONT)
+        p.kill()

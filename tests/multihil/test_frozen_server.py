@@ -13,19 +13,12 @@ import signal
 
 import pytest
 
+from mh_util import procs  # noqa: F401 (a fixture)
 from mh_util import Listener, Proc, node_cmd
 
 FREEZES = 4
 
 
-@pytest.fixture
-def procs():
-    started: list[Proc] = []
-    yield started
-    for p in started:
-        if p.p.poll() is None:
-            os.killpg(p.p.pid, signal.SIGCONT)
-        p.kill()
 
 
 @pytest.mark.parametrize("mode", [("--mode", "scaled", "--warp", "2")])

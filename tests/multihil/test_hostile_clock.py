@@ -14,19 +14,13 @@ from __future__ import annotations
 import re
 
 import lcm
-import pytest
 
 from auv import process_health_t, sim_clock_t
 from lcm_proc import pump
+from mh_util import procs  # noqa: F401 (a fixture)
 from mh_util import Listener, Proc, node_cmd, sim_cmd, vehicle_config
 
 
-@pytest.fixture
-def procs():
-    started: list[Proc] = []
-    yield started
-    for p in started:
-        p.kill()
 
 
 def clock(utime: int, term: int, server: str = "S-sim") -> bytes:

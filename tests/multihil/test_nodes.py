@@ -16,15 +16,10 @@ import time
 import pytest
 
 from conftest import ROOT
+from mh_util import procs  # noqa: F401 (a fixture)
 from mh_util import Listener, Proc, load_probe, node_cmd, percentile, probe_errors
 
 
-@pytest.fixture
-def procs():
-    started: list[Proc] = []
-    yield started
-    for p in started:
-        p.kill()
 
 
 def start(procs, tmp_path, child_env, node_id, url, priority, *extra) -> Proc:

@@ -156,11 +156,13 @@ def test_depth_hold_in_the_swell(tmp_path, lcm_url, child_env, depth, limit):
 
 def test_ignored_setpoints_are_counted_in_the_pilot_status(tmp_path, lcm_url, child_env):
     """utime 0, then 5 s old, then good: the pilot idles on the first two and
-    says so on AUV1.PILOT_STATUS; speed through the water is echoed."""
+    says so on AUV1.PILOT_STATUS; speed through the water is echoed. The old
+    ones lag the clock by 5 s but are newer than the zero ones: an older stamp
+    than one already taken never reaches the plan (out of order, docs/channels.md)."""
     def script(t: float) -> Setpoint:
-        if t <= 2.0:
+        if t <= 5.5:
             return Setpoint(heading=0.0, depth=5.0, speed=1.5 + t, utime=0)   # each one new
-        if t <= 4.0:
+        if t <= 7.5:
             return Setpoint(heading=0.0, depth=5.0, speed=1.5, utime=round((t - 5.0) * 1e6))
         return Setpoint(heading=0.0, depth=5.0, speed=1.5, speed_reference=1)
 
@@ -168,9 +170,9 @@ def test_ignored_setpoints_are_counted_in_the_pilot_status(tmp_path, lcm_url, ch
         w.run(2.0, script)
         mid = w.pilot_status[-1]
         leaf_mid = w.leaf()
-        w.run(4.0, script)
+        w.run(7.5, script)
         stale = w.pilot_status[-1]
-        w.run(6.0, script)
+        w.run(9.5, script)
     last = w.pilot_status[-1]
     assert leaf_mid == "idle" and mid.state == 0 and mid.ignoring
     assert mid.last_ignored_reason == 1 and mid.setpoints_ignored >= 30       # 40 sent, each different

@@ -103,6 +103,6 @@ def test_report_of_something_not_a_log_is_a_clear_error(tmp_path, child_env):
     junk = tmp_path / "junk.lcmlog"
     junk.write_bytes(b"not an lcm log at all\n" * 10)
     run = _run(REPORT + [junk], child_env)
-    assert run.returncode == 2 and "no vehicle ground truth" in run.stderr and "Traceback" not in run.stderr
+    assert run.returncode == 2 and "not an LCM log" in run.stderr and "Traceback" not in run.stderr
     run = _run(REPORT + [tmp_path / "missing.lcmlog"], child_env)
     assert run.returncode == 2 and "no such log file" in run.stderr
