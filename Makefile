@@ -139,7 +139,7 @@ SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))
 HAVE_JAVAC := $(shell command -v javac >/dev/null 2>&1 && echo yes)
 JAR_TARGET := $(if $(HAVE_JAVAC),$(TYPES_JAR))
 
-.PHONY: all build sanitize test demo spy bench clean distclean setup validate
+.PHONY: all build sanitize test demo spy bench clean distclean setup validate stress
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET)
 sanitize: $(SAN_OUTPUTS)
@@ -156,6 +156,12 @@ test: build sanitize
 # reference, PASS/FAIL, non-zero exit on a failure. No LCM.
 validate: $(GEN_PY_STAMP)
 	cd python && ../$(VPY) -m sim.validate
+
+# The suite STRESS_RUNS times in a row with demos running beside it: a test
+# that waits on wall time instead of on what it waits for fails here.
+STRESS_RUNS ?= 5
+stress: build sanitize
+	tests/stress.sh $(STRESS_RUNS) $(PYTEST_ARGS)
 
 demo: build
 	tests/isolated_net.sh --only-if-needed $(VPY) python/tools/demo.py --out $(BUILD)/demo
