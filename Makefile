@@ -139,7 +139,7 @@ SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))
 HAVE_JAVAC := $(shell command -v javac >/dev/null 2>&1 && echo yes)
 JAR_TARGET := $(if $(HAVE_JAVAC),$(TYPES_JAR))
 
-.PHONY: all build sanitize test demo spy bench clean distclean setup validate stress
+.PHONY: all build sanitize test demo spy bench clean distclean setup validate stress chromium
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET)
 sanitize: $(SAN_OUTPUTS)
@@ -149,7 +149,18 @@ all: build
 # tests/isolated_net.sh): LCM multicast then needs no route on the host and
 # test traffic can never leave the machine or meet another run's.
 PYTEST_ARGS ?=
-test: build sanitize
+# The console's browser tests need Debian's chromium. It is installed here,
+# outside the tests' private network namespace (which has no network), when
+# this is root and it is missing; elsewhere those tests skip and say why.
+chromium:
+	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { echo "installing chromium (apt-get) for the console's browser tests"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1 || \
+	    { apt-get update >/dev/null 2>&1 && \
+	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1; }; }; } || \
+	  echo "note: chromium is not installed (not root, or apt-get failed): the console's browser tests will skip"
+
+test: build sanitize chromium
 	tests/isolated_net.sh $(VPY) -m pytest $(PYTEST_ARGS)
 
 # The simulator's validation report (docs/simulator.md): measured against
@@ -160,7 +171,7 @@ validate: $(GEN_PY_STAMP)
 # The suite STRESS_RUNS times in a row with demos running beside it: a test
 # that waits on wall time instead of on what it waits for fails here.
 STRESS_RUNS ?= 5
-stress: build sanitize
+stress: build sanitize chromium
 	tests/stress.sh $(STRESS_RUNS) $(PYTEST_ARGS)
 
 demo: build
