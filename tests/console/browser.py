@@ -115,8 +115,11 @@ class Browser:
         deadline = time.monotonic() + timeout
         value = None
         while time.monotonic() < deadline:
-            value = self.eval(expression)
-            if value:
+            try:
+                value = self.eval(expression)
+            except CdpError as exc:   # the page is still loading: its elements are not there yet
+                value = exc
+            if value and not isinstance(value, CdpError):
                 return value
             time.sleep(0.2)
         raise AssertionError(f"{what or expression}: still {value!r} after {timeout} s")

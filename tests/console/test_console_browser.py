@@ -38,8 +38,9 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         browser.wait_for("document.querySelectorAll('.vehicle').length === 2", what="two vehicles on the page")
         assert browser.eval("[...document.querySelectorAll('.vehicle')].map(e => e.dataset.id)") == ["AUV1", "AUV2"]
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'running'", what="AUV1 NAVIGATOR running")
-        assert browser.eval(_panel("AUV2", "NAVIGATOR", "path")) == "run"
-        assert browser.eval(_panel("AUV1", "WATCHER", "run")) in ("running", "done")
+        browser.wait_for(f"{_panel('AUV2', 'NAVIGATOR', 'path')} === 'run'", what="AUV2 NAVIGATOR in run")
+        browser.wait_for(f"['running', 'done'].includes({_panel('AUV1', 'WATCHER', 'run')})",
+                         what="AUV1 WATCHER running or done")
         browser.wait_for("S.world && S.world.seabed && S.world.seabed.depth.length === 40"
                          " && S.world.bathymetry_ref.startsWith('slope:')",
                          what="the seabed from the scenario")

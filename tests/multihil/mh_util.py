@@ -32,7 +32,7 @@ class Proc:
     def text(self) -> str:
         return self.out.read_text() if self.out.exists() else ""
 
-    def wait_text(self, needle: str, timeout: float = 20.0) -> str:
+    def wait_text(self, needle: str, timeout: float = 60.0) -> str:
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             t = self.text()

@@ -60,7 +60,7 @@ def test_failover_goes_to_the_highest_priority_and_time_stays_monotonic(procs, t
                                                                         lcm_url):
     lst = Listener(lcm_url)
     a = start(procs, tmp_path, child_env, "A-sim", lcm_url, 30)
-    lst.pump(1.5)
+    a.wait_text("server for term 1")          # first to start serves: then the others
     start(procs, tmp_path, child_env, "B-sim", lcm_url, 10)
     c = start(procs, tmp_path, child_env, "C-sim", lcm_url, 20)
     c.wait_text("joined at global")
@@ -177,6 +177,9 @@ def test_lockstep_failover_resumes_the_step_in_flight(procs, tmp_path, child_env
     lst = Listener(lcm_url)
     lock = ("--mode", "lockstep", "--expect", "3", "--step", "0.1")
     a = start(procs, tmp_path, child_env, "A-sim", lcm_url, 30, *lock)
+    # the first to start serves: the others start once it does, or a loaded
+    # machine lets B win the start and A's death changes nothing
+    assert lst.pump(30.0, until=lambda: lst.servers() == {"A-sim"})
     start(procs, tmp_path, child_env, "B-sim", lcm_url, 20, *lock)
     start(procs, tmp_path, child_env, "C-sim", lcm_url, 10, *lock)
     assert lst.pump(30.0, until=lambda: len(lst.msgs["SIM.CLOCK"]) > 100)
