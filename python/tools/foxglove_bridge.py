@@ -83,10 +83,11 @@ class Bridge:
             self.geo = LocalFrame(msg.origin_latitude_deg, msg.origin_longitude_deg)
         elif name == "log_annotation_t" and msg.kind == 0 and msg.name.endswith("survey.json"):
             try:
-                self.survey = json.loads(msg.text)
-                self.geojson_sent = 0.0
+                survey = json.loads(msg.text)
             except ValueError:
-                pass
+                return
+            if survey != self.survey:       # a new survey goes out at once, a repeat waits its turn
+                self.survey, self.geojson_sent = survey, 0.0
         elif name == "target_field_t":
             self.targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id)
                             for t in msg.targets]

@@ -120,6 +120,8 @@ def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
             if op == 2 and data[0] == 0x01:               # messageData: op, subscription, time, payload
                 sid = struct.unpack("<I", data[1:5])[0]
                 topic = subs[sid]
+                if topic in got:    # checked once: a slow reader on a loaded machine makes
+                    continue        # the server drop frames (the large GeoJSON first)
                 obj = json.loads(data[13:])
                 jsonschema.validate(obj, json.loads(channels[topic]["schema"]))
                 got[topic] = obj
