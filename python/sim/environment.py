@@ -147,18 +147,9 @@ class Environment:
 
     # ---------------------------------------------------------------- waves
     def wave_orbital(self, t: float, north: float, east: float, depth: float) -> tuple[float, float]:
-        """Deep-water orbital velocity: along the wave direction, and down [m/s]."""
-        s = north * self._wave_cos + east * self._wave_sin
-        d = max(depth, 0.0)
-        uh = uv = 0.0
-        exp, cos, sin = math.exp, math.cos, math.sin
-        for aw, nk, k, w, ph in self._orbital:
-            decay = exp(nk * d)
-            if decay < 1e-4:
-                continue
-            th = k * s - w * t + ph
-            uh += aw * decay * cos(th)
-            uv -= aw * decay * sin(th)
+        """Deep-water orbital velocity: along the wave direction, and down [m/s]
+        (the velocity part of wave_kinematics; the world's samples use it)."""
+        uh, uv, _, _ = self.wave_kinematics(t, north, east, depth)
         return uh, uv
 
     def wave_kinematics(self, t: float, north: float, east: float, depth: float
