@@ -24,11 +24,17 @@
 extern "C" {
 #endif
 
-/* Bumped whenever any struct below changes layout; the Loader refuses others. */
-#define CHASM_PLUGIN_ABI 1
+/* Bumped whenever any struct below changes layout; the Loader refuses others.
+ * 2: message variables (CHASM_MESSAGES, next_message, post_message). */
+#define CHASM_PLUGIN_ABI 2
 #define CHASM_PLUGIN_SYMBOL "chasm_plugin"
 
-typedef enum { CHASM_DOUBLE = 0, CHASM_INT = 1, CHASM_BOOL = 2, CHASM_STRING = 3 } chasm_type;
+/* CHASM_MESSAGES: a variable that is a stream of whole messages (LCM-encoded
+ * bytes of its binding's type), not a value: plans declare it
+ * `input contacts : messages` / `output modem_tx : messages`. Every message
+ * that arrives is kept for every reader (nothing is overwritten by the next
+ * one), so a behavior sees each contact, each frame, once. */
+typedef enum { CHASM_DOUBLE = 0, CHASM_INT = 1, CHASM_BOOL = 2, CHASM_STRING = 3, CHASM_MESSAGES = 4 } chasm_type;
 
 /* What a schema entry is: a constant parameter, or a blackboard variable the
  * behavior reads or writes (the one-writer rule covers CHASM_WRITES slots). */
@@ -68,6 +74,18 @@ typedef struct {
     void (*write_bool)(chasm_ctx *, int slot, int v);
     void (*write_string)(chasm_ctx *, int slot, const char *v);
     void (*log)(chasm_ctx *, const char *message);
+    /* Message variables (ABI 2). next_message: for a CHASM_READS slot of type
+     * CHASM_MESSAGES, the oldest message this action has not yet taken (each
+     * action instance has its own place in the stream), or NULL when it has
+     * seen them all; *len is set to its size. The bytes stay valid until the
+     * action's call returns. Messages an action was too slow for (the
+     * variable keeps the newest `capacity`) are counted as missed, never
+     * handed out twice. post_message: for a CHASM_WRITES slot of type
+     * CHASM_MESSAGES, queue the bytes (an encoded message of the bound type)
+     * for publishing after this cycle, in order. Returns 0, or -1 when it is
+     * refused (too large, queue full: counted in the manager's status). */
+    const void *(*next_message)(chasm_ctx *, int slot, size_t *len);
+    int (*post_message)(chasm_ctx *, int slot, const void *data, size_t len);
 } chasm_host_api;
 
 /* Handed to every call. Read-only for the plugin except through the api. */
@@ -94,6 +112,8 @@ static inline void chasm_write_int(chasm_ctx *c, int s, int64_t v) { c->api->wri
 static inline void chasm_write_bool(chasm_ctx *c, int s, int v) { c->api->write_bool(c, s, v); }
 static inline void chasm_write_string(chasm_ctx *c, int s, const char *v) { c->api->write_string(c, s, v); }
 static inline void chasm_log(chasm_ctx *c, const char *m) { c->api->log(c, m); }
+static inline const void *chasm_next_message(chasm_ctx *c, int s, size_t *len) { return c->api->next_message(c, s, len); }
+static inline int chasm_post_message(chasm_ctx *c, int s, const void *d, size_t n) { return c->api->post_message(c, s, d, n); }
 
 /* A behavior: per-instance state of state_size bytes, zeroed before start().
  * start() runs when its state is entered (return non-zero to fail), step() when

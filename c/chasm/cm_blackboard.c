@@ -142,5 +142,19 @@ static void plog(chasm_ctx *c, const char *msg)
     cm_log(x->m, c->state_path, "%s", msg ? msg : "");
 }
 
+/* Message variables: not implemented yet, so no slot is a stream. */
+static const void *next_msg(chasm_ctx *c, int s, size_t *len)
+{
+    (void)c, (void)s;
+    if (len) *len = 0;
+    return NULL;
+}
+
+static int post_msg(chasm_ctx *c, int s, const void *d, size_t n)
+{
+    (void)c, (void)s, (void)d, (void)n;
+    return -1;
+}
+
 const chasm_host_api cm_host_api = {p_double, p_int, p_bool, p_string, r_double, r_int, r_bool, r_string, age,
-                                    w_double, w_int, w_bool, w_string, plog};
+                                    w_double, w_int, w_bool, w_string, plog, next_msg, post_msg};

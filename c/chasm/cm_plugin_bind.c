@@ -87,8 +87,10 @@ static const char *spec_name(const chasm_plugin_descriptor *d, const chasm_param
 static void check_limits(cm_cc *cc, cm_binding *b, const char *item, const cm_aarg *args, cm_loc item_loc, cm_state *st)
 {
     static const chasm_host_api api = {NULL, NULL, NULL, NULL, no_read_d, no_read_i, no_read_b, no_read_s, no_age,
-                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log};
+                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log, NULL, NULL};
     chasm_host_api full = api;
+    full.next_message = cm_host_api.next_message;
+    full.post_message = cm_host_api.post_message;
     full.param_double = cm_host_api.param_double;
     full.param_int = cm_host_api.param_int;
     full.param_bool = cm_host_api.param_bool;

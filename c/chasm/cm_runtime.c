@@ -53,6 +53,7 @@ static void write_value(cm_var *v, const cm_slot *val, int64_t now)
     case CHASM_INT: v->i = val->i; v->d = (double)val->i; break;
     case CHASM_BOOL: v->b = val->b; v->d = val->b; break;
     case CHASM_STRING: snprintf(v->s, v->s_cap, "%s", val->s); break;
+    case CHASM_MESSAGES: return;   /* `set` does not apply to a stream */
     }
     v->updated_us = now;
     v->has_value = true;

@@ -107,6 +107,9 @@ int cm_value(cm_cc *cc, const cm_aval *v0, chasm_type type, const cm_unit *unit,
         }
         out->s = v->str;
         return 0;
+    case CHASM_MESSAGES:
+        cm_error(cc->d, at, "%s is a stream of messages: it has no value to give%s", what, via);
+        return -1;
     }
     return -1;
 }

@@ -72,6 +72,7 @@ static void on_input(const char *channel, const void *msg, int64_t recv_utime, v
             chasm_var_set_string(b->machine, v->var, s ? s : "", utime);
             break;
         }
+        case CHASM_MESSAGES: break;   /* streams: not bound yet */
         }
     }
     b->inputs_applied++;

@@ -184,6 +184,7 @@ static void print_var(const chasm_machine *m, int id)
     case CHASM_INT: printf(" %s=%lld", chasm_var_name(m, id), (long long)chasm_var_get_int(m, id)); break;
     case CHASM_BOOL: printf(" %s=%s", chasm_var_name(m, id), chasm_var_get_bool(m, id) ? "true" : "false"); break;
     case CHASM_STRING: printf(" %s=\"%s\"", chasm_var_name(m, id), chasm_var_get_string(m, id)); break;
+    case CHASM_MESSAGES: printf(" %s=<messages>", chasm_var_name(m, id)); break;
     }
 }
 
@@ -239,6 +240,7 @@ static int cmd_run(const args_t *a)
             case CHASM_INT: chasm_var_set_int(m, e->var, (int64_t)e->d, e->t_us); break;
             case CHASM_BOOL: chasm_var_set_bool(m, e->var, e->b, e->t_us); break;
             case CHASM_STRING: chasm_var_set_string(m, e->var, e->s, e->t_us); break;
+            case CHASM_MESSAGES: break;   /* a stream has no value to set */
             }
         }
         while (h < a->n_hp && (int64_t)(a->hp_t[h] * 1e6 + 0.5) <= now) {

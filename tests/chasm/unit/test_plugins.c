@@ -119,7 +119,7 @@ static void expect_rejected(const char *file, int write_garbage, const char *exp
 
 static void hotplug_broken_file(void) { expect_rejected(NULL, 1, "cannot load plugin file"); }
 static void hotplug_missing_file(void) { expect_rejected("chasm_no_such_plugin.so", 0, "cannot read plugin file"); }
-static void hotplug_wrong_abi(void) { expect_rejected("chasm_test_basic_badabi.so", 0, "built for plugin ABI 99"); }
+static void hotplug_wrong_abi(void) { expect_rejected("chasm_test_basic_badabi.so", 0, "built for plugin ABI 100"); }
 static void hotplug_schema_mismatch(void) { expect_rejected("chasm_test_basic_noschema.so", 0, "unknown parameter 'value' for 'hold'"); }
 static void hotplug_missing_symbol(void) { expect_rejected("chasm_test_nosym.so", 0, "does not export the symbol 'chasm_plugin'"); }
 static void hotplug_unused_plugin(void) { expect_rejected("chasm_test_other.so", 0, "is not used by the running plan"); }
