@@ -3,6 +3,7 @@
 Goals (docs/chasm.md): step cost independent of the total number of states,
 under 1 us per cycle for 1000 states; loading faster than 100 000 lines/s."""
 
+import argparse
 import os
 import subprocess
 import sys
@@ -15,6 +16,7 @@ if not BUILD.is_absolute():
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     exe = BUILD / "bin" / "chasm_bench"
     if not exe.exists():
         print(f"{exe} is not built: run `make build`", file=sys.stderr)

@@ -12,6 +12,8 @@ Run: tests/isolated_net.sh .venv/bin/python bench/console_bench.py
 
 from __future__ import annotations
 
+import argparse
+
 import http.client
 import math
 import os
@@ -131,6 +133,7 @@ def run(rate: float, pages: int) -> None:
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     print(f"console server, {SECONDS:.0f} s per case (updates pushed at most 5 Hz per page)")
     for rate, pages in ((5, 1), (5, 3), (25, 1)):
         run(rate, pages)

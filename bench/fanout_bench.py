@@ -14,6 +14,8 @@ Prints figures, asserts nothing.
 
 from __future__ import annotations
 
+import argparse
+
 import os
 import subprocess
 import sys
@@ -52,6 +54,7 @@ def cpu_idle_receiver(channel: str, rate: int, seconds: float) -> tuple[int, flo
 
 
 def main() -> int:
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     print(f"fanout_bench ({os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start)")
     base_n, base_cpu, _ = cpu_idle_receiver("QUIET", 1, 4.0)       # startup and idle polling
     for rate in (2000, 8000):

@@ -10,6 +10,8 @@ Run: tests/isolated_net.sh .venv/bin/python bench/modem_bench.py
 
 from __future__ import annotations
 
+import argparse
+
 import statistics
 import struct
 import subprocess
@@ -79,6 +81,7 @@ def relay_run(extra: list[str], n: int, pace_s: float) -> tuple[float, int, floa
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     print("modem receiver, per physics step (in-process):")
     for k in (0, 10, 100):
         print(f"  {k:4d} frames in flight   {receiver_cost(k):8.1f} us/step")

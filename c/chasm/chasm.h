@@ -142,6 +142,9 @@ int chasm_hotplug(chasm_machine *m, const char *so_path, char *err, size_t errle
 int chasm_plugin_versions_loaded(const chasm_machine *m);
 /* 1 if the loaded plan names plugin `name` in a `use`. */
 int chasm_uses_plugin(const chasm_machine *m, const char *name);
+/* The plugins built beside the running program (<its dir>/../plugins), for a
+ * program given no plugin path. 1 and the folder in out, or 0 if there is none. */
+int chasm_default_plugin_dir(char *out, size_t cap);
 
 /* Plugin files. Every loader (`use` in a plan, hot plug, `chasm describe`, a
  * manager's upload) opens a file the same way: a regular file of at most

@@ -44,6 +44,9 @@ cm_plugin *cm_find_plugin_of(cm_cc *cc, const char *item, int want_test, cm_loc 
     char h[96];
     const char *hint = cm_suggest_hint(&sg, h, sizeof h);
     if (*hint) cm_error(cc->d, loc, "unknown %s '%s'%s", kind, item, hint);
+    else if (cc->plan->uses && m->n_plugins == 0)
+        /* the plan names plugins, but none loaded: their errors came first */
+        cm_error(cc->d, loc, "unknown %s '%s' (no plugin named by `use` loaded: see the error above)", kind, item);
     else if (!m->n_plugins && !want_test)
         cm_error(cc->d, loc, "unknown behavior '%s' (the plan uses no plugins: add `use PLUGIN`; the built-in action is `set`)", item);
     else cm_error(cc->d, loc, "unknown %s '%s' (not in any plugin named by `use`)", kind, item);

@@ -14,6 +14,7 @@ struct rx_sub {
     void *user;
     rx_stats_t stats;
     void *scratch;              /* one decoded struct, reused every message */
+    int quiet_other_types;      /* wrong fingerprints are only counted */
 };
 
 int rx_decode(const auv_type_entry_t *type, const void *data, int len, void *out)
@@ -50,7 +51,7 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     int rc = rx_decode(s->type, rbuf->data, (int)rbuf->data_size, s->scratch);
     if (rc == -1) {
         s->stats.wrong_fingerprint++;
-        report(s, channel, "wrong fingerprint", (int)rbuf->data_size);
+        if (!s->quiet_other_types) report(s, channel, "wrong fingerprint", (int)rbuf->data_size);
         return;
     }
     if (rc == -2) {
@@ -97,6 +98,11 @@ void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub)
 int rx_set_queue_capacity(rx_sub_t *sub, int capacity)
 {
     return lcm_subscription_set_queue_capacity(sub->lcm_sub, capacity);
+}
+
+void rx_set_quiet_other_types(rx_sub_t *sub, int quiet)
+{
+    if (sub) sub->quiet_other_types = quiet;
 }
 
 const rx_stats_t *rx_stats(const rx_sub_t *sub) { return &sub->stats; }

@@ -38,6 +38,11 @@ void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub);
  * drops new ones (liblcm's default is 30). Returns lcm's result (0 ok). */
 int rx_set_queue_capacity(rx_sub_t *sub, int capacity);
 
+/* A subscription to a channel pattern that carries several types (a tool
+ * listening to `AUV1\..*` for one type) sees the others as a matter of
+ * course: count them as wrong_fingerprint without printing each one. */
+void rx_set_quiet_other_types(rx_sub_t *sub, int quiet);
+
 const rx_stats_t *rx_stats(const rx_sub_t *sub);
 uint64_t rx_decode_errors(const rx_sub_t *sub);
 

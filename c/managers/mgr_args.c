@@ -17,6 +17,8 @@ static void usage(FILE *out)
                  "  --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
                  "                         --url is the old spelling of it\n"
                  "  --rate HZ              cycles per second of mission time, 0 < HZ <= %d (default 10)\n"
+                 "  --plugin-path DIR      where plugins are found (default: the build's plugins,\n"
+                 "                         <this program's folder>/../plugins)\n"
                  "  -D name=value          override a plan parameter: one value of its type and unit\n"
                  "                         (at most %d overrides)\n"
                  "  --future-tolerance S   drop input messages stamped more than S ahead of the clock (default 1)\n"
@@ -126,6 +128,10 @@ int manager_parse_args(manager_options *o, int argc, char **argv)
                         "<VEHICLE>.CHASM.<NAME> at most 63 characters\n", MGR_MAX_VEHICLE);
         return -1;
     }
+    /* No --plugin-path: the plugins built beside this program, as `chasm` does. */
+    static char self_plugins[4096];
+    if (!o->n_plugin_path && chasm_default_plugin_dir(self_plugins, sizeof self_plugins))
+        o->plugin_path[o->n_plugin_path++] = self_plugins;
     if (o->plugin_dir) {
         /* Uploaded plugins take precedence over installed ones. */
         memmove(o->plugin_path + 1, o->plugin_path, o->n_plugin_path * sizeof o->plugin_path[0]);

@@ -43,6 +43,7 @@ struct Options {
     std::string config, log, vehicle = "AUV1", csv, lbl_csv;
     std::vector<Drop> drops;
     bool timing = false;
+    bool help = false;
     double score_from_s = -1e300;
 };
 
@@ -77,6 +78,10 @@ bool parse_args(int argc, char **argv, Options &o)
 {
     for (int i = 1; i < argc; i++) {
         const std::string a = argv[i];
+        if (a == "--help" || a == "-h") {
+            o.help = true;
+            continue;
+        }
         if (a == "--timing") {
             o.timing = true;
             continue;
@@ -103,8 +108,8 @@ bool parse_args(int argc, char **argv, Options &o)
             return false;
         }
     }
-    if (o.config.empty() || o.log.empty()) {
-        std::fprintf(stderr, "usage: auv-nav-replay --config FILE.nav --log RUN.lcmlog [--vehicle ID] [--csv OUT]\n"
+    if (o.config.empty() || o.log.empty() || o.help) {
+        std::fprintf(o.help ? stdout : stderr, "usage: auv-nav-replay --config FILE.nav --log RUN.lcmlog [--vehicle ID] [--csv OUT]\n"
                              "                      [--drop SENSOR[:T0:T1]]... [--score-from T] [--lbl-csv FILE] [--timing]\n");
         return false;
     }
@@ -168,7 +173,7 @@ int main(int argc, char **argv)
 {
     Options o;
     if (!parse_args(argc, argv, o))
-        return 1;
+        return o.help ? 0 : 1;
     nav::NavConfig cfg;
     std::vector<std::string> errors;
     if (!nav::load_config(o.config, cfg, errors)) {

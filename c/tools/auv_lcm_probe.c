@@ -229,6 +229,9 @@ static int cmd_listen(lcm_t *lcm, const char *channel, const char *type_name, in
         fprintf(stderr, "auv-lcm-probe: cannot subscribe to '%s'\n", channel);
         return 2;
     }
+    /* a pattern matches channels of other types: those are skipped, counted
+     * in the stats line, not an error per message */
+    rx_set_quiet_other_types(sub, 1);
     printf("ready\n");
     fflush(stdout);
     int64_t deadline = mono_ms() + timeout_ms;

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Host agent: one per host, started once; runs that host's part of whatever
 scenario a launcher sends over LCM (docs/hosts.md).
 
@@ -19,6 +20,14 @@ SIGINT/SIGTERM stop the run and end the agent (exit 0).
 
 from __future__ import annotations
 
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 import argparse
 import os
 import re
@@ -32,6 +41,7 @@ sys.path.insert(0, str(ROOT / "python"))
 
 import lcm  # noqa: E402
 
+import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
 from auv import agent_ack_t, agent_command_t, agent_process_t, agent_table_t  # noqa: E402
 from auvlcm.rx import Receiver  # noqa: E402
 from auvlcm.url import check_local, default_url  # noqa: E402

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Launcher side of the host agents: send a scenario, stop it, show the
 process tables (docs/hosts.md). No ssh: everything goes over LCM.
 
@@ -20,6 +21,14 @@ here first); 3 an agent refused or failed (its message is printed);
 
 from __future__ import annotations
 
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
+
 import argparse
 import json
 import os
@@ -34,6 +43,7 @@ sys.path.insert(0, str(ROOT / "python"))
 
 import lcm  # noqa: E402
 
+import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
 from auv import agent_ack_t, agent_command_t, agent_restart_t, agent_table_t  # noqa: E402
 from auvlcm.rx import Receiver  # noqa: E402
 from auvlcm.url import check_local, default_url  # noqa: E402

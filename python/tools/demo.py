@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """`make demo`: a 3-vehicle mine-countermeasure survey, end to end, in fast time.
 
 The survey planner's scenario (missions/scenarios/mcm_demo, or a survey planned
@@ -11,6 +12,14 @@ else the report's.
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import json

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Start and supervise a whole scenario with one command (docs/scenarios.md).
 
     launch.py SCENARIO.yaml [--host NAME] [--out DIR] [--url URL]
@@ -14,6 +15,14 @@ Exit status: 0 every vehicle done; 3 a vehicle aborted; 4 a vehicle failed;
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import json

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Link-impairment relay: LCM in on one URL, LCM out on another, with the
 delay, jitter, loss, duplication and reordering of a bad network link.
 
@@ -39,6 +40,10 @@ from dataclasses import dataclass
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import lcm  # noqa: E402
 

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Inspect LCM logs with the project's types.
 
     lcmlog.py summary LOG                   channels, types, counts, sim-time span, undecodable
@@ -28,6 +29,10 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import numpy as np  # noqa: E402
 

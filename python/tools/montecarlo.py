@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Monte Carlo: one scenario over many seeds, in parallel worlds that cannot
 hear each other, summarised as mean and 95 % interval (docs/tools.md).
 
@@ -20,6 +21,14 @@ run reported, 1 when some did not, 2 on bad usage.
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import json

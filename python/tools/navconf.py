@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Write the navigation filter's config (auv-nav --config) for a simulated vehicle.
 
     navconf.py missions/sim/remus100.yaml [-o missions/nav/remus100.nav]
@@ -13,6 +14,14 @@ filter's defaults (docs/navigation.md).
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import math

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Plan a multi-vehicle sidescan survey: plans, a scenario and a summary.
 
     plan_survey.py --polygon "0,0; 600,0; 600,400; 0,400" --vehicles 3 --heading 0 \\
@@ -14,6 +15,14 @@ Exit status 2 on bad input or a plan the plugins refuse.
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import json

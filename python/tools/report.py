@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Mission report from a run's log: text and JSON, and the plots.
 
     report.py LOG [--survey survey.json] [--out DIR] [--radius 5] [--cell 2] [--no-plots]
@@ -15,6 +16,14 @@ file, not an LCM log, or no vehicle in it.
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import json

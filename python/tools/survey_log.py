@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """Record an LCM log of a simulated survey: the navigation filter's test data.
 
     survey_log.py --out run.lcmlog [--config missions/sim/remus100_survey.yaml]
@@ -22,6 +23,14 @@ overridden file is written next to the log and annotated into it).
 """
 
 from __future__ import annotations
+
+import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import argparse
 import re

@@ -1,3 +1,4 @@
+#!/usr/bin/env python3
 """LCM <-> Zenoh bridge: one per site, joins sites whose multicast stops at
 their edge (a ship and a lab, cloud runs). docs/zenoh.md.
 
@@ -39,6 +40,10 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from tools import use_venv  # noqa: E402
+
+use_venv.ensure()
 
 import lcm  # noqa: E402
 

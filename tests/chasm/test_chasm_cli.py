@@ -4,6 +4,7 @@ parameters, includes, plugin path by flag and environment)."""
 from __future__ import annotations
 
 import re
+import shutil
 
 import pytest
 
@@ -20,6 +21,7 @@ def chasm(variant_dir, child_env, tmp_path):
         return run([exe, *args], env or child_env, **kw)
 
     call.plugins = variant_dir / "plugins"
+    call.exe = exe
     call.env = child_env
     return call
 
@@ -49,9 +51,27 @@ def test_check_reports_every_plan_and_fails(chasm):
     assert "43_many_errors.chasm: 3 errors" in p.stderr
 
 
-def test_plugin_path_from_environment(chasm):
+def test_default_plugin_path_is_the_builds(chasm, tmp_path):
+    """No -P and no $CHASM_PLUGIN_PATH: the plugins built beside the program."""
     p = chasm("check", PLANS / "plugin_demo.chasm")
+    assert p.returncode == 0, p.stderr
+    # a copy of the program with no plugins beside it has an empty path, and
+    # the follow-on errors say the plugin did not load, not "uses no plugins"
+    lone = tmp_path / "bin" / "chasm"
+    lone.parent.mkdir()
+    shutil.copy2(chasm.exe, lone)
+    p = run([lone, "check", PLANS / "plugin_demo.chasm"], chasm.env)
     assert p.returncode == 1 and "the plugin path is empty" in p.stderr
+    assert "uses no plugins" not in p.stderr
+    assert "unknown behavior 'hold' (no plugin named by `use` loaded" in p.stderr
+
+
+def test_plugin_path_from_environment(chasm, tmp_path):
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    env = dict(chasm.env, CHASM_PLUGIN_PATH=str(empty))
+    p = chasm("check", PLANS / "plugin_demo.chasm", env=env)
+    assert p.returncode == 1 and "plugin 'test_basic' not found" in p.stderr
     env = dict(chasm.env, CHASM_PLUGIN_PATH=f"/nonexistent:{chasm.plugins}")
     p = chasm("check", PLANS / "plugin_demo.chasm", env=env)
     assert p.returncode == 0, p.stderr

@@ -6,7 +6,8 @@
  *   chasm run   [-P DIR] [-D name=value] PLAN --inputs FILE [--dt T] [--until T]
  *               [--watch VAR]... [--hotplug T:FILE]... [--expect PATH] [--trace]
  *
- * The plugin path is every -P/--plugin-path, then $CHASM_PLUGIN_PATH (":"-separated). */
+ * The plugin path is every -P/--plugin-path, then $CHASM_PLUGIN_PATH (":"-separated);
+ * with neither, the plugins built beside this program (build/plugins). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -44,21 +45,25 @@ typedef struct {
     size_t n_hp;
     int trace, verbose;
     char *env_copy;
+    char self_plugins[4096];
 } args_t;
 
-static int usage(void)
+static int usage_to(FILE *out, int rc)
 {
     fputs("usage: chasm check [options] PLAN...\n"
           "       chasm dot [options] PLAN\n"
           "       chasm describe [options] PLUGIN...   (behaviors and parameters of a plugin)\n"
           "       chasm run [options] PLAN --inputs FILE [--dt SECONDS] [--until SECONDS]\n"
           "                 [--watch VAR]... [--hotplug SECONDS:PLUGIN.so]... [--expect STATE/PATH] [--trace]\n"
-          "options: -P, --plugin-path DIR   where plugins are found (also $CHASM_PLUGIN_PATH)\n"
+          "options: -P, --plugin-path DIR   where plugins are found (also $CHASM_PLUGIN_PATH;\n"
+          "                                 default: the build's plugins)\n"
           "         -D NAME=VALUE           override a plan parameter, e.g. -D depth='12 m'\n"
           "         -v, --verbose           print plugin and engine messages\n",
-          stderr);
-    return 2;
+          out);
+    return rc;
 }
+
+static int usage(void) { return usage_to(stderr, 2); }
 
 static double seconds(const char *s)
 {
@@ -145,6 +150,10 @@ static int parse_args(int argc, char **argv, args_t *a)
             if (a->n_dirs >= MAXN) return too_many("plugin folders (with $CHASM_PLUGIN_PATH)");
             else a->dirs[a->n_dirs++] = d;
     }
+    /* Neither: the plugins built beside this program (build/bin/chasm ->
+     * build/plugins), so `chasm check plan.chasm` works from a fresh build. */
+    if (!a->n_dirs && chasm_default_plugin_dir(a->self_plugins, sizeof a->self_plugins))
+        a->dirs[a->n_dirs++] = a->self_plugins;
     return 0;
 }
 
@@ -287,6 +296,9 @@ static int cmd_run(const args_t *a)
 int main(int argc, char **argv)
 {
     if (argc < 2) return usage();
+    /* `chasm --help` and `chasm CMD --help`: the usage on stdout, exit 0 */
+    for (int i = 1; i < argc; i++)
+        if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) return usage_to(stdout, 0);
     args_t a = {0};
     if (parse_args(argc, argv, &a)) {
         for (size_t i = 0; i < a.n_params; i++) free((char *)a.pn[i]);
