@@ -15,6 +15,8 @@ struct rx_sub {
     rx_stats_t stats;
     void *scratch;              /* one decoded struct, reused every message */
     int quiet_other_types;      /* wrong fingerprints are only counted */
+    const void *raw;            /* the bytes being handled (rx_current_raw) */
+    size_t raw_len;
 };
 
 int rx_decode(const auv_type_entry_t *type, const void *data, int len, void *out)
@@ -60,7 +62,11 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
         return;
     }
     s->stats.delivered++;
+    s->raw = rbuf->data;
+    s->raw_len = rbuf->data_size;
     s->handler(channel, s->scratch, rbuf->recv_utime, s->user);
+    s->raw = NULL;
+    s->raw_len = 0;
     s->type->info()->decode_cleanup(s->scratch);
 }
 
@@ -106,6 +112,13 @@ void rx_set_quiet_other_types(rx_sub_t *sub, int quiet)
 }
 
 const rx_stats_t *rx_stats(const rx_sub_t *sub) { return &sub->stats; }
+
+const void *rx_current_raw(const rx_sub_t *sub, size_t *len)
+{
+    if (len)
+        *len = sub ? sub->raw_len : 0;
+    return sub ? sub->raw : NULL;
+}
 
 uint64_t rx_decode_errors(const rx_sub_t *sub)
 {

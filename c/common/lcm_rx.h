@@ -43,6 +43,11 @@ int rx_set_queue_capacity(rx_sub_t *sub, int capacity);
  * course: count them as wrong_fingerprint without printing each one. */
 void rx_set_quiet_other_types(rx_sub_t *sub, int quiet);
 
+/* Inside a handler: the received bytes of the message being handled (exactly
+ * the encoded message, fingerprint first: rx_decode refuses any byte more or
+ * less). Valid until the handler returns; NULL outside a handler. */
+const void *rx_current_raw(const rx_sub_t *sub, size_t *len);
+
 const rx_stats_t *rx_stats(const rx_sub_t *sub);
 uint64_t rx_decode_errors(const rx_sub_t *sub);
 
