@@ -61,7 +61,7 @@ chasm_status_code tm_keepclear_step(chasm_ctx *c, void *state)
         char text[96];
         snprintf(text, sizeof text, "predicted %.0f m apart within %.0f s: offset %.1f m", closest, horizon,
                  chasm_param_double(c, KC_BAND));
-        tm_event(s, c->now_us, TM_EV_KEEP_CLEAR, closest_peer, -1, me.n, me.e, 0, text);
+        tm_post(s, c->now_us, TM_EV_KEEP_CLEAR, closest_peer, -1, me.n, me.e, 0, text);
     } else if (k->active && closest > radius + chasm_param_double(c, KC_HYSTERESIS)) {
         k->active = 0;
         k->peer = -1;

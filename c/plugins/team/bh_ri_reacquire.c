@@ -48,7 +48,7 @@ static void decided(chasm_ctx *c, tm_store *s, int i)
 {
     tm_target *t = &s->targets.t[i];
     int not_found = t->state == TM_T_NOT_FOUND;
-    tm_event(s, c->now_us, not_found ? TM_EV_TARGET_NOT_FOUND : TM_EV_TARGET_IDENTIFIED, t->key.origin,
+    tm_post(s, c->now_us, not_found ? TM_EV_TARGET_NOT_FOUND : TM_EV_TARGET_IDENTIFIED, t->key.origin,
              t->key.number, t->n, t->e, t->result, not_found ? "no look in time" : t->result == 1 ? "mine" : "not mine");
     int k = tm_outbox_ident(&s->out);
     if (k >= 0)
@@ -75,7 +75,7 @@ static void replan(chasm_ctx *c, tm_store *s, tm_ri_state *st)
     }
     int next = n ? idx[order[0]] : -1;
     if (n)
-        tm_event(s, c->now_us, TM_EV_ROUTE, -1, -1, p.n, p.e, 0, text);
+        tm_post(s, c->now_us, TM_EV_ROUTE, -1, -1, p.n, p.e, 0, text);
     if (next != st->current) {
         st->current = next;
         if (next >= 0) {
@@ -104,6 +104,7 @@ int tm_ri_start(chasm_ctx *c, void *state)
     if (!s)
         return -1;
     st->current = -1;
+    s->merge_m = chasm_param_double(c, RI_MERGE);
     if (!s->is_ri) {
         s->is_ri = 1;
         /* reports heard before this behavior ran get their ack now */

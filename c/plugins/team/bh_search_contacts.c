@@ -48,7 +48,7 @@ chasm_status_code tm_search_step(chasm_ctx *c, void *state)
             tm_outbox_contact(&s->out, m->number);
             char text[64];
             snprintf(text, sizeof text, "score %.2f after %d looks", m->score, m->looks);
-            tm_event(s, c->now_us, TM_EV_CONTACT_NEW, s->me, m->number, m->n, m->e, 0, text);
+            tm_post(s, c->now_us, TM_EV_CONTACT_NEW, s->me, m->number, m->n, m->e, 0, text);
         }
     }
     return CHASM_RUNNING;

@@ -62,7 +62,7 @@ static void take_over(chasm_ctx *c, tm_store *s, const tm_lines *l)
                                          used ? " " : "", i);
             }
         if (used)
-            tm_event(s, c->now_us, TM_EV_LINES_TAKEN, v, -1, 0, 0, 0, text);
+            tm_post(s, c->now_us, TM_EV_LINES_TAKEN, v, -1, 0, 0, 0, text);
     }
 }
 

@@ -64,12 +64,76 @@ static void two_opt(gd_point start, const gd_point *pts, int n, int *r)
     }
 }
 
+/* Or-opt: move a stretch of 1 to 3 targets (either way round) to the place
+ * where it adds the least, when that shortens the path. 2-opt alone cannot
+ * move one target to another part of the route without reversing all that
+ * lies between. Returns 1 if it moved something. */
+static int or_opt(gd_point start, const gd_point *pts, int n, int *r)
+{
+    int moved = 0;
+    for (int len = 1; len <= 3; len++) {
+        for (int i = 0; i + len <= n; i++) {
+            gd_point prev = at(start, pts, r, i - 1), first = pts[r[i]], last = pts[r[i + len - 1]];
+            double gain = dist(prev, first);
+            if (i + len < n)
+                gain += dist(last, pts[r[i + len]]) - dist(prev, pts[r[i + len]]);
+            int best_k = -2, best_rev = 0;
+            double best = gain - 1e-9;
+            for (int k = -1; k < n; k++) {   /* insert after route position k (-1: after the start) */
+                if (k >= i - 1 && k < i + len)
+                    continue;
+                int kn = k + 1 == i ? i + len : k + 1;   /* the successor once the stretch is out */
+                gd_point a = at(start, pts, r, k);
+                double fwd = dist(a, first), rev = dist(a, last);
+                if (kn < n) {
+                    gd_point b = pts[r[kn]];
+                    fwd += dist(last, b) - dist(a, b);
+                    rev += dist(first, b) - dist(a, b);
+                }
+                if (fwd < best) {
+                    best = fwd;
+                    best_k = k;
+                    best_rev = 0;
+                }
+                if (rev < best) {
+                    best = rev;
+                    best_k = k;
+                    best_rev = 1;
+                }
+            }
+            if (best_k == -2)
+                continue;
+            int seg[3], out[TM_ROUTE_MAX], m = 0;
+            for (int j = 0; j < len; j++)
+                seg[j] = r[best_rev ? i + len - 1 - j : i + j];
+            if (best_k == -1)
+                for (int j = 0; j < len; j++)
+                    out[m++] = seg[j];
+            for (int k = 0; k < n; k++) {
+                if (k >= i && k < i + len)
+                    continue;
+                out[m++] = r[k];
+                if (k == best_k)
+                    for (int j = 0; j < len; j++)
+                        out[m++] = seg[j];
+            }
+            memcpy(r, out, (size_t)n * sizeof *r);
+            moved = 1;
+        }
+    }
+    return moved;
+}
+
 void tm_route_plan(gd_point start, const gd_point *pts, int n, int *order)
 {
     if (n > TM_ROUTE_MAX)
         n = TM_ROUTE_MAX;
     cheapest_insertion(start, pts, n, order);
-    two_opt(start, pts, n, order);
+    for (int rounds = 0; rounds < 20; rounds++) {
+        two_opt(start, pts, n, order);
+        if (!or_opt(start, pts, n, order))
+            break;
+    }
 }
 
 void tm_route_nearest(gd_point start, const gd_point *pts, int n, int *order)

@@ -2,7 +2,8 @@
  * vehicle's position through every target (it does not return). Built by
  * cheapest insertion (each step inserts the target, at the place, that adds
  * the least length), then improved by 2-opt (reversing a stretch while that
- * shortens the path). Deterministic: ties go to the lower index, so the same
+ * shortens the path) and Or-opt (moving a stretch of up to 3 targets
+ * elsewhere) until neither helps. Deterministic: ties go to the lower index, so the same
  * queue gives the same route on every run. Nearest-neighbour is here only as
  * the yardstick the tests compare against. */
 #ifndef TM_ROUTE_H

@@ -31,6 +31,7 @@ void tm_store_configure(tm_store *s, const tm_roster *r, int me, int64_t now_us,
     s->t_start = (double)now_us * 1e-6;
     tm_outbox_init(&s->out, repeat);
     s->state = TM_ST_TRANSIT;
+    s->merge_m = 5.0;
 }
 
 tm_store *tm_store_for(chasm_ctx *c, const char *behavior)
@@ -47,7 +48,7 @@ tm_store *tm_store_for(chasm_ctx *c, const char *behavior)
     return s;
 }
 
-void tm_event(tm_store *s, int64_t now_us, int kind, int origin, int number, double n, double e, int result,
+void tm_post(tm_store *s, int64_t now_us, int kind, int origin, int number, double n, double e, int result,
               const char *text)
 {
     if (s->n_events >= TM_MAX_EVENTS) {

@@ -66,6 +66,7 @@ typedef struct {
     /* targets heard (everyone keeps them; the RI vehicle acts on them) */
     tm_target_queue targets;
     int is_ri;
+    double merge_m;       /* reports within this distance are one target (ri_reacquire's merge) */
     int targets_changed;  /* a target appeared: the RI vehicle replans */
     tm_ident idents[TM_MAX_IDENTS];   /* own results (RI), indexed like out.ident_sends */
     tm_key idents_heard[TM_MAX_IDENTS];
@@ -85,6 +86,8 @@ typedef struct {
     tm_event events[TM_MAX_EVENTS];
     int n_events;
     long events_dropped;
+    int32_t seq;          /* of the frames sent */
+    long frames_in, frames_sent, frames_bad, frames_foreign;
     long undecodable;     /* input messages (contacts, looks, frames) that did not decode */
 } tm_store;
 
@@ -94,7 +97,7 @@ PU_HIDDEN void tm_store_configure(tm_store *s, const tm_roster *r, int me, int64
 /* The store if team_link configured it, else NULL with a log line that
  * says what is missing (for start()). */
 PU_HIDDEN tm_store *tm_store_for(chasm_ctx *c, const char *behavior);
-PU_HIDDEN void tm_event(tm_store *s, int64_t now_us, int kind, int origin, int number, double n, double e, int result,
+PU_HIDDEN void tm_post(tm_store *s, int64_t now_us, int kind, int origin, int number, double n, double e, int result,
                         const char *text);
 PU_HIDDEN const char *tm_name(const tm_store *s, int index);
 
