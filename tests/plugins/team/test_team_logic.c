@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "../common/plugin_test.h"
+#include "team_tests.h"
 #include "plugins/team/tm_contacts.h"
 #include "plugins/team/tm_keepclear.h"
 #include "plugins/team/tm_lines.h"
@@ -24,7 +25,7 @@ static double uniform(void)
     return (double)(rng >> 11) / 9007199254740992.0;
 }
 
-static void contacts_merge_repeated_looks(void)
+void contacts_merge_repeated_looks(void)
 {
     static tm_contact_list l;
     memset(&l, 0, sizeof l);
@@ -51,7 +52,7 @@ static void contacts_merge_repeated_looks(void)
     CHECK(tm_contacts_add(&l, -1000, -1000, 1, 0.5, 70, 5, &created) == -1 && l.full == 1);
 }
 
-static void targets_merge_across_reporters(void)
+void targets_merge_across_reporters(void)
 {
     static tm_target_queue q;
     memset(&q, 0, sizeof q);
@@ -86,7 +87,7 @@ static void targets_merge_across_reporters(void)
 /* On a line: targets at +1, -2, +4, -8 from the start. Nearest-neighbour
  * zig-zags (1 + 3 + 6 + 12 = 22 m); the best open path goes to +4 first and
  * then sweeps to -8 (4 + 12 = 16 m). */
-static void route_beats_nearest_neighbour(void)
+void route_beats_nearest_neighbour(void)
 {
     gd_point s = {0, 0};
     gd_point p[4] = {{1, 0}, {-2, 0}, {4, 0}, {-8, 0}};
@@ -122,7 +123,7 @@ static void route_beats_nearest_neighbour(void)
     CHECK(worse <= 2);
 }
 
-static void route_is_deterministic(void)
+void route_is_deterministic(void)
 {
     gd_point s = {10, -20};
     gd_point q[50];
@@ -142,7 +143,7 @@ static void route_is_deterministic(void)
     CHECK(a[0] == 0);
 }
 
-static void roster_and_lines_parse(void)
+void roster_and_lines_parse(void)
 {
     tm_roster r;
     char why[160];
@@ -179,7 +180,7 @@ static const char *TEN =
     "0: 0,0 0,1; 0: 1,0 1,1; 0: 2,0 2,1; 0: 3,0 3,1; 1: 4,0 4,1; 1: 5,0 5,1; 1: 6,0 6,1; "
     "2: 7,0 7,1; 2: 8,0 8,1; 2: 9,0 9,1";
 
-static void takeover_round_robin_in_line_order(void)
+void takeover_round_robin_in_line_order(void)
 {
     tm_lines l;
     char why[160];
@@ -206,7 +207,7 @@ static void takeover_round_robin_in_line_order(void)
         CHECK(to[i] == -1);
 }
 
-static void tdma_slots_from_the_clock(void)
+void tdma_slots_from_the_clock(void)
 {
     tm_tdma t;
     tm_tdma_init(&t, 5.0, 4, 2, 1.0);   /* slot 2 of 4: [10, 11) s of each 20 s round */
@@ -256,7 +257,7 @@ static int count_kind(const tm_item *it, int n, tm_item_kind k)
     return c;
 }
 
-static void outbox_priorities(void)
+void outbox_priorities(void)
 {
     static tm_outbox o;
     tm_outbox_init(&o, 2);
@@ -313,7 +314,7 @@ static void outbox_priorities(void)
  * vehicle with 12 mine-like contacts, one frame per round each way; the RI
  * side acks what it hears. Every contact arrives and is acked, in rounds
  * bounded well below a mission's length, whatever the loss pattern. */
-static void reports_survive_30_percent_loss(void)
+void reports_survive_30_percent_loss(void)
 {
     for (int seed = 1; seed <= 20; seed++) {
         rng = 0x9E3779B97F4A7C15ull * (uint64_t)seed;
@@ -351,7 +352,7 @@ static void reports_survive_30_percent_loss(void)
     }
 }
 
-static void keep_clear_cpa(void)
+void keep_clear_cpa(void)
 {
     /* head-on, 200 m apart at 1.5 m/s each: they meet in 66.7 s */
     tm_track a = {0, 0, 0, 1.5}, b = {200, 0, M_PI, 1.5};
@@ -370,16 +371,3 @@ static void keep_clear_cpa(void)
     CHECK_NEAR(f.n, 185, 1e-9);
 }
 
-const plugin_test plugin_tests[] = {
-    {"contacts_merge_repeated_looks", contacts_merge_repeated_looks},
-    {"targets_merge_across_reporters", targets_merge_across_reporters},
-    {"route_beats_nearest_neighbour", route_beats_nearest_neighbour},
-    {"route_is_deterministic", route_is_deterministic},
-    {"roster_and_lines_parse", roster_and_lines_parse},
-    {"takeover_round_robin_in_line_order", takeover_round_robin_in_line_order},
-    {"tdma_slots_from_the_clock", tdma_slots_from_the_clock},
-    {"outbox_priorities", outbox_priorities},
-    {"reports_survive_30_percent_loss", reports_survive_30_percent_loss},
-    {"keep_clear_cpa", keep_clear_cpa},
-};
-const size_t plugin_tests_count = CHASM_COUNT(plugin_tests);
