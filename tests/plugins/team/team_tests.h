@@ -16,5 +16,11 @@ void frames_carry_contacts_acks_and_status(void);
 void repeats_are_acked_again_and_merged_once(void);
 void hostile_frames_are_counted(void);
 void time_stamps_unwrap(void);
+void plan_refuses_bad_roster_and_lines(void);
+void search_vehicle_reports_until_acked(void);
+void ri_vehicle_merges_routes_and_identifies(void);
+void lost_teammates_lines_are_taken(void);
+void aborted_teammate_is_lost_at_once(void);
+void keep_clear_gives_way_in_depth(void);
 
 #endif

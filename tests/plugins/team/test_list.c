@@ -17,5 +17,11 @@ const plugin_test plugin_tests[] = {
     {"repeats_are_acked_again_and_merged_once", repeats_are_acked_again_and_merged_once},
     {"hostile_frames_are_counted", hostile_frames_are_counted},
     {"time_stamps_unwrap", time_stamps_unwrap},
+    {"plan_refuses_bad_roster_and_lines", plan_refuses_bad_roster_and_lines},
+    {"search_vehicle_reports_until_acked", search_vehicle_reports_until_acked},
+    {"ri_vehicle_merges_routes_and_identifies", ri_vehicle_merges_routes_and_identifies},
+    {"lost_teammates_lines_are_taken", lost_teammates_lines_are_taken},
+    {"aborted_teammate_is_lost_at_once", aborted_teammate_is_lost_at_once},
+    {"keep_clear_gives_way_in_depth", keep_clear_gives_way_in_depth},
 };
 const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];
