@@ -3,7 +3,8 @@
  * A manager loads a mission plan once (chasm_load_file), which parses it,
  * loads the plugins it names, checks every parameter and variable and builds
  * every object; then it calls chasm_step() once per cycle with the mission
- * time. The library never reads a clock, never allocates in chasm_step() and
+ * time. The library never reads a clock, never allocates in chasm_step()
+ * (except to grow a message buffer to a longer message than it held before) and
  * has no LCM dependency: managers copy message fields into the blackboard with
  * chasm_var_set_*() and publish chasm_status_get() and output variables.
  *
@@ -69,6 +70,9 @@ typedef struct {
 #define CHASM_MAX_FILE_BYTES (64 * 1024 * 1024) /* one plan file or plan text */
 #define CHASM_MAX_STATE_DEPTH 32       /* levels of nested states (= CHASM_STATUS_MAX_DEPTH) */
 #define CHASM_MAX_INCLUDE_DEPTH 16     /* files included inside each other */
+#define CHASM_MESSAGE_MAX_BYTES 65536  /* one message of a `messages` variable */
+#define CHASM_MESSAGES_DEFAULT_CAPACITY 64   /* `messages` = `messages(64)` */
+#define CHASM_MESSAGES_MAX_CAPACITY 4096
 
 /* Load: on any error returns NULL and, if errors != NULL, every error found. */
 chasm_machine *chasm_load_file(const char *path, const chasm_options *opt, chasm_errors **errors);
@@ -111,6 +115,26 @@ int64_t chasm_var_get_int(const chasm_machine *m, int id);
 bool chasm_var_get_bool(const chasm_machine *m, int id);
 const char *chasm_var_get_string(const chasm_machine *m, int id);
 int64_t chasm_var_updated_us(const chasm_machine *m, int id);   /* INT64_MIN: never */
+
+/* Message variables (type `messages`, docs/chasm.md "Message variables").
+ * append: the host adds one message (the raw bytes of an encoded message) to
+ * the stream of variable id, stamped utime; plugins see it from the next
+ * chasm_step on. 0, or -1 (bad id, not a messages variable, more than
+ * CHASM_MESSAGE_MAX_BYTES, out of memory: nothing is added). The stream keeps
+ * the newest `capacity`; a reader that falls behind loses the oldest (missed).
+ * take: the oldest message of the stream the host has not taken yet (posts of
+ * an output enter its stream when a cycle ends), NULL when there is none; the
+ * bytes stay valid until the next append, chasm_step or chasm_free. Call it
+ * after each chasm_step until NULL, or the oldest are lost (counted missed). */
+int chasm_messages_append(chasm_machine *m, int id, const void *data, size_t len, int64_t utime);
+const void *chasm_messages_take(chasm_machine *m, int id, size_t *len);
+typedef struct {
+    size_t capacity;
+    uint64_t total;      /* messages that entered the stream (appended, or posted at a cycle's end) */
+    uint64_t missed;     /* lost by readers that fell more than `capacity` behind (actions and host) */
+    uint64_t refused;    /* posts refused: too large, more than `capacity` in a cycle, no memory */
+} chasm_messages_info;
+int chasm_messages_stats(const chasm_machine *m, int id, chasm_messages_info *out);
 
 /* Introspection, published by managers as auv.chasm_status_t. Pointers stay
  * valid until the next chasm_step/chasm_free. */

@@ -132,6 +132,9 @@ typedef struct cm_avar {
     const cm_unit *unit;
     cm_aval init;
     bool has_init;
+    cm_aval capacity;      /* `messages(N)` */
+    cm_loc cap_loc;
+    bool has_capacity;
 } cm_avar;
 
 typedef struct {

@@ -142,18 +142,34 @@ static void plog(chasm_ctx *c, const char *msg)
     cm_log(x->m, c->state_path, "%s", msg ? msg : "");
 }
 
-/* Message variables: not implemented yet, so no slot is a stream. */
+/* Message variables (cm_stream.h). A slot of the wrong kind or type gives
+ * NULL / a refusal, like reads of the wrong type give 0. */
 static const void *next_msg(chasm_ctx *c, int s, size_t *len)
 {
-    (void)c, (void)s;
+    const cm_ext *x = c->engine;
     if (len) *len = 0;
-    return NULL;
+    if (!slot(c, s, CHASM_READS, CHASM_MESSAGES) || x->b->specs[s].kind != CHASM_READS) return NULL;
+    cm_slot *sl = &x->b->slots[s];
+    return cm_stream_next(sl->var->stream, &sl->next_msg, len);
 }
 
 static int post_msg(chasm_ctx *c, int s, const void *d, size_t n)
 {
-    (void)c, (void)s, (void)d, (void)n;
-    return -1;
+    const cm_ext *x = c->engine;
+    const cm_slot *sl = slot(c, s, CHASM_WRITES, CHASM_MESSAGES);
+    if (!sl) {
+        /* a slot that is no messages output: refused, and counted where it can be */
+        if (s >= 0 && s < x->b->n_slots && x->b->slots[s].var && x->b->slots[s].var->stream)
+            x->b->slots[s].var->stream->refused++;
+        return -1;
+    }
+    if (cm_stream_post(sl->var->stream, d, n)) {
+        if (sl->var->stream->refused == 1) /* said once; the count is in the status */
+            cm_log(x->m, c->state_path, "a message posted to '%s' was refused (%zu bytes; at most %d bytes and %u per cycle)",
+                   sl->var->name, n, CHASM_MESSAGE_MAX_BYTES, sl->var->stream->capacity);
+        return -1;
+    }
+    return 0;
 }
 
 const chasm_host_api cm_host_api = {p_double, p_int, p_bool, p_string, r_double, r_int, r_bool, r_string, age,

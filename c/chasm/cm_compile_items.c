@@ -55,6 +55,11 @@ static void compile_test(cm_cc *cc, const cm_atest *a, cm_state *owner, cm_test 
     cm_var *v = t->var = cm_find_var(cc, c->var, c->var_loc, what);
     if (!v) return;
     t->angle = v->unit->dim == CM_DIM_ANGLE;
+    if (v->type == CHASM_MESSAGES) {
+        cm_error(cc->d, c->var_loc, "test '%s': '%s' is a stream of messages, it has no value to compare: test its age "
+                 "('age %s < 10 s') or read it in a behavior", a->name, v->name, v->name);
+        return;
+    }
     if (c->kind == CR_BOOLVAR) {
         if (v->type != CHASM_BOOL)
             cm_error(cc->d, c->var_loc, "test '%s': '%s' is %s, not bool: compare it (e.g. '%s > 0')", a->name, v->name,

@@ -143,6 +143,7 @@ void chasm_free(chasm_machine *m)
         cm_stop_all(m);
     }
     cm_plugins_unload_all(m);
+    cm_streams_free(m);
     cm_map_free(&m->var_map);
     cm_map_free(&m->param_map);
     cm_arena_free(&m->arena);

@@ -10,6 +10,7 @@
 #include "chasm/cm_arena.h"
 #include "chasm/cm_ast.h"
 #include "chasm/cm_map.h"
+#include "chasm/cm_stream.h"
 
 #define CM_NEVER INT64_MIN
 
@@ -42,6 +43,7 @@ typedef struct cm_var {
     bool has_value;             /* initialised or written: tests on a variable without value are false */
     cm_loc loc;
     int index;
+    cm_stream *stream;          /* CHASM_MESSAGES only */
 } cm_var;
 
 /* One resolved schema slot of an action or test: a constant or a variable. */
@@ -51,6 +53,7 @@ typedef struct {
     int b;
     const char *s;
     cm_var *var;
+    uint64_t next_msg;          /* a READS messages slot: this action's place in the stream */
 } cm_slot;
 
 struct cm_plugin;
@@ -187,6 +190,7 @@ struct chasm_machine {
     cm_plugin *plugins;
     int n_plugins;
     cm_plugin_version *loaded;  /* every version still loaded */
+    cm_stream *streams;         /* of the messages variables (malloc'd: message buffers grow) */
     cm_aplan *plan;             /* the syntax tree, kept to re-bind actions on hot plug */
     cm_map param_map;           /* name -> cm_aparam* (the winning definition) */
     long n_lines;

@@ -222,14 +222,22 @@ static void var_decl(P *p, int kind)
     cm_avar *v = cm_alloc(p->ctx->arena, sizeof *v);
     v->kind = kind;
     v->name = cm_p_name(p, "a variable name", &v->loc);
-    if (!v->name || !cm_p_expect(p, T_COLON, "':' and a type (double, int, bool, string)")) return;
+    if (!v->name || !cm_p_expect(p, T_COLON, "':' and a type (double, int, bool, string, messages)")) return;
     v->type_loc = loc_of(p, cur(p));
     if (cur(p)->type != T_IDENT) {
-        cm_p_err_expected(p, "a type (double, int, bool, string)");
+        cm_p_err_expected(p, "a type (double, int, bool, string, messages)");
         return;
     }
     v->type_name = cur(p)->text;
     adv(p);
+    if (cur(p)->type == T_LPAREN && cur(p)->line == peek(p, -1)->line) {
+        /* `messages(256)`: a stream's capacity (checked with the type) */
+        v->cap_loc = loc_of(p, cur(p));
+        adv(p);
+        v->capacity = cm_p_value(p, "a capacity (a number of messages)");
+        v->has_capacity = true;
+        if (p->failed || !cm_p_expect(p, T_RPAREN, "')' after the capacity")) return;
+    }
     cm_token *u = cur(p);
     if (u->type == T_IDENT && !cm_is_keyword(u->text) && u->line == peek(p, -1)->line) {
         cm_aval tmp = {0};

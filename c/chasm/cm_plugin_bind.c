@@ -64,6 +64,8 @@ static void no_write_i(chasm_ctx *c, int s, int64_t v) { (void)c; (void)s; (void
 static void no_write_b(chasm_ctx *c, int s, int v) { (void)c; (void)s; (void)v; }
 static void no_write_s(chasm_ctx *c, int s, const char *v) { (void)c; (void)s; (void)v; }
 static void no_log(chasm_ctx *c, const char *m) { (void)c; (void)m; }
+static const void *no_next(chasm_ctx *c, int s, size_t *len) { (void)c; (void)s; if (len) *len = 0; return NULL; }
+static int no_post(chasm_ctx *c, int s, const void *d, size_t n) { (void)c; (void)s; (void)d; (void)n; return -1; }
 
 /* The plugin's name of the behavior or test handler whose schema is specs. */
 static const char *spec_name(const chasm_plugin_descriptor *d, const chasm_param_spec *specs, const char *item)
@@ -87,10 +89,8 @@ static const char *spec_name(const chasm_plugin_descriptor *d, const chasm_param
 static void check_limits(cm_cc *cc, cm_binding *b, const char *item, const cm_aarg *args, cm_loc item_loc, cm_state *st)
 {
     static const chasm_host_api api = {NULL, NULL, NULL, NULL, no_read_d, no_read_i, no_read_b, no_read_s, no_age,
-                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log, NULL, NULL};
+                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log, no_next, no_post};
     chasm_host_api full = api;
-    full.next_message = cm_host_api.next_message;
-    full.post_message = cm_host_api.post_message;
     full.param_double = cm_host_api.param_double;
     full.param_int = cm_host_api.param_int;
     full.param_bool = cm_host_api.param_bool;

@@ -61,8 +61,18 @@ static int valid_spec_list(const chasm_param_spec *p, size_t n, int is_test, cha
             snprintf(err, el, "%s: parameter %zu has no name", what, i);
             return -1;
         }
-        if ((unsigned)p[i].type > CHASM_STRING || (unsigned)p[i].kind > CHASM_WRITES) {
+        if ((unsigned)p[i].type > CHASM_MESSAGES || (unsigned)p[i].kind > CHASM_WRITES) {
             snprintf(err, el, "%s: parameter '%s' has an unknown type or kind", what, p[i].name);
+            return -1;
+        }
+        if (p[i].type == CHASM_MESSAGES && p[i].kind == CHASM_PARAM) {
+            snprintf(err, el, "%s: parameter '%s' is of type messages but not a variable (messages slots are "
+                     "CHASM_READS or CHASM_WRITES)", what, p[i].name);
+            return -1;
+        }
+        if (p[i].type == CHASM_MESSAGES && is_test) {
+            /* a test evaluates and must not consume: taking messages is a behavior's job */
+            snprintf(err, el, "%s: test handlers may not take messages ('%s'): read them in a behavior", what, p[i].name);
             return -1;
         }
         if (is_test && p[i].kind == CHASM_WRITES) {

@@ -99,6 +99,10 @@ static void enter_state(chasm_machine *m, cm_state *s, int64_t now)
             cm_binding_adopt_pending(m, &a->cur, &a->pending);
             cm_binding *b = a->cur;
             if (b->inst_size) memset(b->inst, 0, b->inst_size);
+            /* an action entered now takes the messages that are new this cycle
+             * on; what came before its state was entered is not its business */
+            for (int k = 0; k < b->n_slots; k++)
+                if (b->slots[k].var && b->slots[k].var->stream) b->slots[k].next_msg = b->slots[k].var->stream->cycle_first;
             a->started = true;
             if (b->beh->start) {
                 cm_ext x;
@@ -283,13 +287,27 @@ int chasm_start(chasm_machine *m, int64_t now)
     m->now = now;
     m->start_us = now;
     m->path_len = 0;
+    cm_streams_begin_cycle(m);
     go(m, m->initial, HIST_NONE, NULL, "start", now);
+    cm_streams_commit(m, now);
     return 0;
 }
 
+static chasm_run_state step(chasm_machine *m, int64_t now);
+
+/* Posts of the cycle (and of exit and entry actions) enter their streams
+ * when it ends, however it ended. */
 chasm_run_state chasm_step(chasm_machine *m, int64_t now)
 {
     if (m->run != CHASM_RUN_RUNNING) return m->run;
+    cm_streams_begin_cycle(m);
+    chasm_run_state r = step(m, now);
+    cm_streams_commit(m, now);
+    return r;
+}
+
+static chasm_run_state step(chasm_machine *m, int64_t now)
+{
     m->now = now;
     m->cycle++;
     const int len = m->path_len;
@@ -368,6 +386,7 @@ void chasm_abort(chasm_machine *m, int64_t now, const char *reason)
     if (m->n_aborts) {
         if (!on_path(m, m->aborts[0].target)) go(m, m->aborts[0].target, HIST_NONE, NULL, m->abort_text, now);
     } else finish(m, CHASM_RUN_ABORTED, m->abort_text, now);
+    cm_streams_commit(m, now);
 }
 
 void chasm_pause(chasm_machine *m, bool paused)

@@ -7,8 +7,8 @@
 
 const char *cm_type_name(chasm_type t)
 {
-    static const char *n[] = {"double", "int", "bool", "string"};
-    return (unsigned)t < 4 ? n[t] : "?";
+    static const char *n[] = {"double", "int", "bool", "string", "messages"};
+    return (unsigned)t < 5 ? n[t] : "?";
 }
 
 static const char *written(const cm_aval *v, char *buf, size_t n)
@@ -194,6 +194,30 @@ void cm_check_writers(cm_cc *cc)
     }
 }
 
+/* A messages variable: its capacity (`messages(N)`, default 64) and stream. */
+static int compile_stream(cm_cc *cc, const cm_avar *a, cm_var *v)
+{
+    int64_t cap = CHASM_MESSAGES_DEFAULT_CAPACITY;
+    if (a->has_capacity) {
+        cm_slot s = {0};
+        char what[160];
+        snprintf(what, sizeof what, "the capacity of '%s'", a->name);
+        if (cm_value(cc, &a->capacity, CHASM_INT, NULL, what, &s)) return -1;
+        if (s.i < 1 || s.i > CHASM_MESSAGES_MAX_CAPACITY) {
+            cm_error(cc->d, a->capacity.loc, "%s is %lld messages, outside [1, %d]", what, (long long)s.i,
+                     CHASM_MESSAGES_MAX_CAPACITY);
+            return -1;
+        }
+        cap = s.i;
+    }
+    v->stream = cm_stream_new(cc->m, v, (uint32_t)cap);
+    if (!v->stream) {
+        cm_error(cc->d, a->loc, "out of memory for the %lld messages of '%s'", (long long)cap, a->name);
+        return -1;
+    }
+    return 0;
+}
+
 void cm_compile_vars(cm_cc *cc)
 {
     chasm_machine *m = cc->m;
@@ -213,20 +237,20 @@ void cm_compile_vars(cm_cc *cc)
         v->loc = a->loc;
         v->unit = a->unit ? a->unit : cm_unit_find("");
         v->updated_us = CM_NEVER;
-        const char *tn[] = {"double", "int", "bool", "string"};
+        const char *tn[] = {"double", "int", "bool", "string", "messages"};
         int t = -1;
-        for (int k = 0; k < 4; k++)
+        for (int k = 0; k < 5; k++)
             if (!strcmp(a->type_name, tn[k])) t = k;
         if (t < 0) {
             cm_suggest s;
             cm_suggest_init(&s, a->type_name);
-            for (int k = 0; k < 4; k++) cm_suggest_add(&s, tn[k]);
+            for (int k = 0; k < 5; k++) cm_suggest_add(&s, tn[k]);
             if (!strcmp(a->type_name, "float") || !strcmp(a->type_name, "real")) s.best = "double";
             if (!strcmp(a->type_name, "boolean")) s.best = "bool";
             char h[96];
             const char *hint = cm_suggest_hint(&s, h, sizeof h);
             cm_error(cc->d, a->type_loc, "unknown type '%s' for variable '%s'%s", a->type_name, a->name,
-                     *hint ? hint : " (types: double, int, bool, string)");
+                     *hint ? hint : " (types: double, int, bool, string, messages)");
             continue;
         }
         v->type = (chasm_type)t;
@@ -234,6 +258,11 @@ void cm_compile_vars(cm_cc *cc)
             cm_error(cc->d, a->type_loc, "only double variables carry a unit ('%s' is %s)", a->name, a->type_name);
             continue;
         }
+        if (a->has_capacity && v->type != CHASM_MESSAGES) {
+            cm_error(cc->d, a->cap_loc, "only messages variables have a capacity ('%s' is %s)", a->name, a->type_name);
+            continue;
+        }
+        if (v->type == CHASM_MESSAGES && compile_stream(cc, a, v)) continue;
         if (v->type == CHASM_STRING) {
             v->s_cap = CHASM_STRING_MAX + 1;
             v->s = cm_alloc(cc->a, v->s_cap);

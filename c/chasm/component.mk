@@ -1,6 +1,7 @@
 # libchasm, the chasm tool, its tests, fuzz target and benchmark.
 # Included by the top Makefile; defines rules for each build variant.
 
+comma := ,
 CHASM_LIB_SRCS := $(sort $(wildcard c/chasm/cm_*.c))
 CHASM_TOOL_SRCS := $(sort $(wildcard c/chasm/tool/*.c))
 CHASM_UNIT_SRCS := $(sort $(wildcard tests/chasm/unit/*.c))
@@ -27,9 +28,13 @@ $(1)/bin/chasm_bench: $(1)/obj/bench/chasm_bench.o $(1)/lib/libchasm.a
 	@mkdir -p $$(@D)
 	$$(CC) $$(vflags) $$^ -o $$@ $$(LDLIBS_ALL)
 # Test plugins: one source each (good, v2, broken, wrong ABI, ...).
+# A test plugin with a NAME.lcmtypes.list gets those LCM types compiled in,
+# like c/plugins/NAME/lcmtypes.list (c/plugins/component.mk).
 $(1)/plugins/chasm_%.so: $(1)/obj/tests/chasm/plugins/%.o
 	@mkdir -p $$(@D)
-	$$(CC) $$(vflags) -shared $$< -o $$@
+	$$(CC) $$(vflags) -shared $$(filter %.o,$$^) -o $$@ $$(if $$(findstring /plugin_lcm/,$$^),-Wl$$(comma)--gc-sections)
+	@if nm -D --undefined-only $$@ | grep -E ' (lcm_|__?auv_)' >&2; then \
+	    echo "$$@: undefined LCM symbols (list nested types in its .lcmtypes.list)" >&2; rm -f $$@; exit 1; fi
 endef
 $(foreach v,$(VARIANTS),$(eval $(call chasm_rules,$(v))))
 

@@ -14,6 +14,8 @@ struct rx_sub {
     void *user;
     rx_stats_t stats;
     void *scratch;              /* one decoded struct, reused every message */
+    const void *raw;            /* the bytes being handled (rx_current_raw) */
+    size_t raw_len;
 };
 
 int rx_decode(const auv_type_entry_t *type, const void *data, int len, void *out)
@@ -59,7 +61,11 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
         return;
     }
     s->stats.delivered++;
+    s->raw = rbuf->data;
+    s->raw_len = rbuf->data_size;
     s->handler(channel, s->scratch, rbuf->recv_utime, s->user);
+    s->raw = NULL;
+    s->raw_len = 0;
     s->type->info()->decode_cleanup(s->scratch);
 }
 
@@ -100,6 +106,13 @@ int rx_set_queue_capacity(rx_sub_t *sub, int capacity)
 }
 
 const rx_stats_t *rx_stats(const rx_sub_t *sub) { return &sub->stats; }
+
+const void *rx_current_raw(const rx_sub_t *sub, size_t *len)
+{
+    if (len)
+        *len = sub ? sub->raw_len : 0;
+    return sub ? sub->raw : NULL;
+}
 
 uint64_t rx_decode_errors(const rx_sub_t *sub)
 {

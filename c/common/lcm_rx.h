@@ -38,6 +38,11 @@ void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub);
  * drops new ones (liblcm's default is 30). Returns lcm's result (0 ok). */
 int rx_set_queue_capacity(rx_sub_t *sub, int capacity);
 
+/* Inside a handler: the received bytes of the message being handled (exactly
+ * the encoded message, fingerprint first: rx_decode refuses any byte more or
+ * less). Valid until the handler returns; NULL outside a handler. */
+const void *rx_current_raw(const rx_sub_t *sub, size_t *len);
+
 const rx_stats_t *rx_stats(const rx_sub_t *sub);
 uint64_t rx_decode_errors(const rx_sub_t *sub);
 

@@ -123,6 +123,11 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
         .clock_old_term = (int64_t)ck->n[TP_OLD_TERM],
         .commands_refused = (int64_t)mg->commands_refused,
     };
+    mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->b);
+    d.messages_in = (int64_t)sc.in;
+    d.messages_out = (int64_t)sc.out;
+    d.messages_missed = (int64_t)sc.missed;
+    d.posts_refused = (int64_t)sc.refused;
     return d;
 }
 
@@ -191,6 +196,11 @@ static int run(manager_t *mg)
     if (mg->opt.sim_clock)
         mgr_lockstep_leave(&mg->lockstep, mg->lcm);
     fprintf(stderr, "%s: %s (%s)\n", mg->opt.name, mg->stop ? "stopped" : "plan ended", chasm_run_state_name(rs));
+    mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->b);
+    if (sc.n_streams)
+        fprintf(stderr, "%s: messages: %llu in, %llu out, %llu missed, %llu posts refused\n", mg->opt.name,
+                (unsigned long long)sc.in, (unsigned long long)sc.out, (unsigned long long)sc.missed,
+                (unsigned long long)sc.refused);
     return rs == CHASM_RUN_ABORTED ? 3 : rs == CHASM_RUN_FAILED ? 4 : 0;
 }
 

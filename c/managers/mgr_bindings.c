@@ -47,6 +47,22 @@ static void on_input(const char *channel, const void *msg, int64_t recv_utime, v
         tp_count(&b->time_drops, why, b->who ? b->who : "manager", channel, utime);
         return;
     }
+    if (mb->stream_var >= 0) {
+        /* the whole message, as received: plugins decode it themselves */
+        size_t len = 0;
+        const void *raw = rx_current_raw(mb->sub, &len);
+        if (!raw || chasm_messages_append(b->machine, mb->stream_var, raw, len, utime) != 0) {
+            if (b->range_drops++ == 0)
+                fprintf(stderr, "%s: %s: dropped a %zu-byte message: over %d bytes, too large for the messages variable "
+                                "'%s'; further drops of this kind are only counted\n",
+                        b->who ? b->who : "manager", channel, len, CHASM_MESSAGE_MAX_BYTES,
+                        chasm_var_name(b->machine, mb->stream_var));
+            return;
+        }
+        mb->messages_in++;
+        b->inputs_applied++;
+        return;
+    }
     if (!values_fit(mb, msg)) {
         if (b->range_drops++ == 0)
             fprintf(stderr, "%s: %s: dropped a message with a value that does not fit its plan variable "
@@ -72,7 +88,7 @@ static void on_input(const char *channel, const void *msg, int64_t recv_utime, v
             chasm_var_set_string(b->machine, v->var, s ? s : "", utime);
             break;
         }
-        case CHASM_MESSAGES: break;   /* streams: not bound yet */
+        case CHASM_MESSAGES: break;   /* never a field: whole messages go above */
         }
     }
     b->inputs_applied++;
@@ -87,10 +103,34 @@ void mgr_bindings_recheck(mgr_bindings *b, int64_t now)
     }
 }
 
+/* A messages variable is bound by a line whose prefix is its whole name. */
+static int bind_stream(mgr_bindings *b, const char *path, int var, mgr_errors *errs)
+{
+    const char *name = chasm_var_name(b->machine, var);
+    chasm_var_kind kind = chasm_var_kind_of(b->machine, var);
+    for (int i = 0; i < b->n_msgs; i++) {
+        mgr_message_binding *mb = &b->msgs[i];
+        if (strcmp(mb->prefix, name))
+            continue;
+        if (mb->is_output != (kind == CHASM_VAR_OUTPUT)) {
+            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", path, mb->line,
+                    kind == CHASM_VAR_OUTPUT ? "output" : "input", name, mb->is_output ? "output" : "input");
+            return 1;
+        }
+        mb->stream_var = var;
+        return 0;
+    }
+    mgr_errors_add(errs, "%s:1:1: plan %s '%s' (messages) has no binding (no `%s %s CHANNEL TYPE` line)", path,
+            kind == CHASM_VAR_OUTPUT ? "output" : "input", name, kind == CHASM_VAR_OUTPUT ? "output" : "input", name);
+    return 1;
+}
+
 static int bind_var(mgr_bindings *b, const char *path, int var, mgr_errors *errs)
 {
     const char *name = chasm_var_name(b->machine, var);
     chasm_var_kind kind = chasm_var_kind_of(b->machine, var);
+    if (chasm_var_type(b->machine, var) == CHASM_MESSAGES)
+        return bind_stream(b, path, var, errs);
     const char *dot = strchr(name, '.');
     size_t plen = dot ? (size_t)(dot - name) : 0;
     for (int i = 0; i < b->n_msgs; i++) {
@@ -167,12 +207,21 @@ int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, 
 
 static int bind_all(mgr_bindings *b, const char *path, chasm_machine *m, mgr_errors *errs, int errors)
 {
+    for (int i = 0; i < b->n_msgs; i++)
+        b->msgs[i].stream_var = -1;
     for (size_t v = 0; v < chasm_var_count(m); v++)
         if (chasm_var_kind_of(m, (int)v) != CHASM_VAR_LOCAL)
             errors += bind_var(b, path, (int)v, errs);
     for (int i = 0; i < b->n_msgs; i++) {
         mgr_message_binding *mb = &b->msgs[i];
         char err[128];
+        if (mb->stream_var >= 0 && mb->n_vars) {
+            /* one line, one meaning: whole messages, or fields, not both */
+            mgr_errors_add(errs, "%s:%d:1: '%s' carries whole messages (plan variable '%s' is messages): it cannot "
+                    "also bind the field variable '%s'", path, mb->line, mb->prefix, mb->prefix,
+                    chasm_var_name(m, mb->vars[0].var));
+            errors++;
+        }
         if (!mb->is_output)
             mb->has_utime = field_path_resolve(mb->type, "utime", &mb->utime, err, sizeof err) == 0;
         else
@@ -185,20 +234,74 @@ int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm)
 {
     for (int i = 0; i < b->n_msgs; i++) {
         mgr_message_binding *mb = &b->msgs[i];
-        if (mb->is_output || mb->n_vars == 0)
+        if (mb->is_output || (mb->n_vars == 0 && mb->stream_var < 0))
             continue;
         mb->owner = b;
         mb->sub = rx_subscribe(lcm, mb->channel, mb->type, on_input, mb);
         if (!mb->sub)
             return -1;
+        if (mb->stream_var >= 0) {
+            /* a burst between two cycles must reach the stream, not die in
+             * liblcm's queue (30 by default, dropping the newest) */
+            chasm_messages_info mi;
+            if (chasm_messages_stats(b->machine, mb->stream_var, &mi) == 0 && mi.capacity > 30)
+                rx_set_queue_capacity(mb->sub, (int)mi.capacity);
+        }
     }
     return 0;
+}
+
+/* Every message posted to an output stream this cycle, in order: published
+ * as posted when it decodes as the bound type, refused and counted if not. */
+static void publish_stream(mgr_bindings *b, mgr_message_binding *mb, lcm_t *lcm)
+{
+    size_t len;
+    const void *raw;
+    while ((raw = chasm_messages_take(b->machine, mb->stream_var, &len)) != NULL) {
+        int rc = len <= INT32_MAX ? rx_decode(mb->type, raw, (int)len, mb->scratch) : -1;
+        if (rc != 0) {
+            if (mb->posts_refused++ == 0)
+                fprintf(stderr, "%s: %s: refused a %zu-byte message posted to '%s': %s %s; further refusals are only "
+                                "counted\n", b->who ? b->who : "manager", mb->channel, len,
+                        chasm_var_name(b->machine, mb->stream_var),
+                        rc == -1 ? "not a message of type (fingerprint)" : "truncated or malformed as",
+                        mb->type->lcm_name);
+            continue;
+        }
+        mb->type->info()->decode_cleanup(mb->scratch);
+        memset(mb->scratch, 0, mb->type->struct_size);
+        lcm_publish(lcm, mb->channel, raw, (unsigned)len);
+        mb->messages_out++;
+    }
+}
+
+mgr_stream_counts mgr_bindings_stream_counts(const mgr_bindings *b)
+{
+    mgr_stream_counts c = {0};
+    for (int i = 0; i < b->n_msgs; i++) {
+        const mgr_message_binding *mb = &b->msgs[i];
+        if (mb->stream_var < 0)
+            continue;
+        chasm_messages_info mi = {0};
+        if (b->machine)
+            chasm_messages_stats(b->machine, mb->stream_var, &mi);
+        c.n_streams++;
+        c.in += mb->messages_in;
+        c.out += mb->messages_out;
+        c.missed += mi.missed;
+        c.refused += mb->posts_refused + mi.refused;
+    }
+    return c;
 }
 
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
 {
     for (int i = 0; i < b->n_msgs; i++) {
         mgr_message_binding *mb = &b->msgs[i];
+        if (mb->is_output && mb->stream_var >= 0) {
+            publish_stream(b, mb, lcm);
+            continue;
+        }
         if (!mb->is_output || mb->n_vars == 0)
             continue;
         for (int k = 0; k < mb->n_vars; k++) {
@@ -235,8 +338,8 @@ int mgr_bindings_inputs_ready(const mgr_bindings *b)
     /* Delivered is not enough: a message dropped by the time rule or a range
      * check has not filled the blackboard. */
     for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub && !b->msgs[i].optional && !b->msgs[i].order.have)
-            return 0;
+        if (b->msgs[i].sub && !b->msgs[i].optional && !b->msgs[i].order.have && b->msgs[i].stream_var < 0)
+            return 0;   /* a stream is events, not state: a plan never waits for its first message */
     return 1;
 }
 

@@ -45,6 +45,14 @@ typedef struct {
     void *scratch;
     field_ref_t utime, vehicle;
     int has_utime, has_vehicle;
+    /* A binding whose prefix is a plan variable of type `messages` carries
+     * whole messages: inputs are appended to its stream as received (raw
+     * bytes), posts to an output are checked to decode and published in order
+     * after the cycle. -1: a binding of fields. */
+    int stream_var;
+    uint64_t messages_in;       /* appended to the stream */
+    uint64_t posts_refused;     /* posted bytes that do not decode as the type */
+    uint64_t messages_out;      /* published */
 } mgr_message_binding;
 
 typedef struct mgr_bindings {
@@ -59,8 +67,18 @@ typedef struct mgr_bindings {
     int64_t future_tol_us;
     const char *who;        /* manager name, for the first-drop log lines */
     tp_counts time_drops;   /* per tp_reason */
-    uint64_t range_drops;   /* a value that does not fit its variable */
+    uint64_t range_drops;   /* a value that does not fit its variable (or a message over CHASM_MESSAGE_MAX_BYTES) */
 } mgr_bindings;
+
+/* Message variables' counters, summed over the bindings of streams:
+ * messages appended to input streams, messages lost by slow readers (any
+ * stream), posts refused (by the engine: too large or too many in a cycle;
+ * by the manager: not an encoded message of the bound type), published. */
+typedef struct {
+    uint64_t in, missed, refused, out;
+    int n_streams;
+} mgr_stream_counts;
+mgr_stream_counts mgr_bindings_stream_counts(const mgr_bindings *b);
 
 /* Parse the binding file (with ${VEHICLE} expanded) and bind every input and
  * output variable of the plan. Errors go to stderr as file:line:col: message;

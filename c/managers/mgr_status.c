@@ -54,6 +54,10 @@ void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine
     msg.clock_jumps = clamp32(drops->clock_jumps);
     msg.clock_old_term = clamp32(drops->clock_old_term);
     msg.commands_refused = clamp32(drops->commands_refused);
+    msg.messages_in = clamp32(drops->messages_in);
+    msg.messages_out = clamp32(drops->messages_out);
+    msg.messages_missed = clamp32(drops->messages_missed);
+    msg.posts_refused = clamp32(drops->posts_refused);
     msg.cycle_cost_us = cycle_cost_us;
     auv_chasm_status_t_publish(lcm, s->channel, &msg);
 }

@@ -19,6 +19,7 @@ typedef struct {
     int64_t dropped_invalid_time, dropped_future, dropped_out_of_order, dropped_out_of_range;
     int64_t clock_invalid, clock_backwards, clock_jumps, clock_old_term;
     int64_t commands_refused;
+    int64_t messages_in, messages_out, messages_missed, posts_refused;
 } mgr_drop_counts;
 
 void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan);

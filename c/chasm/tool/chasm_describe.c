@@ -10,11 +10,14 @@
 
 static void print_params(const chasm_param_spec *p, size_t n)
 {
-    static const char *types[] = {"double", "int", "bool", "string"};
+    static const char *types[] = {"double", "int", "bool", "string", "messages"};
     for (size_t i = 0; i < n; i++) {
         const chasm_param_spec *s = &p[i];
-        printf("      %-14s %-6s %-6s", s->name, (unsigned)s->type < 4 ? types[s->type] : "?", s->unit && *s->unit ? s->unit : "-");
-        if (s->kind != CHASM_PARAM)
+        printf("      %-14s %-6s %-6s", s->name, (unsigned)s->type < 5 ? types[s->type] : "?", s->unit && *s->unit ? s->unit : "-");
+        if (s->type == CHASM_MESSAGES)
+            printf(" %s%s%s", s->kind == CHASM_WRITES ? "posts messages to a messages variable" : "takes each message of a messages variable once",
+                   s->def_string ? ", default " : "", s->def_string ? s->def_string : "");
+        else if (s->kind != CHASM_PARAM)
             printf(" %s variable%s%s", s->kind == CHASM_WRITES ? "writes" : "reads", s->def_string ? ", default " : "",
                    s->def_string ? s->def_string : "");
         else if (s->required) printf(" required");

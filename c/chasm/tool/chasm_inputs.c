@@ -142,8 +142,15 @@ static int read_lines(const char *path, const char *text, size_t n, const chasm_
             }
             e.b = t[i].text[0] == 't';
             i++;
-        } else if (e.type == CHASM_STRING) {
+        } else if (e.type == CHASM_STRING || e.type == CHASM_MESSAGES) {
+            /* a message of a messages variable is given as its bytes, in quotes */
             if (t[i].type != T_STRING) {
+                if (e.type == CHASM_MESSAGES) {
+                    fprintf(stderr, "%s:%d:%d: error: '%s' is a messages variable: write a message's bytes in quotes\n",
+                            path, t[i].line, t[i].col, chasm_var_name(m, id));
+                    rc = -1;
+                    break;
+                }
                 fprintf(stderr, "%s:%d:%d: error: '%s' is a string: write it in quotes\n", path, t[i].line, t[i].col,
                         chasm_var_name(m, id));
                 rc = -1;
@@ -221,7 +228,7 @@ static int read_csv(const char *path, char *text, const chasm_machine *m, chasm_
                 return -1;
             }
             if (e.type == CHASM_BOOL) e.b = !strcmp(f, "true") || !strcmp(f, "1");
-            if (e.type == CHASM_STRING) e.s = strdup(f);
+            if (e.type == CHASM_STRING || e.type == CHASM_MESSAGES) e.s = strdup(f); /* a message: the field's bytes */
             push(out, e);
         }
         header = 0;

@@ -184,7 +184,12 @@ static void print_var(const chasm_machine *m, int id)
     case CHASM_INT: printf(" %s=%lld", chasm_var_name(m, id), (long long)chasm_var_get_int(m, id)); break;
     case CHASM_BOOL: printf(" %s=%s", chasm_var_name(m, id), chasm_var_get_bool(m, id) ? "true" : "false"); break;
     case CHASM_STRING: printf(" %s=\"%s\"", chasm_var_name(m, id), chasm_var_get_string(m, id)); break;
-    case CHASM_MESSAGES: printf(" %s=<messages>", chasm_var_name(m, id)); break;
+    case CHASM_MESSAGES: {
+        chasm_messages_info mi = {0};
+        chasm_messages_stats(m, id, &mi);
+        printf(" %s=<%llu messages>", chasm_var_name(m, id), (unsigned long long)mi.total);
+        break;
+    }
     }
 }
 
@@ -240,7 +245,7 @@ static int cmd_run(const args_t *a)
             case CHASM_INT: chasm_var_set_int(m, e->var, (int64_t)e->d, e->t_us); break;
             case CHASM_BOOL: chasm_var_set_bool(m, e->var, e->b, e->t_us); break;
             case CHASM_STRING: chasm_var_set_string(m, e->var, e->s, e->t_us); break;
-            case CHASM_MESSAGES: break;   /* a stream has no value to set */
+            case CHASM_MESSAGES: chasm_messages_append(m, e->var, e->s, e->s ? strlen(e->s) : 0, e->t_us); break;
             }
         }
         while (h < a->n_hp && (int64_t)(a->hp_t[h] * 1e6 + 0.5) <= now) {
@@ -303,8 +308,17 @@ int main(int argc, char **argv)
                 rc = 1;
                 continue;
             }
-            printf("%s: ok (%zu states, %zu tests, %zu variables)\n", a.plans[i], chasm_state_count(m),
+            printf("%s: ok (%zu states, %zu tests, %zu variables", a.plans[i], chasm_state_count(m),
                    chasm_test_count(m), chasm_var_count(m));
+            /* streams are named with their capacity: it is memory and the slow-reader margin */
+            const char *sep = "; messages: ";
+            for (size_t v = 0; v < chasm_var_count(m); v++) {
+                chasm_messages_info mi;
+                if (chasm_messages_stats(m, (int)v, &mi)) continue;
+                printf("%s%s(%zu)", sep, chasm_var_name(m, (int)v), mi.capacity);
+                sep = ", ";
+            }
+            printf(")\n");
             chasm_free(m);
         }
     } else if (!strcmp(argv[1], "dot")) {

@@ -97,7 +97,7 @@ void set_b(chasm_machine *m, const char *var, int v, double t)
 double get_d(chasm_machine *m, const char *var) { return chasm_var_get_double(m, chasm_var_find(m, var)); }
 int64_t get_i(chasm_machine *m, const char *var) { return chasm_var_get_int(m, chasm_var_find(m, var)); }
 
-extern const unit_test semantics_tests[], plugin_tests[];
+extern const unit_test semantics_tests[], plugin_tests[], stream_tests[];
 
 int main(int argc, char **argv)
 {
@@ -108,9 +108,9 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--list")) list = 1;
         else only = argv[i];
     }
-    const unit_test *groups[] = {semantics_tests, plugin_tests};
+    const unit_test *groups[] = {semantics_tests, plugin_tests, stream_tests};
     int ran = 0, failed = 0;
-    for (int g = 0; g < 2; g++)
+    for (int g = 0; g < 3; g++)
         for (const unit_test *t = groups[g]; t->name; t++) {
             if (list) {
                 printf("%s\n", t->name);
