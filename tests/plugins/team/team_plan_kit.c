@@ -27,7 +27,7 @@ const char *const TEAM_PRELUDE =
     "output setpoint.depth_m : double m\n"
     "output setpoint.altitude_m : double m\n"
     "output setpoint.speed_mode : int\n"
-    "output setpoint.speed_mps : double m/s\n"; /* 16 lines */
+    "output setpoint.speed_mps : double m/s\n"; /* 17 lines */
 
 chasm_machine *team_load(const char *body)
 {

@@ -5,7 +5,7 @@
 #include "../common/plugin_test.h"
 #include "team/team_codec.h"
 
-extern const char *const TEAM_PRELUDE;   /* 16 lines */
+extern const char *const TEAM_PRELUDE;   /* 17 lines */
 
 typedef struct {
     int kind, number, result;
