@@ -70,3 +70,10 @@ chasm_status_code tm_keepclear_step(chasm_ctx *c, void *state)
     chasm_write_double(c, KC_OUT_OFFSET, s->depth_offset);
     return CHASM_RUNNING;
 }
+
+void tm_keepclear_stop(chasm_ctx *c, void *state)
+{
+    (void)c;
+    (void)state;
+    tm_store_get()->depth_offset = 0.0;   /* the offset lives only while keep_clear runs */
+}

@@ -41,6 +41,7 @@ _Static_assert(CHASM_COUNT(tm_link_params) == LINK_NPARAMS, "team_link schema an
 
 typedef struct {
     tm_tdma tdma;
+    long refused_logged, bad_logged;   /* counts already reported in the log */
 } link_state;
 _Static_assert(sizeof(link_state) <= 64, "team_link state size in the descriptor");
 
@@ -118,6 +119,14 @@ static void send(chasm_ctx *c, tm_store *s, link_state *ls)
     tm_item items[64];
     int n;
     size_t bytes = tm_frame_build(s, c->now_us, frame, (size_t)chasm_param_int(c, LINK_FRAME_BYTES), items, 64, &n);
+    if (s->out.refused != ls->refused_logged) {
+        char msg[200];
+        snprintf(msg, sizeof msg,
+                 "team_link: %ld messages refused by the link codec so far (a value outside the schema's "
+                 "range, c/plugins/team/team_link.schema)", s->out.refused);
+        chasm_log(c, msg);
+        ls->refused_logged = s->out.refused;
+    }
     if (!bytes)
         return;
     auv_modem_tx_t tx = {0};
@@ -172,9 +181,17 @@ chasm_status_code tm_link_step(chasm_ctx *c, void *state)
 {
     tm_store *s = tm_store_get();
     s->last_now_us = c->now_us;
+    link_state *ls = state;
     receive(c, s);
+    if (s->frames_bad + s->undecodable != ls->bad_logged) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "team_link: %ld frames and %ld input messages did not decode so far", s->frames_bad,
+                 s->undecodable);
+        chasm_log(c, msg);
+        ls->bad_logged = s->frames_bad + s->undecodable;
+    }
     watch_peers(c, s);
-    send(c, s, state);
+    send(c, s, ls);
     post_events(c, s);
     return CHASM_RUNNING;
 }

@@ -19,7 +19,7 @@ static const chasm_behavior_spec behaviors[] = {
     {"ri_reacquire", "reacquire-identify: route through the reported targets, identify them from looks",
      tm_ri_params, RI_NPARAMS, sizeof(tm_ri_state), tm_ri_start, tm_ri_step, NULL},
     {"keep_clear", "depth offset while a lower-numbered teammate is predicted close", tm_keepclear_params,
-     KC_NPARAMS, sizeof(tm_keepclear_state), tm_keepclear_start, tm_keepclear_step, NULL},
+     KC_NPARAMS, sizeof(tm_keepclear_state), tm_keepclear_start, tm_keepclear_step, tm_keepclear_stop},
 };
 
 CHASM_PLUGIN_EXPORT("team", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);

@@ -69,6 +69,7 @@ typedef struct {
     int peer;
 } tm_keepclear_state;
 TM_DECLARE(keepclear, KC_NPARAMS);
+PU_HIDDEN void tm_keepclear_stop(chasm_ctx *c, void *state);
 
 /* Vertical setpoint shared by the steering behaviors: depth + offset, or
  * altitude - offset when an altitude is given. */

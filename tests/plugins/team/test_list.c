@@ -23,5 +23,6 @@ const plugin_test plugin_tests[] = {
     {"lost_teammates_lines_are_taken", lost_teammates_lines_are_taken},
     {"aborted_teammate_is_lost_at_once", aborted_teammate_is_lost_at_once},
     {"keep_clear_gives_way_in_depth", keep_clear_gives_way_in_depth},
+    {"out_of_range_values_are_refused_and_logged", out_of_range_values_are_refused_and_logged},
 };
 const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

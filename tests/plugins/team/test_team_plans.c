@@ -278,3 +278,28 @@ void keep_clear_gives_way_in_depth(void)
     CHECK_NEAR(pt_get(m, "setpoint.depth_m"), 10, 1e-9);
     chasm_free(m);
 }
+
+void out_of_range_values_are_refused_and_logged(void)
+{
+    chasm_machine *m = team_load("state mission {\n"
+                                 "    do team_link(" ROSTER ", me = \"AUV1\", my_slot = 0)\n"
+                                 "    do search_contacts()\n"
+                                 "}\n");
+    if (!m)
+        return;
+    pt_log_clear();
+    team_nav(m, 0, 0, 0, 1.5, 0);
+    pt_start(m, 0);
+    team_feed_contact(m, 0, 5000, 0, 0.9, 1.0);   /* beyond the schema's +-2000 m */
+    team_feed_contact(m, 1, 10, 0, 0.9, 1.0);
+    uint8_t junk[3] = {0xF0, 0, 0};   /* not a modem_rx_t: counted, logged */
+    chasm_messages_append(m, chasm_var_find(m, "modem_rx"), junk, sizeof junk, 1000000);
+    run(m, 0.1, 21, 0, 0);
+    team_msg msgs[8];
+    int frames;
+    int n = team_take_frames(m, msgs, 8, &frames);
+    CHECK(frames == 1 && n == 1 && msgs[0].id == TEAM_MSG_CONTACT && msgs[0].u.contact.number == 1);
+    CHECK_HAS(pt_log, "team_link: 1 messages refused by the link codec so far");
+    CHECK_HAS(pt_log, "team_link: 0 frames and 1 input messages did not decode so far");
+    chasm_free(m);
+}
