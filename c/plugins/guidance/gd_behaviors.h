@@ -6,7 +6,7 @@
 #define GD_BEHAVIORS_H
 
 #include "chasm/chasm_plugin.h"
-#include "gd_geometry.h"
+#include "plugins/lib/gd_geometry.h"
 #include "gd_survey.h"
 
 /* Declares one behavior's schema and entry points. */

@@ -9,7 +9,7 @@
 #include <math.h>
 
 #include "chasm/chasm_plugin.h"
-#include "gd_geometry.h"
+#include "plugins/lib/gd_geometry.h"
 
 /* auv.setpoint_t modes (lcmtypes/setpoint_t.lcm) */
 enum { GD_VERTICAL_DEPTH = 0, GD_VERTICAL_ALTITUDE = 1, GD_VERTICAL_PITCH = 2 };

@@ -13,7 +13,7 @@
 
 #include <stddef.h>
 
-#include "gd_geometry.h"
+#include "plugins/lib/gd_geometry.h"
 #include "plugins/lib/pu_polygon.h"
 
 #define GD_MAX_LINES 500

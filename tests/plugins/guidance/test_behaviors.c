@@ -5,7 +5,7 @@
 #include <stdlib.h>
 
 #include "gd_tests.h"
-#include "plugins/guidance/gd_geometry.h"
+#include "plugins/lib/gd_geometry.h"
 #include "plugins/lib/pu_angle.h"
 
 #define DEG (M_PI / 180.0)

@@ -4,7 +4,7 @@
 #include <math.h>
 
 #include "gd_tests.h"
-#include "plugins/guidance/gd_geometry.h"
+#include "plugins/lib/gd_geometry.h"
 #include "plugins/guidance/gd_survey.h"
 #include "plugins/lib/pu_angle.h"
 

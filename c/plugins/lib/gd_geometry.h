@@ -1,5 +1,6 @@
 /* Horizontal guidance geometry in the local NED plane (metres, radians,
- * headings clockwise from north): a path line's frame, the
+ * headings clockwise from north), shared by the plugins that steer (guidance,
+ * team): a path line's frame, the
  * integral line-of-sight (ILOS) law and circle following (angles wrap with
  * plugins/lib/pu_angle.h). Pure functions and
  * small state structs, so the unit tests can drive them without an engine. */

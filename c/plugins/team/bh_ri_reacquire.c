@@ -1,0 +1,188 @@
+/* ri_reacquire: the reacquire-identify vehicle's mission. Targets come from
+ * the contact reports team_link stores (merged across reporters by position,
+ * tm_targets.h); the route from the vehicle through the pending targets is
+ * planned by cheapest insertion and 2-opt (tm_route.h) and replanned when a
+ * report adds a target or a target is decided. The vehicle steers (guidance's
+ * ILOS, gd_geometry.c) to the first target of the route; near it, it circles
+ * it at half the identification range. Looks (reacquire_look_t, a messages
+ * input) identify the nearest pending target within `merge` of the look;
+ * a target not identified within look_timeout of first coming within
+ * ident_range is NOT_FOUND. Every result is queued for the link (ident) and
+ * posted as an event. DONE when no target is pending and every teammate is
+ * done, aborted or lost. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "auv/auv_reacquire_look_t.h"
+#include "tm_behaviors.h"
+#include "tm_route.h"
+#include "tm_store.h"
+
+const chasm_param_spec tm_ri_params[] = {
+    TM_MSGS_IN("looks", "looks", "the short-range sensor's looks (a `messages` variable bound to <V>.LOOKS)"),
+    TM_PARAM("merge", "m", 5, 0, 100, "reports and looks within this distance are one object"),
+    TM_PARAM("ident_range", "m", 6, 0.5, 200, "the sensor's useful range: the target is reached within it"),
+    TM_PARAM("look_timeout", "s", 60, 1, 3600, "not found if no look decides it this long after reaching it"),
+    TM_IPARAM("ident_looks", 1, 1, 15, "looks with one result that decide a target"),
+    TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
+    TM_PARAM("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),
+    {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0,
+     "altitude instead of a depth (minus keep_clear's offset)"},
+    TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
+    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
+    TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
+    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),
+    TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),
+    TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),
+    TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"),
+    TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
+    TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint"),
+};
+_Static_assert(CHASM_COUNT(tm_ri_params) == RI_NPARAMS, "ri_reacquire schema and slots disagree");
+
+static gd_point here(chasm_ctx *c) { return (gd_point){chasm_read_double(c, RI_IN_NORTH), chasm_read_double(c, RI_IN_EAST)}; }
+
+/* Records a result: event, ident for the link. */
+static void decided(chasm_ctx *c, tm_store *s, int i)
+{
+    tm_target *t = &s->targets.t[i];
+    int not_found = t->state == TM_T_NOT_FOUND;
+    tm_post(s, c->now_us, not_found ? TM_EV_TARGET_NOT_FOUND : TM_EV_TARGET_IDENTIFIED, t->key.origin,
+             t->key.number, t->n, t->e, t->result, not_found ? "no look in time" : t->result == 1 ? "mine" : "not mine");
+    int k = tm_outbox_ident(&s->out);
+    if (k >= 0)
+        s->idents[k] = (tm_ident){t->key, t->result, not_found ? t->n : t->look_n, not_found ? t->e : t->look_e,
+                                  (double)c->now_us * 1e-6};
+    s->targets_changed = 1;
+}
+
+static void replan(chasm_ctx *c, tm_store *s, tm_ri_state *st)
+{
+    int idx[TM_MAX_TARGETS], order[TM_MAX_TARGETS];
+    gd_point pts[TM_MAX_TARGETS];
+    int n = tm_targets_pending(&s->targets, idx, TM_MAX_TARGETS);
+    for (int i = 0; i < n; i++)
+        pts[i] = (gd_point){s->targets.t[idx[i]].n, s->targets.t[idx[i]].e};
+    gd_point p = here(c);
+    tm_route_plan(p, pts, n, order);
+    char text[200] = "";
+    size_t used = 0;
+    for (int i = 0; i < n && used < sizeof text; i++) {
+        const tm_target *t = &s->targets.t[idx[order[i]]];
+        used += (size_t)snprintf(text + used, sizeof text - used, "%s%s:%d", i ? " " : "", tm_name(s, t->key.origin),
+                                 t->key.number);
+    }
+    int next = n ? idx[order[0]] : -1;
+    if (n)
+        tm_post(s, c->now_us, TM_EV_ROUTE, -1, -1, p.n, p.e, 0, text);
+    if (next != st->current) {
+        st->current = next;
+        if (next >= 0) {
+            gd_line_make(&st->leg, p, (gd_point){s->targets.t[next].n, s->targets.t[next].e});
+            st->los = (gd_los){chasm_param_double(c, RI_LOOKAHEAD), 0.0, 0.0};
+        }
+    }
+    s->targets_changed = 0;
+}
+
+/* Are all teammates done, aborted or lost? */
+static int team_finished(const tm_store *s)
+{
+    for (int v = 0; v < s->roster.n; v++) {
+        const tm_peer *p = &s->peer[v];
+        if (v != s->me && !p->lost && !(p->has_status && p->state == TM_ST_DONE))
+            return 0;
+    }
+    return 1;
+}
+
+int tm_ri_start(chasm_ctx *c, void *state)
+{
+    tm_ri_state *st = state;
+    tm_store *s = tm_store_for(c, "ri_reacquire");
+    if (!s)
+        return -1;
+    st->current = -1;
+    s->merge_m = chasm_param_double(c, RI_MERGE);
+    if (!s->is_ri) {
+        s->is_ri = 1;
+        /* reports heard before this behavior ran get their ack now */
+        for (int i = 0; i < s->targets.n; i++) {
+            const tm_target *t = &s->targets.t[i];
+            tm_outbox_ack(&s->out, t->key.origin, t->key.number);
+            for (int j = 0; j < t->n_alias; j++)
+                tm_outbox_ack(&s->out, t->alias[j].origin, t->alias[j].number);
+        }
+    }
+    s->targets_changed = 1;
+    return 0;
+}
+
+chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
+{
+    tm_ri_state *st = state;
+    tm_store *s = tm_store_get();
+    double now = (double)c->now_us * 1e-6;
+    const void *msg;
+    size_t len;
+    while ((msg = chasm_next_message(c, RI_LOOKS, &len))) {
+        auv_reacquire_look_t k;
+        if (len > 1u << 20 || auv_reacquire_look_t_decode(msg, 0, (int)len, &k) < 0) {
+            s->undecodable++;
+            continue;
+        }
+        int i = tm_targets_look(&s->targets, k.north_m, k.east_m, k.result, chasm_param_double(c, RI_MERGE),
+                                (int)chasm_param_int(c, RI_IDENT_LOOKS));
+        auv_reacquire_look_t_decode_cleanup(&k);
+        if (i >= 0)
+            decided(c, s, i);
+    }
+    gd_point p = here(c);
+    /* the current target: reached? timed out? */
+    if (st->current >= 0) {
+        tm_target *t = &s->targets.t[st->current];
+        if (t->state == TM_T_PENDING) {
+            double d = hypot(p.n - t->n, p.e - t->e);
+            if (d <= chasm_param_double(c, RI_IDENT_RANGE) && t->near_since < 0)
+                t->near_since = now;
+            if (t->near_since >= 0 && now - t->near_since > chasm_param_double(c, RI_LOOK_TIMEOUT)) {
+                t->state = TM_T_NOT_FOUND;
+                t->result = TM_RESULT_NOT_FOUND;
+                decided(c, s, st->current);
+            }
+        } else {
+            s->targets_changed = 1;
+        }
+    }
+    if (s->targets_changed)
+        replan(c, s, st);
+    double heading;
+    if (st->current >= 0) {
+        tm_target *t = &s->targets.t[st->current];
+        gd_point g = {t->n, t->e};
+        if (t->near_since >= 0)   /* circle it so the sensor keeps looking */
+            heading = gd_circle_heading(g, 0.5 * chasm_param_double(c, RI_IDENT_RANGE), 1,
+                                        chasm_param_double(c, RI_LOOKAHEAD), p);
+        else
+            heading = gd_los_heading(&st->los, &st->leg, p, c->dt_s, NULL, NULL);
+        s->state = TM_ST_REACQUIRE;
+        st->idle_set = 0;
+    } else {
+        if (team_finished(s)) {
+            s->state = TM_ST_DONE;
+            return CHASM_DONE;
+        }
+        if (!st->idle_set) {
+            st->idle = p;
+            st->idle_set = 1;
+        }
+        heading = gd_circle_heading(st->idle, 20.0, 1, chasm_param_double(c, RI_LOOKAHEAD), p);
+        s->state = TM_ST_REACQUIRE;
+    }
+    chasm_write_double(c, RI_OUT_HEADING, heading);
+    chasm_write_double(c, RI_OUT_SPEED, chasm_param_double(c, RI_SPEED));
+    chasm_write_int(c, RI_OUT_SPEED_MODE, 0);
+    tm_vertical(c, RI_DEPTH, RI_ALTITUDE, RI_OUT_VERTICAL_MODE, RI_OUT_DEPTH, RI_OUT_ALTITUDE, s->depth_offset);
+    return CHASM_RUNNING;
+}

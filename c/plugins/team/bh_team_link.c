@@ -1,0 +1,197 @@
+/* team_link: the team's acoustic link and this vehicle's team identity.
+ *
+ *   team_link(team = "AUV1,AUV2,AUV3,AUV4", me = "AUV2", my_slot = 1)
+ *
+ * Every cycle it applies each received KIND_TEAM frame (modem_rx_t messages)
+ * to the store: peer statuses, contact reports (acked when this vehicle runs
+ * ri_reacquire), acks of own contacts, identification results. A teammate is
+ * lost when its status says abort or nothing was heard from it for `silent`
+ * (PEER_LOST). In its TDMA slot (tm_tdma.h) it sends one frame of at most
+ * frame_bytes, filled by priority (tm_outbox.h), as a modem_tx_t KIND_TEAM.
+ * It is also the one writer of the events output: it posts the events every
+ * team behavior queued (team_event_t). */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "auv/auv_modem_rx_t.h"
+#include "auv/auv_modem_tx_t.h"
+#include "auv/auv_team_event_t.h"
+#include "tm_behaviors.h"
+#include "tm_frame.h"
+#include "tm_store.h"
+#include "tm_tdma.h"
+
+const chasm_param_spec tm_link_params[] = {
+    TM_SPARAM("team", 1, "the roster, the same in every plan: \"AUV1,AUV2,AUV3,AUV4\" (index = team number)"),
+    TM_SPARAM("me", 1, "this vehicle's name in the roster"),
+    TM_PARAM("slot", "s", 5, 0.1, 600, "TDMA slot length"),
+    TM_IPARAM("slots", 4, 1, 16, "slots in a TDMA round"),
+    TM_IPARAM("my_slot", 0, 0, 15, "this vehicle's slot (0 .. slots - 1)"),
+    TM_PARAM("window", "s", 1, 0.01, 600, "a frame starts only this soon after the slot's start"),
+    TM_IPARAM("frame_bytes", 32, 4, 256, "the modem's frame size"),
+    TM_PARAM("silent", "s", 120, 1, 36000, "a teammate not heard for this long is lost"),
+    TM_IPARAM("repeat", 3, 1, 100, "sends of an unacked contact before it yields to the status (it is still "
+                                   "resent until acked); sends of each ident"),
+    TM_MSGS_IN("rx", "modem_rx", "frames received (messages bound to <V>.MODEM_RX modem_rx_t)"),
+    TM_MSGS_OUT("tx", "modem_tx", "frames to send (messages bound to <V>.MODEM_TX modem_tx_t)"),
+    TM_MSGS_OUT("events", "team_events", "team events (messages bound to <V>.TEAM_EVENT team_event_t)"),
+};
+_Static_assert(CHASM_COUNT(tm_link_params) == LINK_NPARAMS, "team_link schema and slots disagree");
+
+typedef struct {
+    tm_tdma tdma;
+    long refused_logged, bad_logged;   /* counts already reported in the log */
+} link_state;
+_Static_assert(sizeof(link_state) <= 64, "team_link state size in the descriptor");
+
+int tm_link_start(chasm_ctx *c, void *state)
+{
+    link_state *ls = state;
+    tm_roster r;
+    char why[160];
+    if (tm_roster_parse(&r, chasm_param_string(c, LINK_TEAM), why, sizeof why)) {
+        char msg[240];
+        snprintf(msg, sizeof msg, "team_link: team: %s", why);
+        chasm_log(c, msg);
+        return -1;
+    }
+    int me = tm_roster_index(&r, chasm_param_string(c, LINK_ME));
+    if (me < 0) {
+        chasm_log(c, "team_link: me is not in the team roster");
+        return -1;
+    }
+    tm_store_configure(tm_store_get(), &r, me, c->now_us, (int)chasm_param_int(c, LINK_REPEAT));
+    tm_tdma_init(&ls->tdma, chasm_param_double(c, LINK_SLOT), (int)chasm_param_int(c, LINK_SLOTS),
+                 (int)chasm_param_int(c, LINK_MY_SLOT), chasm_param_double(c, LINK_WINDOW));
+    return 0;
+}
+
+static void receive(chasm_ctx *c, tm_store *s)
+{
+    const void *msg;
+    size_t len;
+    while ((msg = chasm_next_message(c, LINK_RX, &len))) {
+        auv_modem_rx_t f;
+        if (len > 1u << 20 || auv_modem_rx_t_decode(msg, 0, (int)len, &f) < 0) {
+            s->undecodable++;
+            continue;
+        }
+        int src = tm_roster_index(&s->roster, f.src_vehicle ? f.src_vehicle : "");
+        if (f.kind != 2 /* KIND_TEAM */ || src < 0 || src == s->me || f.n_bytes < 0) {
+            s->frames_foreign++;
+        } else {
+            s->frames_in++;
+            tm_peer *p = &s->peer[src];
+            p->heard = 1;
+            p->t_heard = (double)c->now_us * 1e-6;
+            tm_frame_receive(s, src, f.payload, (size_t)f.n_bytes, c->now_us);
+        }
+        auv_modem_rx_t_decode_cleanup(&f);
+    }
+}
+
+static void watch_peers(chasm_ctx *c, tm_store *s)
+{
+    double now = (double)c->now_us * 1e-6, silent = chasm_param_double(c, LINK_SILENT);
+    for (int v = 0; v < s->roster.n; v++) {
+        tm_peer *p = &s->peer[v];
+        if (v == s->me || p->lost)
+            continue;
+        double quiet = now - (p->heard ? p->t_heard : s->t_start);
+        int aborted = p->has_status && p->state == TM_ST_ABORT;
+        if (aborted || quiet > silent) {
+            p->lost = 1;
+            char text[80];
+            snprintf(text, sizeof text, aborted ? "aborted" : "silent for %.0f s", quiet);
+            tm_post(s, c->now_us, TM_EV_PEER_LOST, v, -1, p->track.n, p->track.e, 0, text);
+        }
+    }
+}
+
+static void send(chasm_ctx *c, tm_store *s, link_state *ls)
+{
+    int64_t round = tm_tdma_may_send(&ls->tdma, c->now_us);
+    if (round < 0)
+        return;
+    tm_tdma_sent(&ls->tdma, round);
+    uint8_t frame[256];
+    tm_item items[64];
+    int n;
+    size_t bytes = tm_frame_build(s, c->now_us, frame, (size_t)chasm_param_int(c, LINK_FRAME_BYTES), items, 64, &n);
+    if (s->out.refused != ls->refused_logged) {
+        char msg[200];
+        snprintf(msg, sizeof msg,
+                 "team_link: %ld messages refused by the link codec so far (a value outside the schema's "
+                 "range, c/plugins/team/team_link.schema)", s->out.refused);
+        chasm_log(c, msg);
+        ls->refused_logged = s->out.refused;
+    }
+    if (!bytes)
+        return;
+    auv_modem_tx_t tx = {0};
+    tx.utime = c->now_us;
+    tx.vehicle = s->roster.name[s->me];
+    tx.dst_vehicle = "";
+    tx.seq = s->seq++;
+    tx.kind = 2; /* KIND_TEAM */
+    tx.n_bytes = (int16_t)bytes;
+    tx.payload = frame;
+    uint8_t buf[512];
+    int len = auv_modem_tx_t_encode(buf, 0, (int)sizeof buf, &tx);
+    if (len < 0 || chasm_post_message(c, LINK_TX, buf, (size_t)len) < 0)
+        return;
+    s->frames_sent++;
+    for (int i = 0; i < n; i++)
+        if (items[i].kind == TM_ITEM_CONTACT) {
+            const tm_contact *k = &s->contacts.c[items[i].a];
+            int sends = 0;
+            for (int j = 0; j < s->out.n_contacts; j++)
+                if (s->out.contacts[j].number == k->number)
+                    sends = s->out.contacts[j].sends;
+            char text[32];
+            snprintf(text, sizeof text, "send %d", sends);
+            tm_post(s, c->now_us, TM_EV_CONTACT_SENT, s->me, k->number, k->n, k->e, 0, text);
+        }
+}
+
+static void post_events(chasm_ctx *c, tm_store *s)
+{
+    for (int i = 0; i < s->n_events; i++) {
+        const tm_event *v = &s->events[i];
+        auv_team_event_t ev = {0};
+        ev.utime = v->utime;
+        ev.vehicle = s->roster.name[s->me];
+        ev.kind = (int8_t)v->kind;
+        ev.origin = (char *)tm_name(s, v->origin);
+        ev.number = v->number;
+        ev.north_m = v->n;
+        ev.east_m = v->e;
+        ev.result = (int8_t)v->result;
+        ev.text = (char *)v->text;
+        uint8_t buf[512];
+        int len = auv_team_event_t_encode(buf, 0, (int)sizeof buf, &ev);
+        if (len < 0 || chasm_post_message(c, LINK_EVENTS, buf, (size_t)len) < 0)
+            s->events_dropped++;
+    }
+    s->n_events = 0;
+}
+
+chasm_status_code tm_link_step(chasm_ctx *c, void *state)
+{
+    tm_store *s = tm_store_get();
+    s->last_now_us = c->now_us;
+    link_state *ls = state;
+    receive(c, s);
+    if (s->frames_bad + s->undecodable != ls->bad_logged) {
+        char msg[160];
+        snprintf(msg, sizeof msg, "team_link: %ld frames and %ld input messages did not decode so far", s->frames_bad,
+                 s->undecodable);
+        chasm_log(c, msg);
+        ls->bad_logged = s->frames_bad + s->undecodable;
+    }
+    watch_peers(c, s);
+    send(c, s, ls);
+    post_events(c, s);
+    return CHASM_RUNNING;
+}

@@ -1,0 +1,152 @@
+/* team_survey: fly this vehicle's own lines, then the lines it takes over
+ * from lost teammates (the takeover rule, tm_lines.h).
+ *
+ *   team_survey(lines = "0: 0,0 0,400; 1: 20,0 20,400; ...", depth = 10 m)
+ *
+ * Each line: a goto to its start (ILOS from where the vehicle is), then ILOS
+ * along it to its end (guidance's geometry, plugins/lib/gd_geometry.c).
+ * Progress lives in the store (own next_line, taken lines flown), so the
+ * status tells the team where this vehicle is in its list and a re-entered
+ * state continues where it was. When a teammate is lost (team_link decides),
+ * its remaining lines are dealt once; a LINES_TAKEN event lists this
+ * vehicle's share. DONE when every line it has is flown. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "tm_behaviors.h"
+#include "tm_store.h"
+
+const chasm_param_spec tm_survey_params[] = {
+    TM_SPARAM("lines", 1, "the team's lines: \"owner: n,e n,e; ...\" (the same string in every plan)"),
+    TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
+    TM_PARAM("depth", "m", 5, 0, 1000, "survey depth (plus keep_clear's offset)"),
+    {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0,
+     "survey altitude instead of a depth (minus keep_clear's offset)"},
+    TM_PARAM("radius", "m", 5, 0.5, 1000, "a line's start is reached within this distance"),
+    TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
+    TM_PARAM("integral", "Hz", 0.04, 0, 1, "ILOS integral rate (0: plain LOS)"),
+    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
+    TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
+    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),
+    TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),
+    TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),
+    TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"),
+    TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
+    TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint"),
+};
+_Static_assert(CHASM_COUNT(tm_survey_params) == SV_NPARAMS, "team_survey schema and slots disagree");
+
+/* Deals the lines of every teammate lost since the last call (once each). */
+static void take_over(chasm_ctx *c, tm_store *s, const tm_lines *l)
+{
+    int alive[TM_MAX_TEAM];
+    for (int v = 0; v < s->roster.n; v++)
+        alive[v] = !s->peer[v].lost;
+    alive[s->me] = 1;
+    for (int v = 0; v < s->roster.n; v++) {
+        tm_peer *p = &s->peer[v];
+        if (v == s->me || !p->lost || p->dealt)
+            continue;
+        p->dealt = 1;
+        int to[TM_MAX_LINES];
+        int from = p->has_status ? p->next_line : 0;
+        if (!tm_takeover_deal(l, v, from, alive, s->roster.n, to))
+            continue;
+        char text[200] = "";
+        size_t used = 0;
+        for (int i = 0; i < l->n; i++)
+            if (to[i] == s->me && s->n_taken < TM_MAX_LINES) {
+                s->taken[s->n_taken++] = i;
+                used += (size_t)snprintf(text + used, used < sizeof text ? sizeof text - used : 0, "%s%d",
+                                         used ? " " : "", i);
+            }
+        if (used)
+            tm_post(s, c->now_us, TM_EV_LINES_TAKEN, v, -1, 0, 0, 0, text);
+    }
+}
+
+/* The next line to fly (own first, then taken), or -1 when all are flown. */
+static int next_line(const tm_store *s, const tm_survey_state *st, int *taken)
+{
+    int own[TM_MAX_LINES];
+    int n_own = tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES);
+    if (s->next_line < n_own) {
+        *taken = 0;
+        return own[s->next_line];
+    }
+    *taken = 1;
+    return st->taken_next < s->n_taken ? s->taken[st->taken_next] : -1;
+}
+
+static void begin(chasm_ctx *c, tm_survey_state *st, int line)
+{
+    st->line = line;
+    gd_point here = {chasm_read_double(c, SV_IN_NORTH), chasm_read_double(c, SV_IN_EAST)};
+    const tm_line *ln = &st->lines.l[line];
+    st->phase = hypot(here.n - ln->a.n, here.e - ln->a.e) <= chasm_param_double(c, SV_RADIUS);
+    gd_line_make(&st->path, st->phase ? ln->a : here, st->phase ? ln->b : ln->a);
+    st->los = (gd_los){chasm_param_double(c, SV_LOOKAHEAD), chasm_param_double(c, SV_INTEGRAL), 0.0};
+}
+
+int tm_survey_start(chasm_ctx *c, void *state)
+{
+    tm_survey_state *st = state;
+    tm_store *s = tm_store_for(c, "team_survey");
+    if (!s)
+        return -1;
+    char why[160];
+    if (tm_lines_parse(&st->lines, chasm_param_string(c, SV_LINES), s->roster.n, why, sizeof why)) {
+        char msg[240];
+        snprintf(msg, sizeof msg, "team_survey: lines: %s", why);
+        chasm_log(c, msg);
+        return -1;
+    }
+    st->line = -1;
+    /* taken lines already flown in an earlier visit of this state are not
+     * kept in the store: flying one again is safe, skipping one is not */
+    st->taken_next = 0;
+    return 0;
+}
+
+chasm_status_code tm_survey_step(chasm_ctx *c, void *state)
+{
+    tm_survey_state *st = state;
+    tm_store *s = tm_store_get();
+    take_over(c, s, &st->lines);
+    int taken;
+    if (st->line < 0) {
+        int l = next_line(s, st, &taken);
+        if (l < 0) {
+            s->next_line = TM_ALL_DONE;
+            s->state = TM_ST_DONE;
+            return CHASM_DONE;
+        }
+        begin(c, st, l);
+    }
+    next_line(s, st, &taken);
+    gd_point p = {chasm_read_double(c, SV_IN_NORTH), chasm_read_double(c, SV_IN_EAST)};
+    double along;
+    double heading = gd_los_heading(&st->los, &st->path, p, c->dt_s, &along, NULL);
+    if (st->phase == 0 && hypot(p.n - st->path.b.n, p.e - st->path.b.e) <= chasm_param_double(c, SV_RADIUS)) {
+        const tm_line *ln = &st->lines.l[st->line];
+        st->phase = 1;
+        gd_line_make(&st->path, ln->a, ln->b);
+        heading = gd_los_heading(&st->los, &st->path, p, 0.0, &along, NULL);
+    } else if (st->phase == 1 && along >= st->path.length) {
+        if (taken)
+            st->taken_next++;
+        else
+            s->next_line++;
+        st->line = -1;
+    }
+    s->state = st->phase == 0 ? TM_ST_TRANSIT : taken ? TM_ST_TAKEOVER : TM_ST_SURVEY;
+    int own[TM_MAX_LINES];
+    if (s->next_line >= tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES))
+        s->next_line = TM_ALL_DONE;
+    chasm_write_double(c, SV_OUT_HEADING, heading);
+    chasm_write_double(c, SV_OUT_SPEED, chasm_param_double(c, SV_SPEED));
+    chasm_write_int(c, SV_OUT_SPEED_MODE, 0);
+    tm_vertical(c, SV_DEPTH, SV_ALTITUDE, SV_OUT_VERTICAL_MODE, SV_OUT_DEPTH, SV_OUT_ALTITUDE, s->depth_offset);
+    return CHASM_RUNNING;
+}

@@ -1,0 +1,79 @@
+/* The behaviors of plugin `team`: schema slots and entry points, collected
+ * by team_plugin.c into the descriptor. Slot enums follow each schema's order. */
+#ifndef TM_BEHAVIORS_H
+#define TM_BEHAVIORS_H
+
+#include "chasm/chasm_plugin.h"
+#include "plugins/lib/gd_geometry.h"
+#include "tm_lines.h"
+
+#define TM_DECLARE(id, nparams)                                        \
+    PU_HIDDEN extern const chasm_param_spec tm_##id##_params[nparams]; \
+    PU_HIDDEN int tm_##id##_start(chasm_ctx *c, void *state);          \
+    PU_HIDDEN chasm_status_code tm_##id##_step(chasm_ctx *c, void *state)
+
+#define TM_NAV(name, unit, var, doc) {name, CHASM_READS, CHASM_DOUBLE, unit, 0, 0, var, 0, 0, 0, doc}
+#define TM_OUT(name, type, unit, var, doc) {name, CHASM_WRITES, type, unit, 0, 0, var, 0, 0, 0, doc}
+#define TM_PARAM(name, unit, def, lo, hi, doc) {name, CHASM_PARAM, CHASM_DOUBLE, unit, 0, def, NULL, 1, lo, hi, doc}
+#define TM_IPARAM(name, def, lo, hi, doc) {name, CHASM_PARAM, CHASM_INT, "", 0, def, NULL, 1, lo, hi, doc}
+#define TM_SPARAM(name, req, doc) {name, CHASM_PARAM, CHASM_STRING, "", req, 0, NULL, 0, 0, 0, doc}
+#define TM_MSGS_IN(name, var, doc) {name, CHASM_READS, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
+#define TM_MSGS_OUT(name, var, doc) {name, CHASM_WRITES, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
+#define TM_ABSENT (-1e15)
+
+/* ---- team_link (bh_team_link.c) */
+enum { LINK_TEAM, LINK_ME, LINK_SLOT, LINK_SLOTS, LINK_MY_SLOT, LINK_WINDOW, LINK_FRAME_BYTES, LINK_SILENT,
+       LINK_REPEAT, LINK_RX, LINK_TX, LINK_EVENTS, LINK_NPARAMS };
+TM_DECLARE(link, LINK_NPARAMS);
+
+/* ---- team_status (bh_team_status.c) */
+enum { STATUS_STATE, STATUS_NORTH, STATUS_EAST, STATUS_DEPTH, STATUS_HEADING, STATUS_SPEED, STATUS_NPARAMS };
+TM_DECLARE(status, STATUS_NPARAMS);
+
+/* ---- search_contacts (bh_search_contacts.c) */
+enum { SC_RX, SC_MIN_SCORE, SC_MERGE, SC_NPARAMS };
+TM_DECLARE(search, SC_NPARAMS);
+
+/* ---- team_survey (bh_team_survey.c) */
+enum { SV_LINES, SV_SPEED, SV_DEPTH, SV_ALTITUDE, SV_RADIUS, SV_LOOKAHEAD, SV_INTEGRAL, SV_IN_NORTH, SV_IN_EAST,
+       SV_OUT_HEADING, SV_OUT_SPEED, SV_OUT_SPEED_MODE, SV_OUT_VERTICAL_MODE, SV_OUT_DEPTH, SV_OUT_ALTITUDE,
+       SV_NPARAMS };
+typedef struct {
+    tm_lines lines;
+    int taken_next;       /* index into the store's taken list */
+    int phase;            /* 0: to the line's start, 1: along it */
+    int line;             /* line index flown, -1 none */
+    gd_line path;
+    gd_los los;
+} tm_survey_state;
+TM_DECLARE(survey, SV_NPARAMS);
+
+/* ---- ri_reacquire (bh_ri_reacquire.c) */
+enum { RI_LOOKS, RI_MERGE, RI_IDENT_RANGE, RI_LOOK_TIMEOUT, RI_IDENT_LOOKS, RI_SPEED, RI_DEPTH, RI_ALTITUDE,
+       RI_LOOKAHEAD, RI_IN_NORTH, RI_IN_EAST, RI_OUT_HEADING, RI_OUT_SPEED, RI_OUT_SPEED_MODE, RI_OUT_VERTICAL_MODE,
+       RI_OUT_DEPTH, RI_OUT_ALTITUDE, RI_NPARAMS };
+typedef struct {
+    int current;          /* target index steered to, -1 none */
+    gd_line leg;
+    gd_los los;
+    gd_point idle;        /* where it waits when the queue is empty */
+    int idle_set;
+} tm_ri_state;
+TM_DECLARE(ri, RI_NPARAMS);
+
+/* ---- keep_clear (bh_keep_clear.c) */
+enum { KC_RADIUS, KC_BAND, KC_HORIZON, KC_HYSTERESIS, KC_SILENT, KC_IN_NORTH, KC_IN_EAST, KC_IN_HEADING, KC_IN_SPEED,
+       KC_OUT_OFFSET, KC_NPARAMS };
+typedef struct {
+    int active;
+    int peer;
+} tm_keepclear_state;
+TM_DECLARE(keepclear, KC_NPARAMS);
+PU_HIDDEN void tm_keepclear_stop(chasm_ctx *c, void *state);
+
+/* Vertical setpoint shared by the steering behaviors: depth + offset, or
+ * altitude - offset when an altitude is given. */
+PU_HIDDEN void tm_vertical(chasm_ctx *c, int depth, int altitude, int out_mode, int out_depth, int out_altitude,
+                           double offset);
+
+#endif

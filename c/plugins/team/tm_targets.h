@@ -1,0 +1,54 @@
+/* The reacquire-identify vehicle's target queue. Contact reports arrive from
+ * several search vehicles, each repeated until acknowledged; a report is
+ * matched first by its name (origin, number), then by position: a report
+ * within `merge` metres of a known target is the same object seen by another
+ * vehicle (or a later look) and becomes an alias of that target, so the RI
+ * vehicle visits each object once. Looks identify targets by position. */
+#ifndef TM_TARGETS_H
+#define TM_TARGETS_H
+
+#include "plugins/lib/pu_visibility.h"
+
+#define TM_MAX_TARGETS 256
+#define TM_MAX_ALIASES 8
+
+enum { TM_T_PENDING = 0, TM_T_IDENTIFIED = 1, TM_T_NOT_FOUND = 2 };
+enum { TM_RESULT_NONE = 0, TM_RESULT_MINE = 1, TM_RESULT_NOT_MINE = 2, TM_RESULT_NOT_FOUND = 3 };
+
+typedef struct {
+    int origin, number;   /* reporting vehicle's team index, its contact number */
+} tm_key;
+
+typedef struct {
+    tm_key key;                      /* the first report's name: the target's name */
+    tm_key alias[TM_MAX_ALIASES];    /* other reports of the same object */
+    int n_alias;
+    double n, e, sigma;              /* merged estimate */
+    double score;                    /* highest reported score */
+    double t_first;                  /* first report heard [s] */
+    int state;                       /* TM_T_* */
+    int result;                      /* TM_RESULT_* once decided */
+    int votes_mine, votes_not;       /* looks so far */
+    double look_n, look_e;           /* position of the deciding look */
+    double near_since;               /* first time within ident range, < 0 never */
+} tm_target;
+
+typedef struct {
+    tm_target t[TM_MAX_TARGETS];
+    int n;
+    long full;
+} tm_target_queue;
+
+/* One report. Returns the target index (*created = 1 if new), or -1 if the
+ * queue is full (counted). */
+PU_HIDDEN int tm_targets_report(tm_target_queue *q, tm_key k, double n, double e, double sigma, double score, double t,
+                                double merge_m, int *created);
+/* A look at an object at (n, e) with result mine (1) / not mine (2): the
+ * nearest pending target within gate_m gets the vote; it is decided once one
+ * result has `needed` votes. Returns the target index when this look decided
+ * it, -2 if it voted without deciding, -1 if no pending target matched. */
+PU_HIDDEN int tm_targets_look(tm_target_queue *q, double n, double e, int result, double gate_m, int needed);
+/* Pending targets, in index order; returns their count. */
+PU_HIDDEN int tm_targets_pending(const tm_target_queue *q, int *idx, int max);
+
+#endif
