@@ -4,9 +4,9 @@
         --range 40 --nadir-gap 8 --out missions/scenarios/mcm_team
 
 The search vehicles split the area like a plain survey (their lines become
-the team's `lines` string); the RI vehicle starts `--ri-back` metres south of
-the area. The TDMA slot is computed from the modem of the search vehicles'
-simulator configuration (frame duration = frame_overhead_s + 8 max_frame_bytes
+the team's `lines` string); the RI vehicle starts between the two middle
+search vehicles' launch points, `--ri-back` metres further back. The TDMA
+slot is computed from the modem of the search vehicles' simulator configuration (frame duration = frame_overhead_s + 8 max_frame_bytes
 / bitrate_bps) plus the largest propagation delay across the operating area
 (its diameter at 1 400 m/s, slower than any sea water) plus a guard. Time:
 `--time lockstep` (default; multi-HIL lockstep, every simulator and manager
@@ -43,8 +43,9 @@ def add_team_options(ap) -> None:
     g.add_argument("--team", type=int, metavar="N_SEARCH",
                    help="write a cooperative MCM team scenario with N search vehicles (ignores --vehicles)")
     g.add_argument("--ri", type=int, default=1, choices=(0, 1), help="reacquire-identify vehicles (0 or 1)")
-    g.add_argument("--ri-start", help='the RI vehicle\'s launch point "n,e" (default: --ri-back south of the area)')
-    g.add_argument("--ri-back", type=float, default=40.0, help="default RI start: this far south of the area [m]")
+    g.add_argument("--ri-start", help='the RI vehicle\'s launch point "n,e" (default: behind the middle search vehicles)')
+    g.add_argument("--ri-back", type=float, default=20.0,
+                   help="default RI start: this far behind the middle search vehicles' launch points [m]")
     g.add_argument("--slot-guard", type=float, default=0.3, help="TDMA guard time added to each slot [s]")
     g.add_argument("--silent", type=float, default=120.0, help="a teammate unheard this long is lost [s]")
     g.add_argument("--linger", type=float, default=120.0, help="search: on the link after the lines [s]")
@@ -61,6 +62,7 @@ class Modem:
 
 def modem_of(config: Path) -> Modem:
     """The modem of a simulator configuration (errors as file:line:col: ConfigError)."""
+    import auvlcm  # noqa: F401 - puts the generated LCM types (sim.config's sensors) on the path
     from sim.config import load
     cfg = load(config)
     if cfg.modem is None:
@@ -75,15 +77,23 @@ def slot_length(modem: Modem, area, guard_s: float) -> float:
     return math.ceil((modem.frame_s + diameter / SLOWEST_SOUND_MPS + guard_s) * 10 - 1e-9) / 10
 
 
-def ri_start_of(sv: Survey, args) -> tuple[float, float]:
+def ri_start_of(sv: Survey, starts, args) -> tuple[float, float]:
+    """--ri-start, or between the two middle search vehicles' launch points (apart from
+    both), --ri-back further back along the run-in to the first line."""
     if args.ri_start:
         try:
             n, e = (float(x) for x in args.ri_start.split(","))
         except ValueError:
             raise GeometryError(f"--ri-start: '{args.ri_start}' is not 'north,east'") from None
         return n, e
-    south = min(p[0] for p in sv.polygon)
-    return south - args.ri_back, sum(p[1] for p in sv.polygon) / len(sv.polygon)
+    k = len(starts) // 2
+    a, b = (starts[k - 1], starts[k]) if len(starts) >= 2 else (starts[0], starts[0])
+    first = sv.vehicles[0].legs[0].start
+    d = math.dist(first, starts[0]) or 1.0
+    un, ue = (first[0] - starts[0][0]) / d, (first[1] - starts[0][1]) / d
+    mid = ((a[0] + b[0]) / 2, (a[1] + b[1]) / 2)
+    back = args.ri_back if len(starts) >= 2 else args.ri_back + 30.0
+    return round(mid[0] - back * un, 1), round(mid[1] - back * ue, 1)
 
 
 def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path) -> tuple[dict, list[Path]]:
@@ -119,7 +129,7 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
         path.write_text(search_plan(vid, link, lim, timeout, sv.operating_area, path, v.legs[0].start,
                                     v.legs[-1].end, summary, args.linger))
         paths.append(path)
-    ri_st = ri_start_of(sv, args)
+    ri_st = ri_start_of(sv, starts, args)
     for vid in ri_ids:
         path = out / f"{vid}.chasm"
         path.write_text(ri_plan(vid, link, lim, timeout, sv.operating_area, path,
