@@ -147,6 +147,22 @@ def who_heard_whom(run: RunData, t0: float) -> dict[str, list[float]]:
     return dict(sorted(out.items()))
 
 
+def looks_stats(run: RunData, radius: float) -> dict:
+    """Per vehicle with a LOOKS channel: looks, how many fell within `radius` of a true
+    object, and how many of those gave its true kind (the sensor's p_correct, measured)."""
+    targets = run.targets()
+    out = {}
+    for ch in sorted(c for c in run.log.messages if c.endswith(".LOOKS")):
+        on, right = 0, 0
+        for m in run.log.messages[ch]:
+            k = _nearest(targets, m.north_m, m.east_m, radius)
+            if k >= 0:
+                on += 1
+                right += (m.result == RESULT_MINE) == (targets[k].kind == 0)
+        out[ch.split(".")[0]] = {"looks": len(run.log.messages[ch]), "on_objects": on, "right": right}
+    return out
+
+
 def ri_vehicles(run: RunData, evs: list) -> list[str]:
     team = (run.survey or {}).get("team") or {}
     if team.get("ri"):
@@ -185,6 +201,7 @@ def team_section(run: RunData, radius: float) -> dict | None:
                                   "max": float(np.max(lat)), "n": len(lat)} if lat else None),
         "ri_vehicles": ri, "routes": routes, "takeovers": takeovers,
         "link": link_stats(run, evs),
+        "looks": looks_stats(run, radius),
         "heard": {k: len(v) for k, v in who_heard_whom(run, t0).items()},
     }
 
@@ -216,6 +233,9 @@ def team_text(t: dict) -> list[str]:
         last = t["routes"][-1]
         lines.append(f"  RI route ({', '.join(t['ri_vehicles']) or '-'}): {len(t['routes'])} replans; last at "
                      f"{last['time_s']:.0f} s: {' '.join(last['order']) or '(empty)'}")
+    for vid, lk in t.get("looks", {}).items():
+        lines.append(f"  {vid} looks (LOOKS): {lk['looks']}, on an object {lk['on_objects']}, "
+                     f"right kind {lk['right']}")
     link = t["link"]
     lines.append(f"  link per vehicle (bytes per contact: {link['bytes_per_contact_method']})")
     for vid, s in link["per_vehicle"].items():

@@ -11,8 +11,8 @@ import sys
 
 import lcm
 
-from auv import (ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, seabed_target_t, target_field_t,
-                 team_event_t)
+from auv import (ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, reacquire_look_t, seabed_target_t,
+                 target_field_t, team_event_t)
 from conftest import ROOT
 
 REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
@@ -77,6 +77,10 @@ def write_log(path):
         m = modem_rx_t()
         m.utime, m.vehicle, m.src_vehicle, m.kind, m.n_bytes, m.payload = int(t_s * 1e6), dst, src, 2, 1, b"\x00"
         put(f"{dst}.MODEM_RX", m)
+    for k, (n, e, result) in enumerate(((100.3, 20.2, 1), (50.2, 49.9, 2), (80.1, -10.0, 2), (0.0, 0.0, 1))):
+        m = reacquire_look_t()
+        m.utime, m.vehicle, m.look_id, m.north_m, m.east_m, m.result = int(390e6) + k, "AUV4", k + 1, n, e, result
+        put("AUV4.LOOKS", m)
     for kind in (2, 2, 2, 0):
         m = modem_tx_t()
         m.utime, m.vehicle, m.kind, m.n_bytes, m.payload = 1, "AUV1", kind, 32, bytes(32)
@@ -115,6 +119,9 @@ def test_team_section_figures_and_plots(tmp_path):
     # AUV1: 4 contact reports (contact 1 twice) for 3 contacts
     assert link["AUV1"]["contacts_reported"] == 3
     assert link["AUV1"]["bytes_per_contact"] == 4 * bits / 8 / 3
+    # looks: on mine 0 called mine (right), on mine 1 not mine (wrong), on clutter not mine
+    # (right), one on nothing
+    assert t["looks"] == {"AUV4": {"looks": 4, "on_objects": 3, "right": 2}}
     assert t["heard"] == {"AUV1->AUV4": 1, "AUV2->AUV4": 1, "AUV4->AUV1": 2}
     text = (out / "report.txt").read_text()
     assert "mine-like targets 3: detected 2, identified by the end 2 (1 as mine)" in text
