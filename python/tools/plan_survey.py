@@ -203,7 +203,7 @@ def main(argv: list[str] | None = None) -> int:
     (out / f"{name}.yaml").write_text(f"# Written by python/tools/plan_survey.py; polygon {format_polygon(polygon)}\n"
                                       f"# Regenerate (from the repository root): python/tools/plan_survey.py {command}\n"
                                       + yaml.safe_dump(sc, sort_keys=False))
-    print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(ids)} shares, lines {sv.spacing_m:.1f} m apart "
+    print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(sv.vehicles)} shares, lines {sv.spacing_m:.1f} m apart "
           f"(tolerates {sv.margin_m:.1f} m off track)")
     if team is not None:
         t = team["team"]

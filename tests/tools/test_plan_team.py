@@ -123,7 +123,19 @@ def test_the_committed_team_scenario_is_what_the_planner_writes(tmp_path):
     assert run.returncode == 0, run.stderr
     assert json.loads((tmp_path / "mcm_team" / "survey.json").read_text()) == json.loads(
         (SCENARIO / "survey.json").read_text())
-    for plan in SCENARIO.glob("AUV*.chasm"):
-        assert plan.read_text() == (tmp_path / "mcm_team" / plan.name).read_text(), plan.name
-    assert (SCENARIO / "mcm_team.yaml").read_text().split("\n", 2)[2] == \
-        (tmp_path / "mcm_team" / "mcm_team.yaml").read_text().split("\n", 2)[2]
+    def plan_body(p):       # include paths are relative to the plan's folder
+        return [ln for ln in p.read_text().splitlines() if not ln.startswith("include ")]
+    plans = sorted(SCENARIO.glob("AUV*.chasm"))
+    assert [p.name for p in plans] == ["AUV1.chasm", "AUV2.chasm", "AUV3.chasm", "AUV4.chasm"]
+    for plan in plans:
+        assert plan_body(plan) == plan_body(tmp_path / "mcm_team" / plan.name), plan.name
+
+    def scenario(folder):   # file references resolved: the two folders differ
+        sc = yaml.safe_load((folder / "mcm_team.yaml").read_text())
+        for v in sc["vehicles"]:
+            v["sim"]["config"] = str((folder / v["sim"]["config"]).resolve())
+            for m in v["managers"]:
+                m["plan"], m["bind"] = str((folder / m["plan"]).resolve()), str((folder / m["bind"]).resolve())
+                m["plan"] = m["plan"].rsplit("/", 1)[1] if m["name"] == "NAVIGATOR" else m["plan"]
+        return sc
+    assert scenario(SCENARIO) == scenario(tmp_path / "mcm_team")
