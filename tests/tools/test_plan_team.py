@@ -175,3 +175,24 @@ def test_the_team_plans_load_with_the_team_plugin():
     for plan in sorted(SCENARIO.glob("AUV*.chasm")):
         run = chasm_check(plan)
         assert run.returncode == 0 and ": ok (" in run.stdout, run.stdout + run.stderr
+
+
+def test_one_target_field_publisher_and_one_field_in_the_lockstep_team():
+    """Stepped simulators in a multi-HIL world publish no SIM.TARGETS on `auto`: the
+    launcher makes the first sonar vehicle the one publisher (as on its own clock); the
+    RI vehicle's identify.targets build the same field as the search vehicles' sonar."""
+    import auvlcm  # noqa: F401 - the generated types, for sim.config
+    from sim.config import loads
+    from sim.sonar.publisher import build_field
+    from tools.scenario import load_scenario
+    from tools.simconfig import vehicle_config
+    from confcheck.reader import dump_yaml
+    sc = load_scenario(SCENARIO / "mcm_team.yaml")
+    cfgs = {v.id: vehicle_config(sc, v, k) for k, v in enumerate(sc.vehicles)}
+    assert [cfgs[v].get("sonar", {}).get("publish_targets") for v in ("AUV1", "AUV2", "AUV3", "AUV4")] == [
+        "yes", "no", "no", None]
+    sims = {vid: loads(dump_yaml(c), SCENARIO / f"{vid}.sim.yaml") for vid, c in cfgs.items()}
+    search = build_field(sims["AUV1"])
+    ri = build_field(sims["AUV4"], sims["AUV4"].identify.targets)
+    assert len(search.targets) == 24
+    assert [(t.north_m, t.east_m, t.kind) for t in ri.targets] == [(t.north_m, t.east_m, t.kind) for t in search.targets]
