@@ -136,6 +136,13 @@ def main(argv: list[str] | None = None) -> int:
             print(f"plan_survey: --team {args.team}: 1 to {15 - args.ri} search vehicles "
                   "(the team link numbers 16 vehicles, 0..15)", file=sys.stderr)
             return 2
+        bad = [f"--{k.replace('_', '-')} {getattr(args, k):g}" for k, ok in
+               (("slot_guard", args.slot_guard >= 0), ("silent", args.silent > 0), ("linger", args.linger >= 0),
+                ("ri_back", math.isfinite(args.ri_back))) if not (ok and math.isfinite(getattr(args, k)))]
+        if bad:
+            print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)",
+                  file=sys.stderr)
+            return 2
         args.vehicles = args.team
     try:
         text = Path(args.polygon[1:]).read_text() if args.polygon.startswith("@") else args.polygon

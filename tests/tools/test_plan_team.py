@@ -98,6 +98,8 @@ def test_fast_time_and_no_ri(tmp_path):
     (["--team", "0"], "1 to 14 search vehicles"),
     (["--team", "15"], "1 to 14 search vehicles"),
     (["--ri-start", "x"], "--ri-start"),
+    (["--slot-guard", "-1"], "--slot-guard -1: out of range"),
+    (["--silent", "nan"], "--silent nan: out of range"),
     (["--search-config", "missions/sim/remus100.yaml"], "no modem: section"),
     (["--ri-config", "/nonexistent.yaml"], "no such file"),
 ])
