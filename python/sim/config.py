@@ -96,6 +96,7 @@ class SimConfig:
     safe_command: Command
     sonar: SonarConfig | None = None     # None: no sonar section
     modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
+    identify: Any = None             # sim.sonar.identify.IdentifyConfig, None without identify:
 
 
 # --------------------------------------------------------------- sections
@@ -268,7 +269,7 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
 
 
 SECTIONS = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-            "safe_command", "sonar", "modem")
+            "safe_command", "sonar", "modem", "identify")
 
 
 def _check(doc: Checker, path: Path) -> SimConfig:
@@ -290,6 +291,10 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         sonar = check_sonar(doc, get("sonar"), path.parent)
     from sim.modem.config import parse as parse_modem
     modem = parse_modem(doc, get("modem"))
+    identify = None
+    if "identify" in top:
+        from sim.sonar.identify import check_identify
+        identify = check_identify(doc, get("identify"), path.parent, "sonar" in top)
     doc.raise_errors()
     if sim.seed < 0:
         sim.seed = env.seed
@@ -299,4 +304,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         mh.client_id = f"{vid}-sim"
     if modem is not None and modem.seed < 0:
         modem.seed = env.seed        # the world's: the same for every simulator in it
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem)
+    if identify is not None and identify.targets.seed < 0:
+        identify.targets.seed = env.seed     # the same field as the search vehicles' sonars
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem,
+                     identify=identify)

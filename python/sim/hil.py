@@ -64,11 +64,16 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
 
 
 def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
-    """Outputs beyond the instruments: the sidescan sonar when configured."""
-    if cfg.sonar is None:
-        return []
-    from sim.sonar.publisher import SonarOutputs
-    return [SonarOutputs(cfg, sensors, publish_world)]
+    """Outputs beyond the instruments: the sidescan sonar and the reacquire-identify
+    sensor, when configured."""
+    out: list = []
+    if cfg.sonar is not None:
+        from sim.sonar.publisher import SonarOutputs
+        out.append(SonarOutputs(cfg, sensors, publish_world))
+    if getattr(cfg, "identify", None) is not None:
+        from sim.sonar.identify import IdentifyOutputs
+        out.append(IdentifyOutputs(cfg, sensors))
+    return out
 
 
 def build_model(cfg: SimConfig) -> VehicleModel:

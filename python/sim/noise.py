@@ -52,5 +52,9 @@ class Noise:
     def uniform(self, lo: float, hi: float) -> float:
         return lo + (hi - lo) * self.random()
 
+    def beta(self, a: float, b: float) -> float:
+        """Beta(a, b), drawn one at a time (a model's score, a few per second)."""
+        return float(self._gen.beta(a, b))
+
     def poisson(self, lam: float) -> int:
         return int(self._gen.poisson(lam)) if lam > 0.0 else 0

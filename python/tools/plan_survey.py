@@ -41,6 +41,7 @@ from tools.plan_text import Limits, estimated_duration_s, plan_text  # noqa: E40
 from tools.plugin_limits import LimitsError, build_dir, check_plan, polygon_limits  # noqa: E402
 from tools.survey_geometry import GeometryError, format_polygon, parse_polygon  # noqa: E402
 from tools.survey_plan import Sonar, Survey, plan_survey  # noqa: E402
+from tools.plan_team import add_team_options, write_team  # noqa: E402
 
 DEFAULTS = {
     "sim_config": ROOT / "missions" / "sim" / "remus100.yaml",
@@ -131,6 +132,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="what each vehicle steers by: the simulator's INS, or the onboard filter auv-nav")
     ap.add_argument("--build", type=Path, default=build_dir(),
                     help="build folder whose plugins set the limits and check the plans (default: the repository's)")
+    add_team_options(ap)
     lim = Limits()
     for key, default in vars(lim).items():
         ap.add_argument("--" + key.replace("_", "-"), type=float, default=default)
@@ -138,6 +140,19 @@ def main(argv: list[str] | None = None) -> int:
         ap.add_argument("--" + key.replace("_", "-"), type=Path, default=default)
     args = ap.parse_args(argv)
     lim = Limits(**{k: getattr(args, k) for k in vars(lim)})
+    if args.team is not None:
+        if not 1 <= args.team <= 15 - args.ri:
+            print(f"plan_survey: --team {args.team}: 1 to {15 - args.ri} search vehicles "
+                  "(the team link numbers 16 vehicles, 0..15)", file=sys.stderr)
+            return 2
+        bad = [f"--{k.replace('_', '-')} {getattr(args, k):g}" for k, ok in
+               (("slot_guard", args.slot_guard >= 0), ("silent", args.silent > 0), ("linger", args.linger >= 0),
+                ("ri_back", math.isfinite(args.ri_back))) if not (ok and math.isfinite(getattr(args, k)))]
+        if bad:
+            print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)",
+                  file=sys.stderr)
+            return 2
+        args.vehicles = args.team
     try:
         text = Path(args.polygon[1:]).read_text() if args.polygon.startswith("@") else args.polygon
         polygon = parse_polygon(text)
@@ -164,27 +179,52 @@ def main(argv: list[str] | None = None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     name = args.name or out.name
     errors, refused = [], 0
-    for vid, v, st in zip(ids, sv.vehicles, starts):
-        path = out / f"{vid}.chasm"
-        path.write_text(plan_text(sv, v, vid, st, lim, path))
-        problems = check_plan(path, args.build)     # what the launcher would refuse, refused now
-        refused += bool(problems)
-        errors += problems
+    team = None
+    if args.team is not None:
+        try:
+            team, paths = write_team(sv, ids, starts, args, lim, out)
+        except (GeometryError, OSError, ValueError) as exc:    # ValueError: a sim config's ConfigError
+            print(f"plan_survey: {exc}", file=sys.stderr)
+            return 2
+        if (args.build / "plugins" / "chasm_team.so").is_file():
+            for path in paths:
+                problems = check_plan(path, args.build)
+                refused += bool(problems)
+                errors += problems
+        else:
+            print(f"plan_survey: no team plugin in {args.build}/plugins: the team plans are not "
+                  "checked (they load once the team plugin is built)", file=sys.stderr)
+    else:
+        for vid, v, st in zip(ids, sv.vehicles, starts):
+            path = out / f"{vid}.chasm"
+            path.write_text(plan_text(sv, v, vid, st, lim, path))
+            problems = check_plan(path, args.build)     # what the launcher would refuse, refused now
+            refused += bool(problems)
+            errors += problems
     if errors:
         print("\n".join(errors), file=sys.stderr)
         print(f"plan_survey: {refused} plan(s) do not load with the plugins of {args.build}; "
               "no scenario written", file=sys.stderr)
         return 2
-    (out / "survey.json").write_text(json.dumps(survey_json(sv, ids, starts, lim), indent=1))
+    geometry = survey_json(sv, ids, starts, lim)
     sc = scenario_dict(name, out, ids, sv, starts, args, lim)
+    if team is not None:
+        geometry["team"] = team["team"]
+        sc["time"], sc["vehicles"] = team["time"], team["vehicles"]
+        ids = team["team"]["roster"]
+    (out / "survey.json").write_text(json.dumps(geometry, indent=1))
     sc["survey"] = "survey.json"
     command = " ".join(shlex.quote(_rel(Path(a).resolve(), ROOT) if "/" in a and Path(a).exists() else a)
                        for a in (argv if argv is not None else sys.argv[1:]))
     (out / f"{name}.yaml").write_text(f"# Written by python/tools/plan_survey.py; polygon {format_polygon(polygon)}\n"
                                       f"# Regenerate (from the repository root): python/tools/plan_survey.py {command}\n"
                                       + yaml.safe_dump(sc, sort_keys=False))
-    print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(ids)} shares, lines {sv.spacing_m:.1f} m apart "
+    print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(sv.vehicles)} shares, lines {sv.spacing_m:.1f} m apart "
           f"(tolerates {sv.margin_m:.1f} m off track)")
+    if team is not None:
+        t = team["team"]
+        print(f"  team {','.join(t['roster'])}: TDMA {t['slots']} slots of {t['slot_s']:g} s "
+              f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), time {args.time_mode}")
     for vid, v, st in zip(ids, sv.vehicles, starts):
         print(f"  {vid}: {v.area_m2 / 1e6:.4f} km2, {len(v.lines)} line legs, {v.length_m() / 1000:.2f} km, "
               f"about {estimated_duration_s(v, st, lim) / 60:.0f} min")

@@ -144,6 +144,10 @@ def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[
     rep["detection"] = detection_stats(run, radius, covered if grid is not None else None)
     rep["navigation_error"] = nav_error(run)
     rep["record"] = record_completeness(run)
+    from tools.team_report import team_section
+    team = team_section(run, radius)
+    if team is not None:
+        rep["team"] = team
     return rep, grid
 
 
@@ -187,6 +191,9 @@ def report_text(rep: dict) -> str:
     for vid, r in rep.get("record", {}).items():
         lines.append(f"  {vid}: {r['samples']} samples every {r['interval_s']:g} s, {r['missing']} missing "
                      f"({100 * r['fraction_missing']:.2f} %)")
+    if rep.get("team"):
+        from tools.team_report import team_text
+        lines += team_text(rep["team"])
     return "\n".join(lines) + "\n"
 
 
@@ -250,7 +257,11 @@ def main(argv: list[str] | None = None) -> int:
     rep, grid = build_report(run, args.radius, args.cell)
     if not args.no_plots:
         from tools.plots import make_plots
-        rep["plots"] = [str(p) for p in make_plots(run, grid, out)]
+        plots = make_plots(run, grid, out)
+        if rep.get("team"):
+            from tools.team_plots import team_plots
+            plots += team_plots(run, rep["team"], out)
+        rep["plots"] = [str(p) for p in plots]
     (out / "report.json").write_text(json.dumps(rep, indent=2))
     text = report_text(rep)
     (out / "report.txt").write_text(text)

@@ -18,7 +18,8 @@ import numpy as np
 from auvlcm.arrays import ChannelArrays, LogArrays, load_log
 from tools.timeline import Segment, state_timeline
 
-KEEP = r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
+KEEP = (r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
+        r"|.*\.TEAM_EVENT|.*\.MODEM_RX|.*\.MODEM_TX|.*\.MODEM_STATUS|.*\.LOOKS")   # the team section
 
 
 @dataclass

@@ -43,10 +43,11 @@ def _has_sonar(v: Vehicle) -> bool:
 
 
 def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
-    """On the launcher's clock no environment server publishes SIM.TARGETS and a
-    stepped simulator's `auto` does not either: left to `auto`, the first vehicle
-    with a sonar publishes the target field, the others not (one writer per channel)."""
-    if sc.time.source != "launcher" or "sonar" not in cfg:
+    """A stepped simulator's `auto` never publishes SIM.TARGETS, on the launcher's
+    clock or in a multi-HIL world (its environment nodes do not publish the field
+    either): left to `auto`, the first vehicle with a sonar publishes the target
+    field, the others not (one writer per channel)."""
+    if "sonar" not in cfg:
         return cfg
     if cfg["sonar"].get("publish_targets", "auto") not in ("auto", None):
         return cfg

@@ -137,7 +137,58 @@ def test_contact_position_error_and_fields():
     assert c.vehicle == "AUV1" and c.slant_range_m == pytest.approx(math.hypot(c.ground_range_m, 6.0))
     assert c.position_sigma_m == pytest.approx(math.hypot(0.5, 0.3))
     assert [m.contact_id for m in contacts] == list(range(1, 801))
-    assert np.mean([m.classification == "mine_like" for m in contacts]) == pytest.approx(0.8, abs=0.05)
+    # classification = score >= threshold, the score of a mine from Beta(6, 2)
+    assert np.mean([m.classification == "mine_like" for m in contacts]) == pytest.approx(
+        beta_above(6, 2, 0.5), abs=0.03)
+    assert {m.classification for m in contacts} == {"mine_like", "unknown"}
+
+
+def beta_above(a: int, b: int, x: float) -> float:
+    """P(Beta(a, b) >= x) for whole a, b: P(Binomial(a + b - 1, x) < a)."""
+    n = a + b - 1
+    return sum(math.comb(n, k) * x ** k * (1 - x) ** (n - k) for k in range(a))
+
+
+def test_scores_follow_the_confusion_model_and_set_the_classification():
+    """Mines' scores from Beta(mine_a, mine_b), clutter's and false alarms' from
+    Beta(clutter_a, clutter_b): means, the fraction over the threshold, the overlap."""
+    from sim.sonar import ScoreModel
+    cfg = SonarConfig(false_alarms_per_km2=0.0, pd_max=1.0,
+                      score=ScoreModel(mine_a=5, mine_b=3, clutter_a=2, clutter_b=4, threshold=0.6))
+    mines = Sidescan(cfg, row_of_targets([-20.0, 25.0]), seed=8, vehicle="AUV1")
+    clutter = Sidescan(cfg, row_of_targets([-20.0, 25.0], kind=tg.CLUTTER), seed=8, vehicle="AUV1")
+    cm, cc = fly_passes(mines, 500, 6.0), fly_passes(clutter, 500, 6.0)
+    sm = np.array([c.confidence for c in cm])
+    sc = np.array([c.confidence for c in cc])
+    assert len(sm) == len(sc) == 1000
+    assert sm.mean() == pytest.approx(5 / 8, abs=0.02) and sc.mean() == pytest.approx(2 / 6, abs=0.02)
+    assert np.mean(sm >= 0.6) == pytest.approx(beta_above(5, 3, 0.6), abs=0.05)
+    assert np.mean(sc >= 0.6) == pytest.approx(beta_above(2, 4, 0.6), abs=0.03)
+    assert 0 < np.mean(sc >= 0.6) and np.mean(sm < 0.6) > 0      # they overlap
+    for c in cm:
+        assert c.classification == ("mine_like" if c.confidence >= np.float32(0.6) else "unknown")
+    for c in cc:
+        assert c.classification == ("mine_like" if c.confidence >= np.float32(0.6) else "clutter")
+    # false alarms are scored like clutter
+    fa = Sidescan(SonarConfig(false_alarms_per_km2=5000.0, score=cfg.score), row_of_targets([]),
+                  seed=2, vehicle="AUV1")
+    sf = np.array([c.confidence for k in range(3000) for c in fa.poll(truth(k * 0.2, k * 0.3))])
+    assert len(sf) > 300 and sf.mean() == pytest.approx(2 / 6, abs=0.03)
+
+
+def test_score_model_config_is_checked_and_the_old_keys_say_what_replaced_them():
+    with pytest.raises(ConfigError) as exc:
+        loads("sonar:\n  p_classify: 0.8\n  score: {mine_a: 0, threshold: 1.5, clutter_bb: 3}\n",
+              Path("c.yaml"))
+    assert exc.value.errors == [
+        "c.yaml:2:3: sonar.p_classify: replaced by the score model sonar.score (mine_a, mine_b, "
+        "clutter_a, clutter_b, threshold; docs/simulator.md)",
+        "c.yaml:3:19: sonar.score.mine_a: must be in (0, 1000]",
+        "c.yaml:3:33: sonar.score.threshold: must be in [0, 1]",
+        "c.yaml:3:38: sonar.score.clutter_bb: unknown key; did you mean 'clutter_b'?",
+    ]
+    s = loads("sonar:\n  score: {mine_a: 9, threshold: 0.7}\n").sonar.score
+    assert (s.mine_a, s.mine_b, s.threshold) == (9, 2, 0.7)
 
 
 def test_no_image_when_rolling_hard_or_out_of_altitude():

@@ -30,6 +30,20 @@ class TargetsConfig:
 
 
 @dataclass
+class ScoreModel:
+    """The on-board classifier's confusion model: each contact's mine-likeness score
+    (sidescan_contact_t.confidence) is drawn from Beta(mine_a, mine_b) for a mine-like
+    object and from Beta(clutter_a, clutter_b) for clutter and seabed false alarms. The
+    two overlap, so no threshold separates them perfectly; classification is
+    "mine_like" when the score >= threshold."""
+    mine_a: float = setting(6.0, gt=0.0, le=1000.0)
+    mine_b: float = setting(2.0, gt=0.0, le=1000.0)
+    clutter_a: float = setting(2.0, gt=0.0, le=1000.0)
+    clutter_b: float = setting(5.0, gt=0.0, le=1000.0)
+    threshold: float = setting(0.5, ge=0.0, le=1.0)
+
+
+@dataclass
 class SonarConfig:
     enabled: bool = True
     # lateral range curve (docs/simulator.md, "Seabed and sonar")
@@ -46,8 +60,7 @@ class SonarConfig:
     update_hz: float = setting(5.0, gt=0.0, unit="Hz")                   # how often the beam's position is evaluated
     along_track_sigma_m: float = setting(0.5, ge=0.0)         # contact position error, along track [m]
     range_sigma_m: float = setting(0.3, ge=0.0)               # contact position error, across track [m]
-    p_classify: float = setting(0.8, ge=0.0, le=1.0)                  # a detected mine is called "mine_like"
-    clutter_as_mine: float = setting(0.15, ge=0.0, le=1.0)            # a detected clutter object is called "mine_like"
+    score: ScoreModel = field(default_factory=ScoreModel)     # mine-likeness score and classification
     false_alarms_per_km2: float = setting(2.0, ge=0.0)        # seabed false alarms per km^2 imaged
     relook_s: float = setting(10.0, ge=0.0)                   # one look per target per pass at most
     # the true field, for evaluation

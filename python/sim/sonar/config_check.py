@@ -9,7 +9,10 @@ import yaml
 
 from confcheck import Checker
 from sim.sonar import targets as tg
-from sim.sonar.config import SonarConfig
+from sim.sonar.config import SonarConfig, TargetsConfig
+
+
+REPLACED = ("p_classify", "clutter_as_mine")
 
 
 def check_sonar(doc: Checker, node, base: Path) -> SonarConfig | None:
@@ -17,19 +20,31 @@ def check_sonar(doc: Checker, node, base: Path) -> SonarConfig | None:
     if isinstance(node, yaml.ScalarNode) and doc.scalar(node) is False:
         return None
     errors_before = len(doc.errors)
-    cfg = doc.fill(node, "sonar", SonarConfig())
     items = doc.mapping(node, "sonar")
+    for old in REPLACED:        # the classifier before the score model: say what replaced it
+        if old in items:
+            doc.err(items[old][0], f"sonar.{old}", "replaced by the score model sonar.score "
+                    "(mine_a, mine_b, clutter_a, clutter_b, threshold; docs/simulator.md)")
+    cfg = doc.fill(node, "sonar", SonarConfig(), skip=REPLACED)
     if cfg.max_altitude_m <= cfg.min_altitude_m and "max_altitude_m" in items:
         doc.err(items["max_altitude_m"][1], "sonar.max_altitude_m", "must be > min_altitude_m")
-    tnode = items["targets"][1] if "targets" in items else None
-    titems = doc.mapping(tnode, "sonar.targets") if tnode is not None else {}
+    check_targets(doc, cfg.targets, items["targets"][1] if "targets" in items else None,
+                  "sonar.targets", base, place=len(doc.errors) == errors_before)
+    return cfg if cfg.enabled else None
+
+
+def check_targets(doc: Checker, tc: TargetsConfig, tnode, key: str, base: Path,
+                  place: bool = True) -> None:
+    """The target file reads, or the seeded field fits in its area (errors to doc).
+    place=False: other errors already found, the placing is not tried."""
+    titems = doc.mapping(tnode, key) if tnode is not None else {}
     try:
-        if cfg.targets.file:
-            tg.load(base / cfg.targets.file, lambda n, e: 0.0)
-        elif len(doc.errors) == errors_before:
-            tg.place(cfg.targets, max(cfg.targets.seed, 0), lambda n, e: 0.0)
+        if tc.file:
+            tg.load(base / tc.file, lambda n, e: 0.0)
+        elif place:
+            tg.place(tc, max(tc.seed, 0), lambda n, e: 0.0)
     except ValueError as exc:   # the file's own file:line messages, or an overfull area
         where = titems.get("file", titems.get("mines", (None, tnode)))[1]
         for line in str(exc).splitlines():
-            doc.err(where, "sonar.targets", line)
-    return cfg if cfg.enabled else None
+            doc.err(where, key, line)
+

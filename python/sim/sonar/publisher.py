@@ -13,11 +13,12 @@ from sim.sonar import targets as tg
 from sim.sonar.sidescan import Sidescan
 
 
-def build_field(cfg) -> tg.TargetField:
-    """The configuration's target field (cfg: sim.config.SimConfig), on its world's seabed."""
+def build_field(cfg, tc=None) -> tg.TargetField:
+    """The configuration's target field (cfg: sim.config.SimConfig; tc: the targets
+    section, default the sonar's), on its world's seabed."""
     from sim.environment import Environment
     env = Environment(cfg.env, cfg.path.parent)
-    tc = cfg.sonar.targets
+    tc = tc if tc is not None else cfg.sonar.targets
     if tc.file:
         return tg.load(cfg.path.parent / tc.file, env.water_depth)
     return tg.place(tc, tc.seed, env.water_depth)

@@ -11,6 +11,13 @@ plus the vehicle's navigation error when the simulated INS provides one.
 A target is looked at most once per `relook_s` (a vehicle wobbling on its
 line does not get extra looks).
 
+Mine-likeness: each contact's `confidence` is a score drawn from the
+configuration's confusion model (sonar.score): Beta(mine_a, mine_b) for a
+mine-like object, Beta(clutter_a, clutter_b) for clutter and false alarms,
+from a stream of its own so the score model does not move the detections;
+`classification` is "mine_like" when the score reaches the threshold, else
+"unknown" (a mine or a false alarm) or "clutter" (a clutter object).
+
 Seabed false alarms: a Poisson process of `false_alarms_per_km2` over the
 area imaged since the last update (the band [g, F) on each side, times the
 distance run), each placed uniformly in that strip.
@@ -42,6 +49,7 @@ class Sidescan:
         self.vehicle = vehicle
         self.curve = LateralRangeCurve(cfg)
         self.rng = Noise(f"{seed}:sonar")
+        self.score_rng = Noise(f"{seed}:sonar_score")
         self.nav_error = nav_error
         ts = field.targets
         self._n = np.array([t.north_m for t in ts], dtype=float)
@@ -122,12 +130,16 @@ class Sidescan:
         m.classification = classification
         return m
 
+    def score(self, mine: bool) -> float:
+        """A mine-likeness score from the confusion model."""
+        m = self.cfg.score
+        return (self.score_rng.beta(m.mine_a, m.mine_b) if mine
+                else self.score_rng.beta(m.clutter_a, m.clutter_b))
+
     def _target_contact(self, tr: Truth, i: int, y: float, p: float, c: float, s: float):
-        if self._mine[i]:
-            cls = MINE_LIKE if self.rng.random() < self.cfg.p_classify else "unknown"
-        else:
-            cls = MINE_LIKE if self.rng.random() < self.cfg.clutter_as_mine else "clutter"
-        conf = p + self.rng.gauss(0.1)
+        mine = bool(self._mine[i])
+        conf = self.score(mine)
+        cls = MINE_LIKE if conf >= self.cfg.score.threshold else ("unknown" if mine else "clutter")
         return self._contact(tr, float(self._n[i]), float(self._e[i]), y, c, s, conf, cls)
 
     def _false_alarms(self, tr: Truth, g: float, far: float, c: float, s: float) -> list:
@@ -140,7 +152,8 @@ class Sidescan:
             back = -self.rng.random() * run
             y = (g + self.rng.random() * (far - g)) * (1.0 if self.rng.random() < 0.5 else -1.0)
             north, east = n0 + back * c - y * s, e0 + back * s + y * c
-            cls = MINE_LIKE if self.rng.random() < self.cfg.clutter_as_mine else "unknown"
+            conf = self.score(False)
+            cls = MINE_LIKE if conf >= self.cfg.score.threshold else "unknown"
             self.false_alarms += 1
-            out.append(self._contact(tr, north, east, y, c, s, 0.6 * self.rng.random(), cls))
+            out.append(self._contact(tr, north, east, y, c, s, conf, cls))
         return out
