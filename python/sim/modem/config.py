@@ -3,10 +3,16 @@
 A configuration without the section has no modem. With it, every key is
 checked like the rest of the file (confcheck): errors name the file, line,
 column and key, unknown keys get a did-you-mean, ranges are declared here.
+
+`profile:` picks a rate profile (PROFILES, after the WHOI Micro-Modem's
+rates): frame size, bit rate and per-frame overhead; keys given beside it
+override the profile's values.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import difflib
 from dataclasses import dataclass
 
 from confcheck import Checker, setting
@@ -15,6 +21,7 @@ from confcheck import Checker, setting
 @dataclass
 class ModemConfig:
     enabled: bool = True             # a `modem:` section turns the modem on
+    profile: str = ""                # rate profile (PROFILES); "" = the keys below
     # payload limit of one frame (modem_tx_t.n_bytes is an int16)
     max_frame_bytes: int = setting(256, ge=1, le=32767)
     bitrate_bps: float = setting(1000.0, gt=0.0)   # payload bits per second while transmitting
@@ -32,8 +39,44 @@ class ModemConfig:
     seed: int = -1                   # loss draws; -1 = environment.seed (the world's)
 
 
+# Rate profiles, one frame per packet, in the class of the WHOI Micro-Modem's
+# rates (FSK rate 0: one 32-byte frame at 80 bps; PSK rates: 64 to 256-byte
+# frames at hundreds to thousands of bps). frame_overhead_s stands for the
+# packet's preamble, probe and guard time.
+PROFILES: dict[str, dict[str, float | int]] = {
+    "fsk80":   {"max_frame_bytes": 32,  "bitrate_bps": 80.0,   "frame_overhead_s": 1.0},
+    "psk250":  {"max_frame_bytes": 64,  "bitrate_bps": 250.0,  "frame_overhead_s": 1.0},
+    "psk1300": {"max_frame_bytes": 256, "bitrate_bps": 1300.0, "frame_overhead_s": 1.0},
+    "psk5300": {"max_frame_bytes": 256, "bitrate_bps": 5300.0, "frame_overhead_s": 1.0},
+}
+
+
+def with_profile(name: str, **overrides) -> ModemConfig:
+    """A ModemConfig of a profile, keys given overriding it (for tests and tools)."""
+    return ModemConfig(profile=name, **{**PROFILES[name], **overrides})
+
+
+def _profile(doc: Checker, node, key: str) -> str | None:
+    """The profile named at node (None after reporting a bad one)."""
+    name = doc.value(node, key, "")
+    if name is dataclasses.MISSING:
+        return None
+    if name in PROFILES:
+        return name
+    hint = difflib.get_close_matches(name, list(PROFILES), n=1)
+    extra = f"did you mean '{hint[0]}'? " if hint else ""
+    doc.err(node, key, f"unknown profile {name!r}; {extra}(known: {', '.join(PROFILES)})")
+    return None
+
+
 def parse(doc: Checker, node) -> ModemConfig | None:
     """A ModemConfig from the section's node (None: no section, no modem)."""
     if node is None:
         return None
-    return doc.fill(node, "modem", ModemConfig())
+    cfg = ModemConfig()
+    items = doc.mapping(node, "modem")
+    if "profile" in items:
+        name = _profile(doc, items["profile"][1], "modem.profile")
+        if name:
+            cfg = dataclasses.replace(cfg, profile=name, **PROFILES[name])
+    return doc.fill(node, "modem", cfg, skip=("profile",))

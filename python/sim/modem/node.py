@@ -104,6 +104,7 @@ class ModemNode:
         if isinstance(out, str):
             self._refused(out)
         else:
+            self.rx.transmit(self._t, self._t + out.duration_us / 1e6)   # half duplex
             self._publish("SIM.ACOUSTIC", out.encode())
             self._publish_status()
 
@@ -119,7 +120,7 @@ class ModemNode:
         """Deliver what has arrived by sim time t at our true position."""
         self._t, self._pos = t, position
         st = self.status
-        before = st.received + st.lost + st.out_of_range
+        before = st.received + st.lost + st.out_of_range + st.collided + st.deaf
         for m in self.rx.step(t, position):
             self._publish(f"{self.vehicle}.MODEM_RX", m.encode())
             if self.cfg.peer_reports and m.kind == modem_tx_t.KIND_NAV_REPORT:
@@ -133,7 +134,8 @@ class ModemNode:
                     continue
                 self.reports_heard += 1
                 self._publish(f"{self.vehicle}.PEER.{m.src_vehicle}", report.encode())
-        if t >= self._next_status - 1e-9 or st.received + st.lost + st.out_of_range != before:
+        if t >= self._next_status - 1e-9 or \
+                st.received + st.lost + st.out_of_range + st.collided + st.deaf != before:
             if t >= self._next_status - 1e-9:
                 self._next_status = t + self.cfg.status_period_s
             self._publish_status()
@@ -148,6 +150,7 @@ class ModemNode:
                 f"{s.refused_size + s.refused_rate + s.refused_invalid} refused "
                 f"(size {s.refused_size}, rate {s.refused_rate}, invalid {s.refused_invalid}), "
                 f"{s.received} received, {s.lost} lost, {s.out_of_range} out of range, "
+                f"{s.collided} collided, {s.deaf} missed while sending, "
                 f"{self.reports_heard} peer reports heard")
 
 

@@ -7,6 +7,20 @@ speed between the two depths. Receiver motion during the flight is thus
 accounted for, and the step that delivers the frame is at most one physics
 step after the arrival time. Beyond max_range_m the frame is never
 delivered; within it, the range curve and a seeded draw decide (acoustics.py).
+
+The receiver hears one frame at a time, and not while it sends. A frame
+occupies a receiver over its reception interval [arrival, arrival + duration]
+(duration = the sender's time on the air). Two frames whose intervals overlap
+there are both lost (`collided`), whoever they were addressed to; a frame
+whose interval overlaps one of this modem's own transmissions is lost
+(`deaf`). Both are decided from the frames' times alone, when a frame
+arrives: against frames already heard, against frames still in the water
+(their arrival predicted from our position now; such a frame is then marked
+and lost on arrival too) and against our own transmissions. The one case
+this misses: a frame sent after an earlier one began to arrive here, that
+arrives while the earlier one is still being heard, is lost, but the earlier
+one was delivered at its first bit and stays delivered (the same for our own
+transmission starting during a reception).
 """
 
 from __future__ import annotations
@@ -25,6 +39,15 @@ EPS_M = 1e-6
 # have to double the closing rate. Frames are looked at again only then, so
 # a frame in flight costs a few checks instead of one per physics step.
 CLOSING_MARGIN = 2.0
+EPS_S = 1e-9
+# Reception intervals and own transmissions are kept this long after they
+# end: long enough for a frame relayed late over an impaired link.
+KEEP_S = 60.0
+
+
+def overlaps(a: tuple[float, float], b: tuple[float, float]) -> bool:
+    """Two intervals share more than an instant (back to back is no collision)."""
+    return a[0] < b[1] - EPS_S and b[0] < a[1] - EPS_S
 
 
 class Receiver:
@@ -36,7 +59,13 @@ class Receiver:
         self.env = env
         self.status = status
         self.pending: list[acoustic_frame_t] = []
+        self.foreign: list[acoustic_frame_t] = []  # for other vehicles: they only occupy the channel
         self._next_check: dict[int, float] = {}  # id(frame) -> sim time to look again
+        self._heard: list[tuple[float, float, int]] = []  # (start, end, serial) of frames heard here
+        self._serial = 0
+        self._last_position = (0.0, 0.0, 0.0)
+        self._sending: list[tuple[float, float]] = []     # our own transmissions
+        self._doomed: dict[int, str] = {}        # id(frame in the water) -> "collided" / "deaf"
         self.bad_frames = 0             # from no valid vehicle id: dropped
 
     def hear(self, frame: acoustic_frame_t) -> None:
@@ -47,13 +76,22 @@ class Receiver:
         if frame.src_vehicle == self.vehicle:
             return                      # a modem does not hear itself
         if frame.dst_vehicle and frame.dst_vehicle != self.vehicle:
-            return                      # addressed to another vehicle
+            self.foreign.append(frame)  # addressed to another vehicle: heard, never delivered
+            return
         self.pending.append(frame)
 
-    def step(self, t: float, position: tuple[float, float, float]) -> list[modem_rx_t]:
-        """Frames whose wavefront reached us by sim time t, lost ones left out."""
-        arrived, waiting = [], []
-        for f in self.pending:
+    def transmit(self, start: float, end: float) -> None:
+        """Our modem sends over [start, end]: frames that will arrive meanwhile are lost."""
+        self._sending.append((start, end))
+        for f, iv in self._predicted(self._last_position):
+            if overlaps(iv, (start, end)):
+                self._doomed.setdefault(id(f), "deaf")
+
+    def _arrivals(self, frames: list[acoustic_frame_t], t: float, position, arrived: list,
+                  mine: bool) -> list[acoustic_frame_t]:
+        """Move the frames whose wavefront reached us to `arrived`; the rest stay."""
+        waiting = []
+        for f in frames:
             if t < self._next_check.get(id(f), t):
                 waiting.append(f)
                 continue
@@ -62,16 +100,73 @@ class Receiver:
             d = distance_3d(tx_pos, position)
             gap = d - c * (t - f.utime / 1e6)
             if gap <= EPS_M:
-                arrived.append((f.utime / 1e6 + d / c, f, d))
+                arrived.append((f.utime / 1e6 + d / c, f, d, mine))
                 self._next_check.pop(id(f), None)
             else:
                 waiting.append(f)
                 self._next_check[id(f)] = t + gap / (CLOSING_MARGIN * c)
-        self.pending = waiting
+        return waiting
+
+    def _predicted(self, position) -> list[tuple[acoustic_frame_t, tuple[float, float]]]:
+        """Frames still in the water that will reach us, with their reception
+        intervals predicted from our position now."""
         out = []
-        for t_arr, f, d in sorted(arrived, key=lambda a: (a[0], a[1].src_vehicle, a[1].seq)):
+        for f in self.pending + self.foreign:
+            c = self.env.mean_sound_speed(f.tx_depth_m, position[2])
+            d = distance_3d((f.tx_north_m, f.tx_east_m, f.tx_depth_m), position)
+            if d <= self.cfg.max_range_m:
+                start = f.utime / 1e6 + d / c
+                out.append((f, (start, start + f.duration_us / 1e6)))
+        return out
+
+    def _fate(self, f: acoustic_frame_t, iv: tuple[float, float], serial: int, position) -> str:
+        """"deaf", "collided" or "" for a frame heard over iv; frames in the
+        water that it overlaps are marked to be lost too."""
+        fate = self._doomed.pop(id(f), "")
+        if iv[1] - iv[0] <= EPS_S:
+            return fate                 # no time on the air: overlaps nothing
+        if any(overlaps(iv, s) for s in self._sending):
+            fate = fate or "deaf"
+        if any(key != serial and overlaps(iv, (a, b)) for a, b, key in self._heard):
+            fate = fate or "collided"
+        for other, piv in self._predicted(position):
+            if overlaps(iv, piv):
+                self._doomed.setdefault(id(other), "collided")
+                fate = fate or "collided"
+        return fate
+
+    def step(self, t: float, position: tuple[float, float, float]) -> list[modem_rx_t]:
+        """Frames whose wavefront reached us by sim time t, lost ones left out."""
+        self._last_position = position
+        arrived: list = []
+        self.pending = self._arrivals(self.pending, t, position, arrived, True)
+        self.foreign = self._arrivals(self.foreign, t, position, arrived, False)
+        self._heard = [h for h in self._heard if h[1] > t - KEEP_S]
+        self._sending = [s for s in self._sending if s[1] > t - KEEP_S]
+        batch = []
+        for t_arr, f, d, mine in sorted(arrived, key=lambda a: (a[0], a[1].src_vehicle, a[1].seq)):
             if d > self.cfg.max_range_m:
-                self.status.out_of_range += 1
+                self._doomed.pop(id(f), None)
+                if mine:
+                    self.status.out_of_range += 1
+                continue                # too faint to hear, or to disturb another frame
+            iv = (t_arr, t_arr + f.duration_us / 1e6)
+            self._serial += 1
+            if iv[1] - iv[0] > EPS_S:
+                self._heard.append((iv[0], iv[1], self._serial))
+            batch.append((iv, self._serial, t_arr, f, d, mine))
+        # every frame of the batch is in _heard before any is judged, so two
+        # that arrive in one step see each other
+        fates = [self._fate(f, iv, serial, position) for iv, serial, _, f, _, _ in batch]
+        out = []
+        for (iv, _, t_arr, f, d, mine), fate in zip(batch, fates):
+            if not mine:
+                continue
+            if fate == "deaf":
+                self.status.deaf += 1
+                continue
+            if fate == "collided":
+                self.status.collided += 1
                 continue
             u = uniform_draw(self.seed, f.src_vehicle, f.seq, f.utime, self.vehicle)
             if u < loss_probability(d, self.cfg):

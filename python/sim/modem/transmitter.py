@@ -15,7 +15,7 @@ from sim.modem.acoustics import frame_duration_s
 from sim.modem.config import ModemConfig
 from sim.sensors.base import utime
 
-KINDS = (modem_tx_t.KIND_RAW, modem_tx_t.KIND_NAV_REPORT)
+KINDS = (modem_tx_t.KIND_RAW, modem_tx_t.KIND_NAV_REPORT, modem_tx_t.KIND_TEAM)
 
 
 class Transmitter:
@@ -62,7 +62,8 @@ class Transmitter:
         reason = self.check(t, msg)
         if reason:
             return reason
-        self.busy_until = t + frame_duration_s(msg.n_bytes, self.cfg)
+        duration = frame_duration_s(msg.n_bytes, self.cfg)
+        self.busy_until = t + duration
         self.busy_seq = msg.seq
         self.last_start = t
         self.status.sent += 1
@@ -71,6 +72,7 @@ class Transmitter:
         f.utime = utime(t)
         f.tx_north_m, f.tx_east_m, f.tx_depth_m = position
         f.source_level_db = self.cfg.source_level_db
+        f.duration_us = utime(duration)
         f.src_vehicle, f.dst_vehicle, f.seq, f.kind = self.vehicle, msg.dst_vehicle, msg.seq, msg.kind
         f.n_bytes, f.payload = msg.n_bytes, bytes(msg.payload)
         return f

@@ -226,7 +226,8 @@ def _modem_rx(m: Model, ch: str, msg: Any) -> bool:
 def _modem_status(m: Model, ch: str, msg: Any) -> bool:
     v = m._vehicle(_vehicle_id(ch))
     v["modem"] = {k: getattr(msg, k) for k in ("sent", "received", "lost", "out_of_range",
-                                                "refused_size", "refused_rate", "refused_invalid")}
+                                                "collided", "deaf", "refused_size",
+                                                "refused_rate", "refused_invalid")}
     v["modem"]["last_refusal"] = msg.last_refusal
     return True
 

@@ -143,6 +143,8 @@ function vehicleHtml(v) {
   if (v.modem) {
     const m = v.modem, refused = m.refused_size + m.refused_rate + m.refused_invalid;
     out.push(`<div class="modem">modem: sent ${m.sent} · received ${m.received} · lost ${m.lost} · out of range ${m.out_of_range}` +
+      (m.collided ? ` · <span class="bad">collided ${m.collided}</span>` : '') +
+      (m.deaf ? ` · missed while sending ${m.deaf}` : '') +
       (refused ? ` · <span class="bad">refused ${refused}</span> (${esc(m.last_refusal)})` : '') + '</div>');
   }
   return out.join('');
