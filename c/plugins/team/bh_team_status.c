@@ -1,7 +1,7 @@
 /* team_status: queue this vehicle's status for the link (`do team_status()
  * every 20 s`). The frame carries the newest status only; the state code is
  * the one the team behaviors set (survey, takeover, reacquire, done) unless
- * the plan gives one: `team_status(state = 5)` in an abort state tells the
+ * the plan gives one: `team_status(code = 5)` in an abort state tells the
  * team this vehicle gave up, so they take its lines over at once. */
 #include "tm_behaviors.h"
 #include "tm_store.h"
@@ -9,7 +9,7 @@
 #include "plugins/lib/pu_angle.h"
 
 const chasm_param_spec tm_status_params[] = {
-    TM_IPARAM("state", -1, -1, 7, "state code to send (-1: as the team behaviors set it; 5 = abort)"),
+    TM_IPARAM("code", -1, -1, 7, "state code to send (-1: as the team behaviors set it; 5 = abort)"),
     TM_NAV("north", "m", "nav.north_m", "own position north"),
     TM_NAV("east", "m", "nav.east_m", "own position east"),
     TM_NAV("depth", "m", "nav.depth_m", "own depth"),
@@ -32,7 +32,7 @@ chasm_status_code tm_status_step(chasm_ctx *c, void *state)
                         pu_wrap_2pi(chasm_read_double(c, STATUS_HEADING)), chasm_read_double(c, STATUS_SPEED)};
     s->own_depth = chasm_read_double(c, STATUS_DEPTH);
     s->t_own = (double)c->now_us * 1e-6;
-    int64_t code = chasm_param_int(c, STATUS_STATE);
+    int64_t code = chasm_param_int(c, STATUS_CODE);
     s->status_state = code >= 0 ? (int)code : s->state;
     tm_outbox_status(&s->out);
     return CHASM_RUNNING;

@@ -23,5 +23,6 @@ void lost_teammates_lines_are_taken(void);
 void aborted_teammate_is_lost_at_once(void);
 void keep_clear_gives_way_in_depth(void);
 void out_of_range_values_are_refused_and_logged(void);
+void abort_state_keeps_the_store_and_says_abort(void);
 
 #endif

@@ -24,5 +24,6 @@ const plugin_test plugin_tests[] = {
     {"aborted_teammate_is_lost_at_once", aborted_teammate_is_lost_at_once},
     {"keep_clear_gives_way_in_depth", keep_clear_gives_way_in_depth},
     {"out_of_range_values_are_refused_and_logged", out_of_range_values_are_refused_and_logged},
+    {"abort_state_keeps_the_store_and_says_abort", abort_state_keeps_the_store_and_says_abort},
 };
 const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

@@ -303,3 +303,33 @@ void out_of_range_values_are_refused_and_logged(void)
     CHECK_HAS(pt_log, "team_link: 0 frames and 1 input messages did not decode so far");
     chasm_free(m);
 }
+
+/* An abort state with its own team_link keeps the store (the unacked contact
+ * is still sent) and announces the abort in its status (code = 5). */
+void abort_state_keeps_the_store_and_says_abort(void)
+{
+    chasm_machine *m = team_load("state mission {\n"
+                                 "    do team_link(" ROSTER ", me = \"AUV1\", my_slot = 0)\n"
+                                 "    do team_status() every 20 s\n"
+                                 "    do search_contacts()\n"
+                                 "    when elapsed > 10 s -> emergency\n"
+                                 "}\n"
+                                 "state emergency {\n"
+                                 "    do team_link(" ROSTER ", me = \"AUV1\", my_slot = 0)\n"
+                                 "    do team_status(code = 5) every 5 s\n"
+                                 "}\n");
+    if (!m)
+        return;
+    team_nav(m, 0, 0, 0, 1.5, 0);
+    pt_start(m, 0);
+    team_feed_contact(m, 0, 10, 10, 0.9, 1.0);
+    run(m, 0.1, 21, 0, 0);
+    CHECK_HAS(pt_leaf(m), "emergency");
+    team_msg msgs[8];
+    int frames;
+    int n = team_take_frames(m, msgs, 8, &frames);
+    CHECK(frames == 1 && n == 2 && msgs[0].id == TEAM_MSG_CONTACT && msgs[1].id == TEAM_MSG_STATUS);
+    if (n == 2)
+        CHECK(msgs[1].u.status.state == 5);
+    chasm_free(m);
+}
