@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 extern "C" {
+#include "auv/auv_lockstep_t.h"
 #include "auv/auv_process_health_t.h"
 #include "auv/auv_sim_clock_t.h"
 }
@@ -32,6 +33,8 @@ NavNode::NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm)
     wall_s_at_health_ = clock_s(CLOCK_MONOTONIC);
     cpu_s_at_health_ = clock_s(CLOCK_PROCESS_CPUTIME_ID);
     tp_clock_init(&clock_, opt_.max_clock_jump_us);
+    mgr_lockstep_init(&lockstep_, opt_.vehicle.c_str(), "NAV");
+    sim_participant_ = opt_.vehicle + ".sim";
 }
 
 NavNode::~NavNode()
@@ -40,6 +43,7 @@ NavNode::~NavNode()
         rx_unsubscribe(lcm_, s);
     rx_unsubscribe(lcm_, clock_sub_);
     rx_unsubscribe(lcm_, altimeter_sub_);
+    rx_unsubscribe(lcm_, lockstep_sub_);
 }
 
 bool NavNode::subscribe()
@@ -64,6 +68,10 @@ bool NavNode::subscribe()
         if (!clock_sub_)
             return false;
         rx_set_queue_capacity(clock_sub_, 1000);
+        lockstep_sub_ = rx_subscribe(lcm_, "SIM.LOCKSTEP", auv_type_find("lockstep_t"), on_lockstep, this);
+        if (!lockstep_sub_)
+            return false;
+        rx_set_queue_capacity(lockstep_sub_, 1000);
     }
     return true;
 }
@@ -122,8 +130,37 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
         tp_count(&n->clock_drops_, old, "auv-nav", "SIM.CLOCK", c->utime);
         return;
     }
-    if (n->clock_reading(c->utime, "SIM.CLOCK"))
+    if (n->clock_reading(c->utime, "SIM.CLOCK")) {
         tp_term_accept(&n->clock_term_, c->term);
+        mgr_lockstep_on_clock(&n->lockstep_, n->lcm_, c);
+    }
+}
+
+void NavNode::on_lockstep(const char *, const void *msg, int64_t, void *user)
+{
+    auto *n = static_cast<NavNode *>(user);
+    const auto *m = static_cast<const auv_lockstep_t *>(msg);
+    if (m->kind == AUV_LOCKSTEP_T_KIND_STEP_DONE && n->sim_participant_ == m->participant && m->step > n->sim_done_)
+        n->sim_done_ = m->step;
+}
+
+void NavNode::lockstep_poll()
+{
+    if (!opt_.sim_clock)
+        return;
+    // The simulator sends a step's sensor data before its report of the step,
+    // so its report here means all of them were handled (and their solutions
+    // published, by the loop, right after each). A report repeated after a
+    // loss is as good: it is keyed by step.
+    if (lockstep_.pending_step >= 0 && sim_done_ < lockstep_.pending_step)
+        return;
+    mgr_lockstep_poll(&lockstep_, lcm_);
+}
+
+void NavNode::lockstep_leave()
+{
+    if (opt_.sim_clock)
+        mgr_lockstep_leave(&lockstep_, lcm_);
 }
 
 bool NavNode::clock_reading(int64_t t, const char *source)
