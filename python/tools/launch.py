@@ -34,7 +34,7 @@ from tools.annotate import Annotator  # noqa: E402
 from confcheck import ConfigError  # noqa: E402
 from tools.mission_watch import MissionWatch  # noqa: E402
 from tools.procs import Child  # noqa: E402
-from tools.scenario import RECORDERS, Scenario, load_scenario  # noqa: E402
+from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario  # noqa: E402
 from tools.simconfig import write_configs  # noqa: E402
 from tools.worldclock import WorldClock  # noqa: E402
 
@@ -313,6 +313,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--warp", type=float, help="override time.warp")
+    ap.add_argument("--time", choices=TIME_MODES, help="override time.mode: the pace of the lockstep clock "
+                    "(lockstep = fast: as fast as the slowest process; scaled: at most warp x; realtime)")
     ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument("--recorder", choices=RECORDERS,
@@ -350,6 +352,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.seed is not None:
         sc.seed = args.seed
+    if args.time is not None:
+        sc.time.mode = args.time
     args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)

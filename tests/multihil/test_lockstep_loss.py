@@ -21,7 +21,7 @@ import lcm
 import pytest
 
 from auv import lockstep_t, sim_clock_t
-from conftest import ROOT
+from conftest import ROOT, c_program
 from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
 from sim.multihil.server import LockstepServer
 from tools.worldclock import WorldClock
@@ -150,7 +150,7 @@ def test_the_launchers_clock_blocks_instead_of_spinning(lcm_url):
 def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(
         lcm_url, child_env, tmp_path, sanitized):
     build = ROOT / "build" / ("san" if sanitized else "")
-    mgr = [build / "bin" / "chasm-manager", "--plan", ROOT / "tests/tools/scenarios/mission.chasm",
+    mgr = [c_program("bin/chasm-manager", sanitized), "--plan", ROOT / "tests/tools/scenarios/mission.chasm",
            "--bind", ROOT / "missions/bindings/direct_actuators.bind", "-D", "cycles=1000",
            "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim",
            "--lcm-url", lcm_url, "--plugin-path", build / "plugins"]
@@ -158,7 +158,7 @@ def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(
     from sim.config import load
     from tools.navconf import nav_config_text
     nav_conf.write_text(nav_config_text(load(ROOT / "missions/sim/remus100.yaml")))
-    nav = [build / "bin" / "auv-nav", "--config", nav_conf, "--vehicle", "AUV1", "--clock", "sim",
+    nav = [c_program("bin/auv-nav", sanitized), "--config", nav_conf, "--vehicle", "AUV1", "--clock", "sim",
            "--lcm-url", lcm_url]
     lc = lcm.LCM(lcm_url)
     reports: list = []
