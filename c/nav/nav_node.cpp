@@ -1,6 +1,7 @@
 #include "nav/nav_node.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <unistd.h>
 
@@ -43,7 +44,8 @@ NavNode::~NavNode()
         rx_unsubscribe(lcm_, s);
     rx_unsubscribe(lcm_, clock_sub_);
     rx_unsubscribe(lcm_, altimeter_sub_);
-    rx_unsubscribe(lcm_, lockstep_sub_);
+    if (lockstep_sub_)
+        lcm_unsubscribe(lcm_, lockstep_sub_);
 }
 
 bool NavNode::subscribe()
@@ -68,10 +70,10 @@ bool NavNode::subscribe()
         if (!clock_sub_)
             return false;
         rx_set_queue_capacity(clock_sub_, 1000);
-        lockstep_sub_ = rx_subscribe(lcm_, "SIM.LOCKSTEP", auv_type_find("lockstep_t"), on_lockstep, this);
+        lockstep_sub_ = lcm_subscribe(lcm_, "SIM.LOCKSTEP", on_lockstep, this);
         if (!lockstep_sub_)
             return false;
-        rx_set_queue_capacity(lockstep_sub_, 1000);
+        lcm_subscription_set_queue_capacity(lockstep_sub_, 1000);
     }
     return true;
 }
@@ -136,12 +138,28 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
     }
 }
 
-void NavNode::on_lockstep(const char *, const void *msg, int64_t, void *user)
+void NavNode::on_lockstep(const lcm_recv_buf_t *rbuf, const char *, void *user)
 {
+    // Every participant of the world reports each step here (5 per vehicle):
+    // decode only this vehicle's simulator's. lockstep_t starts with its
+    // fingerprint (8 bytes), utime (8), then the participant: length with
+    // the NUL (4, big-endian) and the characters.
     auto *n = static_cast<NavNode *>(user);
-    const auto *m = static_cast<const auv_lockstep_t *>(msg);
-    if (m->kind == AUV_LOCKSTEP_T_KIND_STEP_DONE && n->sim_participant_ == m->participant && m->step > n->sim_done_)
-        n->sim_done_ = m->step;
+    const auto *d = static_cast<const uint8_t *>(rbuf->data);
+    const std::string &me = n->sim_participant_;
+    if (rbuf->data_size < 20 + me.size() + 1)
+        return;
+    const uint32_t len = (uint32_t)d[16] << 24 | (uint32_t)d[17] << 16 | (uint32_t)d[18] << 8 | d[19];
+    if (len != me.size() + 1 || std::memcmp(d + 20, me.data(), me.size()) != 0)
+        return;
+    auv_lockstep_t m;
+    if (auv_lockstep_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0) {
+        n->lockstep_decode_errors_++;
+        return;
+    }
+    if (m.kind == AUV_LOCKSTEP_T_KIND_STEP_DONE && m.step > n->sim_done_)
+        n->sim_done_ = m.step;
+    auv_lockstep_t_decode_cleanup(&m);
 }
 
 void NavNode::lockstep_poll()
@@ -177,7 +195,8 @@ bool NavNode::clock_reading(int64_t t, const char *source)
 
 uint64_t NavNode::decode_errors() const
 {
-    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0);
+    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0) +
+                 lockstep_decode_errors_;
     for (const rx_sub_t *s : subs_)
         if (s)
             e += rx_decode_errors(s);

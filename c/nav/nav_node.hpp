@@ -72,7 +72,7 @@ private:
     static void on_sensor(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
-    static void on_lockstep(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    static void on_lockstep(const lcm_recv_buf_t *rbuf, const char *channel, void *user);
     void publish_health();
     bool clock_reading(int64_t t, const char *source);
     void publish_solution(int64_t t, const NavStatus &st);
@@ -85,7 +85,8 @@ private:
     rx_sub_t *subs_[kSensors] = {};
     rx_sub_t *clock_sub_ = nullptr;
     rx_sub_t *altimeter_sub_ = nullptr;
-    rx_sub_t *lockstep_sub_ = nullptr;
+    lcm_subscription_t *lockstep_sub_ = nullptr;   // raw: only its simulator's reports are decoded
+    uint64_t lockstep_decode_errors_ = 0;
     mgr_lockstep lockstep_;
     std::string sim_participant_;       // "<VEHICLE>.sim"
     int64_t sim_done_ = -1;             // the newest step its simulator reported done
