@@ -126,9 +126,16 @@ def run_case(n: int, args, out: Path) -> dict:
         return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
     launch = [sys.executable, str(ROOT / "python/tools/launch.py"), str(case / "plan" / f"scale{n}.yaml"),
               "--out", str(case / "run"), "--progress", "0"] + (["--url", args.url] if args.url else [])
+    env = dict(os.environ)
+    if args.cprofile:
+        prof_dir = case / "cprofile"
+        prof_dir.mkdir(parents=True, exist_ok=True)
+        (prof_dir / "sitecustomize.py").write_text(SITECUSTOMIZE)
+        env["SCALE_BENCH_PROFILE_DIR"] = str(prof_dir)
+        env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(prof_dir), env.get("PYTHONPATH", "")]))
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     wall0 = time.monotonic()
-    proc = subprocess.Popen(launch, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    proc = subprocess.Popen(launch, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
     last: dict[int, int] = {}
     kinds: dict[int, str] = {}
     spy = None
@@ -167,7 +174,42 @@ def run_case(n: int, args, out: Path) -> dict:
     prof = case / "sim.pyspy.txt"
     if prof.exists():
         res["profile"] = profile_summary(prof)
+    if args.cprofile:
+        res["profile"] = res.get("profile", []) + cprofile_summary(case / "cprofile")
     return res
+
+
+# Loaded by every Python process of a --cprofile run (PYTHONPATH): a profile of the
+# whole process (wall time, so waiting shows), written at its normal exit.
+SITECUSTOMIZE = """import os
+_d = os.environ.get("SCALE_BENCH_PROFILE_DIR")
+if _d:
+    import atexit, cProfile, sys
+    _p = cProfile.Profile()
+    _p.enable()
+    def _dump():
+        _p.disable()
+        name = os.path.basename(sys.argv[0] or "python").replace(".py", "")
+        _p.dump_stats(os.path.join(_d, f"{name}.{os.getpid()}.prof"))
+    atexit.register(_dump)
+"""
+
+
+def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
+    """The functions each kind of Python process spent most wall time in (self time)."""
+    import pstats
+    lines = []
+    for kind in ("sim", "launch"):
+        files = sorted(folder.glob(f"{kind}.*.prof"))
+        if not files:
+            continue
+        st = pstats.Stats(*map(str, files))
+        total = max(st.total_tt, 1e-9)
+        rows = sorted(st.stats.items(), key=lambda kv: -kv[1][2])[:top]
+        lines.append(f"  cProfile {kind} ({len(files)} process(es), {total:.0f} s wall in all), self time:")
+        lines += [f"    {100 * tt / total:5.1f} %  {fn}:{line} {name}" for (fn, line, name), (_, _, tt, _, _)
+                  in rows]
+    return lines or ["  (no cProfile output: did the processes exit normally?)"]
 
 
 def main() -> int:
@@ -177,6 +219,8 @@ def main() -> int:
     ap.add_argument("--length", type=float, default=150.0, help="each share's length [m] (north)")
     ap.add_argument("--width", type=float, default=60.0, help="each share's width [m] (east)")
     ap.add_argument("--profile", action="store_true", help="py-spy one simulator of each run")
+    ap.add_argument("--cprofile", action="store_true", help="cProfile every Python process of each run (the "
+                    "simulators, the launcher): where their wall time goes, without py-spy")
     ap.add_argument("--url", help="LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
     args = ap.parse_args()

@@ -44,6 +44,7 @@ void mgr_lockstep_on_clock(mgr_lockstep *ls, lcm_t *lcm, const auv_sim_clock_t *
      * Drivers that leave `step` at 0 still advance utime: either counts. */
     if (c->step <= ls->last_done && c->utime <= ls->last_done_utime) {
         send(ls, lcm, AUV_LOCKSTEP_T_KIND_STEP_DONE, c->step, c->utime);
+        ls->next_resend_ms = mono_ms() + MGR_LOCKSTEP_RESEND_MS;
         return;
     }
     ls->pending_step = c->step;
@@ -70,6 +71,19 @@ void mgr_lockstep_poll(mgr_lockstep *ls, lcm_t *lcm)
         ls->last_done = ls->pending_step;
         ls->last_done_utime = ls->pending_utime;
         ls->pending_step = -1;
+        ls->next_resend_ms = mono_ms() + MGR_LOCKSTEP_RESEND_MS;
+        return;
+    }
+    /* No newer clock came: the report (or the next clock) may have been lost.
+     * Repeat it; the server counts a step once and republishes a clock that
+     * this repeat shows was missed. */
+    if (ls->lockstep && ls->last_done >= 0) {
+        int64_t now = mono_ms();
+        if (now >= ls->next_resend_ms) {
+            ls->next_resend_ms = now + MGR_LOCKSTEP_RESEND_MS;
+            ls->resent++;
+            send(ls, lcm, AUV_LOCKSTEP_T_KIND_STEP_DONE, ls->last_done, ls->last_done_utime);
+        }
     }
 }
 

@@ -7,6 +7,10 @@
  * step n once the cycle that the clock of step n triggered has published its
  * outputs: the next loop iteration. A repeated step (a new server resumes
  * the step it found in flight) is confirmed again without a second cycle.
+ * A datagram lost under load cannot stop the world: while no newer clock
+ * comes, the last report is repeated every MGR_LOCKSTEP_RESEND_MS (reports
+ * are keyed by step, so a repeat is counted once; the server republishes a
+ * clock that a repeated report shows was missed).
  * Free-running clocks need nothing of this: it stays silent. */
 #ifndef MGR_LOCKSTEP_H
 #define MGR_LOCKSTEP_H
@@ -15,6 +19,8 @@
 #include <stdint.h>
 
 #include "auv/auv_sim_clock_t.h"
+
+#define MGR_LOCKSTEP_RESEND_MS 250
 
 typedef struct {
     char name[96];
@@ -25,6 +31,8 @@ typedef struct {
     int64_t last_done;          /* last step reported, -1: none */
     int64_t last_done_utime;    /* its global time */
     int64_t next_register_ms;   /* monotonic */
+    int64_t next_resend_ms;     /* monotonic: repeat the last report from then on */
+    int64_t resent;             /* reports repeated (lost datagrams, slow steps) */
 } mgr_lockstep;
 
 void mgr_lockstep_init(mgr_lockstep *ls, const char *vehicle, const char *name);

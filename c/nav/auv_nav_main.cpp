@@ -114,6 +114,7 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
     const int64_t period_us = static_cast<int64_t>(1e6 / o.rate_hz);
     int64_t next_cycle = 0;
     while (!g_stop) {
+        node.lockstep_poll();
         int wait_ms = 20;
         if (!o.sim_clock) {
             node.set_now(system_now_us());
@@ -139,6 +140,7 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
         if (next_cycle <= node.now())
             next_cycle = tp_sat_add(node.now(), period_us);
     }
+    node.lockstep_leave();
     return 0;
 }
 

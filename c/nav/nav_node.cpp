@@ -1,10 +1,12 @@
 #include "nav/nav_node.hpp"
 
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <unistd.h>
 
 extern "C" {
+#include "auv/auv_lockstep_t.h"
 #include "auv/auv_process_health_t.h"
 #include "auv/auv_sim_clock_t.h"
 }
@@ -32,6 +34,8 @@ NavNode::NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm)
     wall_s_at_health_ = clock_s(CLOCK_MONOTONIC);
     cpu_s_at_health_ = clock_s(CLOCK_PROCESS_CPUTIME_ID);
     tp_clock_init(&clock_, opt_.max_clock_jump_us);
+    mgr_lockstep_init(&lockstep_, opt_.vehicle.c_str(), "NAV");
+    sim_participant_ = opt_.vehicle + ".sim";
 }
 
 NavNode::~NavNode()
@@ -40,6 +44,8 @@ NavNode::~NavNode()
         rx_unsubscribe(lcm_, s);
     rx_unsubscribe(lcm_, clock_sub_);
     rx_unsubscribe(lcm_, altimeter_sub_);
+    if (lockstep_sub_)
+        lcm_unsubscribe(lcm_, lockstep_sub_);
 }
 
 bool NavNode::subscribe()
@@ -64,6 +70,10 @@ bool NavNode::subscribe()
         if (!clock_sub_)
             return false;
         rx_set_queue_capacity(clock_sub_, 1000);
+        lockstep_sub_ = lcm_subscribe(lcm_, "SIM.LOCKSTEP", on_lockstep, this);
+        if (!lockstep_sub_)
+            return false;
+        lcm_subscription_set_queue_capacity(lockstep_sub_, 1000);
     }
     return true;
 }
@@ -122,8 +132,53 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
         tp_count(&n->clock_drops_, old, "auv-nav", "SIM.CLOCK", c->utime);
         return;
     }
-    if (n->clock_reading(c->utime, "SIM.CLOCK"))
+    if (n->clock_reading(c->utime, "SIM.CLOCK")) {
         tp_term_accept(&n->clock_term_, c->term);
+        mgr_lockstep_on_clock(&n->lockstep_, n->lcm_, c);
+    }
+}
+
+void NavNode::on_lockstep(const lcm_recv_buf_t *rbuf, const char *, void *user)
+{
+    // Every participant of the world reports each step here (5 per vehicle):
+    // decode only this vehicle's simulator's. lockstep_t starts with its
+    // fingerprint (8 bytes), utime (8), then the participant: length with
+    // the NUL (4, big-endian) and the characters.
+    auto *n = static_cast<NavNode *>(user);
+    const auto *d = static_cast<const uint8_t *>(rbuf->data);
+    const std::string &me = n->sim_participant_;
+    if (rbuf->data_size < 20 + me.size() + 1)
+        return;
+    const uint32_t len = (uint32_t)d[16] << 24 | (uint32_t)d[17] << 16 | (uint32_t)d[18] << 8 | d[19];
+    if (len != me.size() + 1 || std::memcmp(d + 20, me.data(), me.size()) != 0)
+        return;
+    auv_lockstep_t m;
+    if (auv_lockstep_t_decode(rbuf->data, 0, (int)rbuf->data_size, &m) < 0) {
+        n->lockstep_decode_errors_++;
+        return;
+    }
+    if (m.kind == AUV_LOCKSTEP_T_KIND_STEP_DONE && m.step > n->sim_done_)
+        n->sim_done_ = m.step;
+    auv_lockstep_t_decode_cleanup(&m);
+}
+
+void NavNode::lockstep_poll()
+{
+    if (!opt_.sim_clock)
+        return;
+    // The simulator sends a step's sensor data before its report of the step,
+    // so its report here means all of them were handled (and their solutions
+    // published, by the loop, right after each). A report repeated after a
+    // loss is as good: it is keyed by step.
+    if (lockstep_.pending_step >= 0 && sim_done_ < lockstep_.pending_step)
+        return;
+    mgr_lockstep_poll(&lockstep_, lcm_);
+}
+
+void NavNode::lockstep_leave()
+{
+    if (opt_.sim_clock)
+        mgr_lockstep_leave(&lockstep_, lcm_);
 }
 
 bool NavNode::clock_reading(int64_t t, const char *source)
@@ -140,7 +195,8 @@ bool NavNode::clock_reading(int64_t t, const char *source)
 
 uint64_t NavNode::decode_errors() const
 {
-    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0);
+    uint64_t e = (clock_sub_ ? rx_decode_errors(clock_sub_) : 0) + (altimeter_sub_ ? rx_decode_errors(altimeter_sub_) : 0) +
+                 lockstep_decode_errors_;
     for (const rx_sub_t *s : subs_)
         if (s)
             e += rx_decode_errors(s);

@@ -12,6 +12,7 @@
 extern "C" {
 #include "common/lcm_rx.h"
 #include "common/time_policy.h"
+#include "managers/mgr_lockstep.h"
 }
 
 #include "nav/nav_filter.hpp"
@@ -55,6 +56,14 @@ public:
     bool attitude_fresh() const { return attitude_fresh_; }
     void publish_on_attitude();
     void print_summary() const;
+    // Lockstep (docs/multihil.md): each turn of the loop. The filter reports
+    // step n once it has handled the clock of step n and its simulator's
+    // report of step n: every sensor message of the step is in and every
+    // solution it brought is out before the world's next step.
+    void lockstep_poll();
+    // The manager-style participant that sends this filter's reports
+    // ("<VEHICLE>.NAV"); one stopping sends LEAVE.
+    void lockstep_leave();
 
     const NavFilter &filter() const { return filter_; }
     uint64_t decode_errors() const;
@@ -63,6 +72,7 @@ private:
     static void on_sensor(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user);
     static void on_altimeter(const char *channel, const void *msg, int64_t recv_utime, void *user);
+    static void on_lockstep(const lcm_recv_buf_t *rbuf, const char *channel, void *user);
     void publish_health();
     bool clock_reading(int64_t t, const char *source);
     void publish_solution(int64_t t, const NavStatus &st);
@@ -75,6 +85,11 @@ private:
     rx_sub_t *subs_[kSensors] = {};
     rx_sub_t *clock_sub_ = nullptr;
     rx_sub_t *altimeter_sub_ = nullptr;
+    lcm_subscription_t *lockstep_sub_ = nullptr;   // raw: only its simulator's reports are decoded
+    uint64_t lockstep_decode_errors_ = 0;
+    mgr_lockstep lockstep_;
+    std::string sim_participant_;       // "<VEHICLE>.sim"
+    int64_t sim_done_ = -1;             // the newest step its simulator reported done
     struct SubCtx {
         NavNode *node;
         Sensor sensor;

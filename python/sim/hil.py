@@ -157,9 +157,13 @@ class Simulator:
         self._cpu0 = os.times()
         self._wall_health = time.monotonic()
         self.mh = None      # multi-HIL: shared world, global clock (docs/multihil.md)
+        self.follow = None  # stepped on its own: a participant when the clock is lockstep
         if cfg.multihil.enabled:
             from sim.multihil.hook import SimHook
             self.mh = SimHook(self)
+        elif s.clock == "stepped":
+            from sim.lockstep_follow import LockstepFollower
+            self.follow = LockstepFollower(self)
 
     # ------------------------------------------------------------ handlers
     def clock_now_us(self) -> int | float | None:
@@ -195,6 +199,8 @@ class Simulator:
     def _on_clock(self, _channel: str, msg) -> None:
         if self.clock_gate.offer(msg.utime, msg.term):
             self.follow_clock(msg.utime)
+            if self.follow is not None:
+                self.follow.on_clock(msg)
 
     def follow_clock(self, utime_us: int) -> None:
         """Stepped: advance up to this (accepted) global time, joining the world at the first."""
@@ -381,6 +387,8 @@ class Simulator:
         while not self.stop_requested:
             if self.mh is not None:
                 self.mh.poll()
+            elif self.follow is not None:
+                self.follow.poll()
             # _t_start moves when a stepped run joins the global clock
             if model.t - self._t_start >= duration - 1e-9:
                 break
@@ -395,6 +403,8 @@ class Simulator:
                 self._drain(min(pacer.wait_s(model.t, now), 0.1))
         if self.mh is not None:
             self.mh.close()
+        elif self.follow is not None:
+            self.follow.close()
         sender = self._close_sender()
         for sig, handler in previous.items():
             if handler is not None:     # None: not set from Python, nothing to restore

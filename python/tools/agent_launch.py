@@ -68,8 +68,7 @@ def run_on_agents(sc, args, url: str, sim_configs: dict, navs: dict) -> tuple[st
                           deadman_s=args.deadman, restart=rules) for h in sc.hosts]
     answers = ctl.send_all(starts, args.agent_timeout)
     args.host = None
-    launcher = Launcher(sc, args, url, sim_configs, navs)
-    launcher.own_log = False             # the log host's agent runs lcm-logger
+    launcher = Launcher(sc, args, url, sim_configs, navs, agents=True)   # the log host's agent records
     if report(answers):
         launcher.stop_reason = "not every agent started its part (above)"
         ctl.send_all([ctl.command(h, C.CMD_STOP, run=run_name) for h in sc.hosts], args.agent_timeout)

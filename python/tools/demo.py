@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """`make demo`: a 3-vehicle mine-countermeasure survey, end to end, in fast time.
 
+Fast time is lockstep (docs/scenarios.md, "Time"): as fast as the slowest
+process, and the same seed gives the same log, whatever the machine's load.
+
 The survey planner's scenario (missions/scenarios/mcm_demo, or a survey planned
 here with --polygon/--vehicles) is run by the launcher: three simulated REMUS
 100s with sidescan sonar over one seeded target field, each flown by a PILOT and
@@ -98,6 +101,10 @@ def _main(argv: list[str] | None) -> int:
     ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
+    ap.add_argument("--time", choices=("lockstep", "fast", "scaled", "realtime"),
+                    help="pace of the world's lockstep clock (default: the scenario's, fast = lockstep: as fast "
+                         "as the slowest process; every mode gives the same result)")
+    ap.add_argument("--warp", type=float, help="with --time scaled: at most this many times real time")
     ap.add_argument("--plan-only", action="store_true",
                     help="with --polygon: plan the survey and check its plans with the plugins, then stop")
     args = ap.parse_args(argv)
@@ -107,6 +114,8 @@ def _main(argv: list[str] | None) -> int:
         ap.error("--vehicles needs --polygon (the committed scenario has its own vehicles)")
     if args.vehicles is not None and args.vehicles < 1:
         ap.error("--vehicles must be at least 1")
+    if args.warp is not None and not 0 < args.warp < float("inf"):
+        ap.error(f"--warp must be a number > 0, got {args.warp}")
     try:
         args.out.mkdir(parents=True, exist_ok=True)
     except OSError as exc:
@@ -125,6 +134,7 @@ def _main(argv: list[str] | None) -> int:
     run_dir = args.out / "run"
     launch = [PY, ROOT / "python/tools/launch.py", scenario, "--out", run_dir, "--progress", "15"]
     launch += (["--url", args.url] if args.url else []) + (["--build", args.build] if args.build else [])
+    launch += (["--time", args.time] if args.time else []) + (["--warp", args.warp] if args.warp else [])
     launch_rc = run(launch, f"running {scenario.relative_to(ROOT) if scenario.is_relative_to(ROOT) else scenario}")
     log = run_dir / "run.lcmlog"
     if not log.exists():

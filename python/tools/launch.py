@@ -43,7 +43,7 @@ from tools.annotate import Annotator  # noqa: E402
 from confcheck import ConfigError  # noqa: E402
 from tools.mission_watch import MissionWatch  # noqa: E402
 from tools.procs import Child  # noqa: E402
-from tools.scenario import RECORDERS, Scenario, load_scenario  # noqa: E402
+from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario  # noqa: E402
 from tools.simconfig import write_configs  # noqa: E402
 from tools.worldclock import WorldClock  # noqa: E402
 
@@ -100,28 +100,48 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
     return errors
 
 
+def participants(sc: Scenario, recorder: bool) -> set[str]:
+    """Whom the launcher's lockstep clock waits for, on every host: each vehicle's
+    simulator, managers and onboard filter, and the recorder it starts (if it does)."""
+    names = {"SIM.RECORDER"} if recorder else set()
+    for v in sc.vehicles:
+        names.add(f"{v.id}.sim")
+        names |= {f"{v.id}.{m.name}" for m in v.managers}
+        if v.nav.source == "ekf":
+            names.add(f"{v.id}.NAV")
+    return names
+
+
 class Launcher:
     def __init__(self, sc: Scenario, args, url: str, sim_configs: dict[str, Path],
-                 nav_configs: dict[str, Path] | None = None) -> None:
+                 nav_configs: dict[str, Path] | None = None, agents: bool = False) -> None:
         self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
         self.nav_configs = nav_configs or {}
         self.host = args.host
         self.out: Path = args.out
         self.build = args.build
-        self.lc = lcm.LCM(url)
+        self.lc = lcm.LCM(self.child_url)
         self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT)
         self.mine = sc.vehicles_on(self.host)
         self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
-        self.own_log = sc.log_enabled and (self.host is None or self.host == sc.log_host)
+        # with --agents the log host's agent records (lcm-logger), not this process
+        self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
-        self.clock = WorldClock(self.lc, sc.time.mode, args.warp or sc.time.warp, sc.time.step_s) \
+        self.recorder = args.recorder or sc.log_recorder
+        self.clock = WorldClock(self.lc, sc.time.mode, args.warp or sc.time.warp, sc.time.step_s,
+                                participants(sc, self.own_log and self.recorder == "auv-recorder")) \
             if self.own_clock else None
         self.logger: Child | None = None
         self.children: list[Child] = []
         self.stop_reason = ""
         self.log_path = self.out / sc.log_file
-        self.recorder = args.recorder or sc.log_recorder
         self.recorder_stats = self.out / "recorder.json"
+
+    @property
+    def child_url(self) -> str:
+        """Every process hears the whole world: a large receive buffer, so a busy
+        moment does not make the kernel drop what the process has not read yet."""
+        return with_receive_buffer(self.url)
 
     # ------------------------------------------------------------ start
     def _start(self, child: Child) -> Child:
@@ -183,13 +203,13 @@ class Launcher:
         self.notes.types()
 
     def sim_cmd(self, vid: str) -> list[str]:
-        cmd = [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--lcm-url", self.url]
+        cmd = [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--lcm-url", self.child_url]
         # On the launcher's clock every simulator is stepped; otherwise their configuration decides.
         return cmd + (["--clock", "stepped"] if self.sc.time.source == "launcher" else [])
 
     def manager_cmd(self, vid: str, m) -> list[str]:
         cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),
-               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--lcm-url", self.url]
+               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--lcm-url", self.child_url]
         for d in m.plugin_path or [self.build / "plugins"]:
             cmd += ["--plugin-path", str(d)]
         for k, val in m.params.items():
@@ -198,7 +218,7 @@ class Launcher:
 
     def nav_cmd(self, v) -> list[str]:
         return [str(self.build / "bin" / "auv-nav"), "--config", str(self.nav_configs[v.id]), "--vehicle", v.id,
-                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--lcm-url", self.url]
+                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--lcm-url", self.child_url]
 
     def start_all(self) -> None:
         if self.own_log:
@@ -218,21 +238,20 @@ class Launcher:
         return next((c for c in self.children if not c.stopping and c.poll() is not None), None)
 
     def wait_ready(self, stop) -> str:
-        """Hold the clock at 0 until every simulator and manager of the world reports."""
+        """Hold time before step 0 until every participant of the world registered
+        (the clock's host), or until every process reported (the other hosts)."""
         deadline = time.monotonic() + STARTUP_TIMEOUT_S
-        next_hold = 0.0
+        ready = self.clock.ready if self.clock else self.watch.all_ready
         while time.monotonic() < deadline:
             if stop():
                 return "interrupted"
             if self._dead():
                 return "died"
-            if self.clock and time.monotonic() >= next_hold:
-                self.clock.hold()
-                next_hold = time.monotonic() + 0.05
-            self.watch.handle(0.05)
-            if self.watch.all_ready():
+            self.watch.handle(0.1)
+            if ready():
                 return ""
-        self.stop_reason = f"not ready after {STARTUP_TIMEOUT_S:.0f} s: {', '.join(self.watch.not_ready())}"
+        missing = self.clock.not_ready() if self.clock else self.watch.not_ready()
+        self.stop_reason = f"not ready after {STARTUP_TIMEOUT_S:.0f} s: {', '.join(missing)}"
         return "died"
 
     def supervise(self, stop) -> str:
@@ -247,8 +266,9 @@ class Launcher:
             if self._dead():
                 return "died"
             if self.clock:
-                self.clock.advance(self.watch.clock_limit_us())
-            self.watch.handle(self.clock.wait_s() if self.clock else 0.05)
+                self.clock.advance()
+            # blocks until a message comes (a report, a status) or the next step is due
+            self.watch.handle(self.clock.wait_s() if self.clock else 0.1)
             outcome = self.watch.outcome()
             if outcome:
                 return outcome
@@ -262,8 +282,10 @@ class Launcher:
             if self.args.progress > 0 and now >= next_progress:
                 next_progress = now + self.args.progress
                 sim_s = self.watch.sim_time_us / 1e6
+                waits = self.clock.waiting_for() if self.clock else []
                 print(f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
-                      + "  ".join(self.watch.progress()), flush=True)
+                      + "  ".join(self.watch.progress())
+                      + (f"  (step waits for {', '.join(waits)})" if waits else ""), flush=True)
 
     def stop_all(self, result: str) -> None:
         dead = self._dead()
@@ -300,6 +322,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--warp", type=float, help="override time.warp")
+    ap.add_argument("--time", choices=TIME_MODES, help="override time.mode: the pace of the lockstep clock "
+                    "(lockstep = fast: as fast as the slowest process; scaled: at most warp x; realtime)")
     ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument("--recorder", choices=RECORDERS,
@@ -337,6 +361,8 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     if args.seed is not None:
         sc.seed = args.seed
+    if args.time is not None:
+        sc.time.mode = args.time
     args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)

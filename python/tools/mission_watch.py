@@ -5,9 +5,9 @@
   the scenario has reported, on any host: a filter that subscribes after the
   clock starts misses the first GPS fix and aligns a second later, so the
   mission would not be the same from run to run;
-- gate: how far the clock may run, from each simulator's and each manager's
-  sim time (a control loop must see the time it acts in, or a stalled pilot
-  becomes sim time without control);
+- the clock needs nothing from the watch: the launcher's clock is a lockstep
+  server (tools/worldclock.py), so no process falls behind it, whatever the
+  load, and no lost report can hold it for ever;
 - outcome: each vehicle's end manager (NAVIGATOR by default) is done,
   aborted or failed. A plan whose `abort when` rule fired and then ended
   normally (the surfacing state completed) counts as aborted: the plan's abort
@@ -17,7 +17,7 @@ Stamps follow the project's rule (auvlcm.timepolicy): the SIM.CLOCK the watch
 follows never goes back or jumps unconfirmed (one message at INT64_MAX cannot
 end a mission on its time limit), and a report stamped outside the valid
 range, from the future of that clock, or older than the last one from the
-same process is dropped (one bad stamp cannot open the clock gate). Drops are
+same process is dropped. Drops are
 counted per reason in the launcher's summary and logged the first time.
 """
 
@@ -92,14 +92,6 @@ class VehicleState:
         return "aborted" if o == "done" and self.entered_abort else o
 
 
-SIM_LEAD_US = 100_000       # a simulator may fall this far behind the clock (0.3 s let the
-                            # pilot cycle on 300 ms old attitude: docs/scenarios.md)
-MANAGER_LEAD_US = 100_000   # a manager this far plus its own period: the pilot's loops
-                            # tolerate about 100 ms of delay (docs/behaviors.md)
-NAV_LEAD_US = 150_000       # an onboard filter's newest solution: it follows the simulator
-NAV_STATUS_PERIOD_US = 1_000_000   # before it aligns, its status: once a second
-
-
 class MissionWatch:
     def __init__(self, lc: lcm.LCM, sc: Scenario) -> None:
         self.lc = lc
@@ -112,7 +104,6 @@ class MissionWatch:
         self.expected: set[str] = set()
         self.sim_time_us = 0
         self.manager_us: dict[str, int | None] = {}
-        self.manager_lead_us: dict[str, int] = {}
         self.nav_solution_us: dict[str, int | None] = {}   # each onboard filter's newest solution
         self.nav_status_us: dict[str, int | None] = {}     # ... and status
         for v in sc.vehicles:
@@ -129,7 +120,6 @@ class MissionWatch:
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
                 self.manager_us[f"{v.id}.{m.name}"] = None
-                self.manager_lead_us[f"{v.id}.{m.name}"] = MANAGER_LEAD_US + round(1e6 / m.rate_hz)
                 self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
@@ -160,14 +150,6 @@ class MissionWatch:
             return
         if m.vehicle in self.nav_solution_us and m.source == nav_solution_t.SOURCE_EKF:
             self.nav_solution_us[m.vehicle] = max(self.nav_solution_us[m.vehicle] or 0, m.utime)
-
-    def _nav_progress_us(self, vid: str) -> int | None:
-        """A filter's newest solution; before it aligns (no solution), its
-        once-a-second status plus a second."""
-        sol, status = self.nav_solution_us[vid], self.nav_status_us[vid]
-        if sol is not None:
-            return sol
-        return None if status is None else status + NAV_STATUS_PERIOD_US
 
     def _on_status(self, ch: str, m) -> None:
         if not self._fresh(ch, m.utime):
@@ -214,18 +196,6 @@ class MissionWatch:
 
     def not_ready(self) -> list[str]:
         return sorted(self.expected - self.seen)
-
-    def clock_limit_us(self) -> int | None:
-        """The latest time the clock may publish: no simulator more than SIM_LEAD_US,
-        no manager more than its lead and no onboard filter more than NAV_LEAD_US
-        behind it (None: someone has not reported). A starved filter must hold
-        the clock like a starved manager: its managers would otherwise see their
-        navigation go stale in sim time and abort (seen on a loaded machine)."""
-        limits = [None if v.sim_us is None else v.sim_us + SIM_LEAD_US for v in self.vehicles.values()]
-        limits += [None if t is None else t + self.manager_lead_us[k] for k, t in self.manager_us.items()]
-        nav = [self._nav_progress_us(vid) for vid in self.nav_solution_us]
-        limits += [None if t is None else t + NAV_LEAD_US for t in nav]
-        return None if any(t is None for t in limits) else min(limits)
 
     def outcome(self) -> str | None:
         """None while any vehicle runs; else the worst vehicle outcome."""

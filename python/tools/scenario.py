@@ -26,7 +26,9 @@ from tools.plan_params import declared_params
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
 PARAM_NAME = r"[A-Za-z_][A-Za-z0-9_]{0,63}"
 HOST_NAME = r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}"
-TIME_MODES = ("realtime", "scaled", "fast")
+# the launcher's clock is lockstep in every mode (tools/worldclock.py): the mode is its pace.
+# lockstep = as fast as the slowest participant; fast = its old name, still accepted.
+TIME_MODES = ("realtime", "scaled", "lockstep", "fast")
 RECORDERS = ("auv-recorder", "lcm-logger")   # what records the run's log (docs/tools.md, "Recorder")
 CLOCK_SOURCES = ("launcher", "simulators")
 NAV_SOURCES = ("ins", "ekf")

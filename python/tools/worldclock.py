@@ -1,12 +1,23 @@
-"""The launcher's global clock: SIM.CLOCK for a world of stepped simulators.
+"""The launcher's global clock: a lockstep server for a world of stepped simulators.
 
-Every simulator runs `--clock stepped` and every manager `--clock sim`, so one
-clock drives the whole world. It holds time at 0 until every process is up
-(a deterministic start), then advances by `step` at `warp` times real time
-(`fast`: as fast as the simulators go), never past the limit the launcher's
-watch gives (a little ahead of the slowest simulator and manager,
-tools/mission_watch.py): an overloaded machine slows the clock down instead of
-leaving a vehicle or its pilot behind.
+Every simulator runs `--clock stepped`, every manager and filter `--clock sim`,
+and the recorder takes part too: each is a lockstep participant
+(docs/multihil.md, "Lockstep"; sim/lockstep_follow.py, c/managers/mgr_lockstep.c).
+The clock publishes step 0 once every participant of the scenario has
+registered, and step n + 1 only after every participant reported step n
+(STEP_DONE): so the same scenario and seed give the same messages, whatever
+the machine's load. An overloaded machine slows time down; it never leaves a
+vehicle, its pilot or its filter behind (no gate on progress reports that a
+lost datagram could close for ever).
+
+What the modes change is only the pace (time.mode):
+- `lockstep` (also `fast`, the old name): as fast as the slowest participant;
+- `scaled`: at most `warp` times real time; `realtime`: at most real time.
+
+Lost datagrams are repeated, never waited for (sim/multihil/lockstep.py): a
+participant repeats its last report while no newer clock comes, and a report
+of the previous step from one that owes the current step makes the clock
+publish that step again.
 """
 
 from __future__ import annotations
@@ -15,65 +26,93 @@ import math
 import time
 
 import lcm
-from auv import sim_clock_t
+from auv import lockstep_t, sim_clock_t
 
-MODES = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
-         "fast": sim_clock_t.MODE_SCALED}
+from sim.multihil.lockstep import RESEND_S, LockstepTracker
+from sim.multihil.server import LockstepServer
+
+PACE = {"realtime": 1.0, "scaled": None, "lockstep": math.inf, "fast": math.inf}
 
 
 class WorldClock:
-    def __init__(self, lc: lcm.LCM, mode: str, warp: float, step_s: float) -> None:
+    def __init__(self, lc: lcm.LCM, mode: str, warp: float, step_s: float,
+                 participants: set[str] | None = None, log=print) -> None:
         self.lc = lc
         self.mode = mode
-        self.warp = 1.0 if mode == "realtime" else (math.inf if mode == "fast" else warp)
+        self.warp = PACE[mode] if PACE[mode] is not None else warp
         self.step_us = max(1, round(step_s * 1e6))
+        self.tracker = LockstepTracker(timeout_s=None, log=log)
+        self.server = LockstepServer(self.tracker, self.step_us, len(participants or ()), log,
+                                     expect_names=participants)
         self.now_us = 0
         self.running = False
         self._wall0 = 0.0
         self._sim0_us = 0
         self.ticks = 0
+        self.future_reports = 0          # STEP_DONE for a step never published: counted, dropped
+        lc.subscribe("SIM.LOCKSTEP", self._on_lockstep).set_queue_capacity(1000)
 
-    def _publish(self) -> None:
+    def _on_lockstep(self, _ch: str, data: bytes) -> None:
+        try:
+            m = lockstep_t.decode(data)
+        except ValueError:
+            return
+        if m.kind == lockstep_t.KIND_STEP_DONE and not 0 <= m.step <= self.server.step + 1:
+            self.future_reports += 1        # a participant cannot be done with a step not yet sent
+            return
+        self.tracker.on_message(m)
+
+    def _publish(self, step: int) -> None:
         c = sim_clock_t()
         c.utime, c.server_id, c.term = self.now_us, "launcher", 0
-        c.mode = MODES[self.mode]
+        c.mode = sim_clock_t.MODE_LOCKSTEP
         c.warp = 0.0 if math.isinf(self.warp) else self.warp
-        c.step, c.step_us = 0, self.step_us
+        c.step, c.step_us = step, self.step_us
         self.lc.publish("SIM.CLOCK", c.encode())
         self.ticks += 1
 
-    def hold(self) -> None:
-        """Repeat the current time (before the start): late joiners learn it."""
-        self._publish()
+    def ready(self) -> bool:
+        """Every participant of the scenario registered: step 0 may go."""
+        return self.server.ready()
+
+    def not_ready(self) -> list[str]:
+        return sorted(self.server.expect_names - self.tracker.parts.keys())
+
+    def waiting_for(self) -> list[str]:
+        """Who the current step waits for (the progress line says so)."""
+        return self.tracker.waiting_for(self.server.step) if self.running else self.not_ready()
 
     def start(self) -> None:
         self.running = True
-        self._rebase(time.monotonic())
+        self._wall0, self._sim0_us = time.monotonic(), 0
 
-    def _rebase(self, wall: float) -> None:
-        self._wall0, self._sim0_us = wall, self.now_us
-
-    def advance(self, limit_us: int | None) -> bool:
-        """Publish the ticks that are due up to limit_us; False when held back by it."""
+    def advance(self) -> None:
+        """Publish the next step if every participant is done and its time is due
+        (or the current step again, if a participant missed it)."""
         if not self.running:
-            return True
-        wall = time.monotonic()
-        due = math.inf if math.isinf(self.warp) else self._sim0_us + (wall - self._wall0) * self.warp * 1e6
-        limit = math.inf if limit_us is None else limit_us
-        gated = False
-        while self.now_us + self.step_us <= due:
-            if self.now_us + self.step_us > limit:
-                gated = True
-                break
-            self.now_us += self.step_us
-            self._publish()
-        if gated and not math.isinf(self.warp):
-            self._rebase(wall)   # resume at warp from here, no catch-up burst later
-        return not gated
+            return
+        if self.server.started and not self.tracker.waiting_for(self.server.step) \
+                and not math.isinf(self.warp) and time.monotonic() < self._due(self.server.step + 1):
+            return
+        step = self.server.poll()
+        if step is None:
+            return
+        self.now_us = self.server.utime(step)
+        self._publish(step)
+        if not math.isinf(self.warp) and time.monotonic() > self._due(step) + 0.5:
+            # far behind the pace (an overloaded machine): go on from here, no burst
+            self._wall0, self._sim0_us = time.monotonic(), self.now_us
+
+    def _due(self, step: int) -> float:
+        """Wall time (monotonic) at which step's time is due at the pace."""
+        return self._wall0 + (self.server.utime(step) - self._sim0_us) / 1e6 / self.warp
 
     def wait_s(self) -> float:
-        """How long until the next tick is due (0 in fast mode)."""
-        if not self.running or math.isinf(self.warp):
-            return 0.0 if self.running else 0.05
-        next_wall = self._wall0 + (self.now_us + self.step_us - self._sim0_us) / 1e6 / self.warp
-        return max(0.0, next_wall - time.monotonic())
+        """How long the launcher may block on LCM: until the next step is due, or
+        until something could need repeating; a message wakes it earlier."""
+        if not self.running:
+            return 0.05
+        if self.server.started and not self.tracker.waiting_for(self.server.step) \
+                and not math.isinf(self.warp):
+            return max(0.0, min(RESEND_S, self._due(self.server.step + 1) - time.monotonic()))
+        return RESEND_S

@@ -85,6 +85,26 @@ def test_a_server_steps_down_for_a_higher_term_or_a_better_node_only():
     assert s.role == "client" and s.server_id == "Y"
 
 
+def test_a_server_that_hands_over_is_replaced_by_the_best_node_at_once():
+    """Lockstep before step 0 (node.py _hand_over): the first server yields to a
+    better node it heard; its client takes over without a failover timeout."""
+    first, best = fast_election("B", 0), fast_election("A", 0)      # "A" < "B": A is better
+    WALL.sleep(0.06)
+    assert first.poll() == "become_server" and first.server_term == 1
+    assert best.on_heartbeat("B", term=1, priority=0) == "follow"
+    first.heard("A", 0)
+    assert first.best() == ("A", 0)
+    first.hand_over()                                               # STEP_DOWN on the wire
+    best.on_step_down("B")
+    assert best.poll() == "become_server" and best.server_term == 1  # the same term: nothing served yet
+    assert first.role == "client" and first.poll() == ""            # waits for A, never retakes
+    assert first.on_heartbeat("A", term=1, priority=0) == "follow"
+    other = fast_election("C", 0)
+    assert other.on_heartbeat("A", term=1, priority=0) == "follow"
+    other.on_step_down("B")                                          # not its server: nothing
+    assert other.server_id == "A"
+
+
 def test_clock_estimate_converges_under_offset_drift_and_asymmetric_delay():
     rng = random.Random(3)
     offset, drift = 12_345.0, 80e-6           # global = (1 + drift) * local + offset

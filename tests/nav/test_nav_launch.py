@@ -103,40 +103,44 @@ def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_ur
 
 
 def test_the_clock_waits_for_a_filter_that_falls_behind(tmp_path, lcm_url):
-    """A filter starved of CPU holds the clock like a starved manager does:
-    before it aligns, by its once-a-second status; after, by its solutions."""
+    """A filter starved of CPU holds the clock like a starved manager does: it is
+    a lockstep participant of the launcher's clock (tools/worldclock.py), which
+    starts only once it registered and publishes no step it has not finished."""
     import lcm
 
-    from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t
-    from tools.mission_watch import NAV_LEAD_US, MissionWatch
+    from auv import lockstep_t, sim_clock_t
+    from sim.multihil.lockstep import lockstep_msg
+    from tools.launch import participants
     from tools.scenario import load_scenario
+    from tools.worldclock import WorldClock
 
-    sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf")]))
+    sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf"), vehicle("AUV2", "ins", east=30.0)]))
+    names = participants(sc, recorder=True)
+    assert "AUV1.NAV" in names and "AUV2.NAV" not in names and "SIM.RECORDER" in names
     lc = lcm.LCM(lcm_url)
-    watch = MissionWatch(lc, sc)
+    clock = WorldClock(lc, "lockstep", 1.0, 0.05, names)
+    steps: list[int] = []
+    lc.subscribe("SIM.CLOCK", lambda _c, d: steps.append(sim_clock_t.decode(d).step))
 
-    def publish(channel, msg, utime, manager=None):
-        msg.vehicle, msg.utime = "AUV1", utime
-        if manager:
-            msg.manager = manager
-        lc.publish(channel, msg.encode())
-        watch.handle(0.5)
+    def report(name: str, kind: int, step: int = 0) -> None:
+        lc.publish("SIM.LOCKSTEP", lockstep_msg(name, kind, step, step * 50_000).encode())
+        while lc.handle_timeout(200) > 0:
+            pass
 
-    t = 50_000_000
-    publish("AUV1.ACTUATOR_STATE", actuator_state_t(), t)
-    publish("AUV1.CHASM.NAVIGATOR", chasm_status_t(), t, "NAVIGATOR")
-    assert watch.clock_limit_us() is None                       # the filter has not reported
-    publish("AUV1.NAV_STATUS", nav_filter_status_t(), 10_000_000)
-    assert watch.clock_limit_us() == 11_000_000 + NAV_LEAD_US   # not aligned: its status, a second on
-    ins = nav_solution_t()
-    ins.source = nav_solution_t.SOURCE_SIM_INS
-    publish("AUV1.NAV", ins, 49_000_000)                        # not the filter's
-    assert watch.clock_limit_us() == 11_000_000 + NAV_LEAD_US
-    sol = nav_solution_t()
-    sol.source = nav_solution_t.SOURCE_EKF
-    publish("AUV1.NAV", sol, 20_000_000)                        # aligned: its solutions
-    assert watch.clock_limit_us() == 20_000_000 + NAV_LEAD_US
-    publish("AUV1.NAV_STATUS", nav_filter_status_t(), 30_000_000)
-    assert watch.clock_limit_us() == 20_000_000 + NAV_LEAD_US   # a status no longer moves it
-    publish("AUV1.NAV", sol, t)
-    assert watch.clock_limit_us() < t + NAV_LEAD_US             # then the manager's lead binds
+    for n in sorted(names - {"AUV1.NAV"}):
+        report(n, lockstep_t.KIND_REGISTER)
+    assert not clock.ready() and clock.not_ready() == ["AUV1.NAV"]
+    report("AUV1.NAV", lockstep_t.KIND_REGISTER)
+    assert clock.ready()
+    clock.start()
+    for step in range(3):
+        clock.advance()
+        for n in sorted(names - {"AUV1.NAV"}):
+            report(n, lockstep_t.KIND_STEP_DONE, step)
+        clock.advance()
+        assert steps[-1] == step and clock.waiting_for() == ["AUV1.NAV"]   # held for the filter
+        report("AUV1.NAV", lockstep_t.KIND_STEP_DONE, step)
+    clock.advance()
+    while lc.handle_timeout(200) > 0:
+        pass
+    assert steps == [0, 1, 2, 3]

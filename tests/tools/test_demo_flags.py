@@ -31,6 +31,8 @@ def _run(cmd, child_env, **kw):
     (["--polygon", "0,0; 100,0"], "at least 3 vertices"),
     (["--out", "/proc/no/such/dir"], "--out /proc/no/such/dir"),
     (["--bogus"], "unrecognized arguments"),
+    (["--time", "warp"], "invalid choice: 'warp'"),
+    (["--time", "scaled", "--warp", "0"], "--warp must be a number > 0"),
 ])
 def test_demo_usage_errors_are_clear(tmp_path, child_env, args, message):
     args = args if "--out" in args else args + ["--out", tmp_path / "d"]

@@ -62,8 +62,10 @@ def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_
     for vid, cycles in (("AUV1", 60), ("AUV2", 90)):
         segs = state_timeline(log[f"{vid}.CHASM.NAVIGATOR"])
         running = [s for s in segs if s.run == "running"]
-        # The clock waited for every process: the plan started at t=0 and ran its cycles at 10 Hz.
-        assert running[0].path == "run" and running[0].start == 0.0
+        # The clock waited for every process: the plan started on the first step that had the
+        # simulator's data of step 0 (lockstep: a manager works on the steps before), t = 0.05 s,
+        # and ran its cycles at 10 Hz.
+        assert running[0].path == "run" and running[0].start == 0.05
         assert abs(running[1].start - cycles / 10) < 0.25, segs
         assert segs[-1].run == "done" and segs[-1].path == "stop"
         truth = log[f"{vid}.TRUTH"]
@@ -218,7 +220,7 @@ vehicles:
     run = launch(bad, tmp_path / "run", lcm_url, child_env)
     assert run.returncode == 2
     err = run.stderr
-    assert f"{bad}:3:9: time.mode: expected one of: realtime, scaled, fast" in err
+    assert f"{bad}:3:9: time.mode: expected one of: realtime, scaled, lockstep, fast" in err
     assert f"{bad}:4:9: time.warp: must be > 0" in err
     assert f"{bad}:7:9: vehicles[0].id: must be upper-case letters" in err
     assert f"{bad}:8:11: vehicles[0].host: unknown host 'b'" in err

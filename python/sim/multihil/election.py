@@ -80,6 +80,7 @@ class Election:
     reconfirm_until: float = 0.0     # after a gap: listen, decide nothing, until then
     last_active: float | None = None   # when check_gap() last saw this node running
     _paused: bool = False            # a gap not yet reported by poll()
+    handed_term: int = 0             # term of a server that handed the world over (lockstep, before step 0)
     clock: Callable[[], float] = field(default=time.monotonic, repr=False)   # wall seconds; tests pass their own
 
     def __post_init__(self) -> None:
@@ -125,6 +126,22 @@ class Election:
     def on_elected(self, node_id: str, term: int, priority: int) -> None:
         self.max_term = max(self.max_term, term)
         self.heard(node_id, priority)
+
+    def on_step_down(self, node_id: str) -> None:
+        """The server this node follows yields (it stops, or hands the world to a
+        better node before a lockstep world's first step): no heartbeat will
+        come, so the best remaining node takes over now, not after a timeout."""
+        if self.role == "client" and node_id == self.server_id:
+            self.handed_term = self.server_term     # the world has not begun: same term
+            self.server_id = ""
+            self.decide_at = self.waiting_since = self.clock()
+
+    def hand_over(self) -> None:
+        """A server yields to a better node it heard (lockstep, before step 0)."""
+        self.role = "client"
+        self.server_id = ""
+        self.step_downs += 1
+        self.decide_at = self.waiting_since = self.clock()
 
     def _follow(self, server_id: str, term: int, priority: int) -> None:
         self.server_id, self.server_term, self.server_priority = server_id, term, priority
@@ -181,7 +198,11 @@ class Election:
         best_id, _ = self.best()
         if best_id == self.my_id:
             self.role = "server"
-            self.server_id, self.server_term = self.my_id, self.max_term + 1
+            # a hand-over before anything was served keeps its term (the same world
+            # whatever the start order); any other win opens a new one
+            term = self.max_term if self.handed_term == self.max_term > 0 else self.max_term + 1
+            self.handed_term = 0
+            self.server_id, self.server_term = self.my_id, term
             self.server_priority = self.my_priority
             self.max_term = self.server_term
             self.elections_won += 1

@@ -15,14 +15,13 @@ set up here so that hil.py carries only those lines:
 
 from __future__ import annotations
 
-import bisect
 import math
 
 from sim.bathymetry import BathymetryError
 from sim.environment import Environment
 from sim.multihil.clock import LocalClock
 from sim.multihil.election import Timing
-from sim.multihil.lockstep import Participation
+from sim.lockstep_follow import LockstepFollower
 from sim.multihil.node import EnvNode, NodeConfig
 
 
@@ -65,20 +64,13 @@ class SimHook:
                             LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
                             position=self._position, on_env=self._adopt, log=self.log,
                             drops=sim.time_drops,
-                            on_clock=(lambda m: sim.follow_clock(m.utime)) if self.lockstep
-                            else None)
+                            on_clock=self._on_clock if self.lockstep else None)
         sim.publish_clock = False        # the world's server publishes SIM.CLOCK
         self.joined = False
         self.env_errors = 0
         if self.lockstep:
-            self.part = Participation(f"{sim.vid}.sim",
-                                      lambda m: sim.lc.publish("SIM.LOCKSTEP", m.encode()))
-            self._seen_clocks = 0
-            self._held: list[tuple[float, int, tuple]] = []   # (t, seq, (channel, msg))
-            self._held_seq = 0
-            # a command that passed the simulator's checks waits for its time stamp
-            self._apply_command = sim.deliver_command
-            sim.deliver_command = self._hold_command
+            # the simulator's part in lockstep: held commands, its step reports
+            self.follow = LockstepFollower(sim)
         else:
             sim.pacer.global_now = self._global_now_s
 
@@ -114,13 +106,9 @@ class SimHook:
             model.frame.__init__(params.origin_latitude_deg, params.origin_longitude_deg)
         return True
 
-    def _hold_command(self, channel: str, msg) -> None:
-        t = msg.utime / 1e6
-        if t <= self.sim.model.t + 1e-9:
-            self._apply_command(channel, msg)
-        else:
-            self._held_seq += 1
-            bisect.insort(self._held, (t, self._held_seq, (channel, msg)))
+    def _on_clock(self, m) -> None:
+        self.sim.follow_clock(m.utime)
+        self.follow.on_clock(m)
 
     # -------------------------------------------------------------- loop
     def poll(self) -> None:
@@ -132,21 +120,11 @@ class SimHook:
                 sim.join_at(math.floor(node.global_now_us() / 1e6 / sim.dt) * sim.dt)
             return
         self.joined = sim._clock_started
-        self.part.poll_register()
-        while self._held and self._held[0][0] <= sim.model.t + 1e-9:
-            _, _, (channel, msg) = self._held.pop(0)
-            self._apply_command(channel, msg)
-        c = node.last_clock
-        if c is not None and node.clock_messages != self._seen_clocks:
-            self._seen_clocks = node.clock_messages
-            self.part.on_clock(c.step, c.utime)
-        pend = self.part.pending
-        if pend is not None and sim._clock_started and sim.model.t >= pend[1] / 1e6 - 0.5 * sim.dt:
-            self.part.done()
+        self.follow.poll()
 
     def close(self) -> None:
         if self.lockstep:
-            self.part.leave()
+            self.follow.part.leave()
         n = self.node
         self.log(f"multihil: {n.cfg.client_id}: {n.role} (term {n.term}) at the end; "
                  f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "

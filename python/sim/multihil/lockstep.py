@@ -11,6 +11,16 @@ SIM.CLOCK for step n; each participant does its work for time t_n using only
 what was published in earlier steps, publishes its outputs, then STEP_DONE n;
 the server publishes step n + 1 only after every STEP_DONE n. Messages of
 step n therefore always reach a process before the clock of step n + 1.
+
+Lost datagrams (a full socket buffer under load) cannot stop the world: every
+message is idempotent, keyed by its step, and repeated until it had its effect.
+A participant that reported step n and heard no newer clock for RESEND_S
+reports n again (so a lost STEP_DONE arrives later); a server that hears a
+STEP_DONE for the step before the one it waits for knows that participant
+missed the clock and publishes that step's clock again (ServerResend). A
+repeat changes nothing it already did: a clock for a step already done is only
+acknowledged, a STEP_DONE only raises the step a participant is known to have
+finished. Repeats happen only after a loss or a step that took RESEND_S.
 """
 
 from __future__ import annotations
@@ -26,15 +36,23 @@ class Participant:
     name: str
     last_done: int = -1
     last_heard: float = field(default_factory=time.monotonic)
+    repeat_at: float = 0.0      # when it last reported a step it had reported before
+
+
+RESEND_S = 0.25     # wall seconds without progress before a lockstep message is repeated
 
 
 class LockstepTracker:
-    """Who takes part, and what each reported; kept by every node."""
+    """Who takes part, and what each reported; kept by every node.
 
-    def __init__(self, timeout_s: float = 5.0, log=print) -> None:
+    timeout_s None: never drop a participant (the launcher watches its
+    children itself; a slow one must slow time, never be left behind)."""
+
+    def __init__(self, timeout_s: float | None = 5.0, log=print) -> None:
         self.parts: dict[str, Participant] = {}
         self.timeout_s = timeout_s
         self.dropped = 0
+        self.repeats = 0            # STEP_DONE messages for a step already known done
         self.log = log
 
     def on_message(self, msg) -> None:
@@ -45,8 +63,18 @@ class LockstepTracker:
         if p is None:
             p = self.parts[msg.participant] = Participant(msg.participant)
         p.last_heard = time.monotonic()
-        if msg.kind == lockstep_t.KIND_STEP_DONE:
+        if msg.kind == lockstep_t.KIND_REGISTER:
+            p.repeat_at = p.last_heard      # still registering: it has heard no clock yet
+        elif msg.kind == lockstep_t.KIND_STEP_DONE:
+            if msg.step <= p.last_done:
+                self.repeats += 1
+                p.repeat_at = p.last_heard
             p.last_done = max(p.last_done, msg.step)
+
+    def missed_clock(self, step: int, since: float) -> bool:
+        """A participant that owes step repeated an older report after `since`:
+        it did not get the clock of step (lost), which must be published again."""
+        return any(self.parts[n].repeat_at > since for n in self.waiting_for(step))
 
     def remove(self, name: str) -> None:
         self.parts.pop(name, None)
@@ -56,6 +84,8 @@ class LockstepTracker:
 
     def drop_silent(self, step: int, since: float) -> None:
         """Drop participants that owe step and were not heard from for timeout_s."""
+        if self.timeout_s is None:
+            return
         now = time.monotonic()
         for name in self.waiting_for(step):
             p = self.parts[name]
@@ -74,29 +104,43 @@ def lockstep_msg(participant: str, kind: int, step: int, utime: int) -> lockstep
 
 class Participation:
     """One participant's side: register until a lockstep clock is seen, then
-    report each step once its work is done (re-reporting a repeated step)."""
+    report each step once its work is done (re-reporting a repeated step), and
+    report the last step again while no newer clock comes (a lost report)."""
 
     REGISTER_PERIOD_S = 1.0
 
-    def __init__(self, name: str, publish) -> None:
+    def __init__(self, name: str, publish, resend_s: float = RESEND_S) -> None:
         self.name = name
         self.publish = publish          # publish(lockstep_t)
         self.pending: tuple[int, int] | None = None   # (step, utime) to report
         self.last_done = -1
+        self.last_done_utime = 0
         self.seen_clock = False
+        self.resend_s = resend_s
+        self.resent = 0
         self._next_register = 0.0
+        self._next_resend = 0.0
 
-    def poll_register(self) -> None:
+    def poll(self) -> None:
+        """Each turn of the participant's loop: register, or repeat a report nobody acted on."""
         now = time.monotonic()
-        if not self.seen_clock and now >= self._next_register:
-            self._next_register = now + self.REGISTER_PERIOD_S
-            self.publish(lockstep_msg(self.name, lockstep_t.KIND_REGISTER, 0, 0))
+        if not self.seen_clock:
+            if now >= self._next_register:
+                self._next_register = now + self.REGISTER_PERIOD_S
+                self.publish(lockstep_msg(self.name, lockstep_t.KIND_REGISTER, 0, 0))
+        elif self.pending is None and self.last_done >= 0 and now >= self._next_resend:
+            self._next_resend = now + self.resend_s
+            self.resent += 1
+            self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, self.last_done,
+                                      self.last_done_utime))
 
     def on_clock(self, step: int, utime: int) -> None:
         self.seen_clock = True
         if step <= self.last_done:
-            # a new server repeats the step it found in flight: just confirm
+            # a repeated clock (a lost report, or a new server resuming the step
+            # it found in flight): the work is done, confirm it again
             self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, step, utime))
+            self._next_resend = time.monotonic() + self.resend_s
         else:
             self.pending = (step, utime)
 
@@ -104,7 +148,8 @@ class Participation:
         if self.pending is not None:
             step, utime = self.pending
             self.pending = None
-            self.last_done = step
+            self.last_done, self.last_done_utime = step, utime
+            self._next_resend = time.monotonic() + self.resend_s
             self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, step, utime))
 
     def leave(self) -> None:

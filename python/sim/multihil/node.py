@@ -151,7 +151,11 @@ class EnvNode:
                      + ("stopped serving term " f"{self.term}; " if self.role == "reconfirming"
                         else "") + f"listening {self.cfg.timing.reconfirm_s:g} s before acting"
                      + (" (lockstep paused)" if was else ""))
-        if self.election.standing() and now >= self._next["candidate"]:
+        # Before a lockstep world's first step the role is still open: every node
+        # announces its priority, so the server can yield to the best one
+        # (_hand_over): who serves does not depend on who started first.
+        open_role = self.lockstep and self.last_clock is None and self.role != "server"
+        if (self.election.standing() or open_role) and now >= self._next["candidate"]:
             self._next["candidate"] = now + 0.1
             self._election_msg(env_election_t.KIND_CANDIDATE, self.election.max_term + 1)
         if self.role == "server":
@@ -165,6 +169,11 @@ class EnvNode:
             self._next["heartbeat"] = now + 1.0 / self.cfg.heartbeat_hz
             self._heartbeat()
         if self.lockstep:
+            if not self.stepper.started and self.last_clock is None:
+                best, prio = self.election.best()
+                if best != self.cfg.client_id:
+                    self._hand_over(best, prio)
+                    return
             step = self.stepper.poll()
             if step is not None:
                 self._publish_clock(self.stepper.utime(step), step)
@@ -263,6 +272,15 @@ class EnvNode:
         self._heartbeat()
         self._next["heartbeat"] = time.monotonic() + 1.0 / self.cfg.heartbeat_hz
 
+    def _hand_over(self, best: str, priority: int) -> None:
+        """Lockstep, before step 0: yield to the best node heard (priority, then the
+        smaller id), which takes over at once, so the server is the same whatever
+        the start order."""
+        self.log(f"multihil: {self.cfg.client_id}: handing the world to {best} (priority "
+                 f"{priority}) before the first step")
+        self._election_msg(env_election_t.KIND_STEP_DOWN, self.term)
+        self.election.hand_over()
+
     def stop(self) -> None:
         """Leaving: a server says so, so that the others need not wait for the timeout."""
         if self.role == "server":
@@ -326,6 +344,8 @@ class EnvNode:
             self.election.on_elected(m.candidate_id, m.term, m.priority)
         else:
             self.election.heard(m.candidate_id, m.priority)
+        if m.kind == env_election_t.KIND_STEP_DOWN and self.lockstep and self.last_clock is None:
+            self.election.on_step_down(m.candidate_id)     # a hand-over before step 0
         if m.kind == env_election_t.KIND_CANDIDATE and self.role == "server":
             self._heartbeat()                       # someone lost us: be heard at once
 

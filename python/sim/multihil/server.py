@@ -49,12 +49,19 @@ def evaluate(env: Environment, needs: env_needs_t, term: int) -> env_sample_t:
 
 
 class LockstepServer:
-    """Steps global time: step n + 1 only once every participant reported n."""
+    """Steps global time: step n + 1 only once every participant reported n.
 
-    def __init__(self, tracker: LockstepTracker, step_us: int, expect: int, log=print) -> None:
+    Step 0 waits for `expect` participants (and for every name in
+    `expect_names`, if given). A step is published again when a participant
+    that owes it repeats its report of the step before (it lost the clock)."""
+
+    def __init__(self, tracker: LockstepTracker, step_us: int, expect: int, log=print,
+                 expect_names: set[str] | None = None) -> None:
         self.tracker = tracker
         self.step_us = step_us
         self.expect = expect
+        self.expect_names = set(expect_names or ())
+        self.republished = 0
         self.log = log
         self.started = False
         self.step = 0
@@ -72,15 +79,24 @@ class LockstepServer:
         self.base_utime = utime
         self.published_at = time.monotonic()
 
+    def ready(self) -> bool:
+        """Step 0 may go: every participant it waits for has registered."""
+        return (len(self.tracker.parts) >= max(1, self.expect)
+                and self.expect_names <= self.tracker.parts.keys())
+
     def poll(self) -> int | None:
-        """The step to publish now, if any."""
+        """The step to publish now, if any (a repeat of the current one after a loss)."""
         if not self.started:
-            if len(self.tracker.parts) >= max(1, self.expect):
+            if self.ready():
                 self.started = True
                 self.published_at = time.monotonic()
                 return self.step
             return None
         if self.tracker.waiting_for(self.step):
+            if self.tracker.missed_clock(self.step, self.published_at):
+                self.published_at = time.monotonic()
+                self.republished += 1
+                return self.step
             self.tracker.drop_silent(self.step, self.published_at)
             if self.tracker.waiting_for(self.step) or not self.tracker.parts:
                 return None

@@ -84,7 +84,7 @@ def main(argv: list[str]) -> int:
     while not stop and time.monotonic() < t_end:
         node.poll()
         if a.mode == "lockstep":
-            part.poll_register()
+            part.poll()
             c = node.last_clock
             if c is not None and node.clock_messages != seen_clocks:
                 seen_clocks = node.clock_messages    # each clock message, repeats included
