@@ -164,8 +164,17 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
         if (t->near_since >= 0)   /* circle it so the sensor keeps looking */
             heading = gd_circle_heading(g, 0.5 * chasm_param_double(c, RI_IDENT_RANGE), 1,
                                         chasm_param_double(c, RI_LOOKAHEAD), p);
-        else
-            heading = gd_los_heading(&st->los, &st->leg, p, c->dt_s, NULL, NULL);
+        else {
+            double along;
+            heading = gd_los_heading(&st->los, &st->leg, p, c->dt_s, &along, NULL);
+            if (along >= st->leg.length) {
+                /* past the target without coming within ident_range (a turn
+                 * wider than the range): aim at it again from here, or the
+                 * leg would lead on along its line for ever */
+                gd_line_make(&st->leg, p, g);
+                heading = gd_los_heading(&st->los, &st->leg, p, 0.0, NULL, NULL);
+            }
+        }
         s->state = TM_ST_REACQUIRE;
         st->idle_set = 0;
     } else {

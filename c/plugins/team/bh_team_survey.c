@@ -128,7 +128,12 @@ chasm_status_code tm_survey_step(chasm_ctx *c, void *state)
     gd_point p = {chasm_read_double(c, SV_IN_NORTH), chasm_read_double(c, SV_IN_EAST)};
     double along;
     double heading = gd_los_heading(&st->los, &st->path, p, c->dt_s, &along, NULL);
-    if (st->phase == 0 && hypot(p.n - st->path.b.n, p.e - st->path.b.e) <= chasm_param_double(c, SV_RADIUS)) {
+    /* the transit ends within radius of the line's start, or once past it:
+     * a start the turn cannot reach within radius (the next line 30 m
+     * over, a 20 m turning circle) is never met, and the vehicle would fly
+     * on along the transit for ever */
+    if (st->phase == 0 && (hypot(p.n - st->path.b.n, p.e - st->path.b.e) <= chasm_param_double(c, SV_RADIUS) ||
+                           along >= st->path.length)) {
         const tm_line *ln = &st->lines.l[st->line];
         st->phase = 1;
         gd_line_make(&st->path, ln->a, ln->b);
