@@ -2,7 +2,7 @@
 #
 #   make          set up .venv, generate the LCM types, build C/C++ and the types jar
 #   make test     everything above, then the whole test suite (tests/)
-#   make demo     3-vehicle MCM survey in fast time: summary, report and plots in build/demo
+#   make demo     MCM team (3 search + 1 reacquire-identify over the acoustic link): report and plots in build/demo
 #   make spy      lcm-spy with the project's types on its classpath
 #   make bench    benchmarks (bench/), printing figures
 #   make clean    remove build/ (keeps .venv; `make distclean` removes it too)

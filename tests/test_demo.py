@@ -46,3 +46,30 @@ def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
     for v, err in rep["navigation_error"].items():
         assert err["samples"] > 1000 and err["rms_m"] < 10.0, (v, err)
     assert "coverage" in run.stdout and str(tmp_path / "report.txt") in run.stdout
+
+
+def test_demo_team_mission_end_to_end(tmp_path, lcm_url, child_env):
+    """`make demo` itself: 3 search + 1 reacquire-identify vehicles in lockstep,
+    contacts handed over the simulated acoustic link (fsk80, TDMA), identified."""
+    run = subprocess.run([sys.executable, ROOT / "python" / "tools" / "demo.py", "--out", tmp_path, "--url", lcm_url,
+                          "--build", BUILD], env=child_env, capture_output=True, text=True, timeout=900)
+    assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
+    rep = json.loads((tmp_path / "report.json").read_text())
+    assert rep["vehicle_outcomes"] == {f"AUV{i}": "done" for i in range(1, 5)}, rep["vehicle_outcomes"]
+    rec = json.loads((tmp_path / "run" / "outcome.json").read_text())["recorder"]
+    assert rec["dropped"] == 0 and rec["missed"] == 0 and rec["written"] == rec["received"] > 0, rec
+    team = rep["team"]
+    # the hand-off works: most mine-like targets were found by the search
+    # vehicles, reported over the modem and identified by AUV4, none wrongly
+    assert team["mine_like_targets"] >= 4
+    assert team["mine_like_identified"] >= team["mine_like_targets"] // 2, team
+    assert team["false_identifications"] == [], team["false_identifications"]
+    link = team["link"]["per_vehicle"]
+    # TDMA from the plans' slots: no two vehicles send at once, nobody is deaf
+    assert all(v["collided"] == 0 and v["deaf"] == 0 and v["refused"] == 0 for v in link.values()), link
+    # every search vehicle reported contacts, each in a few compact bytes
+    for v in ("AUV1", "AUV2", "AUV3"):
+        assert link[v]["contacts_reported"] > 0 and link[v]["bytes_per_contact"] <= 16, (v, link[v])
+    # everybody heard everybody (a 200 m area, 2 km modem range)
+    assert len(team["heard"]) == 12 and min(team["heard"].values()) > 10, team["heard"]
+    assert "identified" in run.stdout and "link " in run.stdout

@@ -33,8 +33,8 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 PY = sys.executable
-SCENARIO = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
-# What the committed scenario was planned with (its header); --polygon replans with these.
+SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
+# What missions/scenarios/mcm_demo was planned with (its header); --polygon plans with these.
 PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "11.5", "--overlap", "0.1", "--fix-every-min", "30",
              "--depth-m", "4",
              "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7",
@@ -65,6 +65,20 @@ def summary(rep: dict) -> str:
                                                 else "") +
                      f"); {det['contacts']} contacts, {det['contacts_on_clutter']} on clutter, "
                      f"{det['false_alarms']} false alarms")
+    team = rep.get("team")
+    if team:
+        lat = team.get("detect_to_identify_s") or {}
+        lines.append(f"team      {team['mine_like_identified']} of {team['mine_like_targets']} mine-like targets "
+                     f"identified ({team['mine_like_identified_as_mine']} as mine), "
+                     f"{len(team.get('false_identifications') or [])} false identifications, "
+                     f"{team['not_found']} not found"
+                     + (f"; detection to identification median {lat['median'] / 60:.1f} min, "
+                        f"max {lat['max'] / 60:.1f} min" if lat.get("n") else ""))
+        link = (team.get("link") or {}).get("per_vehicle", {})
+        lines.append("link      " + ", ".join(
+            f"{v} {k['sent']} sent/{k['heard']} heard/{k['lost']} lost/{k['collided']} collided"
+            for v, k in link.items()) or "-")
+        lines.append(f"takeovers {len(team.get('takeovers') or [])}")
     lines += ["nav error " + (", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})"
                                         for v, e in rep["navigation_error"].items()) or "-"),
               "record    " + (", ".join(f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
