@@ -33,6 +33,9 @@ class TeamLink:
     status_every_s: float = 20.0
 
 
+# Every team plan ends its mission state the same way: up to the surface.
+_RECOVER = ["    state recover {", "        do surface()", "    }", "}"]
+
 def lines_string(shares: list[list[tuple[tuple[float, float], tuple[float, float]]]]) -> str:
     """`"0: n,e n,e; 0: ...; 1: ..."`: each vehicle's lines in flying order, owner index first."""
     parts = []
@@ -128,10 +131,7 @@ def search_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, p
         "        test lingered : elapsed > $linger",
         "        when lingered -> recover",
         "    }",
-        "    state recover {",
-        "        do surface()",
-        "    }",
-        "}",
+        *_RECOVER,
     ]
     return "\n".join(out + _footer(plan_path))
 
@@ -155,9 +155,6 @@ def ri_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_
         "look_timeout = $look_timeout, speed = $speed, depth = $depth)",
         "        next recover",
         "    }",
-        "    state recover {",
-        "        do surface()",
-        "    }",
-        "}",
+        *_RECOVER,
     ]
     return "\n".join(out + _footer(plan_path))

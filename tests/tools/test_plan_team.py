@@ -1,7 +1,7 @@
 """plan_survey.py --team: the team scenario's plans (one roster, one lines string,
 TDMA slots from the modem), bindings, configs and time; the committed mcm_team
-scenario is what the planner writes; bad input exits 2. The plans are checked
-with the team plugin when it is built (branch team); until then by structure."""
+scenario is what the planner writes; bad input exits 2; the committed plans load
+with the built plugins (the team plugin included)."""
 
 from __future__ import annotations
 
@@ -149,31 +149,7 @@ def chasm_check(plan):
                           capture_output=True, text=True, timeout=60)
 
 
-TEAM_LINES = re.compile(r"^\s*(use team|do (team_\w+|keep_clear|search_contacts)\(.*|\w+ +\w+ *: messages.*)$")
-
-
-def test_the_team_plans_load_but_for_the_team_plugin(tmp_path):
-    """Everything of the committed plans that is not the team plugin's (the states, the
-    guidance behaviors, the safety include, the params) loads with the built plugins:
-    the team's lines removed, ri_reacquire replaced by a goto."""
-    for plan in sorted(SCENARIO.glob("AUV*.chasm")):
-        lines = []
-        for ln in plan.read_text().splitlines():
-            if TEAM_LINES.match(ln):
-                continue
-            if "do ri_reacquire(" in ln:
-                ln = "        do goto(north = 0 m, east = 0 m)"
-            lines.append(ln.replace('include "../../', f'include "{ROOT}/missions/'))
-        skeleton = tmp_path / plan.name
-        skeleton.write_text("\n".join(lines) + "\n")
-        run = chasm_check(skeleton)
-        assert run.returncode == 0 and ": ok (" in run.stdout, run.stdout + run.stderr
-
-
 def test_the_team_plans_load_with_the_team_plugin():
-    from conftest import BUILD
-    if not (BUILD / "plugins" / "chasm_team.so").is_file():
-        pytest.skip("no team plugin built (branch team): the plans cannot load yet")
     for plan in sorted(SCENARIO.glob("AUV*.chasm")):
         run = chasm_check(plan)
         assert run.returncode == 0 and ": ok (" in run.stdout, run.stdout + run.stderr

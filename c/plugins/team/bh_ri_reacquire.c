@@ -32,14 +32,10 @@ const chasm_param_spec tm_ri_params[] = {
     TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
     TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
     TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
-    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),
-    TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),
-    TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),
-    TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"),
-    TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
-    TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint"),
+    TM_STEER_OUTPUTS,
 };
 _Static_assert(CHASM_COUNT(tm_ri_params) == RI_NPARAMS, "ri_reacquire schema and slots disagree");
+_Static_assert(RI_OUT_ALTITUDE - RI_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint slots out of tm_steer's order");
 
 static gd_point here(chasm_ctx *c) { return (gd_point){chasm_read_double(c, RI_IN_NORTH), chasm_read_double(c, RI_IN_EAST)}; }
 
@@ -189,9 +185,6 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
         heading = gd_circle_heading(st->idle, 20.0, 1, chasm_param_double(c, RI_LOOKAHEAD), p);
         s->state = TM_ST_REACQUIRE;
     }
-    chasm_write_double(c, RI_OUT_HEADING, heading);
-    chasm_write_double(c, RI_OUT_SPEED, chasm_param_double(c, RI_SPEED));
-    chasm_write_int(c, RI_OUT_SPEED_MODE, 0);
-    tm_vertical(c, RI_DEPTH, RI_ALTITUDE, RI_OUT_VERTICAL_MODE, RI_OUT_DEPTH, RI_OUT_ALTITUDE, s->depth_offset);
+    tm_steer(c, heading, RI_SPEED, RI_DEPTH, RI_ALTITUDE, RI_OUT_HEADING, s->depth_offset);
     return CHASM_RUNNING;
 }

@@ -28,14 +28,10 @@ const chasm_param_spec tm_survey_params[] = {
     TM_PARAM("integral", "Hz", 0.04, 0, 1, "ILOS integral rate (0: plain LOS)"),
     TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
     TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
-    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),
-    TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),
-    TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),
-    TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"),
-    TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
-    TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint"),
+    TM_STEER_OUTPUTS,
 };
 _Static_assert(CHASM_COUNT(tm_survey_params) == SV_NPARAMS, "team_survey schema and slots disagree");
+_Static_assert(SV_OUT_ALTITUDE - SV_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint slots out of tm_steer's order");
 
 /* Deals the lines of every teammate lost since the last call (once each). */
 static void take_over(chasm_ctx *c, tm_store *s, const tm_lines *l)
@@ -149,9 +145,6 @@ chasm_status_code tm_survey_step(chasm_ctx *c, void *state)
     int own[TM_MAX_LINES];
     if (s->next_line >= tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES))
         s->next_line = TM_ALL_DONE;
-    chasm_write_double(c, SV_OUT_HEADING, heading);
-    chasm_write_double(c, SV_OUT_SPEED, chasm_param_double(c, SV_SPEED));
-    chasm_write_int(c, SV_OUT_SPEED_MODE, 0);
-    tm_vertical(c, SV_DEPTH, SV_ALTITUDE, SV_OUT_VERTICAL_MODE, SV_OUT_DEPTH, SV_OUT_ALTITUDE, s->depth_offset);
+    tm_steer(c, heading, SV_SPEED, SV_DEPTH, SV_ALTITUDE, SV_OUT_HEADING, s->depth_offset);
     return CHASM_RUNNING;
 }

@@ -71,9 +71,18 @@ typedef struct {
 TM_DECLARE(keepclear, KC_NPARAMS);
 PU_HIDDEN void tm_keepclear_stop(chasm_ctx *c, void *state);
 
-/* Vertical setpoint shared by the steering behaviors: depth + offset, or
+/* The setpoint outputs of a steering behavior, in this order from slot `out`
+ * (TM_STEER_OUTPUTS in its schema); tm_steer writes them all each cycle. */
+enum { TM_OUT_HEADING, TM_OUT_SPEED, TM_OUT_SPEED_MODE, TM_OUT_VERTICAL_MODE, TM_OUT_DEPTH, TM_OUT_ALTITUDE };
+#define TM_STEER_OUTPUTS                                                                          \
+    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),       \
+        TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),         \
+        TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),                  \
+        TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"), \
+        TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),             \
+        TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint")
+/* Heading, speed (m/s) and the vertical setpoint: depth + offset, or
  * altitude - offset when an altitude is given. */
-PU_HIDDEN void tm_vertical(chasm_ctx *c, int depth, int altitude, int out_mode, int out_depth, int out_altitude,
-                           double offset);
+PU_HIDDEN void tm_steer(chasm_ctx *c, double heading, int speed, int depth, int altitude, int out, double offset);
 
 #endif
