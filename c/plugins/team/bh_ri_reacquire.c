@@ -3,9 +3,10 @@
  * tm_targets.h); the route from the vehicle through the pending targets is
  * planned by cheapest insertion and 2-opt (tm_route.h) and replanned when a
  * report adds a target or a target is decided. The vehicle steers (guidance's
- * ILOS, gd_geometry.c) to the first target of the route; near it, it circles
- * it at half the identification range. Looks (reacquire_look_t, a messages
- * input) identify the nearest pending target within `merge` of the look;
+ * ILOS, gd_geometry.c) to the first target of the route and through it, in
+ * straight passes until it is decided (pass_heading). Looks (reacquire_look_t, a messages
+ * input) weigh in on the nearest pending target within `merge` of the look
+ * until a sequential test decides it to `ident_error` (tm_targets_look);
  * a target not identified within look_timeout of first coming within
  * ident_range is NOT_FOUND. Every result is queued for the link (ident) and
  * posted as an event. DONE when no target is pending and every teammate is
@@ -21,10 +22,12 @@
 
 const chasm_param_spec tm_ri_params[] = {
     TM_MSGS_IN("looks", "looks", "the short-range sensor's looks (a `messages` variable bound to <V>.LOOKS)"),
-    TM_PARAM("merge", "m", 5, 0, 100, "reports and looks within this distance are one object"),
+    TM_PARAM("merge", "m", 5, 0, 100, "reports, and looks after a target's first, within this distance are one object"),
+    TM_PARAM("look_gate", "m", 10, 0, 100, "a target's first look counts within this of the reports (both vehicles' navigation errors)"),
     TM_PARAM("ident_range", "m", 6, 0.5, 200, "the sensor's useful range: the target is reached within it"),
-    TM_PARAM("look_timeout", "s", 60, 1, 3600, "not found if no look decides it this long after reaching it"),
-    TM_IPARAM("ident_looks", 1, 1, 15, "looks with one result that decide a target"),
+    TM_PARAM("look_timeout", "s", 180, 1, 3600, "not found if no look decides it this long after reaching it"),
+    TM_PARAM("ident_error", "", 0.001, 1e-9, 0.5, "a target is decided once its looks leave at most this probability that the call is wrong"),
+    TM_PARAM("runout", "m", 30, 1, 1000, "straight run past a target before turning back for the next pass (wider than the turning circle)"),
     TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
     TM_PARAM("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),
     {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0,
@@ -44,13 +47,52 @@ static void decided(chasm_ctx *c, tm_store *s, int i)
 {
     tm_target *t = &s->targets.t[i];
     int not_found = t->state == TM_T_NOT_FOUND;
+    char why[48];
+    if (!not_found)
+        snprintf(why, sizeof why, "%s after %d looks", t->result == TM_RESULT_MINE ? "mine" : "not mine", t->looks);
+    else if (t->looks)   /* looks that disagreed too much to decide in time */
+        snprintf(why, sizeof why, "undecided after %d looks", t->looks);
+    else
+        snprintf(why, sizeof why, "no look in time");
     tm_post(s, c->now_us, not_found ? TM_EV_TARGET_NOT_FOUND : TM_EV_TARGET_IDENTIFIED, t->key.origin,
-             t->key.number, t->n, t->e, t->result, not_found ? "no look in time" : t->result == 1 ? "mine" : "not mine");
+             t->key.number, t->n, t->e, t->result, why);
     int k = tm_outbox_ident(&s->out);
     if (k >= 0)
         s->idents[k] = (tm_ident){t->key, t->result, not_found ? t->n : t->look_n, not_found ? t->e : t->look_e,
                                   (double)c->now_us * 1e-6};
     s->targets_changed = 1;
+}
+
+static gd_point aim_point(const tm_target *t)
+{
+    gd_point g;
+    tm_target_where(t, &g.n, &g.e);
+    return g;
+}
+
+/* Reacquire passes. A vehicle turns wider than its identification sensor
+ * sees (a REMUS 100 loops some 28 m across), so it cannot orbit an object
+ * within a few metres: asked to, it flies a wide loop with the object out of
+ * range most of the time. Once the target is reached it flies passes
+ * instead: straight at the aim point (pure pursuit ends on the point), on
+ * through it on the same course for `runout` metres, then turns and comes
+ * back from wherever the turn left it. The pass ends when the point goes
+ * behind (its bearing turns more than 90 degrees off the course), which also
+ * catches a pass that misses. A runout wider than the turning circle keeps
+ * the point outside it when the vehicle comes about, so pursuit never
+ * degenerates into circling. */
+static double pass_heading(chasm_ctx *c, tm_ri_state *st, gd_point g, gd_point p)
+{
+    double d = hypot(g.n - p.n, g.e - p.e), bearing = atan2(g.e - p.e, g.n - p.n);
+    if (st->passing && d > chasm_param_double(c, RI_RUNOUT))
+        st->passing = 0;
+    if (!st->passing && fabs(remainder(bearing - st->pass_course, 2 * M_PI)) > M_PI / 2 &&
+        d <= chasm_param_double(c, RI_RUNOUT))
+        st->passing = 1;   /* went by: hold the course */
+    if (!st->passing)
+        st->pass_course = bearing;
+    double h = fmod(st->pass_course, 2 * M_PI);
+    return h < 0 ? h + 2 * M_PI : h;
 }
 
 static void replan(chasm_ctx *c, tm_store *s, tm_ri_state *st)
@@ -74,8 +116,9 @@ static void replan(chasm_ctx *c, tm_store *s, tm_ri_state *st)
         tm_post(s, c->now_us, TM_EV_ROUTE, -1, -1, p.n, p.e, 0, text);
     if (next != st->current) {
         st->current = next;
+        st->passing = st->close = 0;
         if (next >= 0) {
-            gd_line_make(&st->leg, p, (gd_point){s->targets.t[next].n, s->targets.t[next].e});
+            gd_line_make(&st->leg, p, aim_point(&s->targets.t[next]));
             st->los = (gd_los){chasm_param_double(c, RI_LOOKAHEAD), 0.0, 0.0};
         }
     }
@@ -128,8 +171,9 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
             s->undecodable++;
             continue;
         }
-        int i = tm_targets_look(&s->targets, k.north_m, k.east_m, k.result, chasm_param_double(c, RI_MERGE),
-                                (int)chasm_param_int(c, RI_IDENT_LOOKS));
+        int i = tm_targets_look(&s->targets, k.north_m, k.east_m, k.result, k.confidence,
+                                chasm_param_double(c, RI_LOOK_GATE), chasm_param_double(c, RI_MERGE),
+                                chasm_param_double(c, RI_IDENT_ERROR));
         auv_reacquire_look_t_decode_cleanup(&k);
         if (i >= 0)
             decided(c, s, i);
@@ -139,7 +183,8 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
     if (st->current >= 0) {
         tm_target *t = &s->targets.t[st->current];
         if (t->state == TM_T_PENDING) {
-            double d = hypot(p.n - t->n, p.e - t->e);
+            gd_point g = aim_point(t);
+            double d = hypot(p.n - g.n, p.e - g.e);
             if (d <= chasm_param_double(c, RI_IDENT_RANGE) && t->near_since < 0)
                 t->near_since = now;
             if (t->near_since >= 0 && now - t->near_since > chasm_param_double(c, RI_LOOK_TIMEOUT)) {
@@ -156,17 +201,20 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
     double heading;
     if (st->current >= 0) {
         tm_target *t = &s->targets.t[st->current];
-        gd_point g = {t->n, t->e};
-        if (t->near_since >= 0)   /* circle it so the sensor keeps looking */
-            heading = gd_circle_heading(g, 0.5 * chasm_param_double(c, RI_IDENT_RANGE), 1,
-                                        chasm_param_double(c, RI_LOOKAHEAD), p);
-        else {
+        gd_point g = aim_point(t);
+        if (!st->close && hypot(g.n - p.n, g.e - p.e) <= chasm_param_double(c, RI_RUNOUT))
+            st->close = 1;
+        if (st->close) {
+            /* passes from here on; a pass that went by reaches the target
+             * even if it missed by more than ident_range (the clock starts) */
+            heading = pass_heading(c, st, g, p);
+            if (st->passing && t->near_since < 0)
+                t->near_since = now;
+        } else {
             double along;
             heading = gd_los_heading(&st->los, &st->leg, p, c->dt_s, &along, NULL);
-            if (along >= st->leg.length) {
-                /* past the target without coming within ident_range (a turn
-                 * wider than the range): aim at it again from here, or the
-                 * leg would lead on along its line for ever */
+            st->pass_course = heading;   /* the first pass is this approach */
+            if (along >= st->leg.length) {   /* abeam and far: aim again from here */
                 gd_line_make(&st->leg, p, g);
                 heading = gd_los_heading(&st->los, &st->leg, p, 0.0, NULL, NULL);
             }

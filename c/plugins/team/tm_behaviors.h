@@ -49,7 +49,7 @@ typedef struct {
 TM_DECLARE(survey, SV_NPARAMS);
 
 /* ---- ri_reacquire (bh_ri_reacquire.c) */
-enum { RI_LOOKS, RI_MERGE, RI_IDENT_RANGE, RI_LOOK_TIMEOUT, RI_IDENT_LOOKS, RI_SPEED, RI_DEPTH, RI_ALTITUDE,
+enum { RI_LOOKS, RI_MERGE, RI_LOOK_GATE, RI_IDENT_RANGE, RI_LOOK_TIMEOUT, RI_IDENT_ERROR, RI_RUNOUT, RI_SPEED, RI_DEPTH, RI_ALTITUDE,
        RI_LOOKAHEAD, RI_IN_NORTH, RI_IN_EAST, RI_OUT_HEADING, RI_OUT_SPEED, RI_OUT_SPEED_MODE, RI_OUT_VERTICAL_MODE,
        RI_OUT_DEPTH, RI_OUT_ALTITUDE, RI_NPARAMS };
 typedef struct {
@@ -58,6 +58,9 @@ typedef struct {
     gd_los los;
     gd_point idle;        /* where it waits when the queue is empty */
     int idle_set;
+    int close;            /* came within runout of the target: passes, not the leg */
+    int passing;          /* running out straight past the target (pass_heading) */
+    double pass_course;   /* course of the current pass [rad] */
 } tm_ri_state;
 TM_DECLARE(ri, RI_NPARAMS);
 

@@ -66,27 +66,47 @@ int tm_targets_report(tm_target_queue *q, tm_key k, double n, double e, double s
     return q->n++;
 }
 
-int tm_targets_look(tm_target_queue *q, double n, double e, int result, double gate_m, int needed)
+void tm_target_where(const tm_target *t, double *n, double *e)
 {
+    *n = t->looks > 0 ? t->look_sum_n / t->looks : t->n;
+    *e = t->looks > 0 ? t->look_sum_e / t->looks : t->e;
+}
+
+int tm_targets_look(tm_target_queue *q, double n, double e, int result, double confidence, double first_gate_m,
+                    double gate_m, double max_error)
+{
+    if ((result != TM_RESULT_MINE && result != TM_RESULT_NOT_MINE) || !(confidence > 0.5) || !isfinite(n) ||
+        !isfinite(e))
+        return -1;
     int best = -1;
     double best_d = INFINITY;
     for (int j = 0; j < q->n; j++) {
         if (q->t[j].state != TM_T_PENDING)
             continue;
-        double d = hypot(q->t[j].n - n, q->t[j].e - e);
-        if (d <= gate_m && d < best_d) {
+        double tn, te;
+        tm_target_where(&q->t[j], &tn, &te);
+        double d = hypot(tn - n, te - e);
+        if (d <= (q->t[j].looks > 0 ? gate_m : first_gate_m) && d < best_d) {
             best = j;
             best_d = d;
         }
     }
-    if (best < 0 || (result != TM_RESULT_MINE && result != TM_RESULT_NOT_MINE))
+    if (best < 0)
         return -1;
     tm_target *g = &q->t[best];
-    int votes = result == TM_RESULT_MINE ? ++g->votes_mine : ++g->votes_not;
-    if (votes < (needed > 0 ? needed : 1))
+    double c = confidence < 1.0 - 1e-9 ? confidence : 1.0 - 1e-9;
+    double w = log(c / (1.0 - c));
+    g->llr += result == TM_RESULT_MINE ? w : -w;
+    g->looks++;
+    g->look_sum_n += n;
+    g->look_sum_e += e;
+    double a = max_error > 1e-12 ? (max_error < 0.5 ? max_error : 0.5) : 1e-12;
+    /* a hair below the bound so that k equal looks decide when k * w equals
+     * it on paper (log() rounding must not ask for one look more) */
+    if (fabs(g->llr) < log((1.0 - a) / a) * (1.0 - 1e-12))
         return -2;
     g->state = TM_T_IDENTIFIED;
-    g->result = result;
+    g->result = g->llr > 0 ? TM_RESULT_MINE : TM_RESULT_NOT_MINE;
     g->look_n = n;
     g->look_e = e;
     return best;

@@ -28,7 +28,9 @@ typedef struct {
     double t_first;                  /* first report heard [s] */
     int state;                       /* TM_T_* */
     int result;                      /* TM_RESULT_* once decided */
-    int votes_mine, votes_not;       /* looks so far */
+    int looks;                       /* looks that weighed in so far */
+    double llr;                      /* log-likelihood ratio mine : not mine of those looks */
+    double look_sum_n, look_sum_e;   /* sum of their positions (their mean is where the object is) */
     double look_n, look_e;           /* position of the deciding look */
     double near_since;               /* first time within ident range, < 0 never */
 } tm_target;
@@ -43,11 +45,25 @@ typedef struct {
  * queue is full (counted). */
 PU_HIDDEN int tm_targets_report(tm_target_queue *q, tm_key k, double n, double e, double sigma, double score, double t,
                                 double merge_m, int *created);
-/* A look at an object at (n, e) with result mine (1) / not mine (2): the
- * nearest pending target within gate_m gets the vote; it is decided once one
- * result has `needed` votes. Returns the target index when this look decided
- * it, -2 if it voted without deciding, -1 if no pending target matched. */
-PU_HIDDEN int tm_targets_look(tm_target_queue *q, double n, double e, int result, double gate_m, int needed);
+/* A look at an object at (n, e) with result mine (1) / not mine (2), right
+ * with probability `confidence`. It counts for the nearest pending target
+ * it falls near: within first_gate_m of the reports' estimate while the
+ * target has no look (reports and look come from different vehicles'
+ * navigation, whose errors add up), within gate_m of the mean of its looks
+ * after that (one vehicle's frame, so a neighbouring object is not taken for
+ * it). The target adds the look's log-likelihood ratio, and is decided once
+ * the sum says one result with error probability at most max_error (Wald's
+ * sequential test: |llr| >= log((1 - a) / a)): one wrong look among right
+ * ones delays a decision instead of making it. A confidence that is not a
+ * number or not above 0.5 says nothing and is ignored; one at or above 1 is
+ * taken as 1 - 1e-9 (no look is certain). Returns the target index when this
+ * look decided it, -2 if it weighed in without deciding, -1 if no pending
+ * target matched or the look carries no information. */
+PU_HIDDEN int tm_targets_look(tm_target_queue *q, double n, double e, int result, double confidence,
+                              double first_gate_m, double gate_m, double max_error);
+/* Where the object is believed to be: the mean of the looks at it once there
+ * are any, else the reports' merged estimate. */
+PU_HIDDEN void tm_target_where(const tm_target *t, double *n, double *e);
 /* Pending targets, in index order; returns their count. */
 PU_HIDDEN int tm_targets_pending(const tm_target_queue *q, int *idx, int max);
 

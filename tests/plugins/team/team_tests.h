@@ -5,6 +5,7 @@
 void contacts_merge_repeated_looks(void);
 void targets_merge_across_reporters(void);
 void route_beats_nearest_neighbour(void);
+void ident_error_bounds_wrong_calls(void);
 void route_is_deterministic(void);
 void roster_and_lines_parse(void);
 void takeover_round_robin_in_line_order(void);

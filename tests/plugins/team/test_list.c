@@ -6,6 +6,7 @@ const plugin_test plugin_tests[] = {
     {"contacts_merge_repeated_looks", contacts_merge_repeated_looks},
     {"targets_merge_across_reporters", targets_merge_across_reporters},
     {"route_beats_nearest_neighbour", route_beats_nearest_neighbour},
+    {"ident_error_bounds_wrong_calls", ident_error_bounds_wrong_calls},
     {"route_is_deterministic", route_is_deterministic},
     {"roster_and_lines_parse", roster_and_lines_parse},
     {"takeover_round_robin_in_line_order", takeover_round_robin_in_line_order},

@@ -131,25 +131,36 @@ void ri_vehicle_merges_routes_and_identifies(void)
     for (int i = 0; i < n; i++)
         acks += msgs[i].id == TEAM_MSG_ACK;
     CHECK(acks == 3);
-    /* at the target, a look decides it */
-    run(m, 16, 18, -48, 1);
+    /* at the target, looks of a 0.9 sensor: three agreeing looks leave a
+     * 1/730 chance of a wrong call, more than the plan's 1e-3: the fourth decides */
+    run(m, 16, 17, -48, 1);
+    for (int k = 0; k < 3; k++)
+        team_feed_look(m, -50.4, 0.2, 1, 17 + 0.2 * k);
+    run(m, 17, 17.8, -48, 1);
+    n_ev = team_take_events(m, ev, 64);
+    CHECK(!team_find(ev, n_ev, 5 /* TARGET_IDENTIFIED */));
     team_feed_look(m, -50.4, 0.2, 1, 18);
     run(m, 18, 19, -48, 1);
     n_ev = team_take_events(m, ev, 64);
     const team_ev *id = team_find(ev, n_ev, 5 /* TARGET_IDENTIFIED */);
     CHECK(id && !strcmp(id->origin, "AUV1") && id->number == 1 && id->result == 1);
+    CHECK(id && strstr(id->text, "after 4 looks"));
     /* the next target is the merged one, north */
     CHECK_NEAR(remainder(pt_get(m, "setpoint.heading_rad"), 2 * M_PI), 0.0, 0.1);
     run(m, 19, 36, -48, 1);
     n = team_take_frames(m, msgs, 32, &frames);
     CHECK(n >= 1 && msgs[0].id == TEAM_MSG_IDENT && msgs[0].u.ident.origin == 0 && msgs[0].u.ident.number == 1 &&
           msgs[0].u.ident.result == 1);
-    /* the search vehicles are done; the last target reached but never seen: not found, then done */
+    /* the search vehicles are done; the last target reached but never seen:
+     * not found after the default look_timeout (180 s), then done */
     for (int v = 0; v < 3; v++) {
         team_msg st = status(v, 0, 0, 0, 63, 4, 40);
         team_feed_frame(m, "AUV4", v == 0 ? "AUV1" : v == 1 ? "AUV2" : "AUV3", &st, 1, 40);
     }
-    run(m, 36, 100, 101, 0);
+    run(m, 36, 150, 101, 0);
+    n_ev = team_take_events(m, ev, 64);
+    CHECK(!team_find(ev, n_ev, 6 /* TARGET_NOT_FOUND */));
+    run(m, 150, 240, 101, 0);
     n_ev = team_take_events(m, ev, 64);
     const team_ev *nf = team_find(ev, n_ev, 6 /* TARGET_NOT_FOUND */);
     CHECK(nf && !strcmp(nf->origin, "AUV1") && nf->number == 0);
