@@ -46,10 +46,15 @@ def c_program(name: str, sanitized: bool = False) -> Path:
     return path
 
 
+def fresh_url() -> str:
+    """A fresh udpm URL on this host only (ttl=0); for module-scoped runs."""
+    return f"udpm://239.255.76.67:{next(_ports)}?ttl=0"
+
+
 @pytest.fixture
 def lcm_url() -> str:
     """A fresh udpm URL on this host only (ttl=0)."""
-    return f"udpm://239.255.76.67:{next(_ports)}?ttl=0"
+    return fresh_url()
 
 
 def child_environment() -> dict[str, str]:

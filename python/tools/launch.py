@@ -10,7 +10,11 @@ every vehicle's navigator is done, aborted or failed, or at the time limit;
 Ctrl-C, SIGTERM or any process dying ends it too. Everything is stopped in
 reverse order, the logger last, so the log holds the end.
 
-Exit status: 0 every vehicle done; 3 a vehicle aborted; 4 a vehicle failed;
+A scenario's planned faults (`faults:`, tools/scenario_faults.py) are applied
+at their sim time: a lost vehicle's processes are killed and it counts as
+over ("lost"), not as a death.
+
+Exit status: 0 every vehicle done (or lost by a planned fault); 3 a vehicle aborted; 4 a vehicle failed;
 5 a process died; 6 time limit; 2 bad scenario or usage; 130 interrupted.
 """
 
@@ -46,6 +50,8 @@ from tools.procs import Child  # noqa: E402
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario  # noqa: E402
 from tools.simconfig import write_configs  # noqa: E402
 from tools.worldclock import WorldClock  # noqa: E402
+from auv import lockstep_t  # noqa: E402  (its path: auvlcm, above)
+from sim.multihil.lockstep import lockstep_msg  # noqa: E402
 
 EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
 STARTUP_TIMEOUT_S = 90.0
@@ -134,6 +140,7 @@ class Launcher:
         self.logger: Child | None = None
         self.children: list[Child] = []
         self.stop_reason = ""
+        self.faults = list(sc.faults)     # planned, in time order (tools/scenario_faults.py)
         self.log_path = self.out / sc.log_file
         self.recorder_stats = self.out / "recorder.json"
 
@@ -269,6 +276,7 @@ class Launcher:
                 self.clock.advance()
             # blocks until a message comes (a report, a status) or the next step is due
             self.watch.handle(self.clock.wait_s() if self.clock else 0.1)
+            self.inject_faults()
             outcome = self.watch.outcome()
             if outcome:
                 return outcome
@@ -286,6 +294,27 @@ class Launcher:
                 print(f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
                       + "  ".join(self.watch.progress())
                       + (f"  (step waits for {', '.join(waits)})" if waits else ""), flush=True)
+
+    def inject_faults(self) -> None:
+        """The planned faults whose time has come (docs/scenarios.md, "Faults").
+        Every host's launcher applies each one to its watch and clock; the host
+        that runs the vehicle kills its processes."""
+        while self.faults and self.watch.sim_time_us >= self.faults[0].at_s * 1e6:
+            f = self.faults.pop(0)
+            prefix = f"{f.vehicle}."
+            names = {n for n in participants(self.sc, False) if n.startswith(prefix)}
+            killed = [c for c in self.children if c.name.startswith(prefix) and not c.stopping]
+            for c in killed:
+                c.kill()
+            if self.clock:
+                self.clock.lose(names)
+            for n in sorted(names):   # a world stepped by the simulators stops waiting for them too
+                self.lc.publish("SIM.LOCKSTEP", lockstep_msg(n, lockstep_t.KIND_LEAVE, 0, 0).encode())
+            self.watch.lose(f.vehicle, self.watch.sim_time_us / 1e6)
+            text = (f"{f.vehicle} lost at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, "
+                    f"{f.where}): killed {', '.join(c.name for c in killed) or 'nothing on this host'}")
+            print(f"launch: fault: {text}", flush=True)
+            self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
 
     def stop_all(self, result: str) -> None:
         dead = self._dead()
@@ -351,6 +380,10 @@ def main(argv: list[str] | None = None) -> int:
             [parse_rule(r) for r in args.restart]
             if not 0 <= args.deadman < float("inf"):
                 raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
+            if sc.faults:
+                # the agents run the processes: a lost vehicle's would fly on
+                raise ValueError(f"{sc.faults[0].where}: faults: not applied by host agents yet; "
+                                 "run this scenario without --agents (or per host with --host)")
         url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
     except ConfigError as exc:
         print("\n".join(exc.errors), file=sys.stderr)
@@ -406,7 +439,8 @@ def _finish(run: Launcher, args, result: str) -> int:
     (args.out / (f"outcome.{args.host}.json" if args.host else "outcome.json")).write_text(json.dumps(s, indent=2))
     print(f"launch: {result} at t={s['sim_time_s']:.1f} s" + (f": {s['reason']}" if s["reason"] else ""))
     for vid, v in s["vehicles"].items():
-        why = f" ({v['cause']} at t={v['abort_at_s']:.1f} s)" if v.get("cause") else ""
+        at = v["lost_at_s"] if v.get("lost_at_s") is not None else v.get("abort_at_s")
+        why = f" ({v['cause']}" + (f" at t={at:.1f} s" if at is not None else "") + ")" if v.get("cause") else ""
         print(f"  {vid}: {v['outcome'] or 'unfinished'}{why}  last state {v['path'] or '-'}  ({v['condition']})")
     drop = s["dropped"]
     if drop["decode_errors"] or drop["time"]:

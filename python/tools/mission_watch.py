@@ -85,9 +85,12 @@ class VehicleState:
     cause: str = ""                 # why the mission ended early: the tests that fired
     abort_condition: str = ""       # the whole condition of that transition
     abort_at_s: float | None = None
+    lost_at_s: float | None = None  # lost by a planned fault (tools/scenario_faults.py)
 
     @property
     def outcome(self) -> str | None:
+        if self.lost_at_s is not None:
+            return "lost"
         o = FINAL.get(self.run_state)
         return "aborted" if o == "done" and self.entered_abort else o
 
@@ -197,8 +200,18 @@ class MissionWatch:
     def not_ready(self) -> list[str]:
         return sorted(self.expected - self.seen)
 
+    def lose(self, vid: str, at_s: float) -> None:
+        """The vehicle was lost by a planned fault: it is over for it, and
+        nothing it may still have said changes that."""
+        v = self.vehicles.get(vid)
+        if v is not None and v.lost_at_s is None:
+            v.lost_at_s = at_s
+            v.cause = "planned fault"
+            self.expected -= {n for n in self.expected if n.startswith(f"{vid}.")}
+
     def outcome(self) -> str | None:
-        """None while any vehicle runs; else the worst vehicle outcome."""
+        """None while any vehicle runs; else the worst vehicle outcome (a
+        vehicle lost by a planned fault counts as over, not as a failure)."""
         outs = [v.outcome for v in self.vehicles.values()]
         if any(o is None for o in outs):
             return None
@@ -213,7 +226,8 @@ class MissionWatch:
 
     def vehicle_summary(self) -> dict:
         return {vid: {"outcome": v.outcome, "path": v.path, "condition": v.condition,
-                      "cause": v.cause if v.outcome in ("aborted", "failed") else "",
+                      "cause": v.cause if v.outcome in ("aborted", "failed", "lost") else "",
+                      "lost_at_s": v.lost_at_s,
                       "abort_condition": v.abort_condition, "abort_at_s": v.abort_at_s,
                       "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6}
                 for vid, v in self.vehicles.items()}

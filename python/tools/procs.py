@@ -75,6 +75,15 @@ class Child:
         return self.proc.returncode
 
 
+    def kill(self) -> int | None:
+        """SIGKILL to the whole group at once (a planned fault: no goodbye)."""
+        if self.proc is None:
+            return None
+        self.stopping = True
+        _signal_group(self.proc.pid, signal.SIGKILL)
+        return self.proc.wait()
+
+
 def _signal_group(pgid: int, sig: int) -> None:
     try:
         os.killpg(pgid, sig)

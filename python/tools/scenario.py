@@ -21,6 +21,7 @@ import yaml
 from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from tools.plan_params import declared_params
+from tools.scenario_faults import PlannedFault, check_faults
 
 
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
@@ -97,6 +98,7 @@ class Scenario:
     text: str = ""
     survey: Path | None = None            # the planner's survey.json, for reports and plots
     world_node: Any = None                # the `world:` mapping node, for error positions
+    faults: list[PlannedFault] = field(default_factory=list)   # tools/scenario_faults.py
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -279,7 +281,7 @@ class _Scenario:
         return got
 
 
-TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey")
+TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults")
 
 
 def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
@@ -331,6 +333,7 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
         log_host=s.host(lg_items, "host", "logging", hosts),
         log_recorder=s.get(lg_items, "recorder", "logging", RECORDERS[0], Rule(one_of=RECORDERS)),
         hosts=hosts, vehicles=vehicles, text=c.text, survey=s.file(top, "survey", ""),
-        world_node=world_node)
+        world_node=world_node,
+        faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s))
     c.raise_errors()
     return sc

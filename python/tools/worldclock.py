@@ -50,6 +50,7 @@ class WorldClock:
         self._sim0_us = 0
         self.ticks = 0
         self.future_reports = 0          # STEP_DONE for a step never published: counted, dropped
+        self.gone: set[str] = set()      # participants lost by a planned fault: never waited for again
         lc.subscribe("SIM.LOCKSTEP", self._on_lockstep).set_queue_capacity(1000)
 
     def _on_lockstep(self, _ch: str, data: bytes) -> None:
@@ -57,6 +58,8 @@ class WorldClock:
             m = lockstep_t.decode(data)
         except ValueError:
             return
+        if m.participant in self.gone:
+            return                          # a report still in flight from a killed process
         if m.kind == lockstep_t.KIND_STEP_DONE and not 0 <= m.step <= self.server.step + 1:
             self.future_reports += 1        # a participant cannot be done with a step not yet sent
             return
@@ -70,6 +73,14 @@ class WorldClock:
         c.step, c.step_us = step, self.step_us
         self.lc.publish("SIM.CLOCK", c.encode())
         self.ticks += 1
+
+    def lose(self, names: set[str]) -> None:
+        """Stop waiting for these participants, now and for good (their
+        processes were killed: tools/scenario_faults.py)."""
+        self.gone |= names
+        self.server.expect_names -= names
+        for n in names:
+            self.tracker.remove(n)
 
     def ready(self) -> bool:
         """Every participant of the scenario registered: step 0 may go."""

@@ -247,6 +247,36 @@ vehicles:
     assert run.returncode == 2 and f"{tmp_path / 'syntax.yaml'}:2:1: YAML syntax" in run.stderr
 
 
+def test_bad_planned_faults_are_refused_before_anything_starts(tmp_path, lcm_url, child_env):
+    sc = write_scenario(tmp_path, [vehicle("AUV1"), vehicle("AUV2", east=50)], name="faults")
+    text = sc.read_text() + """faults:
+  - {at: 30, vehicle: AUV9, do: lose}
+  - {at: 30, vehicle: AUV1, do: explode}
+  - {at: 40, vehicle: AUV2, do: lose}
+  - {at: 50, vehicle: AUV2}
+  - {at: 500, vehicle: AUV1}
+  - {vehicle: AUV1, when: 3}
+  - lose AUV1
+"""
+    sc.write_text(text)
+    first = len(text.splitlines()) - 7 + 1      # line of the first entry
+    run = launch(sc, tmp_path / "run", lcm_url, child_env)
+    assert run.returncode == 2, run.stdout + run.stderr
+    err = run.stderr
+    assert f"{sc}:{first}:23: faults[0].vehicle: no vehicle 'AUV9' in this scenario; vehicles are: AUV1, AUV2" in err
+    assert f"{sc}:{first + 1}:33: faults[1].do: expected one of: lose, got 'explode'" in err
+    assert f"{sc}:{first + 3}:23: faults[3].vehicle: AUV2 is already lost by the fault at {sc}:{first + 2}:5" in err
+    assert f"{sc}:{first + 4}:10: faults[4].at: at 500 s is not before the mission time limit (60 s)" in err
+    assert f"{sc}:{first + 5}:5: faults[5]: missing required key 'at'" in err
+    assert f"{sc}:{first + 5}:21: faults[5].when: unknown key; expected one of: at, do, vehicle" in err
+    assert f"{sc}:{first + 6}:5: faults[6]: expected a mapping" in err
+    assert not (tmp_path / "run" / "run.lcmlog").exists()     # nothing started
+    # host agents run the processes: a planned fault could not stop them (yet)
+    sc.write_text(text.split("faults:")[0] + "faults:\n  - {at: 30, vehicle: AUV2}\n")
+    run = launch(sc, tmp_path / "run", lcm_url, child_env, "--agents")
+    assert run.returncode == 2 and "faults: not applied by host agents yet" in run.stderr, run.stderr
+
+
 def test_lcm_logger_stays_selectable(tmp_path, lcm_url, child_env):
     """--recorder lcm-logger, or logging.recorder in the scenario; an unknown recorder is a scenario error."""
     path = write_scenario(tmp_path, [vehicle("AUV1", cycles=20)])

@@ -6,7 +6,8 @@
  * to the store: peer statuses, contact reports (acked when this vehicle runs
  * ri_reacquire), acks of own contacts, identification results. A teammate is
  * lost when its status says abort or nothing was heard from it for `silent`
- * (PEER_LOST). In its TDMA slot (tm_tdma.h) it sends one frame of at most
+ * (PEER_LOST); one whose last status said done is finished, and its silence
+ * is no loss. In its TDMA slot (tm_tdma.h) it sends one frame of at most
  * frame_bytes, filled by priority (tm_outbox.h), as a modem_tx_t KIND_TEAM.
  * It is also the one writer of the events output: it posts the events every
  * team behavior queued (team_event_t). */
@@ -98,6 +99,8 @@ static void watch_peers(chasm_ctx *c, tm_store *s)
         tm_peer *p = &s->peer[v];
         if (v == s->me || p->lost)
             continue;
+        if (p->has_status && p->state == TM_ST_DONE)
+            continue;   /* finished: its link ends with its mission, silence is no loss */
         double quiet = now - (p->heard ? p->t_heard : s->t_start);
         int aborted = p->has_status && p->state == TM_ST_ABORT;
         if (aborted || quiet > silent) {

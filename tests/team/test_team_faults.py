@@ -1,0 +1,83 @@
+"""Losing teammates, full stack (issue 15): a small team (2 search vehicles
+and a reacquire-identify vehicle) flown by the launcher in lockstep, with
+planned faults (docs/scenarios.md, "Faults") that kill every process of a
+vehicle mid-mission: the search vehicle AUV2 at 100 s, the RI vehicle AUV3 at
+200 s. The survivor must take over and fly AUV2's unflown lines by the rule
+every vehicle computes alike, and the contacts nobody can identify any more
+must stay in the report as unidentified."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import small_team as st
+from conftest import child_environment, fresh_url
+
+LOST_SEARCH_AT, LOST_RI_AT, SILENT = 100.0, 200.0, 30.0
+
+
+@pytest.fixture(scope="module")
+def lost_run(tmp_path_factory):
+    lcm_url, child_env = fresh_url(), child_environment()
+    d = tmp_path_factory.mktemp("team_faults")
+    base = st.plan(d / "small")
+    silent = {v: {"silent": f"{SILENT:g} s"} for v in ("AUV1", "AUV2", "AUV3")}
+    sc = st.variant(base, d / "lose.yaml", params=silent,
+                    faults=[{"at": LOST_SEARCH_AT, "vehicle": "AUV2", "do": "lose"},
+                            {"at": LOST_RI_AT, "vehicle": "AUV3", "do": "lose"}])
+    out = st.fly(sc, d / "run", lcm_url, child_env)
+    return d, out, st.report(d / "run", d / "report", child_env)
+
+
+def test_the_launcher_kills_the_lost_vehicles_and_the_others_finish(lost_run):
+    d, out, rep = lost_run
+    assert rep["vehicle_outcomes"] == {"AUV1": "done", "AUV2": "lost", "AUV3": "lost"}, rep["vehicle_outcomes"]
+    assert "fault: AUV2 lost at t=100.0 s" in out and "killed AUV2.sim, AUV2.PILOT, AUV2.NAVIGATOR" in out
+    # nothing of a lost vehicle speaks after its fault (SIGKILL: no goodbye)
+    for vid, at in (("AUV2", LOST_SEARCH_AT), ("AUV3", LOST_RI_AT)):
+        last = max(m.utime for _, m in st.messages(d / "run" / "run.lcmlog", f"{vid}.TRUTH")) / 1e6
+        assert at - 1.0 <= last <= at + 0.2, (vid, last)
+
+
+def test_the_survivor_takes_over_and_flies_the_lost_vehicles_lines(lost_run):
+    d, _, rep = lost_run
+    log = d / "run" / "run.lcmlog"
+    ev = st.team_events(log)
+    lost = [e for e in ev if e[2] == "PEER_LOST" and e[1] == "AUV1" and "AUV2" in e[5] + e[3]]
+    assert lost, [e for e in ev if e[2] == "PEER_LOST"]
+    # declared lost once it was silent for `silent`, not before: its last
+    # frame went out at most one TDMA round (3 slots of 4.4 s) before the fault
+    assert LOST_SEARCH_AT - 3 * 4.4 + SILENT <= lost[0][0] <= LOST_SEARCH_AT + SILENT + 1, lost
+    taken = [e for e in ev if e[2] == "LINES_TAKEN" and e[1] == "AUV1"]
+    assert len(taken) == 1 and taken[0][3] == "AUV2", taken
+    numbers = [int(x) for x in taken[0][5].split()]
+    # AUV2's share is lines 4..7 (plan `lines`); at 100 s it was still on its
+    # first: the survivor takes every one it had not finished
+    assert set(numbers) <= {4, 5, 6, 7} and {5, 6, 7} <= set(numbers), numbers
+    # ... and flies them: the survivor's true track runs along the lines far
+    # from its own share (north 0..90 m at east 115.5 and 141.5)
+    truth = [(m.utime / 1e6, m.eta[0], m.eta[1]) for _, m in st.messages(log, "AUV1.TRUTH")]
+    t, n, e = (np.array(x) for x in zip(*truth))
+    for k, east in ((6, 115.5), (7, 141.5)):
+        on = (t > taken[0][0]) & (np.abs(e - east) < 4.0) & (n > 10) & (n < 80)
+        assert on.sum() >= 0.5 * (70 / 1.5) * 10, (k, int(on.sum()))   # half the 70 m at 10 Hz at least
+    # the report lists the takeover
+    assert any(k["event"] == "LINES_TAKEN" and k["vehicle"] == "AUV1" and k["peer"] == "AUV2"
+               for k in rep["team"]["takeovers"]), rep["team"]["takeovers"]
+
+
+def test_with_the_ri_vehicle_lost_the_contacts_stay_unidentified(lost_run):
+    d, _, rep = lost_run
+    ev = st.team_events(d / "run" / "run.lcmlog")
+    sent_late = {e[4] for e in ev if e[1] == "AUV1" and e[2] == "CONTACT_SENT" and e[0] > LOST_RI_AT + 5}
+    acked_late = {e[4] for e in ev if e[1] == "AUV1" and e[2] == "CONTACT_ACKED" and e[0] > LOST_RI_AT + 5}
+    # the survivor kept reporting what it found (repeated, never acknowledged)
+    assert sent_late and not acked_late, (sent_late, acked_late)
+    team = rep["team"]
+    unidentified = [t for t in team["targets"] if t["kind"] == "mine_like" and t.get("detected_s") is not None
+                    and t.get("identified_s") is None]
+    assert unidentified, team["targets"]
+    # no identification after the RI vehicle was lost
+    assert all(t["identified_s"] is None or t["identified_s"] <= LOST_RI_AT + 0.5 for t in team["targets"])
+    assert team["mine_like_identified"] < team["mine_like_detected"], team
