@@ -5,11 +5,12 @@
  *
  * Each line: a goto to its start (ILOS from where the vehicle is), then ILOS
  * along it to its end (guidance's geometry, plugins/lib/gd_geometry.c).
- * Progress lives in the store (own next_line, taken lines flown), so the
- * status tells the team where this vehicle is in its list and a re-entered
- * state continues where it was. When a teammate is lost (team_link decides),
- * its remaining lines are dealt once; a LINES_TAKEN event lists this
- * vehicle's share. DONE when every line it has is flown. */
+ * Progress lives in the store (next_line, an index into this vehicle's work
+ * list: own lines, then taken ones), so the status tells the team where this
+ * vehicle is in its list and a re-entered state continues where it was. When
+ * a teammate is lost (team_link decides), the rest of its list is dealt once;
+ * a LINES_TAKEN event lists this vehicle's share. DONE when every line it has
+ * is flown. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -37,8 +38,10 @@ _Static_assert(SV_OUT_ALTITUDE - SV_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint sl
 static void take_over(chasm_ctx *c, tm_store *s, const tm_lines *l)
 {
     int alive[TM_MAX_TEAM];
+    /* a teammate whose status says done has ended its survey and would
+     * never fly a line dealt to it: it is not a survivor for the deal */
     for (int v = 0; v < s->roster.n; v++)
-        alive[v] = !s->peer[v].lost;
+        alive[v] = !s->peer[v].lost && !(s->peer[v].has_status && s->peer[v].state == TM_ST_DONE);
     alive[s->me] = 1;
     for (int v = 0; v < s->roster.n; v++) {
         tm_peer *p = &s->peer[v];
@@ -47,32 +50,28 @@ static void take_over(chasm_ctx *c, tm_store *s, const tm_lines *l)
         p->dealt = 1;
         int to[TM_MAX_LINES];
         int from = p->has_status ? p->next_line : 0;
-        if (!tm_takeover_deal(l, v, from, alive, s->roster.n, to))
+        if (!tm_takeover_deal(&s->work, l, v, from, alive, s->roster.n, to))
             continue;
         char text[200] = "";
         size_t used = 0;
-        for (int i = 0; i < l->n; i++)
-            if (to[i] == s->me && s->n_taken < TM_MAX_LINES) {
-                s->taken[s->n_taken++] = i;
+        for (int k = from; k < s->work.n[v]; k++) {   /* in the order dealt */
+            int i = s->work.line[v][k];
+            if (to[i] == s->me)
                 used += (size_t)snprintf(text + used, used < sizeof text ? sizeof text - used : 0, "%s%d",
                                          used ? " " : "", i);
-            }
+        }
         if (used)
             tm_post(s, c->now_us, TM_EV_LINES_TAKEN, v, -1, 0, 0, 0, text);
     }
 }
 
-/* The next line to fly (own first, then taken), or -1 when all are flown. */
+/* The next line to fly from the work list (own first, then taken), or -1
+ * when all are flown; *taken says which. */
 static int next_line(const tm_store *s, const tm_survey_state *st, int *taken)
 {
     int own[TM_MAX_LINES];
-    int n_own = tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES);
-    if (s->next_line < n_own) {
-        *taken = 0;
-        return own[s->next_line];
-    }
-    *taken = 1;
-    return st->taken_next < s->n_taken ? s->taken[st->taken_next] : -1;
+    *taken = s->next_line >= tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES);
+    return s->next_line < s->work.n[s->me] ? s->work.line[s->me][s->next_line] : -1;
 }
 
 static void begin(chasm_ctx *c, tm_survey_state *st, int line)
@@ -99,9 +98,10 @@ int tm_survey_start(chasm_ctx *c, void *state)
         return -1;
     }
     st->line = -1;
-    /* taken lines already flown in an earlier visit of this state are not
-     * kept in the store: flying one again is safe, skipping one is not */
-    st->taken_next = 0;
+    if (!s->work_ready) {   /* progress lives in the store: a re-entered state goes on */
+        tm_work_init(&s->work, &st->lines, s->roster.n);
+        s->work_ready = 1;
+    }
     return 0;
 }
 
@@ -114,7 +114,6 @@ chasm_status_code tm_survey_step(chasm_ctx *c, void *state)
     if (st->line < 0) {
         int l = next_line(s, st, &taken);
         if (l < 0) {
-            s->next_line = TM_ALL_DONE;
             s->state = TM_ST_DONE;
             return CHASM_DONE;
         }
@@ -135,16 +134,10 @@ chasm_status_code tm_survey_step(chasm_ctx *c, void *state)
         gd_line_make(&st->path, ln->a, ln->b);
         heading = gd_los_heading(&st->los, &st->path, p, 0.0, &along, NULL);
     } else if (st->phase == 1 && along >= st->path.length) {
-        if (taken)
-            st->taken_next++;
-        else
-            s->next_line++;
+        s->next_line++;
         st->line = -1;
     }
     s->state = st->phase == 0 ? TM_ST_TRANSIT : taken ? TM_ST_TAKEOVER : TM_ST_SURVEY;
-    int own[TM_MAX_LINES];
-    if (s->next_line >= tm_own_lines(&st->lines, s->me, own, TM_MAX_LINES))
-        s->next_line = TM_ALL_DONE;
     tm_steer(c, heading, SV_SPEED, SV_DEPTH, SV_ALTITUDE, SV_OUT_HEADING, s->depth_offset);
     return CHASM_RUNNING;
 }

@@ -40,7 +40,6 @@ enum { SV_LINES, SV_SPEED, SV_DEPTH, SV_ALTITUDE, SV_RADIUS, SV_LOOKAHEAD, SV_IN
        SV_NPARAMS };
 typedef struct {
     tm_lines lines;
-    int taken_next;       /* index into the store's taken list */
     int phase;            /* 0: to the line's start, 1: along it */
     int line;             /* line index flown, -1 none */
     gd_line path;

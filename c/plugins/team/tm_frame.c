@@ -58,7 +58,7 @@ static void fill_msg(const writer *f, const tm_item *it, team_msg *m)
                                         s->own_depth < 0 ? 0.0 : s->own_depth,
                                         pu_wrap_2pi(s->own.heading),
                                         s->own.speed < 0 ? 0.0 : s->own.speed,
-                                        s->next_line,
+                                        s->next_line < TM_ALL_DONE ? s->next_line : TM_ALL_DONE,
                                         s->status_state};
         break;
     }

@@ -132,7 +132,15 @@ int tm_own_lines(const tm_lines *l, int v, int *out, int max)
     return k;
 }
 
-int tm_takeover_deal(const tm_lines *l, int lost, int from, const int *alive, int n_team, int to[TM_MAX_LINES])
+void tm_work_init(tm_work *w, const tm_lines *l, int n_team)
+{
+    memset(w, 0, sizeof *w);
+    for (int v = 0; v < TM_MAX_TEAM; v++)
+        w->n[v] = v < n_team ? tm_own_lines(l, v, w->line[v], TM_MAX_LINES) : 0;
+}
+
+int tm_takeover_deal(tm_work *w, const tm_lines *l, int lost, int from, const int *alive, int n_team,
+                     int to[TM_MAX_LINES])
 {
     int surv[TM_MAX_TEAM], ns = 0;
     for (int v = 0; v < n_team && v < TM_MAX_TEAM; v++)
@@ -140,12 +148,14 @@ int tm_takeover_deal(const tm_lines *l, int lost, int from, const int *alive, in
             surv[ns++] = v;
     for (int i = 0; i < TM_MAX_LINES; i++)
         to[i] = -1;
-    if (ns == 0)
+    if (ns == 0 || lost < 0 || lost >= TM_MAX_TEAM)
         return 0;
-    int own[TM_MAX_LINES];
-    int n_own = tm_own_lines(l, lost, own, TM_MAX_LINES);
     int dealt = 0;
-    for (int k = from < 0 ? 0 : from; k < n_own; k++)
-        to[own[k]] = surv[dealt++ % ns];
+    for (int k = from < 0 ? 0 : from; k < w->n[lost]; k++) {
+        int line = w->line[lost][k], v = surv[dealt++ % ns];
+        to[line] = v;
+        if (w->n[v] < TM_MAX_LINES)
+            w->line[v][w->n[v]++] = line;
+    }
     return dealt;
 }

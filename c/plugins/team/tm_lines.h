@@ -9,11 +9,15 @@
  * vehicles are the owners of at least one line.
  *
  * Takeover rule (computed by every vehicle from what it has heard, no
- * leader): when a search vehicle L is lost, its own lines from its last
- * reported next_line on (index into its own lines; 0 if it was never heard)
- * are dealt round-robin, in line order, to the surviving search vehicles
- * sorted by team index: the first to the lowest-numbered survivor, and so
- * on. Each survivor flies its share after its own lines. The deal is made
+ * leader). Each search vehicle works down its work list: its own lines in
+ * line order, then the lines dealt to it, in the order dealt; its status
+ * says how far it is (next_line: an index into that list). When a search
+ * vehicle L is lost, its list from its last reported next_line on (0 if it
+ * was never heard) is dealt round-robin, in list order, to the surviving
+ * search vehicles sorted by team index: the first to the lowest-numbered
+ * survivor, and so on, each appended to the taker's list. Every vehicle
+ * keeps every teammate's list the same way, so the lines a later-lost
+ * vehicle had taken over are dealt again like its own. The deal is made
  * once, when a vehicle decides L is lost, from the survivors of that moment. */
 #ifndef TM_LINES_H
 #define TM_LINES_H
@@ -25,7 +29,7 @@
 #define TM_MAX_TEAM 16
 #define TM_MAX_LINES 64
 #define TM_NAME_LEN 24
-#define TM_ALL_DONE 63   /* next_line of a vehicle whose own lines are all flown */
+#define TM_ALL_DONE 63   /* next_line at or beyond its list's end: every line it has is flown */
 
 typedef struct {
     char name[TM_MAX_TEAM][TM_NAME_LEN];
@@ -53,12 +57,20 @@ PU_HIDDEN int tm_lines_parse(tm_lines *l, const char *s, int n_team, char *why, 
 PU_HIDDEN int tm_is_searcher(const tm_lines *l, int v);
 /* Vehicle v's own lines (indices into l), in line order; returns the count. */
 PU_HIDDEN int tm_own_lines(const tm_lines *l, int v, int *out, int max);
-/* The deal: for each line index k of lost vehicle `lost`'s own lines from
- * own index `from` on, to[k] = the survivor that takes it, -1 for the lines
- * not dealt (other owners, already flown). alive[v] != 0 marks the vehicles
- * not (yet) lost; the lost vehicle itself is never a survivor. Returns the
- * number of lines dealt (0 if there is no survivor). */
-PU_HIDDEN int tm_takeover_deal(const tm_lines *l, int lost, int from, const int *alive, int n_team,
+/* Every vehicle's work list (see the takeover rule above). */
+typedef struct {
+    int line[TM_MAX_TEAM][TM_MAX_LINES];
+    int n[TM_MAX_TEAM];
+} tm_work;
+
+/* The lists before any deal: each vehicle's own lines. */
+PU_HIDDEN void tm_work_init(tm_work *w, const tm_lines *l, int n_team);
+/* The deal of lost vehicle `lost` (its list from `from` on): to[line] = the
+ * survivor that takes it, -1 for the lines not dealt; each dealt line is
+ * appended to its taker's list. alive[v] != 0 marks the vehicles not (yet)
+ * lost; the lost vehicle itself is never a survivor. Returns the number of
+ * lines dealt (0 if there is no survivor). */
+PU_HIDDEN int tm_takeover_deal(tm_work *w, const tm_lines *l, int lost, int from, const int *alive, int n_team,
                                int to[TM_MAX_LINES]);
 
 #endif

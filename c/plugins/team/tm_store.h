@@ -73,15 +73,15 @@ typedef struct {
     int n_idents_heard;
     /* own status */
     int state;            /* TM_ST_* as set by the behaviors */
-    int next_line;        /* index into own lines, TM_ALL_DONE when flown */
+    int next_line;        /* index into own work list (tm_lines.h): the line flown now or next */
     double depth_offset;  /* keep_clear's offset, added by the steering behaviors [m] */
     tm_track own;         /* own navigation at the last team_status run */
     double own_depth;
     double t_own;         /* when [s] */
     int status_state;     /* the state code sent (team_status's `state`, or `state` above) */
-    /* takeover: lines dealt to this vehicle, in the order taken */
-    int taken[TM_MAX_LINES];
-    int n_taken;
+    /* takeover: every vehicle's work list, kept by the rule (tm_lines.h) */
+    tm_work work;
+    int work_ready;
     /* events waiting for team_link */
     tm_event events[TM_MAX_EVENTS];
     int n_events;

@@ -21,6 +21,7 @@ void plan_refuses_bad_roster_and_lines(void);
 void search_vehicle_reports_until_acked(void);
 void ri_vehicle_merges_routes_and_identifies(void);
 void lost_teammates_lines_are_taken(void);
+void done_teammates_take_no_lines(void);
 void aborted_teammate_is_lost_at_once(void);
 void keep_clear_gives_way_in_depth(void);
 void out_of_range_values_are_refused_and_logged(void);

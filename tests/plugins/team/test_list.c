@@ -22,6 +22,7 @@ const plugin_test plugin_tests[] = {
     {"search_vehicle_reports_until_acked", search_vehicle_reports_until_acked},
     {"ri_vehicle_merges_routes_and_identifies", ri_vehicle_merges_routes_and_identifies},
     {"lost_teammates_lines_are_taken", lost_teammates_lines_are_taken},
+    {"done_teammates_take_no_lines", done_teammates_take_no_lines},
     {"aborted_teammate_is_lost_at_once", aborted_teammate_is_lost_at_once},
     {"keep_clear_gives_way_in_depth", keep_clear_gives_way_in_depth},
     {"out_of_range_values_are_refused_and_logged", out_of_range_values_are_refused_and_logged},

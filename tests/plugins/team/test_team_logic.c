@@ -257,26 +257,39 @@ static const char *TEN =
 void takeover_round_robin_in_line_order(void)
 {
     tm_lines l;
+    static tm_work w, w2;
     char why[160];
     CHECK(tm_lines_parse(&l, TEN, 4, why, sizeof why) == 0);
     CHECK(tm_is_searcher(&l, 2) && !tm_is_searcher(&l, 3));
     int alive[4] = {1, 0, 1, 1}, to[TM_MAX_LINES];
     /* vehicle 0 lost after reporting next_line 1, vehicle 1 lost too: 2 takes lines 1, 2, 3 */
-    CHECK(tm_takeover_deal(&l, 0, 1, alive, 4, to) == 3);
+    tm_work_init(&w, &l, 4);
+    CHECK(w.n[0] == 4 && w.n[1] == 3 && w.n[2] == 3 && w.n[3] == 0);
+    CHECK(tm_takeover_deal(&w, &l, 0, 1, alive, 4, to) == 3);
     CHECK(to[0] == -1 && to[1] == 2 && to[2] == 2 && to[3] == 2 && to[4] == -1);
+    CHECK(w.n[2] == 6 && w.line[2][3] == 1 && w.line[2][5] == 3);   /* appended in the order dealt */
     /* vehicle 0 lost at its start, 1 and 2 alive; the RI vehicle 3 never takes lines */
     int all[4] = {1, 1, 1, 1};
-    CHECK(tm_takeover_deal(&l, 0, 0, all, 4, to) == 4);
+    tm_work_init(&w, &l, 4);
+    CHECK(tm_takeover_deal(&w, &l, 0, 0, all, 4, to) == 4);
     CHECK(to[0] == 1 && to[1] == 2 && to[2] == 1 && to[3] == 2);
     /* every vehicle computes the same deal from the same heard facts: the
      * function depends on nothing else (same inputs, same output) */
     int to2[TM_MAX_LINES];
-    tm_takeover_deal(&l, 0, 0, all, 4, to2);
-    CHECK(!memcmp(to, to2, sizeof to));
-    /* all flown (next_line 63) deals nothing; no survivor deals nothing */
-    CHECK(tm_takeover_deal(&l, 1, TM_ALL_DONE, all, 4, to) == 0);
+    tm_work_init(&w2, &l, 4);
+    tm_takeover_deal(&w2, &l, 0, 0, all, 4, to2);
+    CHECK(!memcmp(to, to2, sizeof to) && !memcmp(&w, &w2, sizeof w));
+    /* then vehicle 1, which took lines 0 and 2, is lost having flown its
+     * three own lines and line 0 (next_line 4): line 2 goes on to vehicle 2,
+     * the one survivor, after what it already has */
+    int alive2[4] = {0, 0, 1, 1};
+    CHECK(tm_takeover_deal(&w, &l, 1, 4, alive2, 4, to) == 1);
+    CHECK(to[2] == 2 && to[0] == -1 && w.n[2] == 6 && w.line[2][5] == 2);
+    /* all flown (next_line at or past the end, 63 on the link) deals nothing; no survivor deals nothing */
+    tm_work_init(&w, &l, 4);
+    CHECK(tm_takeover_deal(&w, &l, 1, TM_ALL_DONE, all, 4, to) == 0);
     int none[4] = {0, 0, 0, 1};
-    CHECK(tm_takeover_deal(&l, 2, 0, none, 4, to) == 0);
+    CHECK(tm_takeover_deal(&w, &l, 2, 0, none, 4, to) == 0);
     for (int i = 0; i < l.n; i++)
         CHECK(to[i] == -1);
 }

@@ -214,10 +214,43 @@ void lost_teammates_lines_are_taken(void)
             taken++;
             if (!strcmp(ev[i].origin, "AUV1"))
                 CHECK(!strcmp(ev[i].text, "1"));
-            else   /* AUV3 fell silent after 60 s; AUV2 is then the only survivor */
-                CHECK(!strcmp(ev[i].origin, "AUV3") && !strcmp(ev[i].text, "4 5"));
+            else   /* AUV3 fell silent after 60 s; AUV2 is then the only survivor and
+                    * takes its whole list: its own lines, then line 2 it had taken from AUV1 */
+                CHECK(!strcmp(ev[i].origin, "AUV3") && !strcmp(ev[i].text, "4 5 2"));
         }
     CHECK(taken == 2);
+    chasm_free(m);
+}
+
+/* A teammate that said it is done has ended its survey: the lost vehicle's
+ * lines all go to the one survivor still surveying. */
+void done_teammates_take_no_lines(void)
+{
+    static char body[2048];
+    snprintf(body, sizeof body,
+             "state mission {\n"
+             "    do team_link(" ROSTER ", me = \"AUV2\", my_slot = 1, silent = 60 s)\n"
+             "    state survey {\n"
+             "        do team_survey(%s, depth = 10 m)\n"
+             "    }\n"
+             "}\n",
+             LINES);
+    chasm_machine *m = team_load(body);
+    if (!m)
+        return;
+    team_nav(m, 0, 60, 0, 1.5, 0);
+    pt_start(m, 0);
+    team_msg s1 = status(0, 20, 0, 0, 1, 1, 5);   /* AUV1 flew line 0, then nothing */
+    team_feed_frame(m, "AUV2", "AUV1", &s1, 1, 5);
+    for (int t = 0; t <= 80; t += 20) {
+        team_msg s3 = status(2, 0, 80, 0, 2, 4 /* done */, t);
+        team_feed_frame(m, "AUV2", "AUV3", &s3, 1, t + 0.5);
+        run(m, t == 0 ? 0.1 : t, t + 20, 0, 60);
+    }
+    team_ev ev[64];
+    int n_ev = team_take_events(m, ev, 64);
+    const team_ev *taken = team_find(ev, n_ev, 9 /* LINES_TAKEN */);
+    CHECK(taken && !strcmp(taken->origin, "AUV1") && !strcmp(taken->text, "1 2"));
     chasm_free(m);
 }
 
