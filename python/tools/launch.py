@@ -301,6 +301,11 @@ class Launcher:
         that runs the vehicle kills its processes."""
         while self.faults and self.watch.sim_time_us >= self.faults[0].at_s * 1e6:
             f = self.faults.pop(0)
+            if f.do != "lose":   # the simulator applies it (its configuration has the time)
+                text = f"{f.vehicle} {f.do} at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, {f.where})"
+                print(f"launch: fault: {text}", flush=True)
+                self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
+                continue
             prefix = f"{f.vehicle}."
             names = {n for n in participants(self.sc, False) if n.startswith(prefix)}
             killed = [c for c in self.children if c.name.startswith(prefix) and not c.stopping]

@@ -22,6 +22,7 @@ from tools.survey_plan import Survey, VehicleSurvey
 ROOT = Path(__file__).resolve().parents[2]
 NAVIGATOR_IO = ROOT / "missions" / "common" / "navigator_io.chasm"
 SAFETY = ROOT / "missions" / "common" / "safety.chasm"     # the shared `abort when` rules
+TEAM_SAFETY = ROOT / "missions" / "common" / "team_safety.chasm"   # ... whose emergency tells the team
 
 
 @dataclass

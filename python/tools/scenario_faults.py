@@ -12,6 +12,12 @@ vehicle falls silent mid-sentence, as one lost at sea would (no last status,
 no goodbye on the link). Its outcome is `lost`; the lockstep clock stops
 waiting for it at once; the mission ends when the other vehicles end. The
 fault is written into the log as a launcher event ("fault").
+
+`leak`: the vehicle's leak probes (the simulator's `leak` sensor) sense water
+from `at` on: the launcher sets `sensors.leak.at_s` in the vehicle's
+simulator configuration, so the leak comes at the same sim time in every
+run; what the vehicle does about it is its plan's (missions/common/
+safety.chasm aborts to the surface).
 """
 
 from __future__ import annotations
@@ -22,7 +28,7 @@ import yaml
 
 from confcheck import Checker, join, setting
 
-FAULT_KINDS = ("lose",)
+FAULT_KINDS = ("lose", "leak")
 
 
 @dataclass
@@ -63,14 +69,15 @@ def check_faults(c: Checker, node, vehicle_ids: list[str], limit_s: float) -> li
             c.err(vnode, join(key, "vehicle"),
                   f"no vehicle '{f.vehicle}' in this scenario; vehicles are: {', '.join(vehicle_ids)}")
             continue
-        if f.vehicle in lost:
+        if f.do == "lose" and f.vehicle in lost:
             c.err(vnode, join(key, "vehicle"), f"{f.vehicle} is already lost by the fault at {lost[f.vehicle]}")
             continue
         if f.at_s >= limit_s:
             c.err(items["at"][1], join(key, "at"),
                   f"at {f.at_s:g} s is not before the mission time limit ({limit_s:g} s): it would never happen")
             continue
-        lost[f.vehicle] = c.where(n)
+        if f.do == "lose":
+            lost[f.vehicle] = c.where(n)
         out.append(PlannedFault(f.at_s, f.vehicle, f.do, c.where(n)))
     return sorted(out, key=lambda f: f.at_s)
 

@@ -86,6 +86,11 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     cfg = merge(cfg, {"simulation": {"seed": sc.seed * 100 + index + 1}})
     cfg = merge(cfg, v.sim_overrides)
     cfg = merge(cfg, {"vehicle": {"id": v.id}})
+    for f in sc.faults:     # a planned leak: the probes sense water from its time on
+        if f.vehicle == v.id and f.do == "leak":
+            from sim.sensors import REGISTRY
+            listed = cfg.get("sensors") or {name: {} for name in REGISTRY}   # none listed: all of them
+            cfg["sensors"] = merge(listed, {"leak": {"at_s": f.at_s}})
     return cfg
 
 

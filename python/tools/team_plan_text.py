@@ -18,7 +18,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
-from tools.plan_text import NAVIGATOR_IO, SAFETY, Limits
+from tools.plan_text import NAVIGATOR_IO, TEAM_SAFETY, Limits
 from tools.survey_geometry import format_polygon
 
 
@@ -97,7 +97,7 @@ def _link_actions(link: TeamLink) -> list[str]:
 
 
 def _footer(plan_path: Path) -> list[str]:
-    return ["", f'include "{os.path.relpath(SAFETY, plan_path.parent)}"', ""]
+    return ["", f'include "{os.path.relpath(TEAM_SAFETY, plan_path.parent)}"', ""]
 
 
 def search_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path,

@@ -177,6 +177,8 @@ ABORTS = {
     "stale_nav": ("stale_nav.chasm", 40.0, "nav_stale", lambda rec, t: 43.0 <= t <= 43.3),
     # the navigator believed it was past 120 m north (its nav, read within the
     # last cycles), and it was (the truth, within the INS's error)
+    # the probes (1 Hz) read wet from 50 s on (LEAK_SEA): `leak.detected for 2 s`
+    "leak": ("leak.chasm", None, "leak", lambda rec, t: 52.0 <= t <= 52.3),
     "operating_area": ("operating_area.chasm", None, "outside",
                        lambda rec, t: any(120.0 < p.n < 126.0 for p in rec.nav if t - 0.3 <= p.t <= t)
                        and 118.0 < at(rec.truth, t).n < 126.0),
@@ -191,7 +193,8 @@ def test_each_safety_rule_aborts_for_its_cause_and_surfaces(name, tmp_path, lcm_
         a = rec.entered("emergency")
         return a is not None and surfaced_since(rec, a[0]) is not None
 
-    with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "aborts" / plan, nav_cut_s=cut, sim=SEA) as m:
+    sea = {**SEA, "sensors": {"leak": {"at_s": 50.0}}} if name == "leak" else SEA
+    with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "aborts" / plan, nav_cut_s=cut, sim=sea) as m:
         rec = m.fly(surfaced, max_sim_s=300)
     abort = rec.entered("emergency")
     assert abort is not None, f"no abort: {rec.states}"

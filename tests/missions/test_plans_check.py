@@ -20,7 +20,7 @@ def check(*args) -> subprocess.CompletedProcess:
 def test_there_is_a_plan_per_safety_rule():
     names = {p.stem for p in PLANS}
     assert {"box_survey", "yoyo_transect", "max_depth", "min_altitude", "mission_timeout", "stale_nav",
-            "operating_area"} <= names
+            "operating_area", "leak"} <= names
 
 
 @pytest.mark.parametrize("plan", PLANS, ids=[str(p.relative_to(ROOT / "missions")) for p in PLANS])
@@ -40,4 +40,4 @@ def test_a_bad_override_is_refused_with_its_position(tmp_path):
     bad.write_text(f'param max_depth = 7 s\ninclude "{ROOT / "missions" / "examples" / "yoyo_transect.chasm"}"\n')
     run = check(bad)
     assert run.returncode == 1
-    assert "safety.chasm:" in run.stderr and "'s' is a duration" in run.stderr, run.stderr
+    assert "safety_rules.chasm:17:37: " in run.stderr and "'s' is a duration" in run.stderr, run.stderr

@@ -45,7 +45,7 @@ def test_every_error_at_once_with_file_line_and_key():
         "cfg.yaml:5:9: simulation.warp: expected a number, got 'fast'",
         "cfg.yaml:7:18: sensors.dvl.rate_hz: must be > 0 [Hz]",
         "cfg.yaml:8:3: sensors.gyro: unknown key; expected one of: ahrs, altimeter, depth, dvl, "
-        "gps, ins, lbl",
+        "gps, ins, lbl, leak",
     ]
 
 

@@ -264,7 +264,7 @@ def test_bad_planned_faults_are_refused_before_anything_starts(tmp_path, lcm_url
     assert run.returncode == 2, run.stdout + run.stderr
     err = run.stderr
     assert f"{sc}:{first}:23: faults[0].vehicle: no vehicle 'AUV9' in this scenario; vehicles are: AUV1, AUV2" in err
-    assert f"{sc}:{first + 1}:33: faults[1].do: expected one of: lose, got 'explode'" in err
+    assert f"{sc}:{first + 1}:33: faults[1].do: expected one of: lose, leak, got 'explode'" in err
     assert f"{sc}:{first + 3}:23: faults[3].vehicle: AUV2 is already lost by the fault at {sc}:{first + 2}:5" in err
     assert f"{sc}:{first + 4}:10: faults[4].at: at 500 s is not before the mission time limit (60 s)" in err
     assert f"{sc}:{first + 5}:5: faults[5]: missing required key 'at'" in err

@@ -50,7 +50,7 @@ def test_team_plans_share_roster_and_lines_and_get_one_slot_each(tmp_path):
     texts = {vid: (out / f"{vid}.chasm").read_text() for vid in team["roster"]}
     for k, (vid, text) in enumerate(texts.items()):
         assert text.count("{") == text.count("}")
-        assert "use team" in text and 'include "' in text and "safety.chasm" in text
+        assert "use team" in text and 'include "' in text and "team_safety.chasm" in text
         assert param(text, "team") == '"AUV1,AUV2,AUV3,AUV4"' and param(text, "me") == f'"{vid}"'
         assert param(text, "lines") == f'"{team["lines"]}"'
         assert param(text, "my_slot") == str(k) and param(text, "slots") == "4"

@@ -29,12 +29,9 @@ const chasm_param_spec tm_ri_params[] = {
     TM_PARAM("ident_error", "", 0.001, 1e-9, 0.5, "a target is decided once its looks leave at most this probability that the call is wrong"),
     TM_PARAM("runout", "m", 30, 1, 1000, "straight run past a target before turning back for the next pass (wider than the turning circle)"),
     TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
-    TM_PARAM("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),
-    {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0,
-     "altitude instead of a depth (minus keep_clear's offset)"},
+    TM_VERTICAL_PARAMS,
     TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
-    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
-    TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
+    TM_POSITION_INPUTS,
     TM_STEER_OUTPUTS,
 };
 _Static_assert(CHASM_COUNT(tm_ri_params) == RI_NPARAMS, "ri_reacquire schema and slots disagree");

@@ -21,14 +21,11 @@
 const chasm_param_spec tm_survey_params[] = {
     TM_SPARAM("lines", 1, "the team's lines: \"owner: n,e n,e; ...\" (the same string in every plan)"),
     TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
-    TM_PARAM("depth", "m", 5, 0, 1000, "survey depth (plus keep_clear's offset)"),
-    {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0,
-     "survey altitude instead of a depth (minus keep_clear's offset)"},
+    TM_VERTICAL_PARAMS,
     TM_PARAM("radius", "m", 5, 0.5, 1000, "a line's start is reached within this distance"),
     TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
     TM_PARAM("integral", "Hz", 0.04, 0, 1, "ILOS integral rate (0: plain LOS)"),
-    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),
-    TM_NAV("in_east", "m", "nav.east_m", "vehicle east position"),
+    TM_POSITION_INPUTS,
     TM_STEER_OUTPUTS,
 };
 _Static_assert(CHASM_COUNT(tm_survey_params) == SV_NPARAMS, "team_survey schema and slots disagree");

@@ -18,6 +18,8 @@ static const chasm_behavior_spec behaviors[] = {
      sizeof(tm_survey_state), tm_survey_start, tm_survey_step, NULL},
     {"ri_reacquire", "reacquire-identify: route through the reported targets, identify them from looks",
      tm_ri_params, RI_NPARAMS, sizeof(tm_ri_state), tm_ri_start, tm_ri_step, NULL},
+    {"follow_peer", "keep station astern or abeam of a teammate, from its status over the link", tm_follow_params,
+     FP_NPARAMS, sizeof(tm_follow_state), tm_follow_start, tm_follow_step, NULL},
     {"keep_clear", "depth offset while a lower-numbered teammate is predicted close", tm_keepclear_params,
      KC_NPARAMS, sizeof(tm_keepclear_state), tm_keepclear_start, tm_keepclear_step, tm_keepclear_stop},
 };

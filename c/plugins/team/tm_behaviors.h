@@ -20,6 +20,15 @@
 #define TM_MSGS_IN(name, var, doc) {name, CHASM_READS, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
 #define TM_MSGS_OUT(name, var, doc) {name, CHASM_WRITES, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
 #define TM_ABSENT (-1e15)
+/* The vertical setpoint of a steering behavior (tm_steer): a depth, or an
+ * altitude when one is given; and the position it steers from. */
+#define TM_VERTICAL_PARAMS                                                       \
+    TM_PARAM("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),      \
+        {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0, \
+         "altitude instead of a depth (minus keep_clear's offset)"}
+#define TM_POSITION_INPUTS                                                   \
+    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),        \
+        TM_NAV("in_east", "m", "nav.east_m", "vehicle east position")
 
 /* ---- team_link (bh_team_link.c) */
 enum { LINK_TEAM, LINK_ME, LINK_SLOT, LINK_SLOTS, LINK_MY_SLOT, LINK_WINDOW, LINK_FRAME_BYTES, LINK_SILENT,
@@ -62,6 +71,17 @@ typedef struct {
     double pass_course;   /* course of the current pass [rad] */
 } tm_ri_state;
 TM_DECLARE(ri, RI_NPARAMS);
+
+/* ---- follow_peer (bh_follow_peer.c) */
+enum { FP_PEER, FP_BEHIND, FP_SIDE, FP_SPEED, FP_MIN_SPEED, FP_MAX_SPEED, FP_GAIN, FP_DEPTH, FP_ALTITUDE,
+       FP_LOOKAHEAD, FP_IN_NORTH, FP_IN_EAST, FP_OUT_HEADING, FP_OUT_SPEED, FP_OUT_SPEED_MODE, FP_OUT_VERTICAL_MODE,
+       FP_OUT_DEPTH, FP_OUT_ALTITUDE, FP_NPARAMS };
+typedef struct {
+    int peer;             /* roster index followed */
+    gd_point idle;        /* where it circles until the peer's first status */
+    int idle_set;
+} tm_follow_state;
+TM_DECLARE(follow, FP_NPARAMS);
 
 /* ---- keep_clear (bh_keep_clear.c) */
 enum { KC_RADIUS, KC_BAND, KC_HORIZON, KC_HYSTERESIS, KC_SILENT, KC_IN_NORTH, KC_IN_EAST, KC_IN_HEADING, KC_IN_SPEED,

@@ -47,20 +47,26 @@ static void fill_msg(const writer *f, const tm_item *it, team_msg *m)
                                           k->looks > 15 ? 15 : k->looks, stamp(f->now_us)};
         break;
     }
-    case TM_ITEM_STATUS:
+    case TM_ITEM_STATUS: {
         m->id = TEAM_MSG_STATUS;
-        /* at the surface nav may read a few cm above it: that is depth 0,
-         * and a vehicle does not move backwards over ground */
+        /* The stamp is the frame's whole second, and the position must be
+         * where the vehicle was then: team_status took it up to a TDMA round
+         * earlier, so it is dead-reckoned to the stamp (a teammate that
+         * dead-reckons on from a stale fix at a later stamp runs metres
+         * behind the truth). At the surface nav may read a few cm above it:
+         * that is depth 0; a vehicle does not move backwards over ground. */
+        tm_track at = tm_track_advance(s->own, (double)(f->now_us / 1000000) - s->t_own);
         m->u.status = (team_msg_status){s->me,
                                         stamp(f->now_us),
-                                        s->own.n,
-                                        s->own.e,
+                                        at.n,
+                                        at.e,
                                         s->own_depth < 0 ? 0.0 : s->own_depth,
                                         pu_wrap_2pi(s->own.heading),
                                         s->own.speed < 0 ? 0.0 : s->own.speed,
                                         s->next_line < TM_ALL_DONE ? s->next_line : TM_ALL_DONE,
                                         s->status_state};
         break;
+    }
     }
 }
 

@@ -5,6 +5,7 @@ from sim.sensors.instruments import (Ahrs, AhrsConfig, Altimeter, AltimeterConfi
                                      DepthSensor, Dvl, DvlConfig, Gps, GpsConfig)
 from sim.sensors.ins import Ins, InsConfig
 from sim.sensors.lbl import Lbl, LblConfig
+from sim.sensors.leak import LeakConfig, LeakSensor
 
 # name in the configuration -> (config class, sensor class)
 REGISTRY = {
@@ -15,7 +16,8 @@ REGISTRY = {
     "gps": (GpsConfig, Gps),
     "lbl": (LblConfig, Lbl),
     "ins": (InsConfig, Ins),
+    "leak": (LeakConfig, LeakSensor),
 }
 
 __all__ = ["Sensor", "SensorConfig", "REGISTRY", "Ahrs", "DepthSensor", "Dvl", "Altimeter",
-           "Gps", "Lbl", "Ins"]
+           "Gps", "Lbl", "Ins", "LeakSensor"]

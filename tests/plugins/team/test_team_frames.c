@@ -3,6 +3,7 @@
  * applied by tm_frame_receive through the generated codec; hostile frames are
  * counted, never crash. (The plugin's shared store is a singleton; these
  * tests use their own stores.) */
+#include <math.h>
 #include <stdlib.h>
 
 #include "../common/plugin_test.h"
@@ -47,6 +48,7 @@ void frames_carry_contacts_acks_and_status(void)
     add_contact(&a_store, 300, 200, 0.7);
     add_contact(&a_store, -310, 20, 0.9);
     a_store.own = (tm_track){50, 60, 1.0, 1.5};
+    a_store.t_own = 118.0;   /* team_status ran 2 s before the frame at 120 s */
     a_store.own_depth = 8.0;
     a_store.next_line = 2;
     a_store.status_state = TM_ST_SURVEY;
@@ -64,6 +66,7 @@ void frames_carry_contacts_acks_and_status(void)
     CHECK(count_events(&b_store, TM_EV_TARGET_QUEUED) == 3);
     /* the RI vehicle's frame: three acks (54 bits) and its status */
     b_store.own = (tm_track){0, 0, 0, 1.0};
+    b_store.t_own = 105.0;
     tm_outbox_status(&b_store.out);
     len = tm_frame_build(&b_store, 105000000, buf, 32, put, 16, &n);
     CHECK(n == 4 && put[0].kind == TM_ITEM_ACK && put[3].kind == TM_ITEM_STATUS);
@@ -77,7 +80,9 @@ void frames_carry_contacts_acks_and_status(void)
     tm_frame_receive(&b_store, 0, buf, len, 121000000);
     const tm_peer *p = &b_store.peer[0];
     CHECK(p->has_status && p->next_line == 2 && p->state == TM_ST_SURVEY);
-    CHECK_NEAR(p->track.n, 50, 0.5);
+    /* where AUV1 was at the stamp: its fix of 118 s dead-reckoned 2 s on */
+    CHECK_NEAR(p->track.n, 50 + 3 * cos(1.0), 0.5);
+    CHECK_NEAR(p->track.e, 60 + 3 * sin(1.0), 0.5);
     CHECK_NEAR(p->track.heading, 1.0, 0.0125);
     CHECK_NEAR(p->depth, 8.0, 0.05);
     CHECK_NEAR(p->t_status, 120, 1e-9);

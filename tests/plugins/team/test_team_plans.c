@@ -171,7 +171,9 @@ void ri_vehicle_merges_routes_and_identifies(void)
 static const char *LINES = "lines = \"0: 0,0 100,0; 0: 0,20 100,20; 0: 0,40 100,40; 1: 0,60 100,60; "
                            "2: 0,80 100,80; 2: 0,100 100,100\"";
 
-void lost_teammates_lines_are_taken(void)
+/* AUV2 of the team flying LINES (lost after 60 s of silence), started at
+ * (0, 60) heading north; NULL if the plan did not load. */
+static chasm_machine *auv2_surveying(void)
 {
     static char body[2048];
     snprintf(body, sizeof body,
@@ -185,9 +187,17 @@ void lost_teammates_lines_are_taken(void)
              LINES);
     chasm_machine *m = team_load(body);
     if (!m)
-        return;
+        return NULL;
     team_nav(m, 0, 60, 0, 1.5, 0);
     pt_start(m, 0);
+    return m;
+}
+
+void lost_teammates_lines_are_taken(void)
+{
+    chasm_machine *m = auv2_surveying();
+    if (!m)
+        return;
     team_msg s1 = status(0, 20, 0, 0, 1, 1, 5);   /* AUV1 flew line 0 */
     team_feed_frame(m, "AUV2", "AUV1", &s1, 1, 5);
     for (int t = 0; t <= 120; t += 20) {
@@ -226,20 +236,9 @@ void lost_teammates_lines_are_taken(void)
  * lines all go to the one survivor still surveying. */
 void done_teammates_take_no_lines(void)
 {
-    static char body[2048];
-    snprintf(body, sizeof body,
-             "state mission {\n"
-             "    do team_link(" ROSTER ", me = \"AUV2\", my_slot = 1, silent = 60 s)\n"
-             "    state survey {\n"
-             "        do team_survey(%s, depth = 10 m)\n"
-             "    }\n"
-             "}\n",
-             LINES);
-    chasm_machine *m = team_load(body);
+    chasm_machine *m = auv2_surveying();
     if (!m)
         return;
-    team_nav(m, 0, 60, 0, 1.5, 0);
-    pt_start(m, 0);
     team_msg s1 = status(0, 20, 0, 0, 1, 1, 5);   /* AUV1 flew line 0, then nothing */
     team_feed_frame(m, "AUV2", "AUV1", &s1, 1, 5);
     for (int t = 0; t <= 80; t += 20) {
