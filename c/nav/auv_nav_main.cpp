@@ -132,7 +132,12 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
             node.publish_on_attitude();
         if (!o.sim_clock)
             node.set_now(system_now_us());
-        if (!node.have_time() || node.now() < next_cycle)
+        // In lockstep the clock's solution waits for the step's data: the
+        // clock and the simulator's sensor messages come from two senders, so
+        // which is handled first varies from run to run, and a solution put
+        // out between them would make the log differ (issue 14: the same
+        // scenario twice gives the same messages).
+        if (!node.have_time() || node.now() < next_cycle || !node.step_data_in())
             continue;
         node.publish_cycle();
         // Skip missed cycles instead of publishing a burst after a stall.

@@ -157,6 +157,7 @@ void NavNode::on_lockstep(const lcm_recv_buf_t *rbuf, const char *, void *user)
         n->lockstep_decode_errors_++;
         return;
     }
+    n->sim_seen_ = true;
     if (m.kind == AUV_LOCKSTEP_T_KIND_STEP_DONE && m.step > n->sim_done_)
         n->sim_done_ = m.step;
     auv_lockstep_t_decode_cleanup(&m);
@@ -173,6 +174,12 @@ void NavNode::lockstep_poll()
     if (lockstep_.pending_step >= 0 && sim_done_ < lockstep_.pending_step)
         return;
     mgr_lockstep_poll(&lockstep_, lcm_);
+}
+
+bool NavNode::step_data_in() const
+{
+    // a clock with no simulator in the lockstep (a test's, a replay's) has no data to wait for
+    return !opt_.sim_clock || !sim_seen_ || lockstep_.pending_step < 0 || sim_done_ >= lockstep_.pending_step;
 }
 
 void NavNode::lockstep_leave()

@@ -61,6 +61,10 @@ public:
     // report of step n: every sensor message of the step is in and every
     // solution it brought is out before the world's next step.
     void lockstep_poll();
+    // Lockstep: has this vehicle's simulator sent all its data of the step
+    // under way (its report of the step is in)? True without a simulator in
+    // the lockstep.
+    bool step_data_in() const;
     // The manager-style participant that sends this filter's reports
     // ("<VEHICLE>.NAV"); one stopping sends LEAVE.
     void lockstep_leave();
@@ -90,6 +94,7 @@ private:
     mgr_lockstep lockstep_;
     std::string sim_participant_;       // "<VEHICLE>.sim"
     int64_t sim_done_ = -1;             // the newest step its simulator reported done
+    bool sim_seen_ = false;             // its simulator takes part in the lockstep
     struct SubCtx {
         NavNode *node;
         Sensor sensor;

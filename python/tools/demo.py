@@ -1,17 +1,20 @@
 #!/usr/bin/env python3
-"""`make demo`: a 3-vehicle mine-countermeasure survey, end to end, in fast time.
+"""`make demo`: the cooperative mine-countermeasures team, end to end, in fast time.
 
 Fast time is lockstep (docs/scenarios.md, "Time"): as fast as the slowest
 process, and the same seed gives the same log, whatever the machine's load.
 
-The survey planner's scenario (missions/scenarios/mcm_demo, or a survey planned
-here with --polygon/--vehicles) is run by the launcher: three simulated REMUS
-100s with sidescan sonar over one seeded target field, each flown by a PILOT and
-a NAVIGATOR (chasm-manager) on the launcher's global clock, everything logged.
-The report tool then reads the log: outcome, coverage, detections against the
-truth, navigation error, and the plots. This prints a short summary and where
-the files are. Exit status: the launcher's when the mission did not end done,
-else the report's.
+By default the committed team scenario (missions/scenarios/mcm_team): three
+search vehicles with sidescan hand their mine-like contacts over the simulated
+acoustic modem to a reacquire-identify vehicle, which identifies them
+(docs/team.md). With --polygon the demo plans its own survey first: a plain
+survey by --vehicles vehicles (missions/scenarios/mcm_demo's settings), or a
+team of --team search vehicles and one RI vehicle (mcm_team's settings). The
+launcher runs it (simulators, PILOT and NAVIGATOR managers, the recorder, on
+one global clock); the report tool then reads the log: outcome, coverage,
+detections against the truth, the team's hand-offs and link, navigation error,
+and the plots. This prints a short summary and where the files are. Exit
+status: the launcher's when the mission did not end done, else the report's.
 """
 
 from __future__ import annotations
@@ -39,6 +42,9 @@ PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "11.5", "--overl
              "--depth-m", "4",
              "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7",
              "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--nav", "ekf"]
+# What missions/scenarios/mcm_team was planned with (its header); --polygon --team plans with these.
+TEAM_PLAN_ARGS = ["--heading", "0", "--range", "40", "--nadir-gap", "9.5", "--overlap", "0.1", "--depth-m", "5",
+                  "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7"]
 
 
 def run(cmd: list, what: str) -> int:
@@ -111,7 +117,8 @@ def _main(argv: list[str] | None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "demo")
     ap.add_argument("--polygon", help="plan this survey area instead (\"n,e; n,e; ...\" metres)")
-    ap.add_argument("--vehicles", type=int, help="with --polygon (default 3)")
+    ap.add_argument("--vehicles", type=int, help="with --polygon: a plain survey by this many vehicles (default 3)")
+    ap.add_argument("--team", type=int, help="with --polygon: a team of this many search vehicles and one RI vehicle")
     ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
@@ -128,6 +135,12 @@ def _main(argv: list[str] | None) -> int:
         ap.error("--vehicles needs --polygon (the committed scenario has its own vehicles)")
     if args.vehicles is not None and args.vehicles < 1:
         ap.error("--vehicles must be at least 1")
+    if args.team is not None and not args.polygon:
+        ap.error("--team needs --polygon (the committed scenario has its own team)")
+    if args.team is not None and args.vehicles is not None:
+        ap.error("--team and --vehicles plan different surveys: give one")
+    if args.team is not None and args.team < 1:
+        ap.error("--team must be at least 1")
     if args.warp is not None and not 0 < args.warp < float("inf"):
         ap.error(f"--warp must be a number > 0, got {args.warp}")
     try:
@@ -139,12 +152,14 @@ def _main(argv: list[str] | None) -> int:
     scenario = SCENARIO
     if args.polygon:
         plan_dir = args.out / "plan"
-        rc = run([PY, ROOT / "python/tools/plan_survey.py", "--polygon", args.polygon, "--vehicles",
-                  args.vehicles or 3, *PLAN_ARGS, "--name", "mcm_demo", "--out", plan_dir]
-                 + (["--build", args.build] if args.build else []), "planning the survey")
+        name = "mcm_team" if args.team else "mcm_demo"
+        how = ["--team", args.team, "--ri", "1", *TEAM_PLAN_ARGS] if args.team else \
+            ["--vehicles", args.vehicles or 3, *PLAN_ARGS]
+        rc = run([PY, ROOT / "python/tools/plan_survey.py", "--polygon", args.polygon, *how, "--name", name,
+                  "--out", plan_dir] + (["--build", args.build] if args.build else []), "planning the survey")
         if rc or args.plan_only:
             return rc
-        scenario = plan_dir / "mcm_demo.yaml"
+        scenario = plan_dir / f"{name}.yaml"
     run_dir = args.out / "run"
     launch = [PY, ROOT / "python/tools/launch.py", scenario, "--out", run_dir, "--progress", "15"]
     launch += (["--url", args.url] if args.url else []) + (["--build", args.build] if args.build else [])

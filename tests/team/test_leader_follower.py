@@ -1,8 +1,9 @@
 """The leader-follower example of docs/missions.md, full stack: the committed
 scenario missions/scenarios/leader_follower/ (AUV1 flies two lines, AUV2 keeps
 station 30 m astern and 20 m to its left from AUV1's status over the modem),
-then the same pair with the leader lost mid-line (a planned fault): the
-follower's plan catches follow_peer's failure and goes home on its own."""
+then the same pair with a leak in the leader mid-line (a planned fault): its
+safety rule aborts it, its emergency tells the team, and the follower's plan
+catches follow_peer's failure and goes home on its own."""
 
 from __future__ import annotations
 
@@ -52,23 +53,12 @@ def test_the_follower_keeps_station_on_the_leaders_status(tmp_path, lcm_url, chi
     assert min(gap) > 10.0, min(gap)
 
 
-def test_a_follower_whose_leader_is_lost_goes_home_alone(tmp_path, lcm_url, child_env):
-    sc = st.variant(SCENARIO, tmp_path / "lf.yaml", faults=[{"at": 150, "vehicle": "AUV1", "do": "lose"}])
-    out = st.fly(sc, tmp_path / "run", lcm_url, child_env)
-    assert "AUV2: done" in out, out
-    log = tmp_path / "run" / "run.lcmlog"
-    paths = [m for _, m in st.messages(log, "AUV2.CHASM.NAVIGATOR")]
-    states = ["/".join(m.active_path) for m in paths if m.path_len]
-    assert any(s.endswith("alone") for s in states), sorted(set(states))
-    # it went home: near (-40, 30) before it surfaced
-    truth = [m.eta for _, m in st.messages(log, "AUV2.TRUTH")]
-    assert min(math.hypot(e[0] + 40, e[1] - 30) for e in truth) < 10.0
-
-
 def test_a_leak_aborts_the_leader_and_the_follower_goes_on_alone(tmp_path, lcm_url, child_env):
     """A planned leak (the simulator's leak probes sense water from 60 s on):
     the leader's safety rule aborts it to the surface, its status says abort,
-    and the follower, its leader lost, goes home."""
+    and the follower, its leader lost, goes home. (A leader lost silently is
+    the same failure of follow_peer, after `silent`: tests/team/test_team_faults.py
+    covers silence.)"""
     sc = st.variant(SCENARIO, tmp_path / "lf.yaml", faults=[{"at": 60, "vehicle": "AUV1", "do": "leak"}])
     out = st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=3)      # a vehicle aborted
     assert "AUV1: aborted (leak at t=6" in out, out
@@ -76,5 +66,12 @@ def test_a_leak_aborts_the_leader_and_the_follower_goes_on_alone(tmp_path, lcm_u
     log = tmp_path / "run" / "run.lcmlog"
     leak = [(m.utime / 1e6, m.detected) for _, m in st.messages(log, "AUV1.LEAK")]
     assert leak and not any(d for t, d in leak if t < 60.0) and all(d for t, d in leak if t >= 60.0), leak[:70]
+    # the leader's emergency told the team (team_safety.chasm): lost at once, not after `silent`
     ev = st.team_events(log)
-    assert any(e[1] == "AUV2" and e[2] == "PEER_LOST" and e[3] == "AUV1" and "aborted" in e[5] for e in ev), ev
+    lost = [e for e in ev if e[1] == "AUV2" and e[2] == "PEER_LOST" and e[3] == "AUV1"]
+    assert lost and "aborted" in lost[0][5] and lost[0][0] < 62.0 + 2 * 8.6 + 5.0, lost
+    # follow_peer failed with its leader lost; the plan took the follower home
+    states = ["/".join(m.active_path) for _, m in st.messages(log, "AUV2.CHASM.NAVIGATOR") if m.path_len]
+    assert any(s.endswith("alone") for s in states), sorted(set(states))
+    truth = [m.eta for _, m in st.messages(log, "AUV2.TRUTH")]
+    assert min(math.hypot(e[0] + 40, e[1] - 30) for e in truth) < 10.0
