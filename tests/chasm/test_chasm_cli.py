@@ -91,10 +91,10 @@ def test_dot(chasm):
 
 def test_run_scripted_inputs(chasm):
     p = chasm("run", PLANS / "survey.chasm", "--inputs", PLANS / "survey.inputs", "--until", "120",
-              "--watch", "setpoint.speed")
+              "--watch", "setpoint.speed_mps")
     assert p.returncode == 0, p.stderr
     assert transitions(p.stdout) == [(0.0, "mission/descend"), (22.0, "mission/survey/leg1")]
-    assert "setpoint.speed=1.5" in p.stdout.splitlines()[1]
+    assert "setpoint.speed_mps=1.5" in p.stdout.splitlines()[1]
     assert "<- at_depth [at_depth=true]" in p.stdout
 
 
@@ -112,7 +112,7 @@ def test_run_vehicle_parameters(chasm, tmp_path):
     """auv1.chasm sets depth = 15 m over the template's 10 m; -D wins over both.
     Tests first run in the first step (0.1 s), so `for 10 s` holds at 10.1 s."""
     inputs = tmp_path / "in.txt"
-    inputs.write_text("".join(f"{t} s nav.depth = 15 m\n" for t in range(0, 60, 2)))
+    inputs.write_text("".join(f"{t} s nav.depth_m = 15 m\n" for t in range(0, 60, 2)))
     p = chasm("run", PLANS / "auv1.chasm", "--inputs", inputs, "--until", "30")
     assert transitions(p.stdout)[1] == (10.1, "mission/survey/leg1"), p.stdout
     p = chasm("run", PLANS / "survey.chasm", "--inputs", inputs, "--until", "30")
@@ -141,7 +141,7 @@ def test_run_hot_plug(chasm, tmp_path):
 
 def test_run_inputs_errors(chasm, tmp_path):
     bad = tmp_path / "bad.txt"
-    bad.write_text("0 s nav.depth = 5 m\n1 s nav.dpth = 3 m\n2 s nav.depth = 4 s\n")
+    bad.write_text("0 s nav.depth_m = 5 m\n1 s nav.dpth = 3 m\n2 s nav.depth_m = 4 s\n")
     p = chasm("run", PLANS / "survey.chasm", "--inputs", bad)
     assert p.returncode == 1
     assert f"{bad}:2:5: error: the plan has no variable 'nav.dpth'" in p.stderr
