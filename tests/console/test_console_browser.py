@@ -8,9 +8,11 @@ from __future__ import annotations
 
 import json
 import subprocess
+import sys
 import time
 
 from browser import Browser
+from conftest import ROOT
 from console_fixtures import (ARTIFACTS, LAUNCH, Console, chromium, read_until, stop_launcher,  # noqa: F401
                               vehicle, write_scenario)
 
@@ -29,6 +31,9 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
     launcher = subprocess.Popen(LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "1"],
                                 env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                                 start_new_session=True)
+    # a host agent beside it: the page lists its process table
+    agent = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "agent.py"), "--host", "alpha",
+                              "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     console = browser = None
     try:
         console = Console(["--url", lcm_url, "--scenario", str(path)], child_env)
@@ -44,6 +49,8 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         browser.wait_for("S.world && S.world.seabed && S.world.seabed.depth.length === 40"
                          " && S.world.bathymetry_ref.startsWith('slope:')",
                          what="the seabed from the scenario")
+        browser.wait_for("((document.querySelector('.agent[data-host=\"alpha\"]') || {}).textContent || '')"
+                         ".includes('alpha idle')", what="host alpha's agent table")
         browser.screenshot(ARTIFACTS / "live.png")
 
         # Pause AUV1's navigator: a confirmation first, then the ack and the state.
@@ -66,6 +73,8 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         if console:
             assert console.stop() == 0
         stop_launcher(launcher)
+        agent.terminate()
+        agent.wait(timeout=10)
 
     # The finished log, opened on itself: a slider over its sim time.
     log = out / "run.lcmlog"

@@ -242,3 +242,48 @@ def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "pause"})[0] == 409
     finally:
         assert console.stop() == 0
+
+
+def test_the_model_keeps_each_agents_process_table_and_its_wall_stamp_moves_no_time():
+    from auv import agent_process_t, agent_table_t, sim_clock_t
+    m = Model()
+    c = sim_clock_t()
+    c.utime, c.server_id, c.mode = 12_000_000, "launcher", sim_clock_t.MODE_LOCKSTEP
+    m.apply("SIM.CLOCK", c)
+    t = agent_table_t()
+    t.utime, t.host, t.agent_pid, t.run, t.status, t.launcher_silent_s = 1_790_000_000_000_000, "alpha", 41, \
+        "mcm", "running", 0.7
+    procs = []
+    for name, state, code in (("AUV1.sim", agent_process_t.STATE_RUNNING, 0),
+                              ("AUV1.PILOT", agent_process_t.STATE_BACKOFF, -9)):
+        p = agent_process_t()
+        p.name, p.pid, p.state, p.exit_code, p.restarts, p.cpu_load, p.rss_bytes, p.uptime_s = \
+            name, 100 + len(procs), state, code, len(procs), 0.25, 50_000_000, 30.0
+        procs.append(p)
+    t.procs, t.n_procs = procs, len(procs)
+    assert m.apply("AGENT.alpha.PROCS", t)
+    with m.lock:
+        now = json.loads(m.now_json())
+    assert now["t"] == 12.0                      # the host's wall clock is not the world's time
+    a = now["agents"]["alpha"]
+    assert (a["status"], a["run"], a["pid"]) == ("running", "mcm", 41)
+    assert [(p["name"], p["state"], p["exit_code"], p["restarts"]) for p in a["procs"]] == \
+        [("AUV1.sim", "running", 0, 0), ("AUV1.PILOT", "back-off", -9, 1)]
+    assert a["procs"][0]["rss_mb"] == 50.0 and a["procs"][0]["cpu"] == 0.25
+
+
+def test_the_page_shows_a_live_agents_table(lcm_url, child_env):
+    import subprocess
+    import sys
+    agent = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "agent.py"), "--host", "alpha",
+                              "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    console = Console(["--url", lcm_url], child_env)
+    try:
+        page = Page(console.url)
+        now = page.until(lambda n: "alpha" in n.get("agents", {}), what="the agent of host alpha")
+        a = now["agents"]["alpha"]
+        assert a["status"] == "idle" and a["pid"] == agent.pid and a["procs"] == [], a
+    finally:
+        console.stop()
+        agent.terminate()
+        agent.wait(timeout=10)

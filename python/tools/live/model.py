@@ -20,6 +20,7 @@ NAV_BITS = ((1, "aligned"), (2, "dvl-bottom"), (4, "dvl-water"), (8, "gps"), (16
             (32, "DEGRADED"), (64, "INVALID"))
 LINK_KEEP_S = 8.0        # a heard modem frame stays on the map this long [sim s]
 ACK_KEEP = 20            # acknowledgements kept per vehicle
+WALL_STAMPED = ("agent_table_t",)   # stamped with the host's wall clock: not the world's time
 
 
 def run_name(code: int) -> str:
@@ -93,6 +94,7 @@ class Model:
             self.targets: list[dict[str, Any]] = []
             self.links: deque = deque(maxlen=200)
             self.clock: dict[str, Any] = {}
+            self.agents: dict[str, dict[str, Any]] = {}   # host -> its agent's process table
             self.counts = {"messages": 0, "ignored": 0}
             self._cache: tuple[int, str] | None = None
 
@@ -120,7 +122,7 @@ class Model:
             if handler is None or not handler(self, channel, msg):
                 self.counts["ignored"] += 1
                 return False
-            utime = getattr(msg, "utime", 0)
+            utime = getattr(msg, "utime", 0) if type(msg).__name__ not in WALL_STAMPED else 0
             if utime and utime / 1e6 > self.t:
                 self.t = utime / 1e6
             self.version += 1
@@ -134,7 +136,7 @@ class Model:
             links = [ln for ln in self.links if self.t - ln["t"] <= LINK_KEEP_S]
             now = {"t": self.t, "epoch": self.epoch, "world_version": self.world_version,
                    "vehicles": self.vehicles, "targets": self.targets, "links": links,
-                   "clock": self.clock, "counts": self.counts}
+                   "clock": self.clock, "agents": self.agents, "counts": self.counts}
             self._cache = (self.version, json.dumps(now, separators=(",", ":")))
         return self._cache[1]
 
@@ -246,13 +248,29 @@ def _clock(m: Model, ch: str, msg: Any) -> bool:
     return True
 
 
+PROC_STATES = ("running", "back-off", "exited", "failed", "stopped")
+
+
+def _agent(m: Model, ch: str, msg: Any) -> bool:
+    """A host agent's process table (AGENT.<HOST>.PROCS, python/tools/agent.py)."""
+    m.agents[msg.host] = {
+        "host": msg.host, "pid": msg.agent_pid, "run": msg.run, "status": msg.status,
+        "launcher_silent_s": msg.launcher_silent_s,
+        "procs": [{"name": p.name, "pid": p.pid,
+                   "state": PROC_STATES[p.state] if 0 <= p.state < len(PROC_STATES) else str(p.state),
+                   "exit_code": p.exit_code, "restarts": p.restarts, "cpu": p.cpu_load,
+                   "rss_mb": p.rss_bytes / 1e6, "uptime_s": p.uptime_s} for p in msg.procs]}
+    return True
+
+
 _HANDLERS = {
     "ground_truth_t": _truth, "nav_solution_t": _nav, "nav_filter_status_t": _nav_status,
     "chasm_status_t": _chasm, "sidescan_contact_t": _contact, "target_field_t": _targets,
     "modem_rx_t": _modem_rx, "modem_status_t": _modem_status, "mission_ack_t": _ack,
-    "sim_clock_t": _clock,
+    "sim_clock_t": _clock, "agent_table_t": _agent,
 }
 
 # Only these channels are decoded at all (liblcm filters by this regex in C).
 CHANNELS = (r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK)"
-            r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)")
+            r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
+            r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS")

@@ -22,7 +22,7 @@ import lcm
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import type_of
 from tools import mission_commands
-from tools.live.model import CHANNELS, Model
+from tools.live.model import CHANNELS, WALL_STAMPED, Model
 from tools.live.world import WorldBuilder
 
 WORLD_TYPES = ("log_annotation_t", "env_model_t")
@@ -125,8 +125,10 @@ class LogSource:
                 if type(msg).__name__ in WORLD_TYPES:
                     world.observe(ev.channel, msg)      # the layers do not change with time
                     continue
-                utime = getattr(msg, "utime", 0)
-                t = max(t, utime / 1e6)                 # log order, monotonic time
+                # log order, monotonic time; a wall-stamped table (a host agent's)
+                # shows at the sim time it was recorded at
+                utime = getattr(msg, "utime", 0) if type(msg).__name__ not in WALL_STAMPED else 0
+                t = max(t, utime / 1e6)
                 self.times.append(t)
                 self.events.append((ev.channel, msg))
         finally:

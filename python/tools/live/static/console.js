@@ -114,6 +114,7 @@ function updatePanel() {
     }
     showAck(vid);
   }
+  $('agents').innerHTML = agentsHtml(now.agents || {});
   const w = S.world;
   $('world-info').textContent = w ? `${w.name || ''} ${w.bathymetry_ref ? '· seabed ' + w.bathymetry_ref : ''}` +
     ` · ${now.counts.messages} messages` : '';
@@ -148,6 +149,21 @@ function vehicleHtml(v) {
       (refused ? ` · <span class="bad">refused ${refused}</span> (${esc(m.last_refusal)})` : '') + '</div>');
   }
   return out.join('');
+}
+
+// The host agents' process tables (AGENT.<HOST>.PROCS): one block per host.
+function agentsHtml(agents) {
+  const hosts = Object.keys(agents).sort();
+  if (!hosts.length) return '';
+  return '<h3>Host agents</h3>' + hosts.map(h => {
+    const a = agents[h];
+    const rows = a.procs.map(p => `<tr class="proc proc-${esc(p.state)}"><td>${esc(p.name)}</td><td>${p.pid}</td>` +
+      `<td>${esc(p.state)}${p.state === 'running' ? '' : ' (' + p.exit_code + ')'}</td><td>${fmt(100 * p.cpu, 0)} %</td>` +
+      `<td>${fmt(p.rss_mb, 0)} MB</td><td>${p.restarts}</td><td>${fmt(p.uptime_s, 0)} s</td></tr>`).join('');
+    return `<div class="agent" data-host="${esc(h)}"><b>${esc(h)}</b> ${esc(a.status)}` +
+      (a.run ? ` · run ${esc(a.run)} · launcher heard ${fmt(a.launcher_silent_s, 0)} s ago` : '') +
+      `<table><tr><th>process</th><th>pid</th><th>state</th><th>cpu</th><th>mem</th><th>restarts</th><th>up</th></tr>${rows}</table></div>`;
+  }).join('');
 }
 
 // ------------------------------------------------------------------ commands
