@@ -1,7 +1,8 @@
 """The operator's view for the HIL-topology test, run inside its namespace:
 every 0.3 s one JSON line with the world clock (server, time), each
-vehicle's NAVIGATOR (run state, active path, status time) and its true
-position (time, north, east).
+vehicle's NAVIGATOR (run state, active path, status time), its true
+position (time, north, east), and the team's losses and takeovers as the
+vehicles announce them (TEAM_EVENT: [time, vehicle, peer, text]).
 
     observe.py URL VEHICLE...
 """
@@ -13,10 +14,10 @@ import time
 
 import lcm
 
-from auv import chasm_status_t, ground_truth_t, sim_clock_t
+from auv import chasm_status_t, ground_truth_t, sim_clock_t, team_event_t
 
 url, vehicles = sys.argv[1], sys.argv[2:]
-view: dict = {"servers": [], "clock_s": 0.0, "nav": {}, "truth": {}}
+view: dict = {"servers": [], "clock_s": 0.0, "nav": {}, "truth": {}, "lost": [], "taken": []}
 
 
 def on_clock(_c, d):
@@ -36,11 +37,19 @@ def on_truth(_c, d):
     view["truth"][m.vehicle] = [m.utime / 1e6, m.eta[0], m.eta[1]]
 
 
+def on_team(_c, d):
+    m = team_event_t.decode(d)
+    if m.kind in (team_event_t.PEER_LOST, team_event_t.LINES_TAKEN):
+        key = "lost" if m.kind == team_event_t.PEER_LOST else "taken"
+        view[key].append([m.utime / 1e6, m.vehicle, m.origin, m.text])
+
+
 lc = lcm.LCM(url)
 lc.subscribe("SIM.CLOCK", on_clock)
 for v in vehicles:
     lc.subscribe(f"{v}.CHASM.NAVIGATOR", on_nav)
     lc.subscribe(f"{v}.TRUTH", on_truth)
+    lc.subscribe(f"{v}.TEAM_EVENT", on_team)
 signal.signal(signal.SIGINT, lambda *_: sys.exit(0))
 signal.signal(signal.SIGTERM, lambda *_: sys.exit(0))
 next_print = 0.0

@@ -1,12 +1,15 @@
 """The seed's HIL topology on network namespaces (docs/multihil.md, "HIL
-topology"): three vehicle computers (each its vehicle's auv-nav, PILOT and
-NAVIGATOR), two simulator PCs (AUV1's simulator, which serves the world; AUV2's
-and AUV3's), one operator (lcm-logger and a watcher). The MCM demo's
-scenario, its vehicles' multi-HIL simulators keeping the time, flies across
-them; then the simulator PC that serves the world dies, and later AUV3's
-vehicle computer: the world fails over to AUV2's simulator and keeps one
-clock, AUV2 flies on, AUV3's simulator goes on simulating a vehicle whose
-software is gone, and AUV1's simulation ends with its PC.
+topology"): four vehicle computers (each its vehicle's PILOT and NAVIGATOR),
+two simulator PCs (AUV1's simulator, which serves the world; the others'),
+one operator (lcm-logger and a watcher). The cooperative MCM team
+(missions/scenarios/mcm_team: three search vehicles and a reacquire-identify
+vehicle on one acoustic link), its vehicles' multi-HIL simulators keeping the
+time, flies across them; then the simulator PC that serves the world dies, and
+later AUV3's vehicle computer: the world fails over to AUV2's simulator and
+keeps one clock; AUV1, its simulation gone, aborts on stale navigation and its
+emergency tells the team; AUV3 falls silent; AUV2 flies on and takes over both
+teammates' lines, AUV3's simulator goes on simulating a vehicle whose software
+is gone, and AUV1's simulation ends with its PC.
 
 Command lines come from the host agents' part builder (tools/agent_part.py),
 so each process is exactly what an agent or the launcher would run; the test
@@ -35,12 +38,15 @@ from netns import Hosts, unavailable  # noqa: E402
 from tools.agent_part import host_part
 
 URL = "udpm://239.255.76.67:7667?ttl=1"
-MCM = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
-WARP = 2.0
-VC = {"AUV1": 1, "AUV2": 2, "AUV3": 3}          # vehicle computers
-SIM_PC = {"AUV1": 4, "AUV2": 5, "AUV3": 5}      # simulator PCs: 4 serves the world (best priority)
-OPERATOR = 6
-PRIORITY = {"AUV1": 30, "AUV2": 20, "AUV3": 10}
+MCM = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
+WARP = 4.0
+VC = {"AUV1": 1, "AUV2": 2, "AUV3": 3, "AUV4": 4}              # vehicle computers
+SIM_PC = {"AUV1": 5, "AUV2": 6, "AUV3": 6, "AUV4": 6}          # simulator PCs: 5 serves the world (best priority)
+OPERATOR = 7
+PRIORITY = {"AUV1": 30, "AUV2": 20, "AUV3": 10, "AUV4": 5}
+# A silent teammate is lost after this (the plans' default is 120 s): longer
+# than a status period (20 s) and a TDMA round (4 x 4.4 s) together.
+SILENT_S = 45.0
 
 
 @pytest.fixture
@@ -49,13 +55,13 @@ def hosts():
         "run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
     if why:
         pytest.skip(f"the HIL topology needs network namespaces: {why}")
-    h = Hosts(6, subnet=79)
+    h = Hosts(7, subnet=79)
     yield h
     h.close()
 
 
 def hil_scenario() -> str:
-    """The MCM demo with a vehicle computer per vehicle and the time on its simulators."""
+    """The MCM team with a vehicle computer per vehicle and the time on its simulators."""
     doc = yaml.safe_load(MCM.read_text())
     doc["hosts"] = [f"vc{i}" for i in VC.values()]
     doc["time"] = {"source": "simulators", "limit": 3600}
@@ -63,6 +69,9 @@ def hil_scenario() -> str:
         v["host"] = f"vc{VC[v['id']]}"
         v["sim"]["simulation"] = {"clock": "scaled", "warp": WARP}
         v["sim"]["multihil"] = {"enabled": True, "priority": PRIORITY[v["id"]]}
+        for m in v["managers"]:
+            if m["name"] == "NAVIGATOR":
+                m["params"] = {"silent": f"{SILENT_S:g} s"}
     return yaml.safe_dump(doc, sort_keys=False)
 
 
@@ -124,7 +133,7 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
                     return json.loads(line)
                 except ValueError:      # the line being written
                     continue
-            return {"servers": [], "clock_s": 0, "nav": {}, "truth": {}}
+            return {"servers": [], "clock_s": 0, "nav": {}, "truth": {}, "lost": [], "taken": []}
 
         def flying(v, vids) -> bool:
             return all(v["nav"].get(x, [0])[0] == 1 for x in vids)
@@ -137,7 +146,11 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
         assert v1["servers"] == ["AUV1-sim", "AUV2-sim"], v1
         procs.kill_host(VC["AUV3"])                    # a vehicle computer
         t_vc = view()["clock_s"]
-        end = wait_until(lambda: (v := view())["clock_s"] > t_vc + 8 and v, 60, "the world goes on")
+
+        def carried_on(v) -> bool:
+            return (v["clock_s"] > t_vc + 8 and any(x[1:3] == ["AUV2", "AUV3"] for x in v["lost"])
+                    and any(x[2] == "AUV3" for x in v["taken"]))
+        end = wait_until(lambda: (v := view()) and carried_on(v) and v, 120, "AUV3 lost and its lines taken")
     finally:
         procs.stop()
     # the world failed over once, to the next priority, and kept one clock
@@ -147,6 +160,13 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
     assert run == 1 and t_status > t_vc + 6, end
     moved = math.dist(v1["truth"]["AUV2"][1:], end["truth"]["AUV2"][1:])
     assert moved > 0.5 * (end["clock_s"] - v1["clock_s"]), (v1, end)      # > 0.5 m/s
+    # AUV3's teammates carry on: each declared it lost, `silent` after they last heard it,
+    # and the search vehicles still flying took its lines by the shared rule
+    lost = [x for x in end["lost"] if x[2] == "AUV3"]
+    assert {x[1] for x in lost} >= {"AUV2", "AUV4"}, end["lost"]
+    assert all(t_vc < x[0] <= t_vc + SILENT_S + 2.0 for x in lost), (t_vc, lost)
+    taken = [x for x in end["taken"] if x[2] == "AUV3"]
+    assert taken and {x[1] for x in taken} <= {"AUV1", "AUV2"}, end["taken"]
     # AUV3: its software went with its computer, its simulator did not
     assert end["nav"]["AUV3"][2] < t_vc + 2.0 and end["truth"]["AUV3"][0] > t_vc + 6, end
     # AUV1: its simulation ended with its PC
