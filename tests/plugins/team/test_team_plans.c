@@ -171,26 +171,33 @@ void ri_vehicle_merges_routes_and_identifies(void)
 static const char *LINES = "lines = \"0: 0,0 100,0; 0: 0,20 100,20; 0: 0,40 100,40; 1: 0,60 100,60; "
                            "2: 0,80 100,80; 2: 0,100 100,100\"";
 
-/* AUV2 of the team flying LINES (lost after 60 s of silence), started at
- * (0, 60) heading north; NULL if the plan did not load. */
-static chasm_machine *auv2_surveying(void)
+/* A team member flying LINES: team_link(ROSTER, link_args), the `extra`
+ * actions (lines ending in \n) beside it, started at (0, east) heading north;
+ * NULL if the plan did not load. */
+static chasm_machine *surveying(const char *link_args, const char *extra, double east)
 {
     static char body[2048];
     snprintf(body, sizeof body,
              "state mission {\n"
-             "    do team_link(" ROSTER ", me = \"AUV2\", my_slot = 1, silent = 60 s)\n"
-             "    do team_status() every 20 s\n"
+             "    do team_link(" ROSTER ", %s)\n"
+             "%s"
              "    state survey {\n"
              "        do team_survey(%s, depth = 10 m)\n"
              "    }\n"
              "}\n",
-             LINES);
+             link_args, extra, LINES);
     chasm_machine *m = team_load(body);
     if (!m)
         return NULL;
-    team_nav(m, 0, 60, 0, 1.5, 0);
+    team_nav(m, 0, east, 0, 1.5, 0);
     pt_start(m, 0);
     return m;
+}
+
+/* AUV2 (lost after 60 s of silence), sending its status every 20 s. */
+static chasm_machine *auv2_surveying(void)
+{
+    return surveying("me = \"AUV2\", my_slot = 1, silent = 60 s", "    do team_status() every 20 s\n", 60);
 }
 
 void lost_teammates_lines_are_taken(void)
@@ -255,20 +262,9 @@ void done_teammates_take_no_lines(void)
 
 void aborted_teammate_is_lost_at_once(void)
 {
-    static char body[2048];
-    snprintf(body, sizeof body,
-             "state mission {\n"
-             "    do team_link(" ROSTER ", me = \"AUV3\", my_slot = 2)\n"
-             "    state survey {\n"
-             "        do team_survey(%s, depth = 10 m)\n"
-             "    }\n"
-             "}\n",
-             LINES);
-    chasm_machine *m = team_load(body);
+    chasm_machine *m = surveying("me = \"AUV3\", my_slot = 2", "", 80);
     if (!m)
         return;
-    team_nav(m, 0, 80, 0, 1.5, 0);
-    pt_start(m, 0);
     team_msg s2 = status(1, 50, 60, 0, 0, 5 /* abort */, 3);
     team_feed_frame(m, "AUV3", "AUV2", &s2, 1, 3);
     run(m, 0.1, 5, 0, 80);
@@ -283,21 +279,10 @@ void aborted_teammate_is_lost_at_once(void)
 
 void keep_clear_gives_way_in_depth(void)
 {
-    static char body[2048];
-    snprintf(body, sizeof body,
-             "state mission {\n"
-             "    do team_link(" ROSTER ", me = \"AUV2\", my_slot = 1)\n"
-             "    do keep_clear(radius = 30 m, band = 3 m, horizon = 60 s)\n"
-             "    state survey {\n"
-             "        do team_survey(%s, depth = 10 m)\n"
-             "    }\n"
-             "}\n",
-             LINES);
-    chasm_machine *m = team_load(body);
+    chasm_machine *m =
+        surveying("me = \"AUV2\", my_slot = 1", "    do keep_clear(radius = 30 m, band = 3 m, horizon = 60 s)\n", 60);
     if (!m)
         return;
-    team_nav(m, 0, 60, 0, 1.5, 0);
-    pt_start(m, 0);
     run(m, 0.1, 2, 0, 60);
     CHECK_NEAR(pt_get(m, "setpoint.depth_m"), 10, 1e-9);
     /* AUV1 100 m ahead, coming head-on: CPA 0 m in 33 s */
