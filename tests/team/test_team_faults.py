@@ -77,8 +77,13 @@ def test_with_the_ri_vehicle_lost_the_contacts_stay_unidentified(lost_run):
     ev = st.team_events(d / "run" / "run.lcmlog")
     sent_late = {e[4] for e in ev if e[1] == "AUV1" and e[2] == "CONTACT_SENT" and e[0] > LOST_RI_AT + 5}
     acked_late = {e[4] for e in ev if e[1] == "AUV1" and e[2] == "CONTACT_ACKED" and e[0] > LOST_RI_AT + 5}
-    # the survivor kept reporting what it found (repeated, never acknowledged)
-    assert sent_late and not acked_late, (sent_late, acked_late)
+    # nothing is acknowledged once the RI vehicle is gone (what the survivor
+    # reports from then on, if it finds anything, is repeated in vain)
+    assert not acked_late, (sent_late, acked_late)
+    # the targets the RI vehicle had queued when it was lost stay unidentified
+    queued = {(e[3], e[4]) for e in ev if e[1] == "AUV3" and e[2] == "TARGET_QUEUED" and e[0] < LOST_RI_AT}
+    decided = {(e[3], e[4]) for e in ev if e[1] == "AUV3" and e[2] in ("TARGET_IDENTIFIED", "TARGET_NOT_FOUND")}
+    assert queued - decided, (queued, decided)
     team = rep["team"]
     unidentified = [t for t in team["targets"] if t["kind"] == "mine_like" and t.get("detected_s") is not None
                     and t.get("identified_s") is None]

@@ -15,9 +15,13 @@ def test_handoff_at_30_percent_frame_loss(tmp_path, lcm_url, child_env):
     st.fly(lossy, tmp_path / "run", lcm_url, child_env)
     team = st.report(tmp_path / "run", tmp_path / "report", child_env)["team"]
     link = team["link"]["per_vehicle"]
-    # the loss is real: about 30 % of what reached each receiver was lost
-    for v, k in link.items():
-        assert 0.15 < k["lost"] / (k["lost"] + k["heard"]) < 0.45, (v, k)
+    # the loss is real: about 30 % of the frames that reached a receiver were
+    # lost (over the team: some 160 frames, 0.30 +- 0.036, so 0.18..0.42 is
+    # +-3.3 sigma; one receiver's 55 frames alone would vary too much), and
+    # every receiver lost some
+    lost, heard = sum(k["lost"] for k in link.values()), sum(k["heard"] for k in link.values())
+    assert lost + heard > 120 and 0.18 < lost / (lost + heard) < 0.42, link
+    assert all(k["lost"] > 0 for k in link.values()), link
     # ... and yet every contact a search vehicle reported was acknowledged by
     # the RI vehicle (repeated until acked)
     events = st.team_events(tmp_path / "run" / "run.lcmlog")
