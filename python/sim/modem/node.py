@@ -16,10 +16,21 @@ water for ever.
 The simulator calls step() after every physics step with the new truth; the
 handlers run between steps and use the truth of the latest step, which is
 the simulator's current time.
+
+A frame goes into the water at its request's own stamp (the vehicle
+software's time when it asked), from where the vehicle was at the first
+physics step at or after it: not at whatever step the simulator happened to
+be at when the request arrived. Under lockstep a request stamped at the end
+of a step arrives while the simulator integrates that step, a little before
+or after its last sub-step: sending at the arrival's step made two runs of
+one scenario differ (issue 14). A request from the simulator's future waits
+for its time; one from its past takes its position from a short history.
 """
 
 from __future__ import annotations
 
+import bisect
+from collections import deque
 from typing import Callable
 
 from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
@@ -35,6 +46,7 @@ from sim.modem.transmitter import Transmitter
 from sim.sensors.base import utime
 
 REPORT_FIRST = 3     # refusals printed; the rest are only counted
+HISTORY_STEPS = 1000  # positions kept for requests that arrive after their time
 
 
 class ModemNode:
@@ -51,6 +63,9 @@ class ModemNode:
         self._publish = publish
         self._t: float | None = None
         self._pos = (0.0, 0.0, 0.0)
+        self._hist_t: deque = deque(maxlen=HISTORY_STEPS)     # step times, ascending
+        self._hist_pos: deque = deque(maxlen=HISTORY_STEPS)
+        self._pending: list[modem_tx_t] = []                  # requests from our future
         self._next_status = 0.0
         self.last_report_seq = 0
         self.reports_heard = 0
@@ -100,13 +115,28 @@ class ModemNode:
             self._refused(self.tx.refuse("refused_invalid", msg.seq,
                                           "the simulator has not started its clock yet"))
             return
-        out = self.tx.send(self._t, self._pos, msg)
+        if msg.utime > utime(self._t):
+            self._pending.append(msg)       # sent by step() when its time comes
+            return
+        self._launch(msg)
+
+    def _launch(self, msg: modem_tx_t) -> None:
+        t, pos = self._when_and_where(msg.utime / 1e6)
+        out = self.tx.send(t, pos, msg)
         if isinstance(out, str):
             self._refused(out)
         else:
-            self.rx.transmit(self._t, self._t + out.duration_us / 1e6)   # half duplex
+            self.rx.transmit(t, t + out.duration_us / 1e6)   # half duplex
             self._publish("SIM.ACOUSTIC", out.encode())
             self._publish_status()
+
+    def _when_and_where(self, t_req: float) -> tuple[float, tuple[float, float, float]]:
+        """The request's time and the position of the first step at or after it;
+        a request older than the history goes out now, from here."""
+        if not self._hist_t or t_req < self._hist_t[0] - 1e-9:
+            return (self._t if self._t is not None else t_req), self._pos
+        i = bisect.bisect_left(self._hist_t, t_req - 1e-9)
+        return t_req, self._hist_pos[min(i, len(self._hist_pos) - 1)]
 
     def _refused(self, reason: str) -> None:
         if self.refusals_printed < REPORT_FIRST:
@@ -117,8 +147,16 @@ class ModemNode:
 
     # ---------------------------------------------------------------- step
     def step(self, t: float, position: tuple[float, float, float]) -> None:
-        """Deliver what has arrived by sim time t at our true position."""
+        """Deliver what has arrived by sim time t at our true position; send
+        the requests whose time has come."""
         self._t, self._pos = t, position
+        self._hist_t.append(t)
+        self._hist_pos.append(position)
+        if self._pending:
+            due = [m for m in self._pending if m.utime <= utime(t)]
+            self._pending = [m for m in self._pending if m.utime > utime(t)]
+            for m in sorted(due, key=lambda m: m.utime):     # stable: arrival order within a stamp
+                self._launch(m)
         st = self.status
         before = st.received + st.lost + st.out_of_range + st.collided + st.deaf
         for m in self.rx.step(t, position):
