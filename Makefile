@@ -1,10 +1,11 @@
 # CHASM-AUV: setup, build, test and demo in one command each.
 #
 #   make          set up .venv, generate the LCM types, build C/C++ and the types jar
-#   make test     everything above, then the whole test suite (tests/)
+#   make test     everything above, the Python lint (`make lint`), then the whole test suite (tests/)
 #   make demo     MCM team (3 search + 1 reacquire-identify over the acoustic link): report and plots in build/demo
 #   make spy      lcm-spy with the project's types on its classpath
 #   make bench    benchmarks (bench/), printing figures
+#   make format   reformat the Python (ruff)
 #   make clean    remove build/ (keeps .venv; `make distclean` removes it too)
 #
 # Every output goes under build/. Nothing here needs sudo.
@@ -27,10 +28,14 @@ BUILD := build
 VENV_STAMP := $(VENV)/.requirements.stamp
 
 # ---------------------------------------------------------------- virtualenv
-$(VENV_STAMP): requirements.txt
+# The pinned dependencies, then the project itself (pyproject.toml) in
+# editable mode: the console commands (auv-demo, auv-launch, ...) and
+# `python -m sim` run the checkout's code with no path set by hand.
+$(VENV_STAMP): requirements.txt pyproject.toml
 	@test -x $(VPY) || $(PYTHON) -m venv $(VENV) || { \
 	  echo "error: '$(PYTHON) -m venv' failed: install python3-venv (Debian/Ubuntu: apt install python3-venv)" >&2; exit 1; }
 	$(VPY) -m pip install --quiet --disable-pip-version-check -r requirements.txt
+	$(VPY) -m pip install --quiet --disable-pip-version-check --no-deps --no-build-isolation -e .
 	@touch $@
 
 # Paths inside the lcm and cmeel-eigen wheels, found once after install.
@@ -61,10 +66,14 @@ $(GEN_C_STAMP): $(LCM_FILES) $(BUILD)/config.mk python/tools/gen_type_table.py
 	@touch $@
 $(GEN_C_SRCS): $(GEN_C_STAMP) ;
 
+# The generated package `auv` is importable in .venv through a .pth file
+# (the one way Python adds a folder to an environment); a second build tree
+# (`make BUILD=x`) points it there, and tests of any tree set PYTHONPATH.
 $(GEN_PY_STAMP): $(LCM_FILES) $(BUILD)/config.mk
 	@rm -rf $(GEN)/python && mkdir -p $(GEN)/python
 	@echo "lcm-gen Python -> $(GEN)/python"
 	@$(LCM_GEN) -p --ppath $(GEN)/python $(LCM_FILES)
+	@echo "$(abspath $(GEN)/python)" > "$$($(VPY) -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')/chasm_auv_types.pth"
 	@touch $@
 
 # lcm-spy finds types by fingerprint on its classpath: one jar of every type.
@@ -139,7 +148,7 @@ SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))
 HAVE_JAVAC := $(shell command -v javac >/dev/null 2>&1 && echo yes)
 JAR_TARGET := $(if $(HAVE_JAVAC),$(TYPES_JAR))
 
-.PHONY: all build sanitize test demo spy bench clean distclean setup validate stress chromium
+.PHONY: all build sanitize test lint format demo spy bench clean distclean setup validate stress chromium
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET)
 sanitize: $(SAN_OUTPUTS)
@@ -160,13 +169,23 @@ chromium:
 	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1; }; }; } || \
 	  echo "note: chromium is not installed (not root, or apt-get failed): the console's browser tests will skip"
 
-test: build sanitize chromium
+test: build sanitize chromium lint
 	tests/isolated_net.sh $(VPY) -m pytest $(PYTEST_ARGS)
+
+# The Python's lint and format (ruff, settings in pyproject.toml). `make format`
+# rewrites the files; `make lint` only checks, and fails on a difference.
+PY_SOURCES := python tests bench
+lint: $(VENV_STAMP)
+	$(VENV)/bin/ruff check --quiet $(PY_SOURCES)
+	$(VENV)/bin/ruff format --quiet --check $(PY_SOURCES)
+format: $(VENV_STAMP)
+	$(VENV)/bin/ruff check --quiet --fix $(PY_SOURCES)
+	$(VENV)/bin/ruff format --quiet $(PY_SOURCES)
 
 # The simulator's validation report (docs/simulator.md): measured against
 # reference, PASS/FAIL, non-zero exit on a failure. No LCM.
 validate: $(GEN_PY_STAMP)
-	cd python && ../$(VPY) -m sim.validate
+	$(VENV)/bin/auv-sim-validate
 
 # The suite STRESS_RUNS times in a row with demos running beside it: a test
 # that waits on wall time instead of on what it waits for fails here.
@@ -175,7 +194,7 @@ stress: build sanitize chromium
 	tests/stress.sh $(STRESS_RUNS) $(PYTEST_ARGS)
 
 demo: build
-	tests/isolated_net.sh --only-if-needed $(VPY) python/tools/demo.py --out $(BUILD)/demo
+	tests/isolated_net.sh --only-if-needed $(VENV)/bin/auv-demo --out $(BUILD)/demo
 
 LCM_URL ?= udpm://239.255.76.67:7667?ttl=0
 spy: $(TYPES_JAR)

@@ -13,7 +13,6 @@ Run: tests/isolated_net.sh .venv/bin/python bench/console_bench.py
 from __future__ import annotations
 
 import argparse
-
 import http.client
 import math
 import os
@@ -23,13 +22,20 @@ import threading
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401
-import lcm  # noqa: E402
+import lcm
 
-from auv import (chasm_status_t, ground_truth_t, modem_rx_t, modem_status_t,  # noqa: E402
-                 nav_filter_status_t, nav_solution_t, sidescan_contact_t, sim_clock_t)
+from auv import (
+    chasm_status_t,
+    ground_truth_t,
+    modem_rx_t,
+    modem_status_t,
+    nav_filter_status_t,
+    nav_solution_t,
+    sidescan_contact_t,
+    sim_clock_t,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
 
 URL = "udpm://239.255.76.67:7793?ttl=0"
 SECONDS = float(os.environ.get("CONSOLE_BENCH_SECONDS", 15))
@@ -104,8 +110,8 @@ def read_page(port: int, stats: dict, stop: threading.Event) -> None:
 
 
 def run(rate: float, pages: int) -> None:
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "python"))
-    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "console.py"), "--url", URL,
+    env = dict(os.environ)
+    proc = subprocess.Popen([sys.executable, "-m", "tools.console", "--url", URL,
                              "--port", "0"], env=env, stdout=subprocess.PIPE, text=True)
     port = int(proc.stdout.readline().split("http://", 1)[1].split("/")[0].rsplit(":", 1)[1])
     stop = threading.Event()

@@ -15,7 +15,6 @@ Prints figures, asserts nothing.
 from __future__ import annotations
 
 import argparse
-
 import os
 import subprocess
 import sys

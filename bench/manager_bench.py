@@ -32,12 +32,11 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401  (puts the generated types on the path)
-import lcm  # noqa: E402
+import lcm
 
-from auv import actuators_t, chasm_status_t, nav_solution_t, setpoint_t, sim_clock_t  # noqa: E402
+from auv import actuators_t, chasm_status_t, nav_solution_t, setpoint_t, sim_clock_t
+
+ROOT = Path(__file__).resolve().parents[1]
 
 BUILD = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
 BUILD = BUILD if BUILD.is_absolute() else ROOT / BUILD

@@ -11,7 +11,6 @@ Run: tests/isolated_net.sh .venv/bin/python bench/modem_bench.py
 from __future__ import annotations
 
 import argparse
-
 import statistics
 import struct
 import subprocess
@@ -19,14 +18,12 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401
+from auv import acoustic_frame_t, modem_status_t
+from sim.environment import Environment, EnvParams
+from sim.modem.config import ModemConfig
+from sim.modem.receiver import Receiver
 
-from auv import acoustic_frame_t, modem_status_t  # noqa: E402
-from sim.environment import Environment, EnvParams  # noqa: E402
-from sim.modem.config import ModemConfig  # noqa: E402
-from sim.modem.receiver import Receiver  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 URL_A = "udpm://239.255.76.67:7791?ttl=0"
 URL_B = "udpm://239.255.76.67:7792?ttl=0"
@@ -49,7 +46,7 @@ def relay_run(extra: list[str], n: int, pace_s: float) -> tuple[float, int, floa
     """(messages/s through the relay, messages received, p50 and p99 latency in ms)."""
     import lcm
 
-    relay = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "lcm_relay.py"),
+    relay = subprocess.Popen([sys.executable, "-m", "tools.lcm_relay",
                               "--in", URL_A, "--out", URL_B, "--channel", "BENCH", *extra],
                              stdout=subprocess.PIPE, text=True)
     relay.stdout.readline()                          # "running"

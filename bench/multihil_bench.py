@@ -29,18 +29,15 @@ import threading
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import sim_clock_t
+from sim.multihil.probe import load_probe, percentile, probe_errors
+from sim.multihil.world import VehicleSpec, World
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401
 
-import lcm  # noqa: E402
-from auv import sim_clock_t  # noqa: E402
-
-from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: E402
-from sim.multihil.world import VehicleSpec, World  # noqa: E402
-
-ENV = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT / "python"),
-                                                    str(ROOT / "build" / "gen" / "python")])}
+ENV = {**os.environ, "PYTHONPATH": str(ROOT / "build" / "gen" / "python")}
 
 
 class Clocks:
@@ -124,7 +121,7 @@ def sync(out: Path, url: str, seconds: float, relay: bool) -> None:
         port = int(url.split(":")[-1].split("?")[0])
         client_url = url.replace(str(port), str(port + 500))
         procs.append(subprocess.Popen(
-            [sys.executable, ROOT / "python" / "tools" / "lcm_relay.py", "--in", url, "--out",
+            [sys.executable, "-m", "tools.lcm_relay", "--in", url, "--out",
              client_url, "--channel", r"SIM\..*", "--both", "--delay-ms", "2", "--jitter-ms", "1",
              "--loss", "0.05"], stdout=open(out / "relay.out", "w"), stderr=subprocess.STDOUT,
             env=ENV, start_new_session=True))

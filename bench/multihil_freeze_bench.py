@@ -25,14 +25,12 @@ import threading
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import sim_clock_t
+from sim.multihil.world import VehicleSpec, World
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401
-
-import lcm  # noqa: E402
-from auv import sim_clock_t  # noqa: E402
-
-from sim.multihil.world import VehicleSpec, World  # noqa: E402
 
 
 class Clocks:

@@ -29,10 +29,9 @@ import subprocess
 import sys
 from pathlib import Path
 
+from auvlcm.url import default_url
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python"), str(ROOT / "python" / "tools")]
-import auvlcm  # noqa: E402,F401
-from auvlcm.url import default_url  # noqa: E402
 
 REPLAY = ROOT / "build" / "bin" / "auv-nav-replay"
 SURVEY = ["--lines", "4", "--length", "460", "--spacing", "50", "--depth", "12"]
@@ -42,10 +41,10 @@ def record(out: Path, url: str, extra: list[str], reuse: bool) -> tuple[Path, Pa
     log = out.with_suffix(".lcmlog")
     nav = out.with_suffix(".nav")
     if not (reuse and log.exists() and nav.exists()):
-        env = dict(os.environ, PYTHONPATH=f"{ROOT / 'python'}{os.pathsep}{ROOT / 'build' / 'gen' / 'python'}")
-        subprocess.run([sys.executable, ROOT / "python" / "tools" / "survey_log.py", "--out", log, "--url", url,
+        env = dict(os.environ, PYTHONPATH=str(ROOT / "build" / "gen" / "python"))
+        subprocess.run([sys.executable, "-m", "tools.survey_log", "--out", log, "--url", url,
                         *SURVEY, *extra], check=True, env=env, stdout=subprocess.DEVNULL)
-        subprocess.run([sys.executable, ROOT / "python" / "tools" / "navconf.py", log.with_suffix(".sim.yaml"),
+        subprocess.run([sys.executable, "-m", "tools.navconf", log.with_suffix(".sim.yaml"),
                         "-o", nav], check=True, env=env)
     return log, nav
 

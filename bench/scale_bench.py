@@ -29,9 +29,9 @@ import time
 from collections import Counter, defaultdict
 from pathlib import Path
 
+from tools.demo import PLAN_ARGS
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "python"))
-from tools.demo import PLAN_ARGS  # noqa: E402
 
 TICK = os.sysconf("SC_CLK_TCK")
 # py-spy from requirements.txt (the venv's bin), else one on PATH
@@ -40,7 +40,7 @@ KINDS = ("simulator", "managers", "filter", "recorder", "clock", "other")
 
 
 def kind_of(cmd: str) -> str:
-    if "python/sim" in cmd:
+    if "python/sim" in cmd or "-m sim" in cmd:
         return "simulator"
     if "chasm-manager" in cmd:
         return "managers"
@@ -48,7 +48,7 @@ def kind_of(cmd: str) -> str:
         return "filter"
     if "auv-recorder" in cmd or "lcm-logger" in cmd:
         return "recorder"
-    if "launch.py" in cmd:
+    if "launch.py" in cmd or "tools.launch" in cmd:
         return "clock"
     return "other"
 
@@ -119,12 +119,12 @@ def profile_summary(raw: Path, top: int = 15) -> list[str]:
 def run_case(n: int, args, out: Path) -> dict:
     case = out / f"v{n}"
     shutil.rmtree(case, ignore_errors=True)
-    plan = subprocess.run([sys.executable, str(ROOT / "python/tools/plan_survey.py"),
+    plan = subprocess.run([sys.executable, "-m", "tools.plan_survey",
                            "--polygon", polygon(n, args.length, args.width), "--vehicles", str(n), *PLAN_ARGS,
                            "--name", f"scale{n}", "--out", str(case / "plan")], capture_output=True, text=True)
     if plan.returncode:
         return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
-    launch = [sys.executable, str(ROOT / "python/tools/launch.py"), str(case / "plan" / f"scale{n}.yaml"),
+    launch = [sys.executable, "-m", "tools.launch", str(case / "plan" / f"scale{n}.yaml"),
               "--out", str(case / "run"), "--progress", "0"] + (["--url", args.url] if args.url else [])
     env = dict(os.environ)
     if args.cprofile:

@@ -29,19 +29,16 @@ import contextlib
 import io
 import os
 import statistics
-import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-import auvlcm  # noqa: E402,F401
-from auvlcm.offline import OfflineLcm  # noqa: E402
+from auvlcm.offline import OfflineLcm
+from sim.config import load
+from sim.dynamics import Dynamics
+from sim.hil import Simulator, build_model
+from sim.vehicle import REMUS100
 
-from sim.config import load  # noqa: E402
-from sim.dynamics import Dynamics  # noqa: E402
-from sim.hil import Simulator, build_model  # noqa: E402
-from sim.vehicle import REMUS100  # noqa: E402
+ROOT = Path(__file__).resolve().parents[1]
 
 CONFIG = ROOT / "missions" / "sim" / "remus100.yaml"
 DT = 0.02

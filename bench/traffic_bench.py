@@ -23,10 +23,9 @@ import tempfile
 from collections import defaultdict
 from pathlib import Path
 
+from auvlcm.log import read_events
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python")]
-from auvlcm.log import read_events  # noqa: E402
 
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
 FRAMING = 38 + 20 + 8 + 8 + 1          # bytes on the wire besides channel name and payload
@@ -56,7 +55,7 @@ def run_scenario(limit: float, out: Path) -> Path:
     text = re.sub(r"limit: \d+(\.\d*)?", f"limit: {limit:g}", text, count=1)
     sc = out / "traffic.yaml"
     sc.write_text(text)
-    subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--out", str(out),
+    subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--out", str(out),
                     "--progress", "0"], check=False)
     return out / "run.lcmlog"
 

@@ -29,11 +29,12 @@ import tempfile
 import time
 from pathlib import Path
 
+from multihil_bench import ENV, Clocks, end, node, wait_for
+
+from sim.multihil.probe import load_probe, percentile, probe_errors
+from sim.multihil.world import VehicleSpec, World
+
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "python"), str(ROOT / "bench")]
-from multihil_bench import ENV, Clocks, end, node, wait_for  # noqa: E402
-from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: E402
-from sim.multihil.world import VehicleSpec, World  # noqa: E402
 
 URL_A = "udpm://239.255.76.67:7921?ttl=0"
 URL_B = "udpm://239.255.76.67:7922?ttl=0"
@@ -41,7 +42,7 @@ EP = "tcp/127.0.0.1:17460"
 
 
 def bridges(out: Path) -> list[subprocess.Popen]:
-    cmd = [sys.executable, str(ROOT / "python" / "tools" / "zenoh_bridge.py"), "--realm", "bench", "--stats-period", "2"]
+    cmd = [sys.executable, "-m", "tools.zenoh_bridge", "--realm", "bench", "--stats-period", "2"]
     return [subprocess.Popen(cmd + args, stdout=open(out / f"bridge.{name}.out", "w"), stderr=subprocess.STDOUT,
                              env=ENV, start_new_session=True)
             for name, args in (("A", ["--site", "A", "--url", URL_A, "--listen", EP]),

@@ -1,7 +1,9 @@
-"""Shared fixtures: where the build is, the project's Python paths, LCM URLs.
+"""Shared fixtures: where the build is, its message types, LCM URLs.
 
 The build folder comes from $AUV_BUILD (default build/), so a second build
 tree (e.g. `make BUILD=.build-x`) can be tested without touching the first.
+The project's Python is installed in .venv (editable); only the generated
+message types are taken from the build under test, here and in children.
 """
 
 from __future__ import annotations
@@ -18,9 +20,8 @@ BUILD = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
 if not BUILD.is_absolute():
     BUILD = ROOT / BUILD
 
-for p in (ROOT / "python", BUILD / "gen" / "python"):
-    if str(p) not in sys.path:
-        sys.path.insert(0, str(p))
+if str(BUILD / "gen" / "python") not in sys.path:
+    sys.path.insert(0, str(BUILD / "gen" / "python"))
 
 # Every test gets its own multicast port, so tests never hear each other even
 # when the suite runs on a host network instead of a private namespace.
@@ -58,9 +59,9 @@ def lcm_url() -> str:
 
 
 def child_environment() -> dict[str, str]:
-    """Environment for child processes: project Python paths, sanitizer options."""
+    """Environment for child processes: the build's message types, sanitizer options."""
     env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(ROOT / "python"), str(BUILD / "gen" / "python")])
+    env["PYTHONPATH"] = str(BUILD / "gen" / "python")
     env.setdefault("ASAN_OPTIONS", "detect_leaks=1:abort_on_error=0:exitcode=86")
     env.setdefault("UBSAN_OPTIONS", "print_stacktrace=1:halt_on_error=1:exitcode=87")
     return env

@@ -16,7 +16,7 @@ mkdir -p "$out"
 # Demos one after another until killed (constant load), in a process group of
 # their own so that one signal stops the loop, the demo and its children.
 demo_loop='k=0; while true; do k=$((k + 1));
-    tests/isolated_net.sh .venv/bin/python python/tools/demo.py --out "$0/demo" > "$0/demo-$k.log" 2>&1; done'
+    tests/isolated_net.sh .venv/bin/auv-demo --out "$0/demo" > "$0/demo-$k.log" 2>&1; done'
 
 failed=0
 for i in $(seq 1 "$runs"); do

@@ -8,10 +8,10 @@ import random
 import subprocess
 
 import pytest
-
-from auv import dvl_t, ground_truth_t, nav_solution_t, setpoint_t
 from conftest import c_program
 from lcm_samples import random_message
+
+from auv import dvl_t, ground_truth_t, nav_solution_t, setpoint_t
 
 
 def probe(*args, sanitized=False):

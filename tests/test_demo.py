@@ -8,7 +8,7 @@ import json
 import subprocess
 import sys
 
-from conftest import BUILD, ROOT
+from conftest import BUILD
 
 # Two vehicles, two lines each: about 6 min of sim time over part of the
 # target field of missions/sim/remus100_mcm.yaml (seed 7).
@@ -16,7 +16,7 @@ POLYGON = "140,120; 240,110; 250,200; 150,210"   # six of the seeded mines are i
 
 
 def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
-    run = subprocess.run([sys.executable, ROOT / "python" / "tools" / "demo.py", "--out", tmp_path, "--url", lcm_url,
+    run = subprocess.run([sys.executable, "-m", "tools.demo", "--out", tmp_path, "--url", lcm_url,
                           "--build", BUILD, "--polygon", POLYGON, "--vehicles", "2"],
                          env=child_env, capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
@@ -58,7 +58,7 @@ def test_demo_team_mission_end_to_end(tmp_path, lcm_url, child_env):
     """`make demo`'s team mission, planned here at reduced size: 2 search + 1
     reacquire-identify vehicles in lockstep, contacts handed over the
     simulated acoustic link (fsk80, TDMA), identified."""
-    run = subprocess.run([sys.executable, ROOT / "python" / "tools" / "demo.py", "--out", tmp_path, "--url", lcm_url,
+    run = subprocess.run([sys.executable, "-m", "tools.demo", "--out", tmp_path, "--url", lcm_url,
                           "--build", BUILD, "--polygon", TEAM_POLYGON, "--team", "2"],
                          env=child_env, capture_output=True, text=True, timeout=900)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]

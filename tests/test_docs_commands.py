@@ -1,11 +1,11 @@
 """Docs that run (issue 17, item 5): every command README.md and docs/ show.
 
 Each command line in a fenced block whose program is the project's own (a
-build/bin program, a python/tools or bench script, `make TARGET`, `chasm`)
-is checked:
+build/bin program, a console command of pyproject.toml such as
+`.venv/bin/auv-launch`, a bench script, `make TARGET`, `chasm`) is checked:
 
-- the program exists; a script run by its path has its execute bit and a
-  shebang, so the command works as written;
+- the program exists; a tool is shown as its console command, never as
+  `python/tools/X.py` (which needs the venv's python to run);
 - `make TARGET`: the Makefile has the target;
 - offline commands whose files all exist (`chasm check|dot|describe` on
   shipped plans, `lcmlog.py --help` and the like) run, exit 0;
@@ -19,15 +19,16 @@ Commands that cannot run here say why in SKIP_WHY (real hardware, sudo).
 from __future__ import annotations
 
 import functools
-import os
 import re
 import shlex
 import subprocess
 from pathlib import Path
 
 import pytest
+import tomllib
 
 ROOT = Path(__file__).resolve().parents[1]
+SCRIPTS = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"])
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 WRAPPERS = {"tests/isolated_net.sh", "--only-if-needed", ".venv/bin/python", "python", "python3",
             "PY", "$PY", "${PY}", "$(VPY)", "exec", "time", "env"}
@@ -77,7 +78,9 @@ def program_of(words: list[str]) -> tuple[str, list[str]] | None:
         return None                              # python -m MODULE: not a file path
     if prog.endswith("/"):
         return None                              # a folder in a layout listing
-    if prog == "make" or prog.startswith(("build/bin/", "python/tools/", "bench/")):
+    if prog.removeprefix(".venv/bin/") in SCRIPTS:
+        return ".venv/bin/" + prog.removeprefix(".venv/bin/"), args
+    if prog == "make" or prog.startswith(("build/bin/", "python/tools/", "python/sim", "bench/")):
         return prog, args
     return None
 
@@ -126,14 +129,10 @@ def test_doc_command_runs(cmd, child_env):
         targets = [a for a in args if not a.startswith("-") and "=" not in a]
         assert all(t in MAKE_TARGETS for t in targets), f"{where}: no such make target"
         return
+    assert not prog.startswith("python/"), f"{where}: show the tool's console command (README, Commands)"
     path = ROOT / prog
     assert path.exists(), f"{where}: {prog} does not exist"
-    direct = words[0] == prog or (words[0] in ("chasm", "chasm-manager"))
     if prog.endswith(".py"):
-        head = path.read_text().splitlines()[0]
-        if direct:
-            assert os.access(path, os.X_OK) and head.startswith("#!"), \
-                f"{where}: run by its path, so it needs an execute bit and a shebang"
         exe = [str(ROOT / ".venv/bin/python"), str(path)]
     else:
         exe = [str(path)]
@@ -142,7 +141,7 @@ def test_doc_command_runs(cmd, child_env):
                                       if "*" in a and "/" in a else [a])]
     concrete = not any(PLACEHOLDER.match(a) for a in args) and all(
         (ROOT / a).exists() for a in args if "/" in a and not a.startswith(("-", "udpm:", "http")))
-    env = dict(child_env, PYTHONPATH=f"{ROOT / 'python'}:{ROOT / 'build/gen/python'}")
+    env = child_env
     if concrete and (prog, sub) in OFFLINE:
         p = subprocess.run(exe + args, cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
         assert p.returncode == 0, f"{where}: exit {p.returncode}\n{p.stderr[-2000:]}"

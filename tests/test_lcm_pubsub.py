@@ -10,12 +10,12 @@ import time
 
 import lcm
 import pytest
-
-from auv import actuators_t, depth_t, nav_solution_t
-from auvlcm.rx import Receiver
 from conftest import c_program
 from lcm_proc import pump, stop, wait_for_line
 from lcm_samples import random_message
+
+from auv import actuators_t, depth_t, nav_solution_t
+from auvlcm.rx import Receiver
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
@@ -79,7 +79,7 @@ def test_python_publisher_c_subscriber_counts_bad_messages(lcm_url, child_env, s
     values = [ln for ln in lines if ln.startswith("AUV2.NAV ")]
     assert len(values) == 4
     for i, line in enumerate(values):
-        assert f"utime={1000 * i} " in line and f'vehicle="AUV2"' in line
+        assert f"utime={1000 * i} " in line and 'vehicle="AUV2"' in line
         assert f"north_m={10.5 * i:.17g} " in line
     assert lines[-1] == "stats received=8 delivered=4 wrong_fingerprint=2 malformed=2"
     # malformed messages of the type are reported; other types (a pattern

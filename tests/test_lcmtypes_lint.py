@@ -6,8 +6,9 @@ from __future__ import annotations
 
 import re
 
-from auvlcm.types import all_types, fingerprint
 from conftest import ROOT
+
+from auvlcm.types import all_types, fingerprint
 
 CHANNELS_DOC = (ROOT / "docs" / "channels.md").read_text()
 ROW_RE = re.compile(r"^\| `([^`]+)` \| `(\w+)` \|", re.M)

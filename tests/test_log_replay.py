@@ -8,12 +8,12 @@ import time
 from collections import Counter
 
 import lcm
+from conftest import c_program
+from lcm_proc import lcm_tool, pump, stop
 
 from auv import actuators_t, depth_t, nav_solution_t
 from auvlcm.log import LogStats, read_events
 from auvlcm.rx import Receiver
-from conftest import c_program
-from lcm_proc import lcm_tool, pump, stop
 
 COUNT = 30
 CHANNELS = {"AUV5.NAV": nav_solution_t, "AUV5.DEPTH": depth_t, "AUV5.ACTUATORS": actuators_t}

@@ -9,16 +9,23 @@ import hashlib
 import signal
 import subprocess
 import time
-from pathlib import Path
 
 import lcm
 import pytest
-
-from auv import (chasm_status_t, gps_fix_t, mission_ack_t, mission_command_t, nav_solution_t,
-                 plugin_upload_t, setpoint_t, sim_clock_t)
-from auvlcm.rx import Receiver
 from conftest import ROOT, c_program
 from lcm_proc import pump, stop
+
+from auv import (
+    chasm_status_t,
+    gps_fix_t,
+    mission_ack_t,
+    mission_command_t,
+    nav_solution_t,
+    plugin_upload_t,
+    setpoint_t,
+    sim_clock_t,
+)
+from auvlcm.rx import Receiver
 
 HERE = ROOT / "tests" / "managers"
 PERIOD_US = 100_000   # start_manager runs the manager at --rate 10

@@ -11,10 +11,10 @@ import signal
 from pathlib import Path
 
 import pytest
+from lcm_proc import stop
+from test_manager import HERE, World, start_manager
 
 from auv import chasm_status_t, mission_ack_t, mission_command_t, nav_solution_t, sim_clock_t
-from lcm_proc import pump, stop
-from test_manager import HERE, World, start_manager
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 UTIME_MAX = 4_102_444_800_000_000

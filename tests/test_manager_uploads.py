@@ -9,18 +9,15 @@ from __future__ import annotations
 
 import hashlib
 import signal
-import sys
 from pathlib import Path
 
 import pytest
-
-from auv import mission_ack_t, plugin_upload_t
-from conftest import BUILD, ROOT
+from conftest import BUILD
 from lcm_proc import pump, stop
+from plugin_corpus import built_cases, byte_cases
 from test_manager import HERE, World, start_manager
 
-sys.path.insert(0, str(ROOT / "tests" / "chasm"))
-from plugin_corpus import built_cases, byte_cases  # noqa: E402
+from auv import mission_ack_t, plugin_upload_t
 
 # dive.chasm with a plugin test handler, so uploads of test_basic hot-load.
 PLAN = (HERE / "dive.chasm").read_text().replace(

@@ -8,9 +8,9 @@ import subprocess
 
 import lcm
 import pytest
+from conftest import BUILD, ROOT
 
 from auvlcm.types import all_types, fingerprint, full_name
-from conftest import BUILD, ROOT
 
 JAR = BUILD / "java" / "auv_types.jar"
 

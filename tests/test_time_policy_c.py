@@ -9,7 +9,6 @@ from __future__ import annotations
 import subprocess
 
 import pytest
-
 from conftest import c_program
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1

@@ -5,8 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from auvlcm.timepolicy import (MAX_CLOCK_JUMP_US, UTIME_MAX, ClockGate, InputGate, TimeDrops,
-                               valid_utime)
+from auvlcm.timepolicy import MAX_CLOCK_JUMP_US, UTIME_MAX, ClockGate, InputGate, TimeDrops, valid_utime
 
 INT64_MAX, INT64_MIN = 2**63 - 1, -(2**63)
 HOSTILE = [INT64_MAX, INT64_MIN, -1, 10**18, UTIME_MAX + 1, 2**64]

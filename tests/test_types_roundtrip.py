@@ -8,11 +8,11 @@ import struct
 import subprocess
 
 import pytest
+from conftest import c_program
+from lcm_samples import random_message, same
 
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import all_types, full_name
-from conftest import c_program
-from lcm_samples import random_message, same
 
 SAMPLES_PER_TYPE = 25
 

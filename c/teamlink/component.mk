@@ -13,7 +13,7 @@ CFLAGS_ALL += -I$(GEN)
 
 $(TEAM_GEN_STAMP): $(TEAM_SCHEMA) python/tools/gen_team_codec.py python/auvlcm/team_schema.py | $(VENV_STAMP)
 	@echo "gen_team_codec -> $(TEAM_GEN)"
-	@$(VPY) python/tools/gen_team_codec.py $(TEAM_SCHEMA) $(TEAM_GEN)
+	@$(VPY) -m tools.gen_team_codec $(TEAM_SCHEMA) $(TEAM_GEN)
 	@touch $@
 $(TEAM_GEN)/team_codec.h $(TEAM_GEN)/team_codec.c: $(TEAM_GEN_STAMP) ;
 

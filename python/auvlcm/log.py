@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterator
 
-from auvlcm.eventlog import Damage, read_raw
 from auvlcm.decode import DecodeError, decode_strict
+from auvlcm.eventlog import Damage, read_raw
 from auvlcm.types import type_of
 
 

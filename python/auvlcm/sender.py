@@ -23,7 +23,7 @@ from pathlib import Path
 
 import lcm
 
-from auvlcm import ROOT
+from auvlcm.paths import build_dir
 
 LIBRARY = "libauvlcm_sender.so"
 DEFAULT_SPIN_US = 200
@@ -39,8 +39,7 @@ class SenderUnavailable(RuntimeError):
 
 
 def library_path() -> Path:
-    build = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
-    return (build if build.is_absolute() else ROOT / build) / "lib" / LIBRARY
+    return build_dir() / "lib" / LIBRARY
 
 
 _libs: tuple[ctypes.PyDLL, ctypes.CDLL] | None = None

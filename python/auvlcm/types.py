@@ -7,8 +7,6 @@ import struct
 from functools import lru_cache
 from types import ModuleType
 
-import auvlcm  # noqa: F401  (puts the generated package on sys.path)
-
 try:
     import auv as _generated
 except ImportError as exc:  # pragma: no cover - only without a build

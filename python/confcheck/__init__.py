@@ -9,8 +9,8 @@ Every error is `file:line:col: key: message`; a tool prints them all and exits 2
 
 from confcheck.checker import Checker, join
 from confcheck.errors import ConfigError, report
-from confcheck.reader import LIMITS, Limits, read_yaml
 from confcheck.names import VEHICLE_ID, vehicle_id_problem
+from confcheck.reader import LIMITS, Limits, read_yaml
 from confcheck.rules import Rule, rule_of, setting
 
 __all__ = ["Checker", "ConfigError", "LIMITS", "Limits", "Rule", "VEHICLE_ID", "join", "read_yaml", "report",

@@ -181,6 +181,7 @@ class Checker:
         if want in (int, float) and not math.isfinite(value):
             self.err(node, key, "must be finite")
             return dataclasses.MISSING
+        value = rule.canonical(value)
         problem = rule.problem(value)
         if problem:
             self.err(node, key, problem)

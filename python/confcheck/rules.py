@@ -1,7 +1,7 @@
 """Ranges and choices declared on dataclass fields.
 
     rate_hz: float = setting(10.0, gt=0)
-    clock: str = setting("realtime", one_of=("realtime", "scaled", "stepped"))
+    clock: str = setting("realtime", one_of=("realtime", "scaled", "lockstep"))
     step_s: float = setting(0.05, gt=0, key="step")     # the YAML key differs
 
 A subclass that only changes a default (`rate_hz: float = 20.0`) keeps its
@@ -28,6 +28,15 @@ class Rule:
     key: str = ""                  # the YAML key, when it is not the field's name
     multiline: bool = False        # a string may hold newlines (never other control chars)
     unit: str = ""                 # named in the message: "must be > 0 [Hz]"
+    old_names: tuple = ()          # ((old, current), ...): an old spelling, read as the current one
+
+    def canonical(self, value: Any) -> Any:
+        """value under its current name (old_names), else value itself."""
+        if isinstance(value, str):
+            for old, new in self.old_names:
+                if value == old:
+                    return new
+        return value
 
     def problem(self, value: Any) -> str:
         """Why value breaks the rule ("" if it does not)."""

@@ -4,18 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
-from pathlib import Path
 
-# run from a checkout without installing: python/ and the generated types
-_ROOT = Path(__file__).resolve().parents[2]
-_HERE = str(Path(__file__).resolve().parent)
-# `python python/sim ...` puts python/sim itself first on sys.path, where its
-# module names could shadow others: replace it by python/.
-sys.path[:] = [p for p in sys.path if str(Path(p or ".").resolve()) != _HERE]
-for _p in (_ROOT / "python",):
-    if str(_p) not in sys.path:
-        sys.path.insert(0, str(_p))
-import auvlcm  # noqa: E402,F401  (puts build/gen/python on sys.path)
+from sim import clock_modes
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -27,7 +17,8 @@ def main(argv: list[str] | None = None) -> int:
                                  description="CHASM-AUV vehicle simulator (one vehicle, over LCM). "
                                  "`python -m sim.validate` (or `python -m sim validate`) prints the validation report.")
     ap.add_argument("config", help="simulator configuration (YAML), e.g. missions/sim/remus100.yaml")
-    ap.add_argument("--clock", choices=("realtime", "scaled", "stepped"), help="override simulation.clock")
+    ap.add_argument("--clock", type=clock_modes.argument, metavar="{realtime,scaled,lockstep}",
+                    help="override simulation.clock (`stepped`, its old name, is read as lockstep)")
     ap.add_argument("--warp", type=float, help="override simulation.warp (scaled mode)")
     ap.add_argument("--fast", action="store_true", help="scaled mode as fast as the CPU allows")
     ap.add_argument("--duration", type=float, help="stop after this many sim seconds")

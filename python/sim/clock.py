@@ -1,8 +1,8 @@
-"""Clock modes: real time, scaled (warp), stepped by an external global clock.
+"""Clock modes (sim.clock_modes): real time, scaled (warp), lockstep on an external global clock.
 
 The simulator never reads the wall clock for its physics: sim time is the
 count of physics steps times dt. The wall clock only paces those steps in
-real-time and scaled modes; in stepped mode the pace comes from SIM.CLOCK.
+real-time and scaled modes; in lockstep the pace comes from SIM.CLOCK.
 """
 
 from __future__ import annotations
@@ -10,18 +10,20 @@ from __future__ import annotations
 import time
 from typing import Callable
 
+from sim.clock_modes import LOCKSTEP, REALTIME
+
 
 class Pacer:
     """When the next physics step may run, in wall time (monotonic)."""
 
     def __init__(self, mode: str, warp: float, dt: float, fast: bool = False) -> None:
         self.mode = mode
-        self.warp = 1.0 if mode == "realtime" else warp
+        self.warp = 1.0 if mode == REALTIME else warp
         self.dt = dt
         self.fast = fast            # scaled, as fast as the CPU allows
         self.wall0 = time.monotonic()
         self.sim0 = 0.0
-        self.target_t: float | None = None   # stepped: advance up to here
+        self.target_t: float | None = None   # lockstep: advance up to here
         self.late_steps = 0         # steps that ran behind their wall deadline
         # multi-HIL free-running: the process's global clock [s] (None before it has one)
         # paces the steps instead of this process's own wall clock
@@ -37,7 +39,7 @@ class Pacer:
 
     def may_step(self, sim_t: float, now: float) -> bool:
         """Whether the step that ends at sim_t + dt may run now."""
-        if self.mode == "stepped":
+        if self.mode == LOCKSTEP:
             return self.target_t is not None and sim_t + 0.5 * self.dt <= self.target_t
         if self.global_now is not None:
             g = self.global_now()
@@ -48,7 +50,7 @@ class Pacer:
 
     def wait_s(self, sim_t: float, now: float) -> float:
         """How long to wait for LCM traffic before the next step is due."""
-        if self.mode == "stepped":
+        if self.mode == LOCKSTEP:
             return 0.1
         if self.global_now is not None:
             g = self.global_now()

@@ -17,6 +17,7 @@ from typing import Any
 import yaml
 
 from confcheck import VEHICLE_ID, Checker, ConfigError, Rule, report, rule_of, setting, vehicle_id_problem
+from sim import clock_modes
 from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
 from sim.environment import CurrentLayer, EnvParams, Transponder
@@ -27,7 +28,6 @@ from sim.vehicle import REMUS100, VehicleParams
 __all__ = ["ConfigError", "SimConfig", "VEHICLE_ID", "load", "load_or_report", "loads"]
 
 ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
-CLOCK_MODES = ("realtime", "scaled", "stepped")
 # <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's
 RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "ACTUATOR_STATE",
                    "ACTUATORS", "HEALTH", "CONTACTS", "SETPOINT"}
@@ -37,9 +37,9 @@ RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "
 class SimSettings:
     # the integrator is validated from 50 Hz up; above 10 kHz a second of sim time costs minutes
     physics_rate_hz: float = setting(50.0, ge=50.0, le=10000.0, unit="Hz")
-    clock: str = setting("realtime", one_of=CLOCK_MODES)
+    clock: str = setting(clock_modes.REALTIME, one_of=clock_modes.MODES, old_names=clock_modes.OLD_NAMES)
     warp: float = setting(1.0, gt=0.0)   # sim seconds per wall second (scaled)
-    publish_clock: str = setting("auto", one_of=("auto", "yes", "no"))   # auto: not in stepped mode
+    publish_clock: str = setting("auto", one_of=("auto", "yes", "no"))   # auto: not in lockstep
     clock_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")   # SIM.CLOCK rate when this process publishes it
     truth_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
     actuator_state_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
@@ -72,7 +72,7 @@ class MultiHil:
     sample_rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
     # the rest is docs/multihil.md: joining a world shared by several simulators
     enabled: bool = False            # join a multi-HIL world (server or client)
-    step_s: float = setting(0.1, gt=0.0)   # lockstep step (simulation.clock: stepped)
+    step_s: float = setting(0.1, gt=0.0)   # lockstep step (simulation.clock: lockstep)
     lockstep_participants: int = setting(0, ge=0)   # wait for this many participants before step 0
     lockstep_timeout_s: float = setting(5.0, ge=0.0)  # drop a participant silent this long
     heartbeat_hz: float = setting(10.0, gt=0.0, unit="Hz")

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from confcheck import setting
-
 from sim.bathymetry import Bathymetry
 
 G = 9.81

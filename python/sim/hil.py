@@ -4,7 +4,7 @@ One process per vehicle. It publishes each sensor on <VEHICLE>.<TOPIC> at
 that sensor's rate, ground truth on <VEHICLE>.TRUTH, what the actuators do on
 <VEHICLE>.ACTUATOR_STATE, its health on <VEHICLE>.HEALTH, and (when it runs
 the world alone in real-time or scaled mode) the global clock on SIM.CLOCK.
-It consumes <VEHICLE>.ACTUATORS and, in stepped mode, SIM.CLOCK.
+It consumes <VEHICLE>.ACTUATORS and, in lockstep, SIM.CLOCK.
 
 Time stamps follow the project's rule (auvlcm.timepolicy, docs/simulator.md):
 a SIM.CLOCK that goes back, jumps unconfirmed or is out of range is dropped;
@@ -22,13 +22,15 @@ import signal
 import time
 
 import lcm
-from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 
+from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
 from auvlcm.rx import Receiver
-from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from auvlcm.sender import ThreadedLcm, open_lcm
+from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from auvlcm.url import check_local, default_url
+from sim import clock_modes
 from sim.actuators import Command
+from sim.clock_modes import LOCKSTEP
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
@@ -37,13 +39,13 @@ from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder
 
+
 def _next_slot(due: float, period: float, t: float) -> float:
     """The first slot of the grid due + k period after t (missed slots skipped)."""
     return due + period * max(1, math.floor((t - due) / period) + 1)
 
 
-CLOCK_MODE = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
-              "stepped": sim_clock_t.MODE_LOCKSTEP}
+CLOCK_MODE = clock_modes.WIRE
 
 
 def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
@@ -99,13 +101,13 @@ class Simulator:
         self.dt = self.model.dt
         self.pacer = Pacer(s.clock, s.warp, self.dt, fast=fast)
         self.publish_clock = (s.publish_clock == "yes"
-                              or (s.publish_clock == "auto" and s.clock != "stepped"))
+                              or (s.publish_clock == "auto" and s.clock != LOCKSTEP))
         self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
         url = check_local(s.lcm_url or default_url())
         # The sender thread serves a loop that runs as fast as it can (fast,
         # stepped): a loop paced by the wall clock has the time to publish,
         # and its multi-HIL clock sync wants no queue between it and the wire.
-        self.lc = lc or open_lcm(url, s.publish_thread and (fast or s.clock == "stepped"),
+        self.lc = lc or open_lcm(url, s.publish_thread and (fast or s.clock == LOCKSTEP),
                                  lambda line: print(f"sim: {self.vid}: {line}", flush=True))
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
@@ -117,7 +119,7 @@ class Simulator:
         self.deliver_command = self._apply_command
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
-        if s.clock == "stepped" and not cfg.multihil.enabled:   # multi-HIL: the node's clock
+        if s.clock == LOCKSTEP and not cfg.multihil.enabled:   # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
         self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops,
                                 self.clock_now_us)
@@ -161,7 +163,7 @@ class Simulator:
         if cfg.multihil.enabled:
             from sim.multihil.hook import SimHook
             self.mh = SimHook(self)
-        elif s.clock == "stepped":
+        elif s.clock == LOCKSTEP:
             from sim.lockstep_follow import LockstepFollower
             self.follow = LockstepFollower(self)
 
@@ -171,7 +173,7 @@ class Simulator:
         the SIM.CLOCK it follows (stepped), the world's clock (multi-HIL), else its own."""
         if self.mh is not None:
             return self.mh.node.global_now_us()     # lockstep: its last accepted SIM.CLOCK
-        if self.cfg.sim.clock == "stepped":
+        if self.cfg.sim.clock == LOCKSTEP:
             return self.clock_gate.now
         return utime(self.model.t)
 
@@ -377,7 +379,7 @@ class Simulator:
               f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
               f"sensors={','.join(s.name for s in self.sensors)} "
               f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
-        if cfg.sim.clock != "stepped" and self.mh is None:
+        if cfg.sim.clock != LOCKSTEP and self.mh is None:
             self._outputs()   # stepped, multi-HIL: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()

@@ -19,7 +19,6 @@ from __future__ import annotations
 import bisect
 
 from auv import sim_clock_t
-
 from sim.multihil.lockstep import Participation
 
 

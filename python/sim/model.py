@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 from sim.actuators import Actuators, Command
 from sim.dynamics import Dynamics
-from sim.environment import G, RHO_SEAWATER, Environment
+from sim.environment import RHO_SEAWATER, Environment, G
 from sim.geo import LocalFrame
 from sim.vehicle import VehicleParams
 

@@ -238,7 +238,6 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
     vp = REMUS100
     if args.config:
-        import auvlcm  # noqa: F401  (the configuration's sensors need the generated types)
         from sim.config import ConfigError, load
         try:
             vp = load(Path(args.config)).vehicle

@@ -15,7 +15,7 @@ import numpy as np
 
 from sim.actuators import Command
 from sim.dynamics import Dynamics
-from sim.environment import EnvParams, Environment
+from sim.environment import Environment, EnvParams
 from sim.model import VehicleModel
 from sim.pilot_model import PilotModel
 from sim.vehicle import REMUS100, VehicleParams

@@ -20,14 +20,6 @@ SIGINT/SIGTERM stop the run and end the agent (exit 0).
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import os
 import re
@@ -36,19 +28,17 @@ import sys
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import agent_ack_t, agent_command_t, agent_process_t, agent_table_t
+from auvlcm.paths import build_dir
+from auvlcm.rx import Receiver
+from auvlcm.url import check_local, default_url
+from tools.agent_part import PartError, host_part
+from tools.agent_procs import BACKOFF, RUNNING, Supervised, policy_for, rule_errors
+from tools.scenario import HOST_NAME
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
-
-import lcm  # noqa: E402
-
-import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
-from auv import agent_ack_t, agent_command_t, agent_process_t, agent_table_t  # noqa: E402
-from auvlcm.rx import Receiver  # noqa: E402
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools.agent_part import PartError, host_part  # noqa: E402
-from tools.agent_procs import BACKOFF, RUNNING, Supervised, policy_for, rule_errors  # noqa: E402
-from tools.launch import build_dir  # noqa: E402
-from tools.scenario import HOST_NAME  # noqa: E402
 
 C = agent_command_t
 TABLE_PERIOD_S = 1.0

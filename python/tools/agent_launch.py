@@ -20,7 +20,6 @@ from auv import agent_process_t, agent_table_t
 from tools.agent import channels
 from tools.agentctl import Control, parse_rule, report
 
-
 AGENT_SILENT_S = 5.0        # no process table for this long: the agent (and its part) is gone
 
 

@@ -16,8 +16,8 @@ from pathlib import Path
 import lcm
 
 from auvlcm.url import check_local, with_receive_buffer
-from tools.launch import Launcher, check_plans, nav_configs
 from confcheck import ConfigError
+from tools.launch import Launcher, check_plans, nav_configs
 from tools.scenario import Scenario, load_scenario
 from tools.simconfig import write_configs
 

@@ -21,14 +21,6 @@ here first); 3 an agent refused or failed (its message is printed);
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
 import os
@@ -38,19 +30,17 @@ import sys
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import agent_ack_t, agent_command_t, agent_restart_t, agent_table_t
+from auvlcm.rx import Receiver
+from auvlcm.url import check_local, default_url
+from confcheck import ConfigError
+from tools.agent import channels
+from tools.agent_procs import STATE_NAMES, rule_errors
+from tools.scenario import load_scenario
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
-
-import lcm  # noqa: E402
-
-import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
-from auv import agent_ack_t, agent_command_t, agent_restart_t, agent_table_t  # noqa: E402
-from auvlcm.rx import Receiver  # noqa: E402
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools.agent import channels  # noqa: E402
-from tools.agent_procs import STATE_NAMES, rule_errors  # noqa: E402
-from confcheck import ConfigError  # noqa: E402
-from tools.scenario import load_scenario  # noqa: E402
 
 C = agent_command_t
 RULE = re.compile(r"(?P<pat>[^=]+)=(?P<pol>never|on-failure)(?::(?P<lim>\d+))?(?::(?P<b>[0-9.]+))?(?::(?P<m>[0-9.]+))?")

@@ -15,6 +15,7 @@ import time
 from pathlib import Path
 
 import lcm
+
 from auv import log_annotation_t
 
 CHANNEL = "SIM.ANNOTATION"

@@ -25,18 +25,12 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import lcm
 
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import lcm  # noqa: E402
-
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools import mission_commands as mc  # noqa: E402
-from tools.live.model import Model  # noqa: E402
-from tools.live.sources import decode  # noqa: E402
+from auvlcm.url import check_local, default_url
+from tools import mission_commands as mc
+from tools.live.model import Model
+from tools.live.sources import decode
 
 SETTLE_S = 0.5      # after the last expected ack, wait this long for stragglers
 

@@ -22,17 +22,11 @@ import signal
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools.live.model import Model  # noqa: E402
-from tools.live.server import ConsoleServer  # noqa: E402
-from tools.live.sources import LiveSource, LogSource  # noqa: E402
-from tools.live.world import WorldBuilder, WorldError  # noqa: E402
+from auvlcm.url import check_local, default_url
+from tools.live.model import Model
+from tools.live.server import ConsoleServer
+from tools.live.sources import LiveSource, LogSource
+from tools.live.world import WorldBuilder, WorldError
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -19,20 +19,14 @@ status: the launcher's when the mission did not end done, else the report's.
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
 import subprocess
 import sys
 import time
 from pathlib import Path
+
+from sim import clock_modes
 
 ROOT = Path(__file__).resolve().parents[2]
 PY = sys.executable
@@ -122,8 +116,8 @@ def _main(argv: list[str] | None) -> int:
     ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
-    ap.add_argument("--time", choices=("lockstep", "fast", "scaled", "realtime"),
-                    help="pace of the world's lockstep clock (default: the scenario's, fast = lockstep: as fast "
+    ap.add_argument("--time", type=clock_modes.argument, metavar="{" + ",".join(clock_modes.MODES) + "}",
+                    help="pace of the world's lockstep clock (default: the scenario's; lockstep: as fast "
                          "as the slowest process; every mode gives the same result)")
     ap.add_argument("--warp", type=float, help="with --time scaled: at most this many times real time")
     ap.add_argument("--plan-only", action="store_true",
@@ -155,13 +149,13 @@ def _main(argv: list[str] | None) -> int:
         name = "mcm_team" if args.team else "mcm_demo"
         how = ["--team", args.team, "--ri", "1", *TEAM_PLAN_ARGS] if args.team else \
             ["--vehicles", args.vehicles or 3, *PLAN_ARGS]
-        rc = run([PY, ROOT / "python/tools/plan_survey.py", "--polygon", args.polygon, *how, "--name", name,
+        rc = run([PY, "-m", "tools.plan_survey", "--polygon", args.polygon, *how, "--name", name,
                   "--out", plan_dir] + (["--build", args.build] if args.build else []), "planning the survey")
         if rc or args.plan_only:
             return rc
         scenario = plan_dir / f"{name}.yaml"
     run_dir = args.out / "run"
-    launch = [PY, ROOT / "python/tools/launch.py", scenario, "--out", run_dir, "--progress", "15"]
+    launch = [PY, "-m", "tools.launch", scenario, "--out", run_dir, "--progress", "15"]
     launch += (["--url", args.url] if args.url else []) + (["--build", args.build] if args.build else [])
     launch += (["--time", args.time] if args.time else []) + (["--warp", args.warp] if args.warp else [])
     launch_rc = run(launch, f"running {scenario.relative_to(ROOT) if scenario.is_relative_to(ROOT) else scenario}")
@@ -169,7 +163,7 @@ def _main(argv: list[str] | None) -> int:
     if not log.exists():
         print(f"demo: the launcher left no log (exit {launch_rc})", file=sys.stderr)
         return launch_rc or 1
-    report = [PY, ROOT / "python/tools/report.py", log, "--out", args.out] + (["--no-plots"] if args.no_plots else [])
+    report = [PY, "-m", "tools.report", log, "--out", args.out] + (["--no-plots"] if args.no_plots else [])
     print("demo: writing the report", flush=True)
     rc = subprocess.call([str(c) for c in report], stdout=subprocess.DEVNULL)
     if rc:

@@ -22,23 +22,16 @@ import json
 import signal
 import sys
 import time
-from pathlib import Path
 from typing import Any
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import foxglove
+import lcm
 
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import foxglove  # noqa: E402
-import lcm  # noqa: E402
-
-from auvlcm.json_schema import schema_of, to_json  # noqa: E402
-from auvlcm.log import LCM_INTERNAL_CHANNELS  # noqa: E402
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools.foxglove_topics import DERIVED, GEOJSON, LOCATION_FIX, geojson, location_fix  # noqa: E402
-from tools.live.sources import decode  # noqa: E402
+from auvlcm.json_schema import schema_of, to_json
+from auvlcm.log import LCM_INTERNAL_CHANNELS
+from auvlcm.url import check_local, default_url
+from tools.foxglove_topics import DERIVED, GEOJSON, LOCATION_FIX, geojson, location_fix
+from tools.live.sources import decode
 
 GEOJSON_EVERY_S = 5.0
 

@@ -3,7 +3,6 @@ live bridge: positions as foxglove.LocationFix, the survey as foxglove.GeoJSON."
 
 from __future__ import annotations
 
-import json
 import math
 from typing import Any
 

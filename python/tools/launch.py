@@ -20,46 +20,33 @@ Exit status: 0 every vehicle done (or lost by a planned fault); 3 a vehicle abor
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
-import os
 import signal
 import subprocess
 import sys
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import lockstep_t
+from auvlcm.paths import build_dir
+from auvlcm.url import check_local, default_url, with_receive_buffer
+from confcheck import ConfigError
+from sim import clock_modes
+from sim.multihil.lockstep import lockstep_msg
+from tools.annotate import Annotator
+from tools.mission_watch import MissionWatch
+from tools.procs import Child
+from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
+from tools.simconfig import write_configs
+from tools.worldclock import WorldClock
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
-
-import lcm  # noqa: E402
-
-from auvlcm.url import check_local, default_url, with_receive_buffer  # noqa: E402
-from tools.annotate import Annotator  # noqa: E402
-from confcheck import ConfigError  # noqa: E402
-from tools.mission_watch import MissionWatch  # noqa: E402
-from tools.procs import Child  # noqa: E402
-from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario  # noqa: E402
-from tools.simconfig import write_configs  # noqa: E402
-from tools.worldclock import WorldClock  # noqa: E402
-from auv import lockstep_t  # noqa: E402  (its path: auvlcm, above)
-from sim.multihil.lockstep import lockstep_msg  # noqa: E402
 
 EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
 STARTUP_TIMEOUT_S = 90.0
-
-
-def build_dir() -> Path:
-    b = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
-    return b if b.is_absolute() else ROOT / b
 
 
 def nav_configs(sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Path) -> tuple[dict[str, Path], list[str]]:
@@ -210,9 +197,9 @@ class Launcher:
         self.notes.types()
 
     def sim_cmd(self, vid: str) -> list[str]:
-        cmd = [sys.executable, str(ROOT / "python" / "sim"), str(self.sim_configs[vid]), "--lcm-url", self.child_url]
-        # On the launcher's clock every simulator is stepped; otherwise their configuration decides.
-        return cmd + (["--clock", "stepped"] if self.sc.time.source == "launcher" else [])
+        cmd = [sys.executable, "-m", "sim", str(self.sim_configs[vid]), "--lcm-url", self.child_url]
+        # On the launcher's clock every simulator runs lockstep; otherwise their configuration decides.
+        return cmd + (["--clock", "lockstep"] if self.sc.time.source == "launcher" else [])
 
     def manager_cmd(self, vid: str, m) -> list[str]:
         cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),
@@ -356,8 +343,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--warp", type=float, help="override time.warp")
-    ap.add_argument("--time", choices=TIME_MODES, help="override time.mode: the pace of the lockstep clock "
-                    "(lockstep = fast: as fast as the slowest process; scaled: at most warp x; realtime)")
+    ap.add_argument("--time", type=clock_modes.argument, metavar="{" + ",".join(TIME_MODES) + "}",
+                    help="override time.mode: the pace of the lockstep clock (lockstep: as fast as the "
+                    "slowest process; scaled: at most warp x; realtime)")
     ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument("--recorder", choices=RECORDERS,

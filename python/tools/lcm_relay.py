@@ -37,17 +37,10 @@ import sys
 import time
 from collections import OrderedDict, deque
 from dataclasses import dataclass
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import lcm
 
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import lcm  # noqa: E402
-
-from auvlcm.url import check_local  # noqa: E402
+from auvlcm.url import check_local
 
 ECHO_MEMORY_S = 5.0
 OCCURRENCE_MEMORY = 100_000   # identical messages remembered, to vary their fate

@@ -28,18 +28,12 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import numpy as np
 
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import numpy as np  # noqa: E402
-
-from auvlcm.arrays import ChannelArrays, LogArrays, load_log  # noqa: E402
-from auvlcm.log import EXIT_EVENTS_LOST, LogStats, damage_lines, read_events  # noqa: E402
-from tools import mcap_export  # noqa: E402
-from tools.timeline import state_timeline  # noqa: E402
+from auvlcm.arrays import ChannelArrays, LogArrays, load_log
+from auvlcm.log import EXIT_EVENTS_LOST, LogStats, damage_lines, read_events
+from tools import mcap_export
+from tools.timeline import state_timeline
 
 
 def _show(ch: str) -> str:

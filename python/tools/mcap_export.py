@@ -29,8 +29,8 @@ from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.json_schema import schema_of, to_json
 from auvlcm.log import LCM_INTERNAL_CHANNELS
 from auvlcm.types import type_of
-
 from tools.foxglove_topics import DERIVED, GEOJSON, LOCATION_FIX, geojson, location_fix
+
 
 @dataclass
 class ExportStats:

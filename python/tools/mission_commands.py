@@ -13,7 +13,6 @@ import random
 import time
 from pathlib import Path
 
-import auvlcm  # noqa: F401  (puts the generated types on sys.path)
 from auv import mission_command_t, plugin_upload_t
 
 COMMANDS = {"start": mission_command_t.CMD_START, "pause": mission_command_t.CMD_PAUSE,

@@ -28,8 +28,8 @@ import select
 from dataclasses import dataclass, field
 
 import lcm
-from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
 
+from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
 from auvlcm.rx import Receiver
 from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from tools.annotate import plan_files

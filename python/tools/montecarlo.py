@@ -22,14 +22,6 @@ run reported, 1 when some did not, 2 on bad usage.
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
 import os
@@ -40,10 +32,9 @@ import time
 from concurrent.futures import Executor, ThreadPoolExecutor
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
+from tools.montecarlo_summary import plot, summarize, summary_text
 
-from tools.montecarlo_summary import plot, summarize, summary_text  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
 
 BASE_PORT = 7900        # without namespaces, run k listens on BASE_PORT + k
 
@@ -51,16 +42,14 @@ BASE_PORT = 7900        # without namespaces, run k listens on BASE_PORT + k
 def run_one(spec: dict) -> dict:
     """One seed: launch, report, figures. Runs on whichever machine executes it."""
     root, out, seed = Path(spec["root"]), Path(spec["out"]), spec["seed"]
-    if str(root / "python") not in sys.path:     # on a Dask worker started anywhere
-        sys.path.insert(0, str(root / "python"))
     from tools.montecarlo_summary import metrics_of
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ)
     env.pop("AUV_IN_ISOLATED_NET", None)     # a namespace of its own even inside an isolated parent
-    env["PYTHONPATH"] = os.pathsep.join([str(root / "python"), str(Path(spec["build"]) / "gen" / "python")])
+    env["PYTHONPATH"] = str(Path(spec["build"]) / "gen" / "python")    # that build's message types
     py = spec["python"] if spec.get("python") and Path(spec["python"]).exists() else sys.executable
     url = f"udpm://239.255.76.67:{BASE_PORT + spec['index']}?ttl=0"
-    launch = [py, str(root / "python/tools/launch.py"), spec["scenario"], "--seed", str(seed), "--out",
+    launch = [py, "-m", "tools.launch", spec["scenario"], "--seed", str(seed), "--out",
               str(out / "run"), "--url", url, "--build", spec["build"], "--progress", "0"]
     result = {"seed": seed, "host": socket.gethostname(), "out": str(out)}
     wall0 = time.monotonic()
@@ -73,7 +62,7 @@ def run_one(spec: dict) -> dict:
         result["error"] = f"launcher exit {rc}, no log (see {out / 'launch.out'})"
         return result
     with open(out / "report.out", "w") as f:
-        rrc = subprocess.call([py, str(root / "python/tools/report.py"), str(log), "--out", str(out), "--no-plots"],
+        rrc = subprocess.call([py, "-m", "tools.report", str(log), "--out", str(out), "--no-plots"],
                               stdout=f, stderr=subprocess.STDOUT, env=env)
     result["wall_s"] = time.monotonic() - wall0
     if rrc != 0:
@@ -90,9 +79,6 @@ def _executor(args) -> tuple[Executor, object]:
         return ThreadPoolExecutor(max_workers=args.jobs), None
     from distributed import Client, LocalCluster
     if args.dask_local:
-        # worker processes import this module by name: give them its path
-        os.environ["PYTHONPATH"] = os.pathsep.join(
-            [str(ROOT / "python"), *filter(None, [os.environ.get("PYTHONPATH")])])
         cluster = LocalCluster(n_workers=args.dask_local, threads_per_worker=1, processes=True,
                                dashboard_address=None)
         client = Client(cluster)

@@ -15,26 +15,15 @@ filter's defaults (docs/navigation.md).
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import math
 import sys
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-if str(ROOT / "python") not in sys.path:
-    sys.path.insert(0, str(ROOT / "python"))
+from sim.config import SimConfig, load_or_report
+from sim.sensors import REGISTRY
 
-import auvlcm  # noqa: E402,F401  (generated types on sys.path, needed by sim)
-from sim.config import SimConfig, load_or_report  # noqa: E402
-from sim.sensors import REGISTRY  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
 
 # Below this a configured bias is "none"; the filter still gets a small prior.
 MIN_BIAS_SIGMA_RAD = math.radians(0.1)

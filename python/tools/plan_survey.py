@@ -16,14 +16,6 @@ Exit status 2 on bad input or a plan the plugins refuse.
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
 import math
@@ -32,16 +24,17 @@ import shlex
 import sys
 from pathlib import Path
 
+import yaml
+
+from auvlcm.paths import build_dir
+from sim import clock_modes
+from tools.plan_team import add_team_options, write_team
+from tools.plan_text import Limits, estimated_duration_s, plan_text
+from tools.plugin_limits import LimitsError, check_plan, polygon_limits
+from tools.survey_geometry import GeometryError, format_polygon, parse_polygon
+from tools.survey_plan import Sonar, Survey, plan_survey
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
-
-import yaml  # noqa: E402
-
-from tools.plan_text import Limits, estimated_duration_s, plan_text  # noqa: E402
-from tools.plugin_limits import LimitsError, build_dir, check_plan, polygon_limits  # noqa: E402
-from tools.survey_geometry import GeometryError, format_polygon, parse_polygon  # noqa: E402
-from tools.survey_plan import Sonar, Survey, plan_survey  # noqa: E402
-from tools.plan_team import add_team_options, write_team  # noqa: E402
 
 DEFAULTS = {
     "sim_config": ROOT / "missions" / "sim" / "remus100.yaml",
@@ -100,7 +93,7 @@ def scenario_dict(name: str, out: Path, ids, sv: Survey, starts, args, lim: Limi
             ]})
     world = read_world(args.world) if args.world else {}
     return {"name": name, "seed": args.seed, "world": world or {},
-            "time": {"mode": "fast", "limit": round(1.5 * longest + 900)}, "vehicles": vehicles}
+            "time": {"mode": clock_modes.LOCKSTEP, "limit": round(1.5 * longest + 900)}, "vehicles": vehicles}
 
 
 def read_world(path: Path) -> dict:
@@ -216,15 +209,15 @@ def main(argv: list[str] | None = None) -> int:
     sc["survey"] = "survey.json"
     command = " ".join(shlex.quote(_rel(Path(a).resolve(), ROOT) if "/" in a and Path(a).exists() else a)
                        for a in (argv if argv is not None else sys.argv[1:]))
-    (out / f"{name}.yaml").write_text(f"# Written by python/tools/plan_survey.py; polygon {format_polygon(polygon)}\n"
-                                      f"# Regenerate (from the repository root): python/tools/plan_survey.py {command}\n"
+    (out / f"{name}.yaml").write_text(f"# Written by auv-plan-survey (python/tools/plan_survey.py); polygon {format_polygon(polygon)}\n"
+                                      f"# Regenerate (from the repository root): .venv/bin/auv-plan-survey {command}\n"
                                       + yaml.safe_dump(sc, sort_keys=False))
     print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(sv.vehicles)} shares, lines {sv.spacing_m:.1f} m apart "
           f"(tolerates {sv.margin_m:.1f} m off track)")
     if team is not None:
         t = team["team"]
         print(f"  team {','.join(t['roster'])}: TDMA {t['slots']} slots of {t['slot_s']:g} s "
-              f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), time {args.time_mode}")
+              f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), lockstep clock from the {args.time_source}")
     for vid, v, st in zip(ids, sv.vehicles, starts):
         print(f"  {vid}: {v.area_m2 / 1e6:.4f} km2, {len(v.lines)} line legs, {v.length_m() / 1000:.2f} km, "
               f"about {estimated_duration_s(v, st, lim) / 60:.0f} min")

@@ -21,7 +21,9 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from sim import clock_modes
 from tools.plan_text import Limits, estimated_duration_s
+from tools.scenario import CLOCK_SOURCES
 from tools.survey_geometry import GeometryError
 from tools.survey_plan import Survey
 from tools.team_plan_text import TeamLink, lines_string, ri_plan, search_plan
@@ -49,7 +51,8 @@ def add_team_options(ap) -> None:
     g.add_argument("--slot-guard", type=float, default=0.3, help="TDMA guard time added to each slot [s]")
     g.add_argument("--silent", type=float, default=120.0, help="a teammate unheard this long is lost [s]")
     g.add_argument("--linger", type=float, default=120.0, help="search: on the link after the lines [s]")
-    g.add_argument("--time", choices=("lockstep", "fast"), default="lockstep", dest="time_mode")
+    g.add_argument("--time-source", choices=CLOCK_SOURCES, default="simulators",
+                   help="whose lockstep clock: the simulators' multi-HIL nodes (default) or the launcher's")
     for key, default in TEAM_DEFAULTS.items():
         g.add_argument("--" + key.replace("_", "-"), type=Path, default=default)
 
@@ -62,7 +65,6 @@ class Modem:
 
 def modem_of(config: Path) -> Modem:
     """The modem of a simulator configuration (errors as file:line:col: ConfigError)."""
-    import auvlcm  # noqa: F401 - puts the generated LCM types (sim.config's sensors) on the path
     from sim.config import load
     cfg = load(config)
     if cfg.modem is None:
@@ -142,16 +144,15 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
         heading = math.atan2(first[1] - st[1], first[0] - st[0]) % (2 * math.pi)
         sim = {"config": _rel(args.ri_config if vid in ri_ids else args.search_config, out),
                "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1), "heading_rad": round(heading, 4)}}
-        if args.time_mode == "lockstep":
-            sim["simulation"] = {"clock": "stepped"}
+        if args.time_source == "simulators":
+            sim["simulation"] = {"clock": "lockstep"}
             sim["multihil"] = {"enabled": True, "lockstep_participants": participants}
         vehicles.append({"id": vid, "sim": sim, "managers": [
             {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20},
             {"name": "NAVIGATOR", "plan": f"{vid}.chasm",
              "bind": _rel(args.ri_bind if vid in ri_ids else args.team_bind, out), "rate": 10}]})
     limit = round(timeout + 120)
-    time = ({"mode": "fast", "source": "simulators", "limit": limit} if args.time_mode == "lockstep"
-            else {"mode": "fast", "limit": limit})
+    time = {"mode": clock_modes.LOCKSTEP, "source": args.time_source, "limit": limit}
     team = {"roster": roster, "search": ids, "ri": ri_ids, "slot_s": link.slot_s, "slots": len(roster),
             "frame_bytes": modem.frame_bytes, "frame_s": round(modem.frame_s, 3), "lines": lines}
     return {"time": time, "vehicles": vehicles, "team": team}, paths

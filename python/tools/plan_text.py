@@ -59,7 +59,7 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
     vertical = "hold_depth(depth = $depth)" if lim.depth_m > 0 else "hold_altitude(altitude = $altitude)"
     out = [
         f"# {vid}: share {v.index + 1} of {len(survey.vehicles)} of a sidescan survey, written by",
-        "# python/tools/plan_survey.py (re-run it rather than edit this file).",
+        "# auv-plan-survey (re-run it rather than edit this file).",
         f"# Survey area {survey.area_m2 / 1e6:.3f} km2, this share {v.area_m2 / 1e6:.3f} km2, "
         f"{len(v.lines)} line legs, {v.length_m() / 1000:.2f} km, about {est / 60:.0f} min.",
         f"# Lines at heading {survey.heading_rad * 57.29577951308232:.1f} deg, {survey.spacing_m:.1f} m apart "

@@ -22,19 +22,13 @@ import sys
 import zlib
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import matplotlib  # noqa: E402
+import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from auvlcm.arrays import load_log  # noqa: E402
+from auvlcm.arrays import load_log
 
 PALETTE = plt.get_cmap("tab10").colors
 

@@ -19,12 +19,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.patches import Polygon as MplPolygon  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Polygon as MplPolygon
 
-from tools.association import associate  # noqa: E402
-from tools.run_data import RunData  # noqa: E402
+from tools.association import associate
+from tools.run_data import RunData
 
 FORMATS = ("png", "svg")
 

@@ -8,7 +8,6 @@ from a second copy of the number, and checks every plan it writes with
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
 from dataclasses import dataclass
@@ -19,11 +18,6 @@ ROOT = Path(__file__).resolve().parents[2]
 
 class LimitsError(RuntimeError):
     pass
-
-
-def build_dir() -> Path:
-    b = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
-    return b if b.is_absolute() else ROOT / b
 
 
 @dataclass(frozen=True)

@@ -17,29 +17,20 @@ file, not an LCM log, or no vehicle in it.
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
 import json
 import math
 import sys
 from pathlib import Path
 
+import numpy as np
+
+from auvlcm.log import EXIT_EVENTS_LOST, damage_lines
+from tools.association import associate
+from tools.coverage import coverage_grid, point_in_polygon
+from tools.run_data import RunData, interp_truth, load_run
+
 ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
-
-import numpy as np  # noqa: E402
-
-from auvlcm.log import EXIT_EVENTS_LOST, damage_lines  # noqa: E402
-from tools.association import associate  # noqa: E402
-from tools.coverage import coverage_grid, point_in_polygon  # noqa: E402
-from tools.run_data import RunData, interp_truth, load_run  # noqa: E402
 
 
 def detection_stats(run: RunData, radius: float, covered=None) -> dict | None:

@@ -20,16 +20,16 @@ import yaml
 
 from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
+from sim import clock_modes
 from tools.plan_params import declared_params
 from tools.scenario_faults import PlannedFault, check_faults
-
 
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
 PARAM_NAME = r"[A-Za-z_][A-Za-z0-9_]{0,63}"
 HOST_NAME = r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}"
-# the launcher's clock is lockstep in every mode (tools/worldclock.py): the mode is its pace.
-# lockstep = as fast as the slowest participant; fast = its old name, still accepted.
-TIME_MODES = ("realtime", "scaled", "lockstep", "fast")
+# the launcher's clock is lockstep in every mode (tools/worldclock.py): the mode is its pace
+# (sim.clock_modes: lockstep = as fast as the slowest participant; `fast`, its old name, is read so).
+TIME_MODES = clock_modes.MODES
 RECORDERS = ("auv-recorder", "lcm-logger")   # what records the run's log (docs/tools.md, "Recorder")
 CLOCK_SOURCES = ("launcher", "simulators")
 NAV_SOURCES = ("ins", "ekf")
@@ -72,7 +72,7 @@ class Vehicle:
 
 @dataclass
 class TimeSettings:
-    mode: str = setting("scaled", one_of=TIME_MODES)
+    mode: str = setting("scaled", one_of=TIME_MODES, old_names=clock_modes.OLD_NAMES)
     warp: float = setting(10.0, gt=0.0)
     step_s: float = setting(0.05, gt=0.0, key="step")          # SIM.CLOCK tick [sim s]
     limit_s: float = setting(3600.0, gt=0.0, key="limit")      # mission time limit [sim s]

@@ -7,7 +7,7 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from confcheck import ConfigError, Checker
+from confcheck import Checker, ConfigError
 from confcheck.reader import dump_yaml
 from tools.scenario import Scenario, Vehicle, position
 

@@ -4,7 +4,7 @@
     survey_log.py --out run.lcmlog [--config missions/sim/remus100_survey.yaml]
                   [--set sensors.dvl.dropout=0.2]... [--lines 4 --length 460 ...]
 
-Runs the real simulator (python/sim) in stepped mode and drives it from here:
+Runs the real simulator (python/sim) in lockstep and drives it from here:
 this script is the global clock (SIM.CLOCK, 0.1 s steps) and a scripted survey
 controller (survey_pilot.py) steering by the simulator's black-box INS
 (<V>.NAV). Each step waits for the simulator's output, so the run is
@@ -24,34 +24,23 @@ overridden file is written next to the log and annotated into it).
 
 from __future__ import annotations
 
-import sys  # noqa: E401  (the tool re-runs itself under .venv: use_venv)
-from pathlib import Path
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
 import argparse
-import re
 import math
+import re
 import sys
 import time
 from pathlib import Path
 
+import lcm
+
+from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t
+from auvlcm.rx import Receiver
+from auvlcm.timepolicy import InputGate, TimeDrops
+from auvlcm.url import check_local, default_url, with_receive_buffer
+from tools.procs import Child
+from tools.survey_pilot import Nav, Survey, SurveyPilot
+
 ROOT = Path(__file__).resolve().parents[2]
-if str(ROOT / "python") not in sys.path:
-    sys.path.insert(0, str(ROOT / "python"))
-
-import auvlcm  # noqa: E402,F401  (puts the generated types on sys.path)
-import lcm  # noqa: E402
-from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t  # noqa: E402
-
-from auvlcm.rx import Receiver  # noqa: E402
-from auvlcm.timepolicy import InputGate, TimeDrops  # noqa: E402
-from auvlcm.url import check_local, default_url, with_receive_buffer  # noqa: E402
-from tools.procs import Child  # noqa: E402
-from tools.survey_pilot import Nav, Survey, SurveyPilot  # noqa: E402
 
 DEFAULT_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 STEP_S = 0.1
@@ -196,7 +185,7 @@ def run(args: argparse.Namespace) -> int:
             time.sleep(0.5)             # the logger is listening before anything is said
         annotate(lc, cfg_path.name, cfg_text, log_annotation_t.KIND_SCENARIO)
         annotate(lc, "survey", repr(survey), log_annotation_t.KIND_NOTE)
-        sim = Child("sim", [sys.executable, str(ROOT / "python" / "sim"), str(cfg_path), "--clock", "stepped",
+        sim = Child("sim", [sys.executable, "-m", "sim", str(cfg_path), "--clock", "lockstep",
                             "--lcm-url", url], out.with_suffix(".sim.out")).start()
         t_us, end_us = 0, None
         limit_us = int(min(args.max_s, 1e7) * 1e6)

@@ -18,8 +18,19 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 
-from tools.survey_geometry import (Frame, GeometryError, Point, area, band_extent, buffer_convex, check_polygon,
-                                   clip_v, convex_hull, simplify_convex_outer, split_by_area)
+from tools.survey_geometry import (
+    Frame,
+    GeometryError,
+    Point,
+    area,
+    band_extent,
+    buffer_convex,
+    check_polygon,
+    clip_v,
+    convex_hull,
+    simplify_convex_outer,
+    split_by_area,
+)
 
 
 @dataclass

@@ -50,7 +50,7 @@ def _header(vid: str, role: str, link: TeamLink, lim: Limits, timeout_s: float, 
     me = link.roster.index(vid)
     return [
         f"# {vid}: {role} of the team {','.join(link.roster)}, written by",
-        "# python/tools/plan_survey.py --team (re-run it rather than edit this file;",
+        "# auv-plan-survey --team (re-run it rather than edit this file;",
         "# the tuning params below are safe to adjust by hand).",
         *extra,
         f'mission "{vid} team {role}"',

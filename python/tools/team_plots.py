@@ -14,12 +14,12 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from tools.plots import _area, _save, vehicle_colour  # noqa: E402
-from tools.run_data import RunData  # noqa: E402
-from tools import team_report as tr  # noqa: E402
+from tools import team_report as tr
+from tools.plots import _area, _save, vehicle_colour
+from tools.run_data import RunData
 
 
 def heard(run: RunData, out: Path, t0: float) -> list[Path]:

@@ -26,12 +26,13 @@ import math
 import time
 
 import lcm
-from auv import lockstep_t, sim_clock_t
 
+from auv import lockstep_t, sim_clock_t
+from sim import clock_modes
 from sim.multihil.lockstep import RESEND_S, LockstepTracker
 from sim.multihil.server import LockstepServer
 
-PACE = {"realtime": 1.0, "scaled": None, "lockstep": math.inf, "fast": math.inf}
+PACE = {clock_modes.REALTIME: 1.0, clock_modes.SCALED: None, clock_modes.LOCKSTEP: math.inf}
 
 
 class WorldClock:

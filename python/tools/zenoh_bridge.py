@@ -37,18 +37,11 @@ import select
 import signal
 import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+import lcm
 
-from tools import use_venv  # noqa: E402
-
-use_venv.ensure()
-
-import lcm  # noqa: E402
-
-from auvlcm.url import check_local, default_url  # noqa: E402
-from tools.lcm_relay import Echoes  # noqa: E402
+from auvlcm.url import check_local, default_url
+from tools.lcm_relay import Echoes
 
 SITE = re.compile(r"[A-Za-z0-9_-]{1,40}")
 BAD_KEY_CHARS = re.compile(r"[*$?#/]")
@@ -97,7 +90,6 @@ class Rules:
 
 class Bridge:
     def __init__(self, args) -> None:
-        import zenoh
         self.site, self.realm, self.rules = args.site, args.realm, Rules(args.allow, args.deny)
         self.stats_channel = f"SIM.LINK_STATS.ZENOH_{self.site.upper().replace('-', '_')}"
         self.n = dict(sent=0, received=0, denied_out=0, denied_in=0, echoes=0, unbridgeable=0, inbox_full=0)

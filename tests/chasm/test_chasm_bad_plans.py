@@ -4,7 +4,6 @@ with file:line:col, all in one run, and `chasm check` exits with 1."""
 from __future__ import annotations
 
 import pytest
-
 from chasm_common import BAD_PLANS, run
 
 FILES = sorted(BAD_PLANS.glob("*.chasm"))

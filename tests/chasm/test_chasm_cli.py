@@ -7,7 +7,6 @@ import re
 import shutil
 
 import pytest
-
 from chasm_common import BAD_PLANS, PLANS, run
 
 

@@ -5,7 +5,6 @@ each limit and one past it, in both builds."""
 from __future__ import annotations
 
 import pytest
-
 from chasm_common import run
 
 STRING_MAX = 1023

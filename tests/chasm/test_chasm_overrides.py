@@ -7,7 +7,6 @@ manager's -D."""
 from __future__ import annotations
 
 import pytest
-
 from chasm_common import run
 
 PLAN = """\

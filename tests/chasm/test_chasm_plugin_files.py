@@ -10,7 +10,6 @@ import re
 import subprocess
 
 import pytest
-
 from chasm_common import PLANS, run
 from plugin_corpus import BUILT, HANG, SPECIAL, Case, built_cases, byte_cases, make_special
 

@@ -13,14 +13,13 @@ from pathlib import Path
 
 import pytest
 import yaml
-
 from conftest import BUILD, ROOT
 
 SCENARIOS = ROOT / "tests" / "tools" / "scenarios"
 SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 BIND = ROOT / "missions" / "bindings" / "direct_actuators.bind"
-CONSOLE = [sys.executable, str(ROOT / "python" / "tools" / "console.py")]
-LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
+CONSOLE = [sys.executable, "-m", "tools.console"]
+LAUNCH = [sys.executable, "-m", "tools.launch"]
 ARTIFACTS = BUILD / "test-artifacts" / "console"
 
 

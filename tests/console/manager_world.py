@@ -9,10 +9,10 @@ import subprocess
 import threading
 
 import lcm
-
-from auv import nav_solution_t, sim_clock_t
 from conftest import ROOT, c_program
 from lcm_proc import stop
+
+from auv import nav_solution_t, sim_clock_t
 
 HERE = ROOT / "tests" / "managers"
 

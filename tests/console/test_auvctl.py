@@ -9,11 +9,9 @@ import subprocess
 import sys
 
 import pytest
-
-from conftest import ROOT
 from manager_world import HERE, ManagerWorld
 
-AUVCTL = [sys.executable, str(ROOT / "python" / "tools" / "auvctl.py")]
+AUVCTL = [sys.executable, "-m", "tools.auvctl"]
 
 
 def ctl(url: str, env: dict, *args: str, timeout: float = 5.0) -> subprocess.CompletedProcess:
@@ -66,14 +64,3 @@ def test_usage_and_file_errors_exit_2(tmp_path, lcm_url, child_env):
     run = subprocess.run(AUVCTL + ["--url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"], env=child_env,
                          capture_output=True, text=True, timeout=30)
     assert run.returncode == 2 and "ttl=3" in run.stderr
-
-
-def test_the_tools_run_as_the_docs_write_them():
-    """`python/tools/X.py` with the system python3 (the #! line): they re-run under .venv."""
-    import os
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV", "AUV_VENV_REEXEC")}
-    for tool in ("auvctl.py", "console.py"):    # the others share tools/use_venv.py
-        path = ROOT / "python" / "tools" / tool
-        assert os.access(path, os.X_OK), f"{tool} has no execute bit"
-        run = subprocess.run([str(path), "--help"], env=env, capture_output=True, text=True, timeout=60)
-        assert run.returncode == 0 and "usage:" in run.stdout, (tool, run.stderr)

@@ -12,9 +12,7 @@ import sys
 import time
 
 from browser import Browser
-from conftest import ROOT
-from console_fixtures import (ARTIFACTS, LAUNCH, Console, chromium, read_until, stop_launcher,  # noqa: F401
-                              vehicle, write_scenario)
+from console_fixtures import ARTIFACTS, LAUNCH, Console, chromium, read_until, stop_launcher, vehicle, write_scenario  # noqa: F401
 
 
 def _panel(vid: str, manager: str, part: str) -> str:
@@ -32,7 +30,7 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
                                 env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                                 start_new_session=True)
     # a host agent beside it: the page lists its process table
-    agent = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "agent.py"), "--host", "alpha",
+    agent = subprocess.Popen([sys.executable, "-m", "tools.agent", "--host", "alpha",
                               "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     console = browser = None
     try:

@@ -11,10 +11,10 @@ from urllib.parse import urlparse
 
 import pytest
 import yaml
-
-from console_fixtures import Console
 from conftest import ROOT
+from console_fixtures import Console
 from manager_world import ManagerWorld
+
 from tools.live.model import Model, Series, Trail
 from tools.live.world import WorldBuilder, WorldError
 
@@ -109,7 +109,7 @@ def test_a_bad_scenario_is_a_clear_error(tmp_path, child_env):
         WorldBuilder(Model()).load_scenario(bad)
     import subprocess
     import sys
-    run = subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "console.py"), "--scenario", str(bad),
+    run = subprocess.run([sys.executable, "-m", "tools.console", "--scenario", str(bad),
                           "--port", "0"], env=child_env, capture_output=True, text=True, timeout=30)
     assert run.returncode == 2 and "missing.json" in run.stderr and "Traceback" not in run.stderr
 
@@ -170,6 +170,7 @@ def _write_run_log(path) -> None:
     """Two vehicles over 6 s of sim time: truth, nav, navigator status (running, then
     AUV2 aborted at 4 s), a contact, a heard modem frame; logged 50 ms apart."""
     import lcm as _lcm
+
     from auv import chasm_status_t, ground_truth_t, modem_rx_t, nav_solution_t, sidescan_contact_t
     log = _lcm.EventLog(str(path), "w", overwrite=True)
     for i in range(60):
@@ -198,6 +199,7 @@ def _write_run_log(path) -> None:
 
 def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
     import subprocess
+
     from lcm_proc import lcm_tool
     _write_run_log(tmp_path / "r.lcmlog")
     console = Console(["--url", lcm_url], child_env)
@@ -275,7 +277,7 @@ def test_the_model_keeps_each_agents_process_table_and_its_wall_stamp_moves_no_t
 def test_the_page_shows_a_live_agents_table(lcm_url, child_env):
     import subprocess
     import sys
-    agent = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "agent.py"), "--host", "alpha",
+    agent = subprocess.Popen([sys.executable, "-m", "tools.agent", "--host", "alpha",
                               "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     console = Console(["--url", lcm_url], child_env)
     try:

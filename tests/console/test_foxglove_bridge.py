@@ -18,13 +18,12 @@ import time
 
 import jsonschema
 import lcm
+from console_fixtures import read_until
 
 from auv import env_model_t, log_annotation_t, nav_solution_t
 from auvlcm.json_schema import schema_of
-from console_fixtures import read_until
-from conftest import ROOT
 
-BRIDGE = [sys.executable, str(ROOT / "python" / "tools" / "foxglove_bridge.py")]
+BRIDGE = [sys.executable, "-m", "tools.foxglove_bridge"]
 SURVEY = {"polygon": [[0, 0], [100, 0], [100, 80]], "vehicles": {}}
 
 

@@ -19,11 +19,9 @@ import time
 import traceback
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "python"))
+from confcheck import ConfigError
 
-import auvlcm  # noqa: E402,F401  (generated types on sys.path, needed by sim)
-from confcheck import ConfigError  # noqa: E402
+ROOT = Path(__file__).resolve().parents[2]
 
 TOKENS = [b"[", b"]", b"{", b"}", b": ", b"\n", b"- ", b"&a ", b"*a", b"<<: *a", b"!!python/object:os.system ",
           b"!!binary ", b"\xff", b"\xc3", b"\x00", b"\t", b"1e400", b"-1", b".nan", b".inf", b"SIM", b"MODEM",
@@ -37,7 +35,7 @@ def seeds() -> list[tuple[str, bytes]]:
             if b"vehicles:" in p.read_bytes()]
     out += [("scenario", (ROOT / "tests" / "tools" / "scenarios" / "two_vehicles.yaml").read_bytes())]
     out += [("set", s) for s in (b"sensors.gps.noise=2.5", b"vehicle.id=AUV7", b"initial={depth_m: 3, north_m: 1}",
-                                 b"simulation.clock=stepped", b"environment.current=[{depth_m: 0, north_mps: 0.1, "
+                                 b"simulation.clock=lockstep", b"environment.current=[{depth_m: 0, north_mps: 0.1, "
                                  b"east_mps: 0, down_mps: 0}]")]
     return out
 

@@ -10,11 +10,10 @@ import time
 from pathlib import Path
 
 import yaml
-
 from conftest import ROOT
 
-AGENT = [sys.executable, str(ROOT / "python" / "tools" / "agent.py")]
-AGENTCTL = [sys.executable, str(ROOT / "python" / "tools" / "agentctl.py")]
+AGENT = [sys.executable, "-m", "tools.agent"]
+AGENTCTL = [sys.executable, "-m", "tools.agentctl"]
 SCEN = ROOT / "tests" / "tools" / "scenarios"
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
@@ -28,7 +27,7 @@ def vehicle(vid: str, host: str, east: float = 0.0, cycles: int = 60) -> dict:
 
 
 def write_scenario(path: Path, vehicles: list, hosts: list, **extra) -> Path:
-    sc = {"name": path.stem, "seed": 5, "time": {"mode": "fast", "limit": 60, "wall_limit": 120},
+    sc = {"name": path.stem, "seed": 5, "time": {"mode": "lockstep", "limit": 60, "wall_limit": 120},
           "hosts": hosts, "vehicles": vehicles, **extra}
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     return path

@@ -10,9 +10,10 @@ import signal
 import time
 
 import pytest
-
 from agents import AgentProc, Tables, alive, ctl, vehicle, wait_until, write_scenario
-from auv import agent_ack_t, agent_command_t, agent_process_t as P
+
+from auv import agent_ack_t, agent_command_t
+from auv import agent_process_t as P
 
 # a mission that outlasts the test: only the test ends it (fast time would reach a time limit)
 ENDLESS = {"mode": "realtime", "limit": 3600, "wall_limit": 600}
@@ -214,11 +215,10 @@ def test_launch_through_agents_runs_the_mission_on_its_clock(tmp_path, lcm_url, 
     import subprocess
     import sys
 
-    from conftest import ROOT
     agents, tables = two_agents
     sc = write_scenario(tmp_path / "via.yaml", [vehicle("AUV1", "alpha"), vehicle("AUV2", "beta", east=40, cycles=80)],
                         ["alpha", "beta"])
-    run = subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+    run = subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--agents",
                           "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
                          env=child_env, capture_output=True, text=True, timeout=180)
     assert run.returncode == 0, run.stdout + run.stderr
@@ -239,11 +239,10 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
     import subprocess
     import sys
 
-    from conftest import ROOT
     agents, tables = two_agents
     sc = write_scenario(tmp_path / "long.yaml", [vehicle("AUV1", "beta", cycles=100000)], ["alpha", "beta"],
                         time=ENDLESS)
-    launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+    launcher = subprocess.Popen([sys.executable, "-m", "tools.launch", str(sc), "--agents",
                                  "--deadman", "3", "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress",
                                  "0"], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
@@ -262,12 +261,11 @@ def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, 
     import subprocess
     import sys
 
-    from conftest import ROOT
     agents, tables = two_agents
     sc = write_scenario(tmp_path / "lost.yaml", [vehicle("AUV1", "alpha", cycles=100000),
                                                  vehicle("AUV2", "beta", cycles=100000)], ["alpha", "beta"],
                         time=ENDLESS)
-    launcher = subprocess.Popen([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--agents",
+    launcher = subprocess.Popen([sys.executable, "-m", "tools.launch", str(sc), "--agents",
                                  "--agent-timeout", "5", "--out", str(tmp_path / "run"), "--url", lcm_url,
                                  "--progress", "0"],
                                 env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)

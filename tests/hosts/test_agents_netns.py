@@ -15,12 +15,9 @@ import subprocess
 import sys
 
 import pytest
-
 from agents import AGENTCTL, AgentProc, alive, vehicle, wait_until, write_scenario
 from conftest import ROOT
-
-sys.path.insert(0, str(ROOT / "tests" / "multihil"))   # the namespace hosts of the multi-HIL tests
-from netns import Hosts, unavailable  # noqa: E402
+from netns import Hosts, unavailable
 
 URL = "udpm://239.255.76.67:7667?ttl=1"
 

@@ -25,16 +25,13 @@ import os
 import signal
 import subprocess
 import sys
-import time
 
 import pytest
 import yaml
-
 from agents import wait_until
 from conftest import ROOT
+from netns import Hosts, unavailable
 
-sys.path.insert(0, str(ROOT / "tests" / "multihil"))   # the namespace hosts of the multi-HIL tests
-from netns import Hosts, unavailable  # noqa: E402
 from tools.agent_part import host_part
 
 URL = "udpm://239.255.76.67:7667?ttl=1"

@@ -14,20 +14,16 @@ from __future__ import annotations
 
 import os
 import re
-import subprocess
 import sys
 import time
 
 import pytest
-
 from agents import wait_until
-from conftest import ROOT
+from netns import Hosts, unavailable
 
-sys.path.insert(0, str(ROOT / "tests" / "multihil"))   # the namespace hosts of the multi-HIL tests
-from netns import Hosts, unavailable  # noqa: E402
-from sim.multihil.world import VehicleSpec, World  # noqa: E402
+from sim.multihil.world import VehicleSpec, World
 
-BRIDGE = [sys.executable, str(ROOT / "python" / "tools" / "zenoh_bridge.py")]
+BRIDGE = [sys.executable, "-m", "tools.zenoh_bridge"]
 SITE_URL = "udpm://239.255.76.67:7667?ttl=0"      # never leaves its site's machine
 WARP = 2.0
 

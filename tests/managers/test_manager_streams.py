@@ -10,11 +10,11 @@ import signal
 import subprocess
 
 import pytest
-
-from auv import modem_tx_t
 from conftest import ROOT, c_program
 from lcm_proc import pump, stop
 from test_manager import World
+
+from auv import modem_tx_t
 
 HERE = ROOT / "tests" / "managers"
 N = 150

@@ -22,11 +22,11 @@ from typing import Callable
 
 import lcm
 import yaml
+from conftest import BUILD, ROOT
+from lcm_proc import pump, stop
 
 from auv import chasm_status_t, ground_truth_t, nav_solution_t, sim_clock_t
 from auvlcm.rx import Receiver
-from conftest import BUILD, ROOT
-from lcm_proc import pump, stop
 
 MISSIONS = ROOT / "missions"
 SIM_CONFIG = MISSIONS / "sim" / "remus100.yaml"
@@ -84,7 +84,7 @@ def sim_config(tmp: Path, **overrides) -> Path:
     every physics step (this process waits for it) and any `section: {key:
     value}` overrides merged in (e.g. initial={'north_m': -50}; None removes a key)."""
     cfg = yaml.safe_load(SIM_CONFIG.read_text())
-    cfg["simulation"].update(clock="stepped", truth_rate_hz=cfg["simulation"].get("physics_rate_hz", 50))
+    cfg["simulation"].update(clock="lockstep", truth_rate_hz=cfg["simulation"].get("physics_rate_hz", 50))
     merge(cfg, overrides)
     path = tmp / "sim.yaml"
     path.write_text(yaml.safe_dump(cfg))
@@ -156,7 +156,7 @@ class Mission:
         defines = [a for k, v in self.params.items() for a in ("-D", f"{k}={v}")]
         self._start("navigator", [manager, "--plan", self.plan, "--bind", self.bind, "--name", "NAVIGATOR",
                                   "--rate", "10", *common, *defines], "NAVIGATOR: running")
-        self._start("sim", [sys.executable, ROOT / "python" / "sim", self.sim_cfg, "--lcm-url", self.url],
+        self._start("sim", [sys.executable, "-m", "sim", self.sim_cfg, "--lcm-url", self.url],
                     "running")
         return self
 

@@ -14,9 +14,9 @@ from __future__ import annotations
 import math
 
 import pytest
+from closed_loop import MISSIONS, Mission, Pose, Record
 
 from auv import chasm_status_t
-from closed_loop import MISSIONS, Mission, Pose, Record
 
 EXAMPLES = MISSIONS / "examples"
 # Every shipped mission flies in the default sea state (remus100.yaml's 0.5 m, 6 s swell).

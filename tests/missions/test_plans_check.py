@@ -6,7 +6,6 @@ from __future__ import annotations
 import subprocess
 
 import pytest
-
 from conftest import BUILD, ROOT, c_program
 
 PLANS = sorted((ROOT / "missions" / "examples").rglob("*.chasm"))

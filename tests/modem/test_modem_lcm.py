@@ -7,10 +7,10 @@ from __future__ import annotations
 import math
 
 import pytest
+from world import STEP_US, World
 
 from sim.modem.acoustics import loss_probability
 from sim.modem.config import ModemConfig
-from world import STEP_US, World
 
 C0, GRADIENT = 1490.0, 0.02          # as in world.SIM_CONFIG
 LOSSLESS = {"loss_at_zero": 0.0, "loss_at_max_range": 0.0, "max_range_m": 2000}

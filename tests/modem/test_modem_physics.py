@@ -8,15 +8,15 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from world import World
 
 from auv import acoustic_frame_t, modem_status_t, modem_tx_t
 from sim.config import ConfigError, loads
 from sim.environment import Environment, EnvParams
 from sim.modem.acoustics import frame_duration_s
-from sim.modem.config import PROFILES, ModemConfig, with_profile
+from sim.modem.config import PROFILES, with_profile
 from sim.modem.receiver import Receiver
 from sim.modem.transmitter import Transmitter
-from world import World
 
 C = 1500.0
 DT = 0.02

@@ -5,15 +5,15 @@ modem node on an offline LCM, fed through its own typed subscriptions."""
 
 from __future__ import annotations
 
-from auv import acoustic_frame_t, modem_tx_t, peer_report_t
+from test_modem_unit import frame, tx_msg
 
+from auv import acoustic_frame_t, peer_report_t
 from auvlcm.offline import OfflineLcm
 from auvlcm.rx import Receiver as LcmReceiver
 from auvlcm.timepolicy import TimeDrops
 from sim.environment import Environment, EnvParams
 from sim.modem.config import ModemConfig
 from sim.modem.node import ModemNode
-from test_modem_unit import frame, tx_msg
 
 HOSTILE = (2**63 - 1, -(2**63), 10**18, -1)
 

@@ -9,10 +9,10 @@ from __future__ import annotations
 import subprocess
 
 import pytest
-
-from auv import peer_report_t
 from conftest import ROOT, c_program
 from test_modem_lcm import LOSSLESS, world  # noqa: F401  (fixture)
+
+from auv import peer_report_t
 
 PLANS = ROOT / "tests" / "modem" / "plans"
 

@@ -14,13 +14,13 @@ import time
 
 import lcm
 import pytest
+from conftest import _ports
+from lcm_proc import stop, wait_for_line
 
 from auv import link_stats_t
 from auvlcm.rx import Receiver
-from conftest import ROOT, _ports
-from lcm_proc import stop, wait_for_line
 
-RELAY = ROOT / "python" / "tools" / "lcm_relay.py"
+RELAY = ("-m", "tools.lcm_relay")
 
 
 @pytest.fixture
@@ -72,7 +72,7 @@ def relay_received(out: str, direction: str = "AB") -> int:
 
 
 def start_relay(env, a, b, *args):
-    proc = subprocess.Popen([sys.executable, str(RELAY), "--in", a, "--out", b, "--name", "LINK",
+    proc = subprocess.Popen([sys.executable, *RELAY, "--in", a, "--out", b, "--name", "LINK",
                              *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=env)
     wait_for_line(proc, "running", timeout=30)
@@ -141,8 +141,7 @@ def test_loss_duplication_reordering_statistics_and_repeatability(child_env, url
 def test_a_message_meets_the_same_fate_on_every_run(child_env, urls):
     """The fate of a message is a function of the seed and the message: the test
     predicts it from the relay's own draw function, whatever reached the relay."""
-    sys.path.insert(0, str(RELAY.parent))
-    from lcm_relay import draws, message_digest
+    from tools.lcm_relay import draws, message_digest
 
     def send(a, b, seq):
         a.send("AUV1.DATA", seq, stamp=False)           # the same bytes on every run
@@ -187,16 +186,16 @@ def test_both_directions_without_loops(child_env, urls):
     (["--name", "x y"], "--name: upper-case"),
 ])
 def test_bad_arguments_exit_non_zero_with_the_reason(child_env, urls, args, message):
-    res = subprocess.run([sys.executable, str(RELAY), "--in", urls[0], "--out", urls[1], *args],
+    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", urls[1], *args],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2 and message in res.stderr, res.stderr
 
 
 def test_urls_must_stay_on_this_host(child_env, urls):
     far = "udpm://239.255.76.67:7667?ttl=5"
-    res = subprocess.run([sys.executable, str(RELAY), "--in", urls[0], "--out", far],
+    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", far],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2 and "ttl=5 would send beyond this host" in res.stderr
-    res = subprocess.run([sys.executable, str(RELAY), "--in", urls[0], "--out", urls[0]],
+    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", urls[0]],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2 and "same URL" in res.stderr

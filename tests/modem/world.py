@@ -14,12 +14,10 @@ from collections import defaultdict
 from pathlib import Path
 
 import lcm
-
-from auv import (chasm_status_t, ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t,
-                 peer_report_t, sim_clock_t)
-from auvlcm.rx import Receiver
-from conftest import ROOT
 from lcm_proc import pump, stop, wait_for_line
+
+from auv import chasm_status_t, ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, peer_report_t, sim_clock_t
+from auvlcm.rx import Receiver
 
 STEP_US = 20_000          # one physics step at 50 Hz
 T0_US = 100_000_000       # the world starts at 100 s
@@ -27,7 +25,7 @@ T0_US = 100_000_000       # the world starts at 100 s
 SIM_CONFIG = """
 vehicle: {{id: {vid}}}
 simulation:
-  clock: stepped
+  clock: lockstep
   physics_rate_hz: 50
   truth_rate_hz: 50
   command_timeout_s: 100000
@@ -69,7 +67,7 @@ class World:
         self.rx.subscribe(f"{vid}.TRUTH", ground_truth_t, self._on_truth, queue_capacity=10000)
         self.watch(f"{vid}.MODEM_RX", modem_rx_t)
         self.watch(f"{vid}.MODEM_STATUS", modem_status_t)
-        proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+        proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
                                 stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                                 env=self.env)
         self.procs[vid] = proc

@@ -13,11 +13,11 @@ from pathlib import Path
 
 import lcm
 import pytest
+from conftest import ROOT
 
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
 from auvlcm.url import with_receive_buffer
-from conftest import ROOT
 from sim.multihil.probe import load_probe, percentile, probe_errors  # noqa: F401  (for the tests)
 
 
@@ -64,7 +64,7 @@ def node_cmd(node_id: str, url: str, priority: int = 0, *extra) -> list:
 
 
 def sim_cmd(config: Path, url: str, *extra) -> list:
-    return [sys.executable, ROOT / "python" / "sim", config, "--lcm-url", url, "--multihil", *extra]
+    return [sys.executable, "-m", "sim", config, "--lcm-url", url, "--multihil", *extra]
 
 
 def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_multihil.yaml",

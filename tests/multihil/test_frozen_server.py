@@ -12,9 +12,12 @@ import re
 import signal
 
 import pytest
-
-from mh_util import procs  # noqa: F401 (a fixture)
-from mh_util import Listener, Proc, node_cmd
+from mh_util import (
+    Listener,
+    Proc,
+    node_cmd,
+    procs,  # noqa: F401 (a fixture)
+)
 
 FREEZES = 4
 

@@ -134,9 +134,8 @@ def test_a_resumed_server_node_sends_nothing_before_it_reconfirmed(monkeypatch):
     import time
 
     from auv import env_heartbeat_t, sim_clock_t
-
     from auvlcm.offline import OfflineLcm
-    from sim.environment import EnvParams, Environment
+    from sim.environment import Environment, EnvParams
     from sim.multihil.node import EnvNode, NodeConfig
 
     wall = Wall()
@@ -177,9 +176,8 @@ def test_a_sync_reply_far_off_the_worlds_clock_cannot_set_a_clients_clock():
     """A forged or corrupt SIM.CLOCK_SYNC reply (right ids and seq, stamps in 2096)
     would set a joining client's global time; it is dropped (jump) and counted."""
     from auv import clock_sync_t, env_heartbeat_t, sim_clock_t
-
     from auvlcm.offline import OfflineLcm
-    from sim.environment import EnvParams, Environment
+    from sim.environment import Environment, EnvParams
     from sim.multihil.node import EnvNode, NodeConfig
 
     lc = OfflineLcm()

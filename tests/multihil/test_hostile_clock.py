@@ -14,13 +14,17 @@ from __future__ import annotations
 import re
 
 import lcm
+from lcm_proc import pump
+from mh_util import (
+    Listener,
+    Proc,
+    node_cmd,
+    procs,  # noqa: F401 (a fixture)
+    sim_cmd,
+    vehicle_config,
+)
 
 from auv import process_health_t, sim_clock_t
-from lcm_proc import pump
-from mh_util import procs  # noqa: F401 (a fixture)
-from mh_util import Listener, Proc, node_cmd, sim_cmd, vehicle_config
-
-
 
 
 def clock(utime: int, term: int, server: str = "S-sim") -> bytes:

@@ -26,11 +26,11 @@ from __future__ import annotations
 
 from collections import defaultdict
 
-from auv import chasm_status_t, lockstep_t
+from mh_util import Listener, Recorder
 
+from auv import chasm_status_t, lockstep_t
 from auvlcm.decode import decode_strict
 from auvlcm.types import type_of
-from mh_util import Listener, Recorder
 from sim.multihil.world import VehicleSpec, World
 
 CONTROL_PLANE = ("SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION", "SIM.CLOCK_SYNC")
@@ -52,9 +52,9 @@ def run_world(out, url, child_env, build, order=("AUV1", "AUV2")) -> dict[str, l
         # smaller id: AUV1-sim) takes the role. The test makes the worst case
         # sure: the first simulator serves before the second one starts.
         first, second = order
-        world.simulator(specs[first], "stepped", LOCKSTEP)
+        world.simulator(specs[first], "lockstep", LOCKSTEP)
         assert lst.pump(60.0, until=lambda: lst.servers() == {f"{first}-sim"}), world.output(f"{first}.sim")
-        world.simulator(specs[second], "stepped", LOCKSTEP)
+        world.simulator(specs[second], "lockstep", LOCKSTEP)
         done = lst.pump(120.0, until=lambda: any(
             m.utime > CUT_US + 1_000_000 for _, m in lst.msgs["SIM.CLOCK"][-3:]))
         assert done, {n: world.output(n)[-500:] for n in world.procs}

@@ -19,9 +19,9 @@ import time
 
 import lcm
 import pytest
+from conftest import ROOT, c_program
 
 from auv import lockstep_t, sim_clock_t
-from conftest import ROOT, c_program
 from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
 from sim.multihil.server import LockstepServer
 from tools.worldclock import WorldClock

@@ -14,9 +14,9 @@ import os
 import time
 
 import pytest
+from netns import Hosts, unavailable
 
 from auvlcm.log import read_events
-from netns import Hosts, unavailable
 from sim.multihil.world import VehicleSpec, World
 
 # Free-running at 2x: a starved process (a loaded CI machine) lags the global

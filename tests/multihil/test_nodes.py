@@ -14,12 +14,15 @@ import sys
 import time
 
 import pytest
-
-from conftest import ROOT
-from mh_util import procs  # noqa: F401 (a fixture)
-from mh_util import Listener, Proc, load_probe, node_cmd, percentile, probe_errors
-
-
+from mh_util import (
+    Listener,
+    Proc,
+    load_probe,
+    node_cmd,
+    percentile,
+    probe_errors,
+    procs,  # noqa: F401 (a fixture)
+)
 
 
 def start(procs, tmp_path, child_env, node_id, url, priority, *extra) -> Proc:
@@ -141,7 +144,7 @@ def test_clocks_converge_under_offset_and_drift_directly_and_through_an_impaired
     port = lcm_url.split(":")[-1].split("?")[0]
     side_b = lcm_url.replace(port, str(int(port) + 1000))
     lst = Listener(lcm_url, {"SIM.CLOCK_OFFSET.C-sim": "clock_offset_t"})
-    procs.append(Proc([sys.executable, ROOT / "python" / "tools" / "lcm_relay.py", "--in", lcm_url,
+    procs.append(Proc([sys.executable, "-m", "tools.lcm_relay", "--in", lcm_url,
                        "--out", side_b, "--channel", r"SIM\..*", "--both", "--delay-ms", "2",
                        "--jitter-ms", "1", "--loss", "0.05"], tmp_path / "relay.out", child_env))
     start(procs, tmp_path, child_env, "S-sim", lcm_url, 9, "--probe", tmp_path / "s.probe",

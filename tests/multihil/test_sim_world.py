@@ -7,6 +7,7 @@ from __future__ import annotations
 import time
 
 from mh_util import Listener
+
 from sim.multihil.world import VehicleSpec, World
 
 

@@ -7,8 +7,7 @@ import random
 import time
 
 from auv import env_needs_t, env_sample_t, lockstep_t
-
-from sim.environment import CurrentLayer, EnvParams, Environment
+from sim.environment import CurrentLayer, Environment, EnvParams
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
 from sim.multihil.election import Election, Timing, rank

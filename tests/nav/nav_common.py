@@ -11,11 +11,12 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from auvlcm.log import read_events
 from conftest import BUILD, ROOT
 
-SURVEY_LOG = ROOT / "python" / "tools" / "survey_log.py"
-NAVCONF = ROOT / "python" / "tools" / "navconf.py"
+from auvlcm.log import read_events
+
+SURVEY_LOG = ("-m", "tools.survey_log")
+NAVCONF = ("-m", "tools.navconf")
 SURVEY_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 SANITIZER_EXITS = (86, 87)
 
@@ -40,14 +41,14 @@ def record_survey(out_dir: Path, url: str, env: dict, args: list[str], live_nav:
     from tools.survey_log import apply_overrides
     sim_yaml.write_text(apply_overrides(SURVEY_CONFIG.read_text(), sets))
     nav_cfg = out_dir / "survey.nav"
-    subprocess.run([sys.executable, NAVCONF, sim_yaml, "-o", nav_cfg], env=env, check=True, timeout=60)
+    subprocess.run([sys.executable, *NAVCONF, sim_yaml, "-o", nav_cfg], env=env, check=True, timeout=60)
     nav = None
     if live_nav is not None:
         nav = subprocess.Popen([live_nav, "--config", nav_cfg, "--vehicle", "AUV1", "--channel", nav_channel,
                                 "--clock", "sim", "--rate", "10", "--url", with_receive_buffer(url)],
                                env=env, stderr=subprocess.PIPE, text=True)
     try:
-        run = subprocess.run([sys.executable, SURVEY_LOG, "--out", log, "--url", url, *args],
+        run = subprocess.run([sys.executable, *SURVEY_LOG, "--out", log, "--url", url, *args],
                              env=env, capture_output=True, text=True, timeout=timeout)
         assert run.returncode == 0, run.stdout + run.stderr
     finally:

@@ -7,9 +7,7 @@ though every importing module registers its own copy of the fixture."""
 from __future__ import annotations
 
 import pytest
-
 from conftest import BUILD, _ports, child_environment
-
 from nav_common import record_survey
 
 _recorded: dict = {}

@@ -14,15 +14,13 @@ import subprocess
 import sys
 
 import pytest
+from closed_loop import MISSIONS, TICK_US, Mission, Record
+from conftest import BUILD
 
 from auv import chasm_status_t, nav_filter_status_t, nav_solution_t
-from conftest import BUILD, ROOT
-
-sys.path.insert(0, str(ROOT / "tests" / "missions"))
-from closed_loop import MISSIONS, TICK_US, Mission, Record  # noqa: E402
 
 PLAN = MISSIONS / "nav" / "box_survey_ekf.chasm"
-NAVCONF = ROOT / "python" / "tools" / "navconf.py"
+NAVCONF = ("-m", "tools.navconf")
 # As tests/missions/test_missions.py: calm sea (the pilot's dive from the
 # surface in the default yaw-unstable hull does not survive the swell).
 SIM = {"environment": {"waves": None}, "sensors": {"ins": {"channel": "NAV_INS"}}}
@@ -36,7 +34,7 @@ class EkfMission(Mission):
         super().__init__(tmp, url, env, plan, params, sim=SIM)
         self.bind = MISSIONS / "bindings" / "navigator_ekf.bind"
         self.nav_cfg = tmp / "auv1.nav"
-        subprocess.run([sys.executable, NAVCONF, self.sim_cfg, "-o", self.nav_cfg], check=True, env=env, timeout=60)
+        subprocess.run([sys.executable, *NAVCONF, self.sim_cfg, "-o", self.nav_cfg], check=True, env=env, timeout=60)
         self.sources: set[int] = set()
         self.trusted: list[tuple[float, bool, float]] = []
         self.ins: list[tuple[float, float, float]] = []

@@ -10,19 +10,19 @@ import subprocess
 import sys
 
 import yaml
+from conftest import ROOT
 
 from auv import nav_solution_t
 from auvlcm.log import read_events
-from conftest import ROOT
 
-LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
+LAUNCH = [sys.executable, "-m", "tools.launch"]
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")     # 1500 rpm for N cycles, then done
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 
 def scenario(tmp_path, vehicles, name="nav"):
-    sc = {"name": name, "seed": 3, "time": {"mode": "fast", "limit": 60, "wall_limit": 120}, "vehicles": vehicles}
+    sc = {"name": name, "seed": 3, "time": {"mode": "lockstep", "limit": 60, "wall_limit": 120}, "vehicles": vehicles}
     path = tmp_path / f"{name}.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     return path

@@ -7,10 +7,11 @@ from __future__ import annotations
 import csv
 import math
 
+from nav_common import TruthTrack, horizontal, replay
+from nav_fixtures import survey, water_track_survey  # noqa: F401 (fixtures)
+
 from auv import nav_solution_t
 from auvlcm.log import read_events
-from nav_fixtures import survey, water_track_survey  # noqa: F401 (fixtures)
-from nav_common import TruthTrack, horizontal, replay
 
 
 def _live(log):

@@ -12,12 +12,21 @@ import subprocess
 
 import lcm
 import pytest
-
-from auv import (ahrs_t, depth_t, dvl_t, gps_fix_t, lbl_ranges_t, nav_filter_status_t, nav_solution_t,
-                 process_health_t, sim_clock_t)
 from conftest import ROOT
 from lcm_proc import stop
 from lcm_samples import random_message
+
+from auv import (
+    ahrs_t,
+    depth_t,
+    dvl_t,
+    gps_fix_t,
+    lbl_ranges_t,
+    nav_filter_status_t,
+    nav_solution_t,
+    process_health_t,
+    sim_clock_t,
+)
 
 NAV_CFG = ROOT / "missions" / "nav" / "remus100_survey.nav"
 BAD = """compass_noise_rad 0.01

@@ -15,17 +15,17 @@ with 100 runs are in the C++ unit tests (test_consistency.cpp)."""
 
 from __future__ import annotations
 
-import csv
 import bisect
+import csv
 import math
 import struct
 
 import lcm
 import pytest
-
-from nav_fixtures import survey, water_track_survey  # noqa: F401 (fixtures)
-from auvlcm.log import read_events
 from nav_common import TruthTrack, replay
+from nav_fixtures import survey, water_track_survey  # noqa: F401 (fixtures)
+
+from auvlcm.log import read_events
 
 
 def _rows(path):

@@ -10,10 +10,10 @@ import signal
 import subprocess
 
 import pytest
-
-from auv import depth_t, sim_clock_t
 from lcm_proc import stop
 from test_nav_process import NAV_CFG, World
+
+from auv import depth_t, sim_clock_t
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 

@@ -6,14 +6,13 @@ import subprocess
 import sys
 
 import pytest
-
 from conftest import ROOT
 
-NAVCONF = ROOT / "python" / "tools" / "navconf.py"
+NAVCONF = ("-m", "tools.navconf")
 
 
 def navconf(*args, env=None):
-    return subprocess.run([sys.executable, NAVCONF, *map(str, args)], capture_output=True, text=True,
+    return subprocess.run([sys.executable, *NAVCONF, *map(str, args)], capture_output=True, text=True,
                           timeout=60, env=env)
 
 

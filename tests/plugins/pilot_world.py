@@ -19,10 +19,10 @@ from typing import Callable
 
 import lcm
 import yaml
+from lcm_proc import pump, stop, wait_for_line
 
 from auv import actuators_t, chasm_status_t, ground_truth_t, pilot_status_t, setpoint_t, sim_clock_t
 from auvlcm.rx import Receiver
-from lcm_proc import pump, stop, wait_for_line
 
 ROOT = Path(__file__).resolve().parents[2]
 SIM_CONFIG = ROOT / "missions" / "sim" / "remus100.yaml"
@@ -94,7 +94,7 @@ class World:
                "--clock", "sim", "--url", self.url, "--plugin-path", str(self.build / "plugins"),
                *self.manager_args]
         self.pilot = self._start(mgr, "PILOT: running")
-        self.sim = self._start([sys.executable, str(ROOT / "python" / "sim"), str(self._config())], "running")
+        self.sim = self._start([sys.executable, "-m", "sim", str(self._config())], "running")
         return self
 
     def __exit__(self, *exc) -> None:
@@ -111,7 +111,7 @@ class World:
         """remus100.yaml (the default table-coefficient vehicle) with the
         test's clock, start state and any environment change."""
         cfg = yaml.safe_load(SIM_CONFIG.read_text())
-        cfg["simulation"].update(clock="stepped", lcm_url=self.url, truth_rate_hz=round(1 / self.tick_s),
+        cfg["simulation"].update(clock="lockstep", lcm_url=self.url, truth_rate_hz=round(1 / self.tick_s),
                                  command_timeout_s=1.0, on_stale="hold")
         cfg["initial"].update(self.initial)
         cfg["environment"].update(self.environment)

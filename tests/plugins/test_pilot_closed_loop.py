@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 
 import pytest
-
 from conftest import BUILD
 from pilot_metrics import mean_abs, step_response
 from pilot_world import Setpoint, World

@@ -8,7 +8,6 @@ from __future__ import annotations
 import subprocess
 
 import pytest
-
 from conftest import ROOT, c_program
 
 PLAN = ROOT / "missions" / "pilot" / "pilot.chasm"

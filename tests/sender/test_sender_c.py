@@ -6,7 +6,6 @@ from __future__ import annotations
 import subprocess
 
 import pytest
-
 from conftest import c_program
 
 VARIANTS = pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])

@@ -10,10 +10,10 @@ open-loop unstable in yaw and pitch, and a late controller loses it.
 from __future__ import annotations
 
 import lcm
+from lcm_proc import pump
 
 from auv import actuators_t, nav_solution_t, sim_clock_t
 from auvlcm.rx import Receiver
-from lcm_proc import pump
 
 
 class LockstepPilot:

@@ -9,7 +9,7 @@ import pytest
 
 from sim.bathymetry import Bathymetry, BathymetryError
 from sim.config import ConfigError, load, loads
-from sim.environment import CurrentLayer, EnvParams, Environment
+from sim.environment import CurrentLayer, Environment, EnvParams
 
 ROOT = Path(__file__).resolve().parents[2]
 EXAMPLES = sorted((ROOT / "missions" / "sim").glob("*.yaml"))

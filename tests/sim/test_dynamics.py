@@ -9,7 +9,7 @@ import pytest
 
 from sim.actuators import Actuators, Command
 from sim.dynamics import Dynamics, submerged_fraction
-from sim.environment import CurrentLayer, EnvParams, Environment
+from sim.environment import CurrentLayer, Environment, EnvParams
 from sim.model import VehicleModel
 from sim.vehicle import REMUS100
 

@@ -12,14 +12,13 @@ from pathlib import Path
 
 import lcm
 import pytest
+from lcm_proc import pump, stop, wait_for_line
+from lockstep import LockstepPilot
 
-from auv import (actuator_state_t, actuators_t, ground_truth_t, nav_solution_t,
-                 process_health_t, sim_clock_t)
+from auv import actuator_state_t, actuators_t, ground_truth_t, nav_solution_t, process_health_t, sim_clock_t
 from auvlcm.rx import Receiver
 
 ROOT = Path(__file__).resolve().parents[2]
-from lcm_proc import pump, stop, wait_for_line
-from lockstep import LockstepPilot
 
 CONFIG = """
 vehicle: {{id: AUV1}}
@@ -51,7 +50,7 @@ def start_sim(tmp_path, child_env, url, clock="scaled", warp=10.0, timeout=1.0,
     cfg = tmp_path / "sim.yaml"
     cfg.write_text(CONFIG.format(clock=clock, warp=warp, timeout=timeout, on_stale=on_stale,
                                  url=url, ins_rate=ins_rate))
-    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg), *extra],
+    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg), *extra],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=child_env)
     wait_for_line(proc, "running", timeout=20)
@@ -77,7 +76,7 @@ def test_closed_loop_holds_heading_and_depth(tmp_path, child_env, lcm_url):
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("AUV1.ACTUATOR_STATE", actuator_state_t)
     pilot = LockstepPilot(lc, "AUV1", depth_m=8.0)
-    proc = start_sim(tmp_path, child_env, lcm_url, clock="stepped", ins_rate=25)
+    proc = start_sim(tmp_path, child_env, lcm_url, clock="lockstep", ins_rate=25)
     try:
         pilot.fly(60.0)
     finally:
@@ -122,7 +121,7 @@ def test_stepped_mode_follows_the_external_clock(tmp_path, child_env, lcm_url):
     rec = Recorder(lc)
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("SIM.CLOCK", sim_clock_t)
-    proc = start_sim(tmp_path, child_env, lcm_url, clock="stepped")
+    proc = start_sim(tmp_path, child_env, lcm_url, clock="lockstep")
     try:
         t0 = 1_000_000_000                       # the world is already at 1000 s
         clock = sim_clock_t()
@@ -193,7 +192,7 @@ def test_gaps_in_the_command_sequence_are_counted_as_overflows(tmp_path, child_e
 def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
     cfg = tmp_path / "bad.yaml"
     cfg.write_text("simulation:\n  clock: warp\n")
-    res = subprocess.run([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+    res = subprocess.run([sys.executable, "-m", "sim", str(cfg)],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2
     assert f"{cfg}:2:10: simulation.clock:" in res.stderr
@@ -202,7 +201,7 @@ def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
 def test_non_local_url_is_refused(tmp_path, child_env):
     cfg = tmp_path / "far.yaml"
     cfg.write_text('simulation: {lcm_url: "udpm://239.255.76.67:7667?ttl=5"}\n')
-    res = subprocess.run([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+    res = subprocess.run([sys.executable, "-m", "sim", str(cfg)],
                          capture_output=True, text=True, env=child_env, timeout=60)
     assert res.returncode == 2 and "ttl=5" in res.stderr
 
@@ -221,7 +220,7 @@ def test_ins_output_channel_moves_or_goes_off(tmp_path, child_env, lcm_url, chan
     cfg.write_text(CONFIG.format(clock="scaled", warp=10.0, timeout=1.0, on_stale="hold",
                                  url=lcm_url, ins_rate=20).replace("ins: {rate_hz: 20, bias: 0.0}",
                                                       f"ins: {{rate_hz: 20, channel: {channel}}}"))
-    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=child_env)
     try:

@@ -9,10 +9,10 @@ simulator keeps following the good clock and the good command."""
 from __future__ import annotations
 
 import lcm
-
-from auv import actuator_state_t, actuators_t, ground_truth_t, sim_clock_t
 from lcm_proc import pump, stop
 from test_hil_lcm import Recorder, start_sim
+
+from auv import actuator_state_t, actuators_t, ground_truth_t, sim_clock_t
 
 INT64_MAX, INT64_MIN = 2**63 - 1, -(2**63)
 INVALID = (INT64_MAX, INT64_MIN, 10**18, -1)
@@ -37,7 +37,7 @@ def test_hostile_clocks_and_commands_are_dropped_counted_and_logged_once(tmp_pat
     rec = Recorder(lc)
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("AUV1.ACTUATOR_STATE", actuator_state_t)
-    proc = start_sim(tmp_path, child_env, lcm_url, clock="stepped", timeout=30.0)
+    proc = start_sim(tmp_path, child_env, lcm_url, clock="lockstep", timeout=30.0)
     truth = rec.msgs["AUV1.TRUTH"]
 
     def step_to(k: int) -> None:

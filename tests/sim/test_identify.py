@@ -106,7 +106,7 @@ def test_identify_config_errors_name_key_and_line():
 
 CONFIG = """
 vehicle: {{id: AUV4}}
-simulation: {{clock: stepped, lcm_url: "{url}"}}
+simulation: {{clock: lockstep, lcm_url: "{url}"}}
 initial: {{depth_m: 5.0, speed_mps: 1.5, prop_rpm: 1500}}
 environment: {{seed: 5, bathymetry: "flat:depth=10"}}
 sensors: {{ins: {{rate_hz: 25, bias: 0.0}}, depth: {{}}}}
@@ -134,7 +134,7 @@ def test_looks_over_lcm_from_the_simulator(tmp_path, child_env, lcm_url):
     rec = Recorder(lc)
     rec.sub("AUV4.LOOKS", reacquire_look_t)
     pilot = LockstepPilot(lc, "AUV4", depth_m=5.0)
-    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=child_env)
     try:
         wait_for_line(proc, "running", timeout=20)

@@ -8,12 +8,25 @@ import numpy as np
 import pytest
 
 from auv import dvl_t
-
-from sim.environment import EnvParams, Environment, Transponder
+from sim.environment import Environment, EnvParams, Transponder
 from sim.geo import LocalFrame
 from sim.model import Truth
-from sim.sensors import (Ahrs, AhrsConfig, Altimeter, AltimeterConfig, DepthConfig, DepthSensor,
-                         Dvl, DvlConfig, Gps, GpsConfig, Ins, InsConfig, Lbl, LblConfig)
+from sim.sensors import (
+    Ahrs,
+    AhrsConfig,
+    Altimeter,
+    AltimeterConfig,
+    DepthConfig,
+    DepthSensor,
+    Dvl,
+    DvlConfig,
+    Gps,
+    GpsConfig,
+    Ins,
+    InsConfig,
+    Lbl,
+    LblConfig,
+)
 
 N = 4000
 

@@ -149,7 +149,7 @@ def test_the_loop_never_waits_with_messages_still_queued(lcm_url):
     """Stepped mode: whenever the simulator blocks for the next SIM.CLOCK, the
     sender thread has sent everything (the clock's owner may be waiting for it)."""
     tx = ThreadedLcm(lcm_url, spin_us=0)    # a sleeping sender: the flush has work to do
-    sim = Simulator(config(0.0, lcm_url, "stepped"), lc=tx)
+    sim = Simulator(config(0.0, lcm_url, "lockstep"), lc=tx)
     pending_at_wait = []
     wait = sim._wait
 

@@ -11,10 +11,9 @@ import pytest
 
 from sim.config import ConfigError, loads
 from sim.model import Truth
-from sim.sonar import (LateralRangeCurve, SonarConfig, Target, TargetField, TargetFileError,
-                       TargetsConfig, coverage_grid)
-from sim.sonar.sidescan import Sidescan
+from sim.sonar import LateralRangeCurve, SonarConfig, Target, TargetField, TargetFileError, TargetsConfig, coverage_grid
 from sim.sonar import targets as tg
+from sim.sonar.sidescan import Sidescan
 
 ALONG = 50.0          # the targets' northing: the track passes them going north
 

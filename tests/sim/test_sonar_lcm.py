@@ -12,17 +12,17 @@ import sys
 from pathlib import Path
 
 import lcm
-
-from auv import sidescan_contact_t, target_field_t
 from lcm_proc import stop, wait_for_line
 from lockstep import LockstepPilot
 from test_hil_lcm import Recorder
+
+from auv import sidescan_contact_t, target_field_t
 
 ROOT = Path(__file__).resolve().parents[2]
 
 CONFIG = """
 vehicle: {{id: AUV2}}
-simulation: {{clock: stepped, lcm_url: "{url}"}}
+simulation: {{clock: lockstep, lcm_url: "{url}"}}
 initial: {{depth_m: 5.0, speed_mps: 1.5, prop_rpm: 1500}}
 environment: {{seed: 5, bathymetry: "flat:depth=15"}}
 sensors: {{ins: {{rate_hz: 25, bias: 0.0}}, depth: {{}}}}
@@ -45,7 +45,7 @@ def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
     rec.sub("AUV2.CONTACTS", sidescan_contact_t)
     rec.sub("SIM.TARGETS", target_field_t)
     pilot = LockstepPilot(lc, "AUV2", depth_m=5.0)
-    proc = subprocess.Popen([sys.executable, str(ROOT / "python" / "sim"), str(cfg)],
+    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
                             stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                             env=child_env)
     try:

@@ -9,9 +9,10 @@ import sys
 
 import numpy as np
 import pytest
-
 from conftest import ROOT
-from sim import validate, validation as v
+
+from sim import validate
+from sim import validation as v
 from sim.actuators import Command
 from sim.model import VehicleModel
 from sim.pilot_model import PilotGains

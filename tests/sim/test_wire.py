@@ -6,10 +6,20 @@ import random
 
 import pytest
 
-from auv import (actuator_state_t, ahrs_t, altimeter_t, depth_t, dvl_t, gps_fix_t,
-                 ground_truth_t, lbl_ranges_t, nav_solution_t, process_health_t, sim_clock_t,
-                 target_field_t)
-
+from auv import (
+    actuator_state_t,
+    ahrs_t,
+    altimeter_t,
+    depth_t,
+    dvl_t,
+    gps_fix_t,
+    ground_truth_t,
+    lbl_ranges_t,
+    nav_solution_t,
+    process_health_t,
+    sim_clock_t,
+    target_field_t,
+)
 from sim.wire import Encoder, fixed_layout
 
 # every fixed-layout type the simulator publishes, with its fixed strings

@@ -12,7 +12,6 @@ import sys
 from pathlib import Path
 
 import yaml
-
 from conftest import BUILD, ROOT
 
 # 90 m of line north, 110 m east: four line legs per search vehicle
@@ -21,7 +20,7 @@ POLYGON = "20,20; 70,20; 70,130; 20,130"
 
 def plan(out: Path, search: int = 2, ri: int = 1, polygon: str = POLYGON) -> Path:
     """The planner's scenario for `search` search vehicles and `ri` RI vehicles."""
-    run = subprocess.run([sys.executable, ROOT / "python/tools/plan_survey.py", "--polygon", polygon,
+    run = subprocess.run([sys.executable, "-m", "tools.plan_survey", "--polygon", polygon,
                           "--team", str(search), "--ri", str(ri), "--heading", "0", "--range", "40",
                           "--nadir-gap", "9.5", "--overlap", "0.1", "--depth-m", "5",
                           "--world", ROOT / "missions/scenarios/mcm_world.yaml", "--seed", "7", "--out", out],
@@ -59,7 +58,7 @@ def variant(base: Path, out: Path, *, modem: dict | None = None, params: dict[st
 
 def fly(scenario: Path, run_dir: Path, lcm_url: str, env: dict, expect_rc: int = 0) -> str:
     """Launch the scenario to its end; its stdout."""
-    p = subprocess.run([sys.executable, ROOT / "python/tools/launch.py", scenario, "--out", run_dir, "--url", lcm_url,
+    p = subprocess.run([sys.executable, "-m", "tools.launch", scenario, "--out", run_dir, "--url", lcm_url,
                         "--build", BUILD, "--progress", "0"], env=env, capture_output=True, text=True, timeout=600)
     assert p.returncode == expect_rc, p.stdout[-3000:] + p.stderr[-3000:]
     return p.stdout
@@ -67,7 +66,7 @@ def fly(scenario: Path, run_dir: Path, lcm_url: str, env: dict, expect_rc: int =
 
 def report(run_dir: Path, out: Path, env: dict) -> dict:
     """report.py's JSON of the run (no plots)."""
-    p = subprocess.run([sys.executable, ROOT / "python/tools/report.py", run_dir / "run.lcmlog", "--out", out,
+    p = subprocess.run([sys.executable, "-m", "tools.report", run_dir / "run.lcmlog", "--out", out,
                         "--no-plots"], env=env, capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
     return json.loads((out / "report.json").read_text())

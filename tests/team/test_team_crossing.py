@@ -11,7 +11,6 @@ planner's team plans (tests/team/small_team.py) with their lines changed:
 from __future__ import annotations
 
 import numpy as np
-
 import small_team as st
 
 # Both lines start at the planner's dive points (0, 8.5) and (0, 63.5) and run

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-
 import small_team as st
 from conftest import child_environment, fresh_url
 

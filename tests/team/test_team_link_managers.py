@@ -16,13 +16,12 @@ import subprocess
 
 import lcm
 import pytest
-
-from auv import (chasm_status_t, modem_rx_t, modem_tx_t, nav_solution_t, sidescan_contact_t, sim_clock_t,
-                 team_event_t)
-from auvlcm.rx import Receiver
-from auvlcm.team_codec import TeamCodec
 from conftest import ROOT, c_program
 from lcm_proc import pump, stop
+
+from auv import chasm_status_t, modem_rx_t, modem_tx_t, nav_solution_t, sidescan_contact_t, sim_clock_t, team_event_t
+from auvlcm.rx import Receiver
+from auvlcm.team_codec import TeamCodec
 
 HERE = ROOT / "tests" / "team"
 PERIOD_US = 100_000

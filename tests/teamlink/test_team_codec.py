@@ -9,12 +9,12 @@ import subprocess
 import sys
 
 import pytest
+from conftest import c_program
 
 from auvlcm.team_codec import EncodeError, FrameFull, TeamCodec
 from auvlcm.team_schema import DEFAULT_SCHEMA, SchemaError, load, parse_text
-from conftest import ROOT, c_program
 
-GEN = ROOT / "python" / "tools" / "gen_team_codec.py"
+GEN = ("-m", "tools.gen_team_codec")
 
 STATUS = dict(vehicle=3, time_s=1234, north_m=-512.4, east_m=1999.6, depth_m=12.34,
               heading=6.28318, speed=1.54, next_line=63, state=5)
@@ -170,22 +170,22 @@ def test_every_fault_is_reported_at_once():
 def test_generator_refuses_a_bad_schema_with_exit_2_and_writes_nothing(tmp_path):
     bad = tmp_path / "bad.schema"
     bad.write_text("message status 1 max_bytes 2\n  a int 0 1000\n  b fixed 0 1 0\n")
-    r = subprocess.run([sys.executable, GEN, bad, tmp_path / "out"], capture_output=True,
+    r = subprocess.run([sys.executable, *GEN, bad, tmp_path / "out"], capture_output=True,
                        text=True, timeout=60)
     assert r.returncode == 2
     assert "Traceback" not in r.stderr
     lines = r.stderr.splitlines()
     assert any(line.startswith(f"{bad}:3:15: ") for line in lines), r.stderr
     assert not (tmp_path / "out").exists()
-    r = subprocess.run([sys.executable, GEN, tmp_path / "missing.schema", tmp_path / "out"],
+    r = subprocess.run([sys.executable, *GEN, tmp_path / "missing.schema", tmp_path / "out"],
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "cannot read the schema" in r.stderr
-    r = subprocess.run([sys.executable, GEN], capture_output=True, text=True, timeout=60)
+    r = subprocess.run([sys.executable, *GEN], capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "usage" in r.stderr
 
 
 def test_generator_output_is_the_build_one(tmp_path, build_dir):
-    r = subprocess.run([sys.executable, GEN, DEFAULT_SCHEMA, tmp_path], capture_output=True,
+    r = subprocess.run([sys.executable, *GEN, DEFAULT_SCHEMA, tmp_path], capture_output=True,
                        text=True, timeout=60)
     assert r.returncode == 0, r.stderr
     for name in ("team_codec.h", "team_codec.c"):

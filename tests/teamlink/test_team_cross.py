@@ -14,9 +14,9 @@ import random
 import subprocess
 
 import pytest
+from conftest import c_program
 
 from auvlcm.team_codec import EncodeError, TeamCodec
-from conftest import c_program
 
 VARIANTS = pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 C_FAULTS = {-3: "truncated", -4: "unknown_id", -5: "corrupt"}

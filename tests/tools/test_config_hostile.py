@@ -9,14 +9,14 @@ import sys
 import time
 
 import pytest
+from conftest import ROOT
 
 from confcheck import ConfigError
-from conftest import ROOT
 
 HERE = ROOT / "tests" / "tools" / "scenarios"
 SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
-LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
-NAVCONF = [sys.executable, str(ROOT / "python" / "tools" / "navconf.py")]
+LAUNCH = [sys.executable, "-m", "tools.launch"]
+NAVCONF = [sys.executable, "-m", "tools.navconf"]
 BOMB = (b"a: &a [x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
         b"c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
         b"e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d]\nf: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e]\n"
@@ -59,7 +59,7 @@ def test_hostile_scenario_files_give_file_line_col_and_exit_2(tmp_path, name):
 def _scenario(tmp_path, vehicle_extra="", manager_extra="", vid="AUV1"):
     path = tmp_path / "s.yaml"
     path.write_text(f"""name: hostile
-time: {{mode: fast, limit: 10}}
+time: {{mode: lockstep, limit: 10}}
 vehicles:
   - id: {vid}
     sim: {{config: {SIM}}}
@@ -99,7 +99,7 @@ def test_sim_config_refusals_name_file_line_col(tmp_path):
         b"vehicle: {id: SIM}\n": "1:15: vehicle.id: 'SIM' is reserved",
         b"multihil: {client_id: \"a\\nb\"}\n": "1:23: multihil.client_id: must not hold a newline",
         b"sensors: {gps: {rate_hz: .nan}}\n": "1:26: sensors.gps.rate_hz: must be finite",
-        b"simulation: {clock: fast}\n": "1:21: simulation.clock: expected one of: realtime, scaled, stepped",
+        b"simulation: {clock: warp}\n": "1:21: simulation.clock: expected one of: realtime, scaled, lockstep",
         b"sonar: {targets: {mines: 100000}}\n": "1:26: sonar.targets.mines: must be in [0, 1000]",
         b"modem: {max_frame_bytes: 0}\n": "1:26: modem.max_frame_bytes: must be in [1, 32767]",
         b"environment: {sound_speed_mps: -1}\n": "1:32: environment.sound_speed_mps: must be > 0",

@@ -6,7 +6,6 @@ on their own after a few sim seconds, in fast time."""
 from __future__ import annotations
 
 import json
-import os
 import signal
 import subprocess
 import sys
@@ -14,14 +13,14 @@ import time
 from pathlib import Path
 
 import yaml
+from conftest import ROOT
 
 from auvlcm.arrays import load_log
 from auvlcm.log import read_events
-from conftest import ROOT
 from tools.timeline import state_timeline
 
 HERE = Path(__file__).resolve().parent / "scenarios"
-LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
+LAUNCH = [sys.executable, "-m", "tools.launch"]
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
@@ -34,7 +33,7 @@ def vehicle(vid, host="local", east=0.0, **params):
 
 
 def write_scenario(tmp_path, vehicles, hosts=("local",), limit=60, name="t"):
-    sc = {"name": name, "seed": 5, "time": {"mode": "fast", "limit": limit, "wall_limit": 120},
+    sc = {"name": name, "seed": 5, "time": {"mode": "lockstep", "limit": limit, "wall_limit": 120},
           "hosts": list(hosts), "vehicles": vehicles}
     path = tmp_path / f"{name}.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
@@ -220,7 +219,7 @@ vehicles:
     run = launch(bad, tmp_path / "run", lcm_url, child_env)
     assert run.returncode == 2
     err = run.stderr
-    assert f"{bad}:3:9: time.mode: expected one of: realtime, scaled, lockstep, fast" in err
+    assert f"{bad}:3:9: time.mode: expected one of: realtime, scaled, lockstep" in err
     assert f"{bad}:4:9: time.warp: must be > 0" in err
     assert f"{bad}:7:9: vehicles[0].id: must be upper-case letters" in err
     assert f"{bad}:8:11: vehicles[0].host: unknown host 'b'" in err

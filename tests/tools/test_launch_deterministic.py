@@ -22,11 +22,11 @@ from __future__ import annotations
 from collections import defaultdict
 
 import lcm
+from test_launch import launch, vehicle, write_scenario
 
 from auv import chasm_status_t, lockstep_t, sim_clock_t
 from auvlcm.decode import decode_strict
 from auvlcm.types import type_of
-from test_launch import launch, vehicle, write_scenario
 
 SKIP = ("SIM.ANNOTATION", "LCM_SELF_TEST")
 REPEATED = ("SIM.CLOCK", "SIM.LOCKSTEP")

@@ -11,14 +11,13 @@ import sys
 import lcm
 import numpy as np
 import pytest
+from lcm_samples import random_message
 
 from auv import chasm_status_t, depth_t, nav_solution_t, target_field_t
 from auvlcm.arrays import load_log
 from auvlcm.types import all_types
-from conftest import ROOT
-from lcm_samples import random_message
 
-LCMLOG = [sys.executable, str(ROOT / "python" / "tools" / "lcmlog.py")]
+LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
 
 
 def _leaves(msg, prefix=""):

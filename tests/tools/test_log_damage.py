@@ -12,14 +12,13 @@ import subprocess
 import sys
 
 import pytest
+from test_report import synthetic_log
 
 from auvlcm.eventlog import HEADER, SYNC_BYTES, read_raw
 from auvlcm.log import EXIT_EVENTS_LOST, LogStats, read_events
-from conftest import ROOT
-from test_report import synthetic_log
 
-LCMLOG = [sys.executable, str(ROOT / "python" / "tools" / "lcmlog.py")]
-REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
+LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
+REPORT = [sys.executable, "-m", "tools.report"]
 
 
 @pytest.fixture(scope="module")
@@ -167,6 +166,7 @@ def test_not_a_log_and_empty_file_give_2_with_a_reason(tmp_path):
 
 def test_hostile_channel_names_never_escape_the_csv_folder(tmp_path):
     import lcm
+
     from auv import depth_t
     p = tmp_path / "names.lcmlog"
     log = lcm.EventLog(str(p), "w", overwrite=True)

@@ -14,15 +14,14 @@ from collections import Counter
 
 import jsonschema
 import lcm
+from lcm_samples import random_message
 from mcap.reader import make_reader
 
 from auv import env_model_t, log_annotation_t, nav_solution_t
 from auvlcm.json_schema import all_schemas, to_json
 from auvlcm.types import all_types
-from conftest import ROOT
-from lcm_samples import random_message
 
-LCMLOG = [sys.executable, str(ROOT / "python" / "tools" / "lcmlog.py")]
+LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
 SURVEY = {"polygon": [[0, 0], [100, 0], [100, 80], [0, 80]], "operating_area": [[-50, -50], [150, -50], [150, 130]],
           "vehicles": {"AUV1": {"legs": [{"kind": "line", "start": [0, 10], "end": [100, 10]},
                                          {"kind": "turn", "start": [100, 10], "end": [100, 40]}]}}}

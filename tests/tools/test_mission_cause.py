@@ -10,12 +10,11 @@ import sys
 from pathlib import Path
 
 import yaml
-
 from conftest import ROOT
 
 HERE = Path(__file__).resolve().parent / "scenarios"
-LAUNCH = [sys.executable, str(ROOT / "python" / "tools" / "launch.py")]
-REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
+LAUNCH = [sys.executable, "-m", "tools.launch"]
+REPORT = [sys.executable, "-m", "tools.report"]
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
@@ -32,7 +31,7 @@ def test_the_summary_outcome_and_report_name_what_fired(tmp_path, lcm_url, child
         return {"id": vid, "sim": {"config": SIM, "initial": {"east_m": 40.0 * int(vid[-1])}},
                 "managers": [{"name": "NAVIGATOR", "plan": str(plan_path), "bind": BIND, "rate": 10,
                               "params": {"cycles": 100000, **params}}]}
-    sc = {"name": "cause", "seed": 1, "time": {"mode": "fast", "limit": 30, "wall_limit": 120},
+    sc = {"name": "cause", "seed": 1, "time": {"mode": "lockstep", "limit": 30, "wall_limit": 120},
           "vehicles": [veh("AUV1", tmp_path / "deep.chasm"), veh("AUV2", HERE / "mission.chasm", abort_at="2 s")]}
     path = tmp_path / "cause.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))

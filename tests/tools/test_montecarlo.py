@@ -10,12 +10,12 @@ import sys
 
 import lcm
 import pytest
+from conftest import BUILD, ROOT
 
 from auv import ground_truth_t
-from conftest import BUILD, ROOT
 from tools.montecarlo_summary import interval, summarize
 
-MC = [sys.executable, str(ROOT / "python" / "tools" / "montecarlo.py")]
+MC = [sys.executable, "-m", "tools.montecarlo"]
 # One vehicle, two short lines over part of the demo's target field: a few minutes of sim time.
 PLAN = ["--polygon", "150,120; 190,120; 190,150; 150,150", "--vehicles", "1", "--heading", "0", "--range", "40",
         "--nadir-gap", "8", "--overlap", "0.1", "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"),
@@ -59,7 +59,7 @@ def _truth_and_targets(log):
 
 
 def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
-    plan = subprocess.run([sys.executable, ROOT / "python/tools/plan_survey.py", *PLAN, "--out", tmp_path / "sc",
+    plan = subprocess.run([sys.executable, "-m", "tools.plan_survey", *PLAN, "--out", tmp_path / "sc",
                            "--name", "mc", "--build", BUILD], capture_output=True, text=True, timeout=120)
     assert plan.returncode == 0, plan.stderr
     out = tmp_path / "mc"
@@ -91,7 +91,7 @@ def test_local_jobs_report_runs_that_fail(tmp_path, child_env):
     bad.write_text("mission \"x\"\nstart nowhere\n")
     sc = tmp_path / "s.yaml"
     sc.write_text(f"""name: bad
-time: {{mode: fast, limit: 10}}
+time: {{mode: lockstep, limit: 10}}
 vehicles:
   - id: AUV1
     sim: {{config: {ROOT / 'missions/sim/remus100.yaml'}}}

@@ -14,12 +14,12 @@ import subprocess
 import sys
 
 import pytest
+from conftest import BUILD, c_program
 
-from conftest import BUILD, ROOT, c_program
 from tools.plugin_limits import LimitsError, check_plan, polygon_limits
 from tools.survey_geometry import area, buffer_convex, convex_hull, parse_polygon, simplify_convex_outer
 
-DEMO = [sys.executable, str(ROOT / "python" / "tools" / "demo.py")]
+DEMO = [sys.executable, "-m", "tools.demo"]
 # The demo's target-field box, and a larger, irregular area with many vertices.
 BOX = "0,0; 300,0; 300,240; 0,240"
 CIRCLE = "; ".join(f"{300 + 250 * math.cos(2 * math.pi * k / 90):.1f},{300 + 250 * math.sin(2 * math.pi * k / 90):.1f}"
@@ -84,7 +84,7 @@ def test_a_plan_the_plugins_refuse_is_never_written_into_a_scenario(tmp_path):
     """A limit the planner does not know of (a speed beyond the guidance
     plugin's range) is caught by `chasm check`: exit 2, the loader's message,
     no scenario."""
-    run = subprocess.run([sys.executable, str(ROOT / "python/tools/plan_survey.py"), "--polygon", BOX,
+    run = subprocess.run([sys.executable, "-m", "tools.plan_survey", "--polygon", BOX,
                           "--vehicles", "2", "--range", "40", "--speed-mps", "1000", "--out", str(tmp_path),
                           "--build", str(BUILD)], capture_output=True, text=True, timeout=120)
     assert run.returncode == 2, run.stdout + run.stderr

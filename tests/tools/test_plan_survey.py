@@ -12,10 +12,9 @@ import sys
 
 import pytest
 import yaml
-
 from conftest import BUILD, ROOT
 
-PLAN = [sys.executable, str(ROOT / "python" / "tools" / "plan_survey.py")]
+PLAN = [sys.executable, "-m", "tools.plan_survey"]
 POLY = "0,0; 500,-50; 600,300; 250,420; -20,300"
 
 
@@ -109,7 +108,7 @@ def test_the_committed_demo_scenario_is_what_the_planner_writes(tmp_path):
     with the command recorded in its header and compare."""
     demo = ROOT / "missions" / "scenarios" / "mcm_demo"
     header = (demo / "mcm_demo.yaml").read_text().splitlines()[1]
-    command = header.split("python/tools/plan_survey.py ", 1)[1]
+    command = header.split("auv-plan-survey ", 1)[1]
     args = shlex.split(command)
     args[args.index("--out") + 1] = str(tmp_path / "mcm_demo")
     run = subprocess.run(PLAN + args, capture_output=True, text=True, timeout=60, cwd=ROOT)

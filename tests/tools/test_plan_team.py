@@ -14,10 +14,9 @@ import sys
 
 import pytest
 import yaml
-
 from conftest import ROOT
 
-PLAN = [sys.executable, str(ROOT / "python" / "tools" / "plan_survey.py")]
+PLAN = [sys.executable, "-m", "tools.plan_survey"]
 POLY = "20,20; 220,20; 220,200; 20,200"
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team"
 
@@ -75,7 +74,7 @@ def test_team_plans_share_roster_and_lines_and_get_one_slot_each(tmp_path):
     for v in sc["vehicles"]:
         ri = v["id"] == "AUV4"
         assert v["sim"]["config"].endswith("remus100_ri.yaml" if ri else "remus100_team_search.yaml")
-        assert v["sim"]["simulation"] == {"clock": "stepped"}
+        assert v["sim"]["simulation"] == {"clock": "lockstep"}
         assert v["sim"]["multihil"] == {"enabled": True, "lockstep_participants": 12}
         nav = next(m for m in v["managers"] if m["name"] == "NAVIGATOR")
         assert nav["bind"].endswith("team_ri.bind" if ri else "team_search.bind")
@@ -84,11 +83,11 @@ def test_team_plans_share_roster_and_lines_and_get_one_slot_each(tmp_path):
     assert [v.id for v in loaded.vehicles] == team["roster"]            # the launcher's own checks accept it
 
 
-def test_fast_time_and_no_ri(tmp_path):
-    run = run_team(tmp_path / "f", "--time", "fast", "--ri", "0")
+def test_the_launchers_clock_and_no_ri(tmp_path):
+    run = run_team(tmp_path / "f", "--time-source", "launcher", "--ri", "0")
     assert run.returncode == 0, run.stderr
     sc = yaml.safe_load((tmp_path / "f" / "f.yaml").read_text())
-    assert sc["time"]["mode"] == "fast" and "source" not in sc["time"]
+    assert sc["time"] == {"mode": "lockstep", "source": "launcher", "limit": sc["time"]["limit"]}
     assert [v["id"] for v in sc["vehicles"]] == ["AUV1", "AUV2", "AUV3"]
     assert "simulation" not in sc["vehicles"][0]["sim"]
     assert param((tmp_path / "f" / "AUV3.chasm").read_text(), "slots") == "3"
@@ -119,7 +118,7 @@ def test_mismatched_modems_are_refused(tmp_path):
 
 def test_the_committed_team_scenario_is_what_the_planner_writes(tmp_path):
     header = (SCENARIO / "mcm_team.yaml").read_text().splitlines()[1]
-    args = shlex.split(header.split("python/tools/plan_survey.py ", 1)[1])
+    args = shlex.split(header.split("auv-plan-survey ", 1)[1])
     args[args.index("--out") + 1] = str(tmp_path / "mcm_team")
     run = subprocess.run(PLAN + args, capture_output=True, text=True, timeout=120, cwd=ROOT)
     assert run.returncode == 0, run.stderr
@@ -159,12 +158,11 @@ def test_one_target_field_publisher_and_one_field_in_the_lockstep_team():
     """Stepped simulators in a multi-HIL world publish no SIM.TARGETS on `auto`: the
     launcher makes the first sonar vehicle the one publisher (as on its own clock); the
     RI vehicle's identify.targets build the same field as the search vehicles' sonar."""
-    import auvlcm  # noqa: F401 - the generated types, for sim.config
+    from confcheck.reader import dump_yaml
     from sim.config import loads
     from sim.sonar.publisher import build_field
     from tools.scenario import load_scenario
     from tools.simconfig import vehicle_config
-    from confcheck.reader import dump_yaml
     sc = load_scenario(SCENARIO / "mcm_team.yaml")
     cfgs = {v.id: vehicle_config(sc, v, k) for k, v in enumerate(sc.vehicles)}
     assert [cfgs[v].get("sonar", {}).get("publish_targets") for v in ("AUV1", "AUV2", "AUV3", "AUV4")] == [

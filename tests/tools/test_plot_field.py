@@ -9,9 +9,8 @@ import sys
 import lcm
 
 from auv import chasm_status_t, nav_solution_t
-from conftest import ROOT
 
-PLOT = [sys.executable, str(ROOT / "python" / "tools" / "plot_field.py")]
+PLOT = [sys.executable, "-m", "tools.plot_field"]
 
 
 def _log(path):
@@ -40,7 +39,7 @@ def test_fields_of_any_channel_are_plotted(tmp_path, child_env):
 
 
 def test_unknown_channels_and_fields_are_refused_with_a_hint(tmp_path, capsys):
-    from tools import plot_field      # in-process: one matplotlib import for every case
+    from tools import plot_field  # in-process: one matplotlib import for every case
     _log(tmp_path / "r.lcmlog")
     for spec, text in (("AUV1.NAV.depht_m", "did you mean depth_m"), ("AUV1.NAVV.depth_m", "no channel"),
                        ("AUV1.NAV.vehicle", "is text, not a number")):

@@ -14,9 +14,9 @@ import time
 
 import lcm
 import pytest
+from lcm_proc import lcm_tool, stop
 
 from auv import ground_truth_t, lockstep_t, process_health_t, sim_clock_t
-from lcm_proc import lcm_tool, stop
 
 VEHICLES = 16
 PER_VEHICLE = 120          # one burst: 16 vehicles' TRUTH, 1920 messages at once

@@ -40,7 +40,7 @@ def test_time_waits_for_a_stopped_recorder(tmp_path, lcm_url, child_env, build_d
     try:
         world.managers(spec)
         # three participants: the simulator, its NAVIGATOR and the recorder
-        world.simulator(spec, "stepped", {"lockstep_participants": 3, "step_s": 0.1, "lockstep_timeout_s": 60})
+        world.simulator(spec, "lockstep", {"lockstep_participants": 3, "step_s": 0.1, "lockstep_timeout_s": 60})
         assert pump(120, lambda: _clock_us(clocks) >= 3_000_000), {n: world.output(n)[-400:] for n in world.procs}
         os.kill(rec.pid, signal.SIGSTOP)
         pump(1.0)                                    # the step in flight when it stopped may still end

@@ -12,13 +12,20 @@ import sys
 
 import lcm
 import pytest
-
-from auv import (chasm_status_t, ground_truth_t, log_annotation_t, nav_solution_t, seabed_target_t,
-                 sidescan_contact_t, target_field_t)
-from auvlcm.log import read_events
 from conftest import ROOT
 
-REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
+from auv import (
+    chasm_status_t,
+    ground_truth_t,
+    log_annotation_t,
+    nav_solution_t,
+    seabed_target_t,
+    sidescan_contact_t,
+    target_field_t,
+)
+from auvlcm.log import read_events
+
+REPORT = [sys.executable, "-m", "tools.report"]
 SURVEY = {"polygon": [[0, -60], [200, -60], [200, 90], [0, 90]], "area_m2": 200 * 150,
           "sonar": {"range_m": 40, "nadir_gap_m": 4}, "operating_area": [[-100, -200], [300, -200], [300, 200]]}
 
@@ -134,7 +141,7 @@ def test_plots_are_written_as_png_and_svg(tmp_path):
 
 def test_report_on_a_real_launcher_run(tmp_path, lcm_url, child_env):
     sc = ROOT / "tests" / "tools" / "scenarios" / "two_vehicles.yaml"
-    run = subprocess.run([sys.executable, str(ROOT / "python" / "tools" / "launch.py"), str(sc), "--out",
+    run = subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--out",
                           str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
                          env=child_env, capture_output=True, text=True, timeout=180)
     assert run.returncode == 0, run.stdout + run.stderr

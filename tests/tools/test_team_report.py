@@ -11,11 +11,18 @@ import sys
 
 import lcm
 
-from auv import (ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, reacquire_look_t, seabed_target_t,
-                 target_field_t, team_event_t)
-from conftest import ROOT
+from auv import (
+    ground_truth_t,
+    modem_rx_t,
+    modem_status_t,
+    modem_tx_t,
+    reacquire_look_t,
+    seabed_target_t,
+    target_field_t,
+    team_event_t,
+)
 
-REPORT = [sys.executable, str(ROOT / "python" / "tools" / "report.py")]
+REPORT = [sys.executable, "-m", "tools.report"]
 E = team_event_t
 
 

@@ -6,10 +6,10 @@ watch's own typed subscriptions (decode, then the time rule), no network."""
 
 from __future__ import annotations
 
-from auv import actuator_state_t, chasm_status_t, sim_clock_t
-
-from auvlcm.offline import OfflineLcm
 from test_launch import vehicle, write_scenario
+
+from auv import actuator_state_t, chasm_status_t, sim_clock_t
+from auvlcm.offline import OfflineLcm
 from tools.mission_watch import MissionWatch
 from tools.scenario import load_scenario
 

@@ -34,7 +34,6 @@ from collections import deque
 from typing import Callable
 
 from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
-
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver as LcmReceiver
 from auvlcm.timepolicy import InputGate, TimeDrops

@@ -11,7 +11,6 @@ a whole fixed-layout message (docs/managers.md).
 from __future__ import annotations
 
 from auv import modem_rx_t, modem_tx_t, peer_report_t
-
 from auvlcm.decode import DecodeError, decode_strict
 
 

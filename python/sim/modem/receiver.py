@@ -26,7 +26,6 @@ transmission starting during a reception).
 from __future__ import annotations
 
 from auv import acoustic_frame_t, modem_rx_t, modem_status_t
-
 from sim.config import VEHICLE_ID
 from sim.environment import Environment
 from sim.modem.acoustics import distance_3d, loss_probability, snr_db, uniform_draw

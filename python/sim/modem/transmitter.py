@@ -10,7 +10,6 @@ that it asked for more than the link carries.
 from __future__ import annotations
 
 from auv import acoustic_frame_t, modem_status_t, modem_tx_t
-
 from sim.modem.acoustics import frame_duration_s
 from sim.modem.config import ModemConfig
 from sim.sensors.base import utime

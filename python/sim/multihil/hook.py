@@ -5,8 +5,8 @@ set up here so that hil.py carries only those lines:
 
 - free-running (realtime, scaled): the simulator's steps are paced by the
   node's global clock, and it joins the world at the global time;
-- lockstep (simulation.clock: stepped): the simulator follows SIM.CLOCK as in
-  stepped mode (each clock the node accepted: one time rule, one count),
+- lockstep (simulation.clock: lockstep): the simulator follows SIM.CLOCK as in
+  lockstep on its own (each clock the node accepted: one time rule, one count),
   registers as participant `<VEHICLE>.sim`, reports each step
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
@@ -19,9 +19,9 @@ import math
 
 from sim.bathymetry import BathymetryError
 from sim.environment import Environment
+from sim.lockstep_follow import LockstepFollower
 from sim.multihil.clock import LocalClock
 from sim.multihil.election import Timing
-from sim.lockstep_follow import LockstepFollower
 from sim.multihil.node import EnvNode, NodeConfig
 
 
@@ -38,7 +38,7 @@ def apply_cli(cfg, args) -> None:
 
 def node_config(cfg) -> NodeConfig:
     mh, s = cfg.multihil, cfg.sim
-    mode = "lockstep" if s.clock == "stepped" else s.clock
+    mode = s.clock
     return NodeConfig(mh.client_id, cfg.vehicle_id, mh.priority, list(mh.needs), mh.sample_rate_hz,
                       mode, s.warp if mode == "scaled" else 1.0, s.clock_rate_hz, mh.step_s,
                       mh.lockstep_participants, mh.lockstep_timeout_s, mh.heartbeat_hz, mh.sync_hz,
@@ -54,7 +54,7 @@ class SimHook:
         self.lockstep = ncfg.mode == "lockstep"
         if sim.pacer.fast:
             raise ValueError("multihil: --fast has no clock to share; use scaled time or "
-                             "lockstep (--clock stepped)")
+                             "lockstep (--clock lockstep)")
         steps = ncfg.step_s / sim.dt
         if self.lockstep and (steps < 0.999 or abs(steps - round(steps)) > 1e-6):
             raise ValueError(f"multihil: step_s = {ncfg.step_s:g} s must be a whole number of "

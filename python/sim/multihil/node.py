@@ -22,12 +22,32 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import lcm
-from auv import (clock_offset_t, clock_sync_t, env_election_t, env_heartbeat_t, env_model_t,
-                 env_needs_t, env_sample_t, lockstep_t, sim_clock_t)
 
+from auv import (
+    clock_offset_t,
+    clock_sync_t,
+    env_election_t,
+    env_heartbeat_t,
+    env_model_t,
+    env_needs_t,
+    env_sample_t,
+    lockstep_t,
+    sim_clock_t,
+)
 from auvlcm.rx import Receiver
-from auvlcm.timepolicy import (FUTURE, INVALID, JUMP, MAX_CLOCK_JUMP_US, OLD_TERM, REGRESSION,
-                               ClockGate, InputGate, TimeDrops, valid_utime)
+from auvlcm.timepolicy import (
+    FUTURE,
+    INVALID,
+    JUMP,
+    MAX_CLOCK_JUMP_US,
+    OLD_TERM,
+    REGRESSION,
+    ClockGate,
+    InputGate,
+    TimeDrops,
+    valid_utime,
+)
+from sim import clock_modes
 from sim.environment import Environment
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
@@ -35,8 +55,7 @@ from sim.multihil.election import Election, Timing
 from sim.multihil.lockstep import LockstepTracker
 from sim.multihil.server import LockstepServer, evaluate
 
-MODES = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
-         "lockstep": sim_clock_t.MODE_LOCKSTEP}
+MODES = clock_modes.WIRE
 
 
 @dataclass
@@ -355,7 +374,7 @@ class EnvNode:
             self.mode_conflicts += 1
             if self.mode_conflicts == 1:
                 self.log(f"multihil: {self.cfg.client_id}: SIM.CLOCK from {m.server_id} is "
-                         f"{'lockstep' if m.mode == 2 else 'free-running'}, but this simulator "
+                         f"{'lockstep' if m.mode == sim_clock_t.MODE_LOCKSTEP else 'free-running'}, but this simulator "
                          f"runs {self.cfg.mode}: every simulator of a world needs the same mode")
             return
         if not self.clock_gate.offer(m.utime, m.term):

@@ -7,7 +7,6 @@ from __future__ import annotations
 import time
 
 from auv import env_needs_t, env_sample_t
-
 from sim.environment import Environment
 from sim.multihil.lockstep import LockstepTracker
 

@@ -19,7 +19,7 @@ import time
 import lcm
 
 from auvlcm.url import check_local
-from sim.environment import EnvParams, Environment
+from sim.environment import Environment, EnvParams
 from sim.multihil.clock import LocalClock, mono_us
 from sim.multihil.election import Timing
 from sim.multihil.lockstep import Participation

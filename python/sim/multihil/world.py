@@ -18,6 +18,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from sim import clock_modes
+
 ROOT = Path(__file__).resolve().parents[3]
 BASE_CONFIG = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 PLAN = ROOT / "missions" / "demo" / "depth_band.chasm"
@@ -57,8 +59,7 @@ class World:
                  python: str = sys.executable) -> None:
         self.out, self.url, self.build, self.python = out, url, build, python
         self.env = dict(env or os.environ)
-        self.env.setdefault("PYTHONPATH", os.pathsep.join(
-            [str(ROOT / "python"), str(build / "gen" / "python")]))
+        self.env.setdefault("PYTHONPATH", str(build / "gen" / "python"))    # that build's message types
         self.procs: dict[str, subprocess.Popen] = {}
         out.mkdir(parents=True, exist_ok=True)
 
@@ -79,7 +80,7 @@ class World:
                   duration: float = 0.0, prefix: list[str] | None = None,
                   name: str | None = None) -> subprocess.Popen:
         cfg = vehicle_config(self.out, spec, {"enabled": "true", **multihil})
-        cmd = [self.python, ROOT / "python" / "sim", cfg, "--lcm-url", self.url, "--clock", clock]
+        cmd = [self.python, "-m", "sim", cfg, "--lcm-url", self.url, "--clock", clock]
         if clock == "scaled":
             cmd += ["--warp", warp]
         if duration:
@@ -123,7 +124,7 @@ def main(argv: list[str]) -> int:
     from auvlcm.url import check_local, default_url
     ap = argparse.ArgumentParser(prog="python -m sim.multihil world", description=main.__doc__)
     ap.add_argument("--vehicles", type=int, default=3)
-    ap.add_argument("--clock", choices=("realtime", "scaled", "stepped"), default="scaled")
+    ap.add_argument("--clock", type=clock_modes.argument, metavar="{realtime,scaled,lockstep}", default="scaled")
     ap.add_argument("--warp", type=float, default=4.0)
     ap.add_argument("--duration", type=float, default=60.0, help="sim seconds per simulator")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "multihil")
@@ -140,7 +141,7 @@ def main(argv: list[str]) -> int:
     world.logger(log)
     specs = [VehicleSpec(f"AUV{i}", priority=a.vehicles - i, east_m=30.0 * (i - 1))
              for i in range(1, a.vehicles + 1)]
-    lockstep = {"lockstep_participants": 2 * a.vehicles} if a.clock == "stepped" else {}
+    lockstep = {"lockstep_participants": 2 * a.vehicles} if a.clock == clock_modes.LOCKSTEP else {}
     print(f"world: {a.vehicles} vehicles, {a.clock} clock, {a.duration:g} sim s, on {url}")
     try:
         for s in specs:

@@ -1,9 +1,19 @@
 """Sensor models. Each turns the true state into the message a real instrument sends."""
 
 from sim.sensors.base import Sensor, SensorConfig
-from sim.sensors.instruments import (Ahrs, AhrsConfig, Altimeter, AltimeterConfig, DepthConfig,
-                                     DepthSensor, Dvl, DvlConfig, Gps, GpsConfig)
 from sim.sensors.ins import Ins, InsConfig
+from sim.sensors.instruments import (
+                                     Ahrs,
+                                     AhrsConfig,
+                                     Altimeter,
+                                     AltimeterConfig,
+                                     DepthConfig,
+                                     DepthSensor,
+                                     Dvl,
+                                     DvlConfig,
+                                     Gps,
+                                     GpsConfig,
+)
 from sim.sensors.lbl import Lbl, LblConfig
 from sim.sensors.leak import LeakConfig, LeakSensor
 

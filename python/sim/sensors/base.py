@@ -13,7 +13,6 @@ from dataclasses import dataclass
 from typing import Any
 
 from confcheck import setting
-
 from sim.model import Truth
 from sim.noise import Noise
 from sim.wire import encoder_for

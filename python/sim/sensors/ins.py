@@ -14,10 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from confcheck import setting
-
 from auv import nav_solution_t
-
+from confcheck import setting
 from sim.model import Truth
 from sim.sensors.base import CHANNEL_HINT, CHANNEL_SUFFIX, Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
 from sim.wire import Encoder

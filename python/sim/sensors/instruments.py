@@ -5,10 +5,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from confcheck import setting
-
 from auv import ahrs_t, altimeter_t, depth_t, dvl_t, gps_fix_t
-
+from confcheck import setting
 from sim.model import Truth
 from sim.sensors.base import Sensor, SensorConfig, utime, wrap_2pi, wrap_pi
 from sim.wire import Encoder

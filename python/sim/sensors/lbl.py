@@ -13,10 +13,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from confcheck import setting
-
 from auv import lbl_ranges_t
-
+from confcheck import setting
 from sim.environment import Environment
 from sim.model import Truth
 from sim.sensors.base import Sensor, SensorConfig, utime

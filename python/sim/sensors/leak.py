@@ -13,10 +13,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from confcheck import setting
-
 from auv import leak_t
-
+from confcheck import setting
 from sim.model import Truth
 from sim.sensors.base import Sensor, SensorConfig, utime
 

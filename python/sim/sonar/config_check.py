@@ -11,7 +11,6 @@ from confcheck import Checker
 from sim.sonar import targets as tg
 from sim.sonar.config import SonarConfig, TargetsConfig
 
-
 REPLACED = ("p_classify", "clutter_as_mine")
 
 

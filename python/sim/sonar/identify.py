@@ -49,8 +49,9 @@ class IdentifyConfig:
 
 def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig | None:
     """The checked section (None for `identify: false` or enabled: false)."""
-    from sim.sonar.config_check import check_targets
     import yaml
+
+    from sim.sonar.config_check import check_targets
     if isinstance(node, yaml.ScalarNode) and doc.scalar(node) is False:
         return None
     errors_before = len(doc.errors)
@@ -90,7 +91,6 @@ class Identify:
     def poll(self, tr) -> list:
         """The looks of this period (maybe none); [] when no look is due."""
         from auv import reacquire_look_t
-
         from sim.sensors.base import utime
         t = tr.t
         if t < self.next_t - 1e-9:

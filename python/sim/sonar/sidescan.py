@@ -29,8 +29,8 @@ import math
 from typing import Callable
 
 import numpy as np
-from auv import sidescan_contact_t
 
+from auv import sidescan_contact_t
 from sim.model import Truth
 from sim.noise import Noise
 from sim.sensors.base import utime

@@ -15,6 +15,8 @@ import threading
 from collections import deque
 from typing import Any
 
+from sim import clock_modes
+
 RUN_NAMES = ("loading", "running", "paused", "done", "aborted", "failed")
 NAV_BITS = ((1, "aligned"), (2, "dvl-bottom"), (4, "dvl-water"), (8, "gps"), (16, "lbl"),
             (32, "DEGRADED"), (64, "INVALID"))
@@ -243,8 +245,7 @@ def _ack(m: Model, ch: str, msg: Any) -> bool:
 
 
 def _clock(m: Model, ch: str, msg: Any) -> bool:
-    m.clock = {"server": msg.server_id, "mode": ("realtime", "scaled", "lockstep")[msg.mode]
-               if 0 <= msg.mode <= 2 else str(msg.mode), "warp": msg.warp}
+    m.clock = {"server": msg.server_id, "mode": clock_modes.name_of_wire(msg.mode), "warp": msg.warp}
     return True
 
 
