@@ -33,14 +33,10 @@ from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem
+from sim.periodic import Periodic
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder
-
-def _next_slot(due: float, period: float, t: float) -> float:
-    """The first slot of the grid due + k period after t (missed slots skipped)."""
-    return due + period * max(1, math.floor((t - due) / period) + 1)
-
 
 CLOCK_MODE = {"realtime": sim_clock_t.MODE_REALTIME, "scaled": sim_clock_t.MODE_SCALED,
               "stepped": sim_clock_t.MODE_LOCKSTEP}
@@ -135,10 +131,11 @@ class Simulator:
         self.published = 0
         self.stop_requested = False
         self._clock_started = False
-        # next due time and period of TRUTH, ACTUATOR_STATE, SIM.CLOCK, HEALTH
-        self._next = [0.0, 0.0, 0.0, s.health_period_s]
-        self._periods = (1.0 / s.truth_rate_hz, 1.0 / s.actuator_state_rate_hz,
-                         1.0 / s.clock_rate_hz, s.health_period_s)
+        # the simulator's own periodic outputs
+        self._truth_every = Periodic(1.0 / s.truth_rate_hz)
+        self._act_every = Periodic(1.0 / s.actuator_state_rate_hz)
+        self._clock_every = Periodic(1.0 / s.clock_rate_hz)
+        self._health_every = Periodic(s.health_period_s, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
         # what _outputs() calls per sensor: when it is due next, its poll as bytes
@@ -214,10 +211,12 @@ class Simulator:
         self._clock_started = True
         self.model.dyn.t = t
         self.last_cmd_t = None
-        self._next = [t, t, t, t + self._periods[3]]
+        for every in (self._truth_every, self._act_every, self._clock_every):
+            every.restart(t)
+        self._health_every.restart(t + self._health_every.period)
         self._next_due = t
         for sen in self.sensors:
-            sen.next_t = t + sen.cfg.phase_s
+            sen.restart(t)
         for extra in self.extras:
             extra.restart(t)
         self._t_start = t
@@ -271,28 +270,30 @@ class Simulator:
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
-        nx = self._next
-        if t >= nx[0] - 1e-9:
-            nx[0] = _next_slot(nx[0], self._periods[0], t)
+        truth, act, clock, health = (self._truth_every, self._act_every, self._clock_every,
+                                     self._health_every)
+        if truth.due(t):
+            truth.advance(t)
             publish(self._ch_truth, self._enc_truth.pack(
                 utime(tr.t), *tr.eta, *tr.nu, *tr.nu_dot, *tr.current_ned, tr.altitude_m,
                 tr.water_depth_m, tr.latitude_deg, tr.longitude_deg))
-        if t >= nx[1] - 1e-9:
-            nx[1] = _next_slot(nx[1], self._periods[1], t)
+        if act.due(t):
+            act.advance(t)
             a = self.model.act
             publish(self._ch_act, self._enc_act.pack(
                 utime(t), a.rudder, a.stern, a.rpm, a.thrust, a.torque, self.stale,
                 self.last_cmd_utime))
-        if self.publish_clock and t >= nx[2] - 1e-9:
-            nx[2] = _next_slot(nx[2], self._periods[2], t)
+        if self.publish_clock and clock.due(t):
+            clock.advance(t)
             publish("SIM.CLOCK", self._enc_clock.pack(
                 utime(t), 0, CLOCK_MODE[self.cfg.sim.clock],
                 self.pacer.warp if not self.pacer.fast else 0.0, 0, self._step_us))
-        if t >= nx[3] - 1e-9:
-            nx[3] = _next_slot(nx[3], self._periods[3], t)
+        if health.due(t):
+            health.advance(t)
             self._health()
         self._next_due = min(sensors_due, min((x.next_due() for x in self.extras), default=math.inf),
-                             nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
+                             truth.next_t, act.next_t,
+                             clock.next_t if self.publish_clock else math.inf, health.next_t)
 
     def _health(self) -> None:
         """process_health_t every health_period_s of sim time (like every other output).
