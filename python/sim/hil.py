@@ -20,6 +20,7 @@ import os
 import select
 import signal
 import time
+from typing import Callable
 
 import lcm
 from auv import actuator_state_t, actuators_t, ground_truth_t, process_health_t, sim_clock_t
@@ -29,6 +30,7 @@ from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from auvlcm.sender import ThreadedLcm, open_lcm
 from auvlcm.url import check_local, default_url
 from sim.actuators import Command
+from sim.clock import ClockSource
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
@@ -109,8 +111,8 @@ class Simulator:
         self.time_drops = TimeDrops(f"sim: {self.vid}", lambda line: print(line, flush=True))
         self.clock_gate = ClockGate(self.time_drops)     # stepped: the SIM.CLOCK followed
         self._cmd_gate = InputGate(self.time_drops, f"{self.vid}.ACTUATORS")
-        # where a command that passed the checks goes (multi-HIL lockstep holds it)
-        self.deliver_command = self._apply_command
+        # where a command that passed the checks goes, if not applied at once
+        self._command_filter: Callable[[str, actuators_t], None] | None = None
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
         if s.clock == "stepped" and not cfg.multihil.enabled:   # multi-HIL: the node's clock
@@ -179,9 +181,14 @@ class Simulator:
             return
         if not self._cmd_gate.offer(msg.utime, self.clock_now_us()):
             return
-        self.deliver_command(_channel, msg)
+        if self._command_filter is not None:
+            self._command_filter(_channel, msg)
+        else:
+            self.apply_command(_channel, msg)
 
-    def _apply_command(self, _channel: str, msg) -> None:
+    def apply_command(self, _channel: str, msg) -> None:
+        """Act on a command that passed the checks (a command filter calls this when
+        the command's time comes)."""
         vals = (msg.rudder_rad, msg.stern_plane_rad, msg.prop_rpm)
         if self._last_seq is not None and msg.seq > self._last_seq + 1:
             self.missed_commands += msg.seq - self._last_seq - 1
@@ -192,6 +199,31 @@ class Simulator:
         if self.stale:
             self.stale = False
             print(f"sim: {self.vid}: commands resumed at t={self.model.t:.2f}s", flush=True)
+
+    # --------------------------------------------------- extension points
+    # What a part plugged into the simulator (sim.lockstep_follow, the
+    # multi-HIL hook) may change, besides follow_clock() and join_at().
+    def set_command_filter(self, hold: Callable[[str, actuators_t], None]) -> None:
+        """Pass every command that passed the checks to hold instead of applying it;
+        hold calls apply_command() when it decides (lockstep: at the command's
+        time stamp). One filter: a second one would silently bypass the first."""
+        if self._command_filter is not None:
+            raise RuntimeError(f"sim: {self.vid}: a command filter is set already")
+        self._command_filter = hold
+
+    def set_clock_source(self, source: ClockSource) -> None:
+        """Pace the free-running steps by source's global time (sim.clock.Pacer)."""
+        self.pacer.set_clock_source(source)
+
+    def replace_world(self, env: Environment) -> None:
+        """Run in env's world from the next step on (sim.model.VehicleModel.replace_world)."""
+        self.model.replace_world(env)
+
+    @property
+    def clock_started(self) -> bool:
+        """Whether the simulator joined the global clock (join_at): before, a stepped
+        or multi-HIL simulator has no time of the world's."""
+        return self._clock_started
 
     def _on_clock(self, _channel: str, msg) -> None:
         if self.clock_gate.offer(msg.utime, msg.term):
