@@ -8,9 +8,17 @@ real-time and scaled modes; in lockstep the pace comes from SIM.CLOCK.
 from __future__ import annotations
 
 import time
-from typing import Callable
+from typing import Callable, Protocol
 
 from sim.clock_modes import LOCKSTEP, REALTIME
+
+
+class ClockSource(Protocol):
+    """A global clock a free-running simulator keeps pace with (multi-HIL: its
+    environment node) instead of its own wall clock."""
+
+    def global_now_s(self) -> float | None:
+        """The global time now [s]; None while there is none (the pacer waits)."""
 
 
 class Pacer:
@@ -26,8 +34,13 @@ class Pacer:
         self.target_t: float | None = None   # lockstep: advance up to here
         self.late_steps = 0         # steps that ran behind their wall deadline
         # multi-HIL free-running: the process's global clock [s] (None before it has one)
-        # paces the steps instead of this process's own wall clock
-        self.global_now: Callable[[], float | None] | None = None
+        # paces the steps instead of this process's own wall clock (set_clock_source)
+        self._global_now: Callable[[], float | None] | None = None
+
+    def set_clock_source(self, source: ClockSource) -> None:
+        """Pace free-running steps by source's global time from now on (lockstep
+        keeps following SIM.CLOCK)."""
+        self._global_now = source.global_now_s
 
     def restart(self, sim_t: float) -> None:
         self.wall0 = time.monotonic()
@@ -41,8 +54,8 @@ class Pacer:
         """Whether the step that ends at sim_t + dt may run now."""
         if self.mode == LOCKSTEP:
             return self.target_t is not None and sim_t + 0.5 * self.dt <= self.target_t
-        if self.global_now is not None:
-            g = self.global_now()
+        if self._global_now is not None:
+            g = self._global_now()
             return g is not None and g >= sim_t + self.dt
         if self.fast:
             return True
@@ -52,8 +65,8 @@ class Pacer:
         """How long to wait for LCM traffic before the next step is due."""
         if self.mode == LOCKSTEP:
             return 0.1
-        if self.global_now is not None:
-            g = self.global_now()
+        if self._global_now is not None:
+            g = self._global_now()
             return 0.05 if g is None else max(0.0, (sim_t + self.dt - g) / self.warp)
         if self.fast:
             return 0.0

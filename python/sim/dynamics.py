@@ -24,6 +24,7 @@ from pitch = +-90 deg, which an AUV never reaches in service.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, fields
 from math import cos, sin
 
 import numpy as np
@@ -67,6 +68,80 @@ def submerged_fraction(depth_m: float, radius_m: float) -> float:
     return seg / (math.pi * rr * rr)
 
 
+@dataclass(frozen=True)
+class Coefficients:
+    """One vehicle's constants, as the right-hand side reads them (built once).
+
+    The fields named like a hydrodynamic coefficient (Xuu, Yuudr, ...) hold
+    that coefficient of VehicleParams.hydro: only those the right-hand side
+    uses (the added-mass derivatives Xud... enter through M instead, apart
+    from the five below).
+    """
+    mass_kg: float
+    xg: float                       # CG relative to the CB [m]
+    yg: float
+    zg: float
+    ixx: float                      # rigid-body inertia [kg m^2]
+    iyy: float
+    izz: float
+    weight_n: float
+    buoyancy_n: float
+    radius_m: float                 # the hull breaks the surface within this depth
+    Xuu: float
+    Xwq: float
+    Xqq: float
+    Xvr: float
+    Xrr: float
+    Yvv: float
+    Yrr: float
+    Yuv: float
+    Ywp: float
+    Yur: float
+    Ypq: float
+    Yuudr: float
+    Zww: float
+    Zqq: float
+    Zuw: float
+    Zuq: float
+    Zvp: float
+    Zrp: float
+    Zuuds: float
+    Kpp: float
+    Mww: float
+    Mqq: float
+    Muw: float
+    Muq: float
+    Mvp: float
+    Mrp: float
+    Muuds: float
+    Nvv: float
+    Nrr: float
+    Nuv: float
+    Nur: float
+    Nwp: float
+    Npq: float
+    Nuudr: float
+    # the added mass a current or the waves' acceleration acts on (positive:
+    # -Xud, -Yvd, -Zwd, and the couplings of w into pitch and v into yaw)
+    added_u: float
+    added_v: float
+    added_w: float
+    added_qw: float
+    added_rv: float
+
+    @classmethod
+    def from_vehicle(cls, vp: VehicleParams) -> "Coefficients":
+        h = vp.hydro
+        xg, yg, zg = vp.cg_m
+        ixx, iyy, izz = vp.inertia_kgm2
+        return cls(
+            mass_kg=vp.mass_kg, xg=xg, yg=yg, zg=zg, ixx=ixx, iyy=iyy, izz=izz,
+            weight_n=vp.weight_n, buoyancy_n=vp.buoyancy_n, radius_m=vp.radius_m,
+            added_u=-h["Xud"], added_v=-h["Yvd"], added_w=-h["Zwd"], added_qw=-h["Mwd"],
+            added_rv=-h["Nvd"],
+            **{f.name: h[f.name] for f in fields(cls) if f.name in h})
+
+
 class Dynamics:
     """Integrates eta (NED pose) and nu (body velocity) with fixed-step RK4."""
 
@@ -78,21 +153,7 @@ class Dynamics:
         self.M = mass_matrix(vp)
         minv = np.linalg.inv(self.M)
         self._minv = tuple(float(v) for v in minv.ravel())
-        h = vp.hydro
-        m = vp.mass_kg
-        xg, yg, zg = vp.cg_m
-        ixx, iyy, izz = vp.inertia_kgm2
-        # The constants of the right-hand side (make_rhs), in its order.
-        self._k = (
-            m, xg, yg, zg, ixx, iyy, izz, vp.weight_n, vp.buoyancy_n, vp.radius_m,
-            h["Xuu"], h["Xwq"], h["Xqq"], h["Xvr"], h["Xrr"],
-            h["Yvv"], h["Yrr"], h["Yuv"], h["Ywp"], h["Yur"], h["Ypq"], h["Yuudr"],
-            h["Zww"], h["Zqq"], h["Zuw"], h["Zuq"], h["Zvp"], h["Zrp"], h["Zuuds"],
-            h["Kpp"],
-            h["Mww"], h["Mqq"], h["Muw"], h["Muq"], h["Mvp"], h["Mrp"], h["Muuds"],
-            h["Nvv"], h["Nrr"], h["Nuv"], h["Nur"], h["Nwp"], h["Npq"], h["Nuudr"],
-            -h["Xud"], -h["Yvd"], -h["Zwd"], -h["Mwd"], -h["Nvd"],
-        )
+        self.coefficients = Coefficients.from_vehicle(vp)
         # state: north, east, down, roll, pitch, yaw, u, v, w, p, q, r
         self.x = [0.0] * 12
         self.nu_dot = [0.0] * 6
@@ -107,7 +168,7 @@ class Dynamics:
         # added-mass inertia, held over a step like the current
         self.water_accel_ned = (0.0, 0.0, 0.0)
         self.external_tau: list[float] | None = None  # optional extra body forces (tests, tow)
-        self._f = make_rhs(self._k, self._minv)
+        self._f = make_rhs(self.coefficients, self._minv)
 
     # ------------------------------------------------------------------ API
     @property
@@ -175,23 +236,26 @@ class Dynamics:
                        self.torque, self.external_tau)
 
 
-def make_rhs(k: tuple, minv: tuple):
+def make_rhs(k: Coefficients, minv: tuple):
     """The right-hand side x_dot = f(x, inputs) for one vehicle's constants.
 
-    A closure: the constants are unpacked once, here, and read by the inner
-    function as free variables; the inputs held over a step come as
-    arguments. Four calls per physics step make this the simulator's hot
+    A closure: the constants are copied into locals once, here, and read by
+    the inner function as free variables (no attribute look-up per call);
+    the inputs held over a step come as arguments. Four calls per physics step make this the simulator's hot
     path: a call, a tuple unpacking and an attribute look-up each cost as
     much as several multiplications.
     """
-    (m, xg, yg, zg, ixx, iyy, izz, W, B, rad,
-     Xuu, Xwq, Xqq, Xvr, Xrr,
-     Yvv, Yrr, Yuv, Ywp, Yur, Ypq, Yuudr,
-     Zww, Zqq, Zuw, Zuq, Zvp, Zrp, Zuuds,
-     Kpp,
-     Mww, Mqq, Muw, Muq, Mvp, Mrp, Muuds,
-     Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr,
-     ma_u, ma_v, ma_w, ma_qw, ma_rv) = k
+    m, xg, yg, zg = k.mass_kg, k.xg, k.yg, k.zg
+    ixx, iyy, izz = k.ixx, k.iyy, k.izz
+    W, B, rad = k.weight_n, k.buoyancy_n, k.radius_m
+    Xuu, Xwq, Xqq, Xvr, Xrr = k.Xuu, k.Xwq, k.Xqq, k.Xvr, k.Xrr
+    Yvv, Yrr, Yuv, Ywp, Yur, Ypq, Yuudr = k.Yvv, k.Yrr, k.Yuv, k.Ywp, k.Yur, k.Ypq, k.Yuudr
+    Zww, Zqq, Zuw, Zuq, Zvp, Zrp, Zuuds = k.Zww, k.Zqq, k.Zuw, k.Zuq, k.Zvp, k.Zrp, k.Zuuds
+    Kpp = k.Kpp
+    Mww, Mqq, Muw, Muq, Mvp, Mrp, Muuds = k.Mww, k.Mqq, k.Muw, k.Muq, k.Mvp, k.Mrp, k.Muuds
+    Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr = k.Nvv, k.Nrr, k.Nuv, k.Nur, k.Nwp, k.Npq, k.Nuudr
+    ma_u, ma_v, ma_w, ma_qw, ma_rv = k.added_u, k.added_v, k.added_w, k.added_qw, k.added_rv
+    # M^-1 row by row (a matrix: its entries are positional by nature)
     (i00, i01, i02, i03, i04, i05, i10, i11, i12, i13, i14, i15,
      i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
      i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = minv

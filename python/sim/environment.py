@@ -95,6 +95,12 @@ class Environment:
         # per wave component: a w (orbital speed amplitude at the surface), -k, k, w, phase
         self._orbital = [(a * w, -k, k, w, ph) for a, w, k, ph in self._waves]
 
+    def replace_with(self, other: "Environment") -> None:
+        """Become other's world, in place: every part that holds this object (the
+        model, the sensors, the modem, the multi-HIL node) sees the new one from
+        its next call, with no reference to hand round."""
+        self.__dict__.update(other.__dict__)
+
     def set_regular_wave(self, height_m: float, period_s: float, phase: float = 0.0) -> None:
         """Replace the spectrum with one regular wave (checks against linear theory)."""
         w = 2.0 * math.pi / period_s

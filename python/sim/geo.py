@@ -17,6 +17,11 @@ def radii(lat_deg: float) -> tuple[float, float]:
 
 class LocalFrame:
     def __init__(self, lat0_deg: float, lon0_deg: float) -> None:
+        self.re_origin(lat0_deg, lon0_deg)
+
+    def re_origin(self, lat0_deg: float, lon0_deg: float) -> None:
+        """Move the origin, in place: whoever holds this frame (the GPS, the INS)
+        converts from the new one on."""
         self.lat0 = lat0_deg
         self.lon0 = lon0_deg
         rm, rn = radii(lat0_deg)

@@ -20,6 +20,7 @@ import os
 import select
 import signal
 import time
+from typing import Callable
 
 import lcm
 
@@ -30,20 +31,16 @@ from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from auvlcm.url import check_local, default_url
 from sim import clock_modes
 from sim.actuators import Command
+from sim.clock import ClockSource
 from sim.clock_modes import LOCKSTEP
 from sim.config import SimConfig
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem
+from sim.periodic import Periodic
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder
-
-
-def _next_slot(due: float, period: float, t: float) -> float:
-    """The first slot of the grid due + k period after t (missed slots skipped)."""
-    return due + period * max(1, math.floor((t - due) / period) + 1)
-
 
 CLOCK_MODE = clock_modes.WIRE
 
@@ -115,8 +112,8 @@ class Simulator:
         self.time_drops = TimeDrops(f"sim: {self.vid}", lambda line: print(line, flush=True))
         self.clock_gate = ClockGate(self.time_drops)     # stepped: the SIM.CLOCK followed
         self._cmd_gate = InputGate(self.time_drops, f"{self.vid}.ACTUATORS")
-        # where a command that passed the checks goes (multi-HIL lockstep holds it)
-        self.deliver_command = self._apply_command
+        # where a command that passed the checks goes, if not applied at once
+        self._command_filter: Callable[[str, actuators_t], None] | None = None
         self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
                           queue_capacity=200)
         if s.clock == LOCKSTEP and not cfg.multihil.enabled:   # multi-HIL: the node's clock
@@ -137,10 +134,11 @@ class Simulator:
         self.published = 0
         self.stop_requested = False
         self._clock_started = False
-        # next due time and period of TRUTH, ACTUATOR_STATE, SIM.CLOCK, HEALTH
-        self._next = [0.0, 0.0, 0.0, s.health_period_s]
-        self._periods = (1.0 / s.truth_rate_hz, 1.0 / s.actuator_state_rate_hz,
-                         1.0 / s.clock_rate_hz, s.health_period_s)
+        # the simulator's own periodic outputs
+        self._truth_every = Periodic(1.0 / s.truth_rate_hz)
+        self._act_every = Periodic(1.0 / s.actuator_state_rate_hz)
+        self._clock_every = Periodic(1.0 / s.clock_rate_hz)
+        self._health_every = Periodic(s.health_period_s, s.health_period_s)
         self._next_due = 0.0        # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
         # what _outputs() calls per sensor: when it is due next, its poll as bytes
@@ -184,9 +182,14 @@ class Simulator:
             return
         if not self._cmd_gate.offer(msg.utime, self.clock_now_us()):
             return
-        self.deliver_command(_channel, msg)
+        if self._command_filter is not None:
+            self._command_filter(_channel, msg)
+        else:
+            self.apply_command(_channel, msg)
 
-    def _apply_command(self, _channel: str, msg) -> None:
+    def apply_command(self, _channel: str, msg) -> None:
+        """Act on a command that passed the checks (a command filter calls this when
+        the command's time comes)."""
         vals = (msg.rudder_rad, msg.stern_plane_rad, msg.prop_rpm)
         if self._last_seq is not None and msg.seq > self._last_seq + 1:
             self.missed_commands += msg.seq - self._last_seq - 1
@@ -197,6 +200,31 @@ class Simulator:
         if self.stale:
             self.stale = False
             print(f"sim: {self.vid}: commands resumed at t={self.model.t:.2f}s", flush=True)
+
+    # --------------------------------------------------- extension points
+    # What a part plugged into the simulator (sim.lockstep_follow, the
+    # multi-HIL hook) may change, besides follow_clock() and join_at().
+    def set_command_filter(self, hold: Callable[[str, actuators_t], None]) -> None:
+        """Pass every command that passed the checks to hold instead of applying it;
+        hold calls apply_command() when it decides (lockstep: at the command's
+        time stamp). One filter: a second one would silently bypass the first."""
+        if self._command_filter is not None:
+            raise RuntimeError(f"sim: {self.vid}: a command filter is set already")
+        self._command_filter = hold
+
+    def set_clock_source(self, source: ClockSource) -> None:
+        """Pace the free-running steps by source's global time (sim.clock.Pacer)."""
+        self.pacer.set_clock_source(source)
+
+    def replace_world(self, env: Environment) -> None:
+        """Run in env's world from the next step on (sim.model.VehicleModel.replace_world)."""
+        self.model.replace_world(env)
+
+    @property
+    def clock_started(self) -> bool:
+        """Whether the simulator joined the global clock (join_at): before, a stepped
+        or multi-HIL simulator has no time of the world's."""
+        return self._clock_started
 
     def _on_clock(self, _channel: str, msg) -> None:
         if self.clock_gate.offer(msg.utime, msg.term):
@@ -216,10 +244,12 @@ class Simulator:
         self._clock_started = True
         self.model.dyn.t = t
         self.last_cmd_t = None
-        self._next = [t, t, t, t + self._periods[3]]
+        for every in (self._truth_every, self._act_every, self._clock_every):
+            every.restart(t)
+        self._health_every.restart(t + self._health_every.period)
         self._next_due = t
         for sen in self.sensors:
-            sen.next_t = t + sen.cfg.phase_s
+            sen.restart(t)
         for extra in self.extras:
             extra.restart(t)
         self._t_start = t
@@ -273,28 +303,30 @@ class Simulator:
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
-        nx = self._next
-        if t >= nx[0] - 1e-9:
-            nx[0] = _next_slot(nx[0], self._periods[0], t)
+        truth, act, clock, health = (self._truth_every, self._act_every, self._clock_every,
+                                     self._health_every)
+        if truth.due(t):
+            truth.advance(t)
             publish(self._ch_truth, self._enc_truth.pack(
                 utime(tr.t), *tr.eta, *tr.nu, *tr.nu_dot, *tr.current_ned, tr.altitude_m,
                 tr.water_depth_m, tr.latitude_deg, tr.longitude_deg))
-        if t >= nx[1] - 1e-9:
-            nx[1] = _next_slot(nx[1], self._periods[1], t)
+        if act.due(t):
+            act.advance(t)
             a = self.model.act
             publish(self._ch_act, self._enc_act.pack(
                 utime(t), a.rudder, a.stern, a.rpm, a.thrust, a.torque, self.stale,
                 self.last_cmd_utime))
-        if self.publish_clock and t >= nx[2] - 1e-9:
-            nx[2] = _next_slot(nx[2], self._periods[2], t)
+        if self.publish_clock and clock.due(t):
+            clock.advance(t)
             publish("SIM.CLOCK", self._enc_clock.pack(
                 utime(t), 0, CLOCK_MODE[self.cfg.sim.clock],
                 self.pacer.warp if not self.pacer.fast else 0.0, 0, self._step_us))
-        if t >= nx[3] - 1e-9:
-            nx[3] = _next_slot(nx[3], self._periods[3], t)
+        if health.due(t):
+            health.advance(t)
             self._health()
         self._next_due = min(sensors_due, min((x.next_due() for x in self.extras), default=math.inf),
-                             nx[0], nx[1], nx[2] if self.publish_clock else math.inf, nx[3])
+                             truth.next_t, act.next_t,
+                             clock.next_t if self.publish_clock else math.inf, health.next_t)
 
     def _health(self) -> None:
         """process_health_t every health_period_s of sim time (like every other output).

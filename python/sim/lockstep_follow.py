@@ -32,8 +32,7 @@ class LockstepFollower:
         self._held: list[tuple[float, int, tuple]] = []   # (t, seq, (channel, msg))
         self._held_seq = 0
         # a command that passed the simulator's checks waits for its time stamp
-        self._apply_command = sim.deliver_command
-        sim.deliver_command = self._hold_command
+        sim.set_command_filter(self._hold_command)
 
     def on_clock(self, m: sim_clock_t) -> None:
         """Every SIM.CLOCK the simulator accepted."""
@@ -44,7 +43,7 @@ class LockstepFollower:
     def _hold_command(self, channel: str, msg) -> None:
         t = msg.utime / 1e6
         if not self.active or t <= self.sim.model.t + 1e-9:
-            self._apply_command(channel, msg)
+            self.sim.apply_command(channel, msg)
         else:
             self._held_seq += 1
             bisect.insort(self._held, (t, self._held_seq, (channel, msg)))
@@ -55,12 +54,12 @@ class LockstepFollower:
         part.poll()
         while self._held and self._held[0][0] <= sim.model.t + 1e-9:
             _, _, (channel, msg) = self._held.pop(0)
-            self._apply_command(channel, msg)
+            sim.apply_command(channel, msg)
         if self._clock is not None:
             part.on_clock(*self._clock)
             self._clock = None
         pend = part.pending
-        if pend is not None and sim._clock_started and sim.model.t >= pend[1] / 1e6 - 0.5 * sim.dt:
+        if pend is not None and sim.clock_started and sim.model.t >= pend[1] / 1e6 - 0.5 * sim.dt:
             part.done()     # after the step's messages: the same sender, in order
 
     def close(self) -> None:

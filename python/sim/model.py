@@ -68,6 +68,12 @@ class VehicleModel:
     def t(self) -> float:
         return self.dyn.t
 
+    def replace_world(self, env: Environment) -> None:
+        """Take another world (multi-HIL: the server's), its origin with it; in
+        place, so the parts holding the environment or the frame follow."""
+        self.env.replace_with(env)
+        self.frame.re_origin(env.params.origin_latitude_deg, env.params.origin_longitude_deg)
+
     def set_pose(self, eta, nu=(0.0,) * 6, rpm: float = 0.0) -> None:
         self.dyn.set_state(eta, nu)
         self.act.rpm = rpm

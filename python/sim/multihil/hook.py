@@ -10,7 +10,13 @@ set up here so that hil.py carries only those lines:
   registers as participant `<VEHICLE>.sim`, reports each step
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
-  whichever arrives first: the clock or the command).
+  whichever arrives first: the clock or the command);
+- a client adopts the server's world (currents, waves, bathymetry, origin).
+
+It changes the simulator only through the simulator's extension points
+(docs/simulator.md, "Extension points"): set_clock_source(), join_at(),
+follow_clock(), set_command_filter() (by the LockstepFollower),
+replace_world() and clock_started; never its internals.
 """
 
 from __future__ import annotations
@@ -65,30 +71,30 @@ class SimHook:
                             position=self._position, on_env=self._adopt, log=self.log,
                             drops=sim.time_drops,
                             on_clock=self._on_clock if self.lockstep else None)
-        sim.publish_clock = False        # the world's server publishes SIM.CLOCK
         self.joined = False
         self.env_errors = 0
         if self.lockstep:
             # the simulator's part in lockstep: held commands, its step reports
             self.follow = LockstepFollower(sim)
         else:
-            sim.pacer.global_now = self._global_now_s
+            sim.set_clock_source(self)
 
     # ------------------------------------------------------------ callbacks
     def _position(self) -> tuple[float, float, float, float] | None:
-        if not (self.joined or self.sim._clock_started):
+        if not (self.joined or self.sim.clock_started):
             return None
         x = self.sim.model.dyn.x
         return self.sim.model.t, x[0], x[1], x[2]
 
-    def _global_now_s(self) -> float | None:
+    def global_now_s(self) -> float | None:
+        """The simulator's clock source (sim.clock.ClockSource): the node's global
+        time, once the simulator joined the world at it."""
         g = self.node.global_now_us()
         return None if g is None or not self.joined else g / 1e6
 
     def _adopt(self, m) -> bool:
         """The server's world replaces ours, in place: every part holding it sees the change."""
         params = Environment.params_from_env_model(m)
-        model = self.sim.model
         try:
             fresh = Environment(params, self.sim.cfg.path.parent)
         except (BathymetryError, OSError) as exc:
@@ -100,10 +106,7 @@ class SimHook:
             self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's "
                      "(SHA-256); keeping this one")
             return False
-        model.env.__dict__.update(fresh.__dict__)     # in place: sensors hold this object
-        if (model.frame.lat0, model.frame.lon0) != (params.origin_latitude_deg,
-                                                    params.origin_longitude_deg):
-            model.frame.__init__(params.origin_latitude_deg, params.origin_longitude_deg)
+        self.sim.replace_world(fresh)
         return True
 
     def _on_clock(self, m) -> None:
@@ -119,7 +122,7 @@ class SimHook:
                 self.joined = True
                 sim.join_at(math.floor(node.global_now_us() / 1e6 / sim.dt) * sim.dt)
             return
-        self.joined = sim._clock_started
+        self.joined = sim.clock_started
         self.follow.poll()
 
     def close(self) -> None:

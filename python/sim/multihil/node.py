@@ -446,7 +446,7 @@ class EnvNode:
                 self.log(f"multihil: {self.cfg.client_id}: cannot build the server's world "
                          f"({exc}); keeping this one")
                 return
-            self.env.__dict__.update(fresh.__dict__)
+            self.env.replace_with(fresh)
         self.env_adoptions += 1
         self.log(f"multihil: {self.cfg.client_id}: adopted world {m.world!r} (seed {m.seed}) "
                  f"from {m.server_id}")

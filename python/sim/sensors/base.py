@@ -15,6 +15,7 @@ from typing import Any
 from confcheck import setting
 from sim.model import Truth
 from sim.noise import Noise
+from sim.periodic import Periodic
 from sim.wire import encoder_for
 
 TWO_PI = 2.0 * math.pi
@@ -42,18 +43,21 @@ class Sensor:
         self.vehicle = vehicle
         self.rng = Noise(f"{seed}:{self.name}")
         self.gauss = self.rng.gauss     # gauss(sigma): N(0, sigma^2), 0 if sigma <= 0
-        self.period = 1.0 / cfg.rate_hz
-        self.next_t = cfg.phase_s
+        self.schedule = Periodic(1.0 / cfg.rate_hz, cfg.phase_s, skip_slack=1e-9)
         self.samples = 0
         self.dropped = 0
         self._encoders: dict[type, Any] = {}
 
     def due(self, t: float) -> bool:
-        return self.cfg.enabled and t >= self.next_t - 1e-9
+        return self.cfg.enabled and self.schedule.due(t)
 
     def next_due(self) -> float:
         """Sim time of the next poll() that can return something."""
-        return self.next_t if self.cfg.enabled else math.inf
+        return self.schedule.next_t if self.cfg.enabled else math.inf
+
+    def restart(self, t: float) -> None:
+        """Join a world at time t: the first sample at t + phase_s."""
+        self.schedule.restart(t + self.cfg.phase_s)
 
     def _take(self, t: float) -> int:
         """Whether a sample is due at t: 0 no, 1 a measurement, 2 a dropout.
@@ -63,7 +67,7 @@ class Sensor:
         """
         if not self.due(t):
             return 0
-        self.next_t += self.period * max(1, math.floor((t - self.next_t) / self.period + 1e-9) + 1)
+        self.schedule.advance(t)
         self.samples += 1
         if self.cfg.dropout > 0.0 and self.rng.random() < self.cfg.dropout:
             self.dropped += 1

@@ -20,7 +20,6 @@ world builds the same field). Draws come from a stream named by the seed
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -28,6 +27,7 @@ import numpy as np
 
 from confcheck import Checker, setting
 from sim.noise import Noise
+from sim.periodic import Periodic
 from sim.sonar.config import TargetsConfig
 from sim.sonar.targets import MINE_LIKE, TargetField
 
@@ -81,22 +81,21 @@ class Identify:
         self._n = np.array([t.north_m for t in ts], dtype=float)
         self._e = np.array([t.east_m for t in ts], dtype=float)
         self._mine = np.array([t.kind == MINE_LIKE for t in ts], dtype=bool)
-        self.next_t = 0.0
+        self.schedule = Periodic(cfg.period_s, skip_slack=1e-9)
         self.looks = 0            # reacquire_look_t sent (look_id of the last)
         self.tries = 0            # objects in range at a look, made out or not
 
     def next_due(self) -> float:
-        return self.next_t
+        return self.schedule.next_t
 
     def poll(self, tr) -> list:
         """The looks of this period (maybe none); [] when no look is due."""
         from auv import reacquire_look_t
         from sim.sensors.base import utime
         t = tr.t
-        if t < self.next_t - 1e-9:
+        if not self.schedule.due(t):
             return []
-        p = self.cfg.period_s
-        self.next_t += p * max(1, math.floor((t - self.next_t) / p + 1e-9) + 1)
+        self.schedule.advance(t)
         if not len(self._n) or not 0.0 <= tr.altitude_m <= self.cfg.max_altitude_m:
             return []
         n0, e0 = tr.eta[0], tr.eta[1]
@@ -136,7 +135,7 @@ class IdentifyOutputs:
         self.channel = f"{cfg.vehicle_id}.LOOKS"
 
     def restart(self, t: float) -> None:
-        self.model.next_t = t
+        self.model.schedule.restart(t)
 
     def next_due(self) -> float:
         return self.model.next_due()

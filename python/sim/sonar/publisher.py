@@ -42,7 +42,7 @@ class SonarOutputs:
 
     def restart(self, t: float) -> None:
         """Join a world at time t (stepped mode)."""
-        self.sidescan.next_t = t
+        self.sidescan.schedule.restart(t)
         if self.publish_targets:
             self.next_targets = t
 

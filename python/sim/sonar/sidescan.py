@@ -33,6 +33,7 @@ import numpy as np
 from auv import sidescan_contact_t
 from sim.model import Truth
 from sim.noise import Noise
+from sim.periodic import Periodic
 from sim.sensors.base import utime
 from sim.sonar.config import SonarConfig
 from sim.sonar.curve import LateralRangeCurve
@@ -58,8 +59,7 @@ class Sidescan:
         self._factor = np.where(self._mine, 1.0, cfg.clutter_pd_factor)
         self._prev_along = np.full(len(ts), np.nan)
         self._last_look = np.full(len(ts), -np.inf)
-        self.period = 1.0 / cfg.update_hz
-        self.next_t = 0.0
+        self.schedule = Periodic(1.0 / cfg.update_hz, skip_slack=1e-9)
         self._prev_pos: tuple[float, float] | None = None
         self.contacts = 0
         # per target: looks (passes abeam while imaging) and detections
@@ -70,14 +70,14 @@ class Sidescan:
         self.imaged_area_m2 = 0.0
 
     def next_due(self) -> float:
-        return self.next_t
+        return self.schedule.next_t
 
     def poll(self, tr: Truth) -> list:
         """The contacts of this update (maybe none); [] when no update is due."""
         t = tr.t
-        if t < self.next_t - 1e-9:
+        if not self.schedule.due(t):
             return []
-        self.next_t += self.period * max(1, math.floor((t - self.next_t) / self.period + 1e-9) + 1)
+        self.schedule.advance(t)
         n0, e0, _, roll, pitch, psi = tr.eta
         h = tr.altitude_m
         g, far = self.curve.imaged_band(h)
