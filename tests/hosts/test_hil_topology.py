@@ -145,9 +145,13 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
         t_vc = view()["clock_s"]
 
         def carried_on(v) -> bool:
-            return (v["clock_s"] > t_vc + 8 and any(x[1:3] == ["AUV2", "AUV3"] for x in v["lost"])
+            # every teammate that declares AUV3 lost must have done so (each `silent`
+            # after it last heard AUV3: AUV4 may have heard it a TDMA round later)
+            declared = {x[1] for x in v["lost"] if x[2] == "AUV3"}
+            return (v["clock_s"] > t_vc + 8 and declared >= {"AUV2", "AUV4"}
                     and any(x[2] == "AUV3" for x in v["taken"]))
-        end = wait_until(lambda: (v := view()) and carried_on(v) and v, 120, "AUV3 lost and its lines taken")
+        end = wait_until(lambda: (v := view()) and carried_on(v) and v, 120,
+                         "AUV3 lost by AUV2 and AUV4 and its lines taken")
     finally:
         procs.stop()
     # the world failed over once, to the next priority, and kept one clock
