@@ -1,12 +1,14 @@
-/* chasm-manager's command line: every option checked (numbers in range,
- * names that make valid channels, -D as name=value), --help on stdout.
- * Returns 0, 1 for --help (exit 0) or -1 on a usage error (exit 2). */
+/* chasm-manager's command line (mgr_options.h): every option checked
+ * (numbers in range, names that make valid channels, -D as name=value),
+ * --help on stdout. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "managers/manager.h"
+#include "chasm/chasm.h"
+#include "common/time_policy.h"
+#include "managers/mgr_options.h"
 
 static void usage(FILE *out)
 {
@@ -75,10 +77,10 @@ int manager_parse_args(manager_options *o, int argc, char **argv)
         else if (!strcmp(a, "--rate") && v) {
             if (number_arg(a, v, 1e-3, MGR_MAX_RATE_HZ, &o->rate_hz)) return -1;
         } else if (!strcmp(a, "--future-tolerance") && v) {
-            if (number_arg(a, v, 0, 3600, &x)) return -1;
+            if (number_arg(a, v, 0, MGR_MAX_FUTURE_TOLERANCE_S, &x)) return -1;
             o->future_tol_us = (int64_t)(x * 1e6);
         } else if (!strcmp(a, "--max-clock-jump") && v) {
-            if (number_arg(a, v, 1e-3, 86400, &x)) return -1;
+            if (number_arg(a, v, 1e-3, MGR_MAX_CLOCK_JUMP_S, &x)) return -1;
             o->max_clock_jump_us = (int64_t)(x * 1e6);
         } else if (!strcmp(a, "--clock") && v && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
         else if (!strcmp(a, "--plugin-dir") && v) o->plugin_dir = v;
@@ -120,12 +122,12 @@ int manager_parse_args(manager_options *o, int argc, char **argv)
         usage(stderr);
         return -1;
     }
-    /* Every channel the manager names must fit LCM's 63 characters, the
-     * longest being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
+    /* Every channel the manager names must fit LCM's limit, the longest
+     * being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
     if (!id_ok(o->vehicle) || !id_ok(o->name) || strlen(o->vehicle) > MGR_MAX_VEHICLE ||
-        strlen(o->vehicle) + strlen(o->name) + 7 > 63) {
+        strlen(o->vehicle) + strlen(".CHASM.") + strlen(o->name) > MGR_MAX_CHANNEL) {
         fprintf(stderr, "chasm-manager: --vehicle (1 to %d) and --name are letters, digits and '_', and "
-                        "<VEHICLE>.CHASM.<NAME> at most 63 characters\n", MGR_MAX_VEHICLE);
+                        "<VEHICLE>.CHASM.<NAME> at most %d characters\n", MGR_MAX_VEHICLE, MGR_MAX_CHANNEL);
         return -1;
     }
     /* No --plugin-path: the plugins built beside this program, as `chasm` does. */
