@@ -60,37 +60,47 @@ void unit_register_list(const unit_test *tests)
         unit_register(tests->name, tests->fn);
 }
 
-int unit_main(int argc, char **argv, void (*before_each)(void))
+/* --plugins DIR, --list, NAME; the name asked for, NULL for every test. */
+static const char *parse_args(int argc, char **argv, int *list)
 {
     const char *only = NULL;
-    int list = 0;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--plugins") && i + 1 < argc)
             unit_plugin_dir = argv[++i];
         else if (!strcmp(argv[i], "--list"))
-            list = 1;
+            *list = 1;
         else
             only = argv[i];
     }
+    return only;
+}
+
+/* Runs one test; 1 when it passed. */
+static int run_one(const unit_test *t, void (*before_each)(void))
+{
+    if (before_each)
+        before_each();
+    const int before = unit_failures;
+    t->fn();
+    if (unit_failures == before) {
+        printf("ok %s\n", t->name);
+        return 1;
+    }
+    printf("FAIL %s (%d checks)\n", t->name, unit_failures - before);
+    return 0;
+}
+
+int unit_main(int argc, char **argv, void (*before_each)(void))
+{
+    int list = 0;
+    const char *only = parse_args(argc, argv, &list);
     int ran = 0, failed = 0;
     for (size_t i = 0; i < n_registered; i++) {
-        const unit_test *t = &registry[i];
-        if (list) {
-            printf("%s\n", t->name);
-            continue;
-        }
-        if (only && strcmp(only, t->name))
-            continue;
-        if (before_each)
-            before_each();
-        const int before = unit_failures;
-        t->fn();
-        ran++;
-        if (unit_failures == before) {
-            printf("ok %s\n", t->name);
-        } else {
-            printf("FAIL %s (%d checks)\n", t->name, unit_failures - before);
-            failed++;
+        if (list)
+            printf("%s\n", registry[i].name);
+        else if (!only || !strcmp(only, registry[i].name)) {
+            ran++;
+            failed += !run_one(&registry[i], before_each);
         }
     }
     if (list)
