@@ -133,6 +133,13 @@ $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
 -include $(shell find $(BUILD) -name '*.d' 2>/dev/null)
 
+# The harness of every C/C++ unit-test program (tests/harness/unit.h): the
+# runner and checks; allocation counting (with --wrap=malloc & co.); helpers
+# for tests that load plans with libchasm.
+UNIT_HARNESS_SRCS := tests/harness/unit.c
+UNIT_ALLOC_SRCS := tests/harness/unit_alloc.c
+PLAN_TEST_SRCS := tests/harness/plan_test.c
+
 # Programs every variant builds; component makefiles append to these.
 C_PROGRAMS := bin/auv-lcm-probe
 C_LIBS := lib/libauvtypes.a lib/libauvcommon.a

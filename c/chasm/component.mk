@@ -4,7 +4,7 @@
 comma := ,
 CHASM_LIB_SRCS := $(sort $(wildcard c/chasm/cm_*.c))
 CHASM_TOOL_SRCS := $(sort $(wildcard c/chasm/tool/*.c))
-CHASM_UNIT_SRCS := $(sort $(wildcard tests/chasm/unit/*.c))
+CHASM_UNIT_SRCS := $(sort $(wildcard tests/chasm/unit/*.c)) $(UNIT_HARNESS_SRCS) $(UNIT_ALLOC_SRCS) $(PLAN_TEST_SRCS)
 CHASM_TEST_PLUGINS := $(patsubst tests/chasm/plugins/%.c,plugins/chasm_%.so,$(sort $(wildcard tests/chasm/plugins/*.c)))
 
 define chasm_rules

@@ -1,12 +1,14 @@
-/* chasm-manager's command line: every option checked (numbers in range,
- * names that make valid channels, -D as name=value), --help on stdout.
- * Returns 0, 1 for --help (exit 0) or -1 on a usage error (exit 2). */
+/* chasm-manager's command line (mgr_options.h): every option checked
+ * (numbers in range, names that make valid channels, -D as name=value),
+ * --help on stdout. */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "managers/manager.h"
+#include "chasm/chasm.h"
+#include "common/time_policy.h"
+#include "managers/mgr_options.h"
 
 static void usage(FILE *out)
 {
@@ -50,82 +52,88 @@ static int id_ok(const char *s)
     return 1;
 }
 
-int manager_parse_args(manager_options *o, int argc, char **argv)
+/* --rate, --future-tolerance, --max-clock-jump: 1 taken, 0 none of them,
+ * -1 out of range (said). */
+static int number_option(manager_options *o, const char *a, const char *v)
 {
-    memset(o, 0, sizeof *o);
-    o->rate_hz = 10.0;
-    o->sim_clock = 1;
-    o->url = NULL; /* liblcm then honours LCM_DEFAULT_URL */
-    o->future_tol_us = TP_FUTURE_TOLERANCE_US;
-    o->max_clock_jump_us = TP_MAX_CLOCK_JUMP_US;
-    size_t n_dirs = 0;
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
-        int takes = 1;
-        double x;
-        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
-            usage(stdout);
-            return 1;
-        }
-        if (!strcmp(a, "--plan") && v) o->plan_path = v;
-        else if (!strcmp(a, "--bind") && v) o->bind_path = v;
-        else if (!strcmp(a, "--vehicle") && v) o->vehicle = v;
-        else if (!strcmp(a, "--name") && v) o->name = v;
-        else if ((!strcmp(a, "--lcm-url") || !strcmp(a, "--url")) && v) o->url = v;
-        else if (!strcmp(a, "--rate") && v) {
-            if (number_arg(a, v, 1e-3, MGR_MAX_RATE_HZ, &o->rate_hz)) return -1;
-        } else if (!strcmp(a, "--future-tolerance") && v) {
-            if (number_arg(a, v, 0, 3600, &x)) return -1;
-            o->future_tol_us = (int64_t)(x * 1e6);
-        } else if (!strcmp(a, "--max-clock-jump") && v) {
-            if (number_arg(a, v, 1e-3, 86400, &x)) return -1;
-            o->max_clock_jump_us = (int64_t)(x * 1e6);
-        } else if (!strcmp(a, "--clock") && v && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
-        else if (!strcmp(a, "--plugin-dir") && v) o->plugin_dir = v;
-        else if (!strcmp(a, "--allowlist") && v) o->allowlist = v;
-        else if (!strcmp(a, "--plugin-path") && v) {
-            if (n_dirs + 1 >= MGR_MAX_PLUGIN_PATH) { /* one place is kept for --plugin-dir */
-                fprintf(stderr, "chasm-manager: at most %d --plugin-path folders\n", MGR_MAX_PLUGIN_PATH - 1);
-                return -1;
-            }
-            o->plugin_path[n_dirs++] = v;
-            o->n_plugin_path = n_dirs;
-        } else if (!strcmp(a, "-D") && v) {
-            /* -D name=value: split in place (argv is ours). libchasm checks the
-             * name against the plan and the value as one value of its type. */
-            char *eq = strchr(argv[i + 1], '=');
-            if (!eq || eq == argv[i + 1]) {
-                fprintf(stderr, "chasm-manager: -D wants name=value, not '%s'\n", v);
-                return -1;
-            }
-            if (o->n_params >= MGR_MAX_PARAMS) {
-                fprintf(stderr, "chasm-manager: at most %d -D overrides\n", MGR_MAX_PARAMS);
-                return -1;
-            }
-            *eq = '\0';
-            o->param_names[o->n_params] = argv[i + 1];
-            o->param_values[o->n_params++] = eq + 1;
-        } else {
-            takes = 0;
-            if (!strcmp(a, "--exit-on-end")) o->exit_on_end = 1;
-            else if (!strcmp(a, "--wait-start")) o->wait_start = 1;
-            else {
-                fprintf(stderr, "chasm-manager: bad or incomplete option '%s' (see --help)\n", a);
-                return -1;
-            }
-        }
-        i += takes;
+    double x;
+    if (!strcmp(a, "--rate"))
+        return number_arg(a, v, 1e-3, MGR_MAX_RATE_HZ, &o->rate_hz) ? -1 : 1;
+    if (!strcmp(a, "--future-tolerance")) {
+        if (number_arg(a, v, 0, MGR_MAX_FUTURE_TOLERANCE_S, &x))
+            return -1;
+        o->future_tol_us = (int64_t)(x * 1e6);
+        return 1;
     }
+    if (!strcmp(a, "--max-clock-jump")) {
+        if (number_arg(a, v, 1e-3, MGR_MAX_CLOCK_JUMP_S, &x))
+            return -1;
+        o->max_clock_jump_us = (int64_t)(x * 1e6);
+        return 1;
+    }
+    return 0;
+}
+
+static int plugin_path_option(manager_options *o, const char *v)
+{
+    if (o->n_plugin_path + 1 >= MGR_MAX_PLUGIN_PATH) { /* one place is kept for --plugin-dir */
+        fprintf(stderr, "chasm-manager: at most %d --plugin-path folders\n", MGR_MAX_PLUGIN_PATH - 1);
+        return -1;
+    }
+    o->plugin_path[o->n_plugin_path++] = v;
+    return 1;
+}
+
+/* -D name=value: split in place (argv is ours). libchasm checks the name
+ * against the plan and the value as one value of its type. */
+static int define_option(manager_options *o, char *v)
+{
+    char *eq = strchr(v, '=');
+    if (!eq || eq == v) {
+        fprintf(stderr, "chasm-manager: -D wants name=value, not '%s'\n", v);
+        return -1;
+    }
+    if (o->n_params >= MGR_MAX_PARAMS) {
+        fprintf(stderr, "chasm-manager: at most %d -D overrides\n", MGR_MAX_PARAMS);
+        return -1;
+    }
+    *eq = '\0';
+    o->param_names[o->n_params] = v;
+    o->param_values[o->n_params++] = eq + 1;
+    return 1;
+}
+
+/* An option with a value v: 1 taken, 0 not such an option (or --clock with
+ * another value), -1 refused (said). */
+static int value_option(manager_options *o, const char *a, char *v)
+{
+    if (!strcmp(a, "--plan")) o->plan_path = v;
+    else if (!strcmp(a, "--bind")) o->bind_path = v;
+    else if (!strcmp(a, "--vehicle")) o->vehicle = v;
+    else if (!strcmp(a, "--name")) o->name = v;
+    else if (!strcmp(a, "--lcm-url") || !strcmp(a, "--url")) o->url = v;
+    else if (!strcmp(a, "--clock") && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
+    else if (!strcmp(a, "--plugin-dir")) o->plugin_dir = v;
+    else if (!strcmp(a, "--allowlist")) o->allowlist = v;
+    else if (!strcmp(a, "--plugin-path")) return plugin_path_option(o, v);
+    else if (!strcmp(a, "-D")) return define_option(o, v);
+    else return number_option(o, a, v);
+    return 1;
+}
+
+/* What the options do not say explicitly, and whether what they say fits. */
+static int complete(manager_options *o)
+{
     if (!o->plan_path || !o->bind_path || !o->vehicle || !o->name) {
         usage(stderr);
         return -1;
     }
-    /* Every channel the manager names must fit LCM's 63 characters, the
-     * longest being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
+    /* Every channel the manager names must fit LCM's limit, the longest
+     * being <VEHICLE>.PLUGIN_UPLOAD and <VEHICLE>.CHASM.<NAME>. */
     if (!id_ok(o->vehicle) || !id_ok(o->name) || strlen(o->vehicle) > MGR_MAX_VEHICLE ||
-        strlen(o->vehicle) + strlen(o->name) + 7 > 63) {
+        strlen(o->vehicle) + strlen(".CHASM.") + strlen(o->name) > MGR_MAX_CHANNEL) {
         fprintf(stderr, "chasm-manager: --vehicle (1 to %d) and --name are letters, digits and '_', and "
-                        "<VEHICLE>.CHASM.<NAME> at most 63 characters\n", MGR_MAX_VEHICLE);
+                        "<VEHICLE>.CHASM.<NAME> at most %d characters\n", MGR_MAX_VEHICLE, MGR_MAX_CHANNEL);
         return -1;
     }
     /* No --plugin-path: the plugins built beside this program, as `chasm` does. */
@@ -141,3 +149,33 @@ int manager_parse_args(manager_options *o, int argc, char **argv)
     return 0;
 }
 
+int manager_parse_args(manager_options *o, int argc, char **argv)
+{
+    memset(o, 0, sizeof *o);
+    o->rate_hz = 10.0;
+    o->sim_clock = 1;
+    o->url = NULL; /* liblcm then honours LCM_DEFAULT_URL */
+    o->future_tol_us = TP_FUTURE_TOLERANCE_US;
+    o->max_clock_jump_us = TP_MAX_CLOCK_JUMP_US;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (!strcmp(a, "--help") || !strcmp(a, "-h")) {
+            usage(stdout);
+            return 1;
+        }
+        int taken = i + 1 < argc ? value_option(o, a, argv[i + 1]) : 0;
+        if (taken < 0)
+            return -1;
+        if (taken)
+            i++;
+        else if (!strcmp(a, "--exit-on-end"))
+            o->exit_on_end = 1;
+        else if (!strcmp(a, "--wait-start"))
+            o->wait_start = 1;
+        else {
+            fprintf(stderr, "chasm-manager: bad or incomplete option '%s' (see --help)\n", a);
+            return -1;
+        }
+    }
+    return complete(o);
+}

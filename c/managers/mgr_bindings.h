@@ -18,9 +18,7 @@
 #include "common/lcm_rx.h"
 #include "common/time_policy.h"
 #include "managers/mgr_errors.h"
-
-#define MGR_MAX_CHANNEL 63                  /* LCM's channel name limit, characters */
-#define MGR_MAX_BIND_BYTES (1024 * 1024)    /* a binding file, bytes */
+#include "managers/mgr_limits.h"
 
 typedef struct {
     int var;                /* blackboard id */

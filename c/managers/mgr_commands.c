@@ -12,13 +12,12 @@
 #include "auv/auv_mission_ack_t.h"
 #include "auv/auv_mission_command_t.h"
 #include "auv/auv_plugin_upload_t.h"
-#include "common/sha256.h"
-#include "managers/manager.h"
+#include "managers/mgr_commands.h"
 #include "managers/mgr_upload.h"
 
 static void ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
 {
-    char channel[80];
+    char channel[MGR_MAX_CHANNEL + 1];
     snprintf(channel, sizeof channel, "%s.MISSION_ACK", mg->opt.vehicle);
     auv_mission_ack_t a = {.utime = mg->now_us, .vehicle = (char *)mg->opt.vehicle,
                            .manager = (char *)mg->opt.name, .seq = seq, .result = result,
@@ -54,13 +53,13 @@ static int plain_text(const char *s, size_t max)
     return n <= max;
 }
 
-/* A field for the ack: the first 40 characters, never control bytes. */
+/* A field for the ack: its first characters, never control bytes. */
 static const char *shown(const char *s, char *buf, size_t cap)
 {
     size_t o = 0;
-    for (size_t i = 0; s && s[i] && o + 4 < cap && i < 40; i++)
+    for (size_t i = 0; s && s[i] && o + 4 < cap && i < MGR_ACK_FIELD_CHARS; i++)
         buf[o++] = (unsigned char)s[i] < 0x20 || (unsigned char)s[i] >= 0x7f ? '?' : s[i];
-    if (s && strlen(s) > 40 && o + 4 < cap) {
+    if (s && strlen(s) > MGR_ACK_FIELD_CHARS && o + 4 < cap) {
         memcpy(buf + o, "...", 3);
         o += 3;
     }
@@ -71,7 +70,7 @@ static const char *shown(const char *s, char *buf, size_t cap)
 /* The fields every command and upload share: a message for another vehicle
  * or with a bad stamp is refused (and acknowledged as such), never executed.
  * Returns 1 when the message may proceed. */
-int mgr_command_header_ok(manager_t *mg, int64_t utime, const char *vehicle, int32_t seq)
+static int header_ok(manager_t *mg, int64_t utime, const char *vehicle, int32_t seq)
 {
     char b[64];
     if (!vehicle || strcmp(vehicle, mg->opt.vehicle)) {
@@ -109,10 +108,9 @@ static const char *command_fields_bad(const manager_t *mg, const auv_mission_com
 
 static void load_plan(manager_t *mg, const auv_mission_command_t *c)
 {
-    mgr_bindings nb;
+    manager_plan plan;
     mgr_errors errs = {0};
-    chasm_machine *nm = manager_load(mg, c->plan_name, c->plan_text, &nb, &errs);
-    if (!nm) {
+    if (manager_load(mg, c->plan_name, c->plan_text, &plan, &errs) != 0) {
         char text[MGR_ACK_MAX_CHARS + 1];
         mgr_errors_summary(&errs, MGR_ACK_MAX_ERRORS, text, sizeof text);
         mgr_errors_free(&errs);
@@ -120,14 +118,8 @@ static void load_plan(manager_t *mg, const auv_mission_command_t *c)
         return;
     }
     mgr_errors_free(&errs);
-    /* Only now that the new plan is complete does the old one go. The
-     * bindings subscribe once in their final place: handlers keep a pointer. */
-    mgr_bindings_free(&mg->b, mg->lcm);
-    chasm_free(mg->m);
-    mg->m = nm;
-    mg->b = nb;
-    mg->started = 0;
-    if (mgr_bindings_subscribe(&mg->b, mg->lcm) != 0) {
+    /* Only now that the new plan is complete does the old one go. */
+    if (manager_replace_plan(mg, &plan) != 0) {
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_FAILED, "new plan loaded but its inputs cannot be subscribed");
         return;
     }
@@ -142,7 +134,7 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
     const auv_mission_command_t *c = msg;
     if (!for_me(mg, c->manager))
         return;
-    if (!mgr_command_header_ok(mg, c->utime, c->vehicle, c->seq))
+    if (!header_ok(mg, c->utime, c->vehicle, c->seq))
         return;
     char why[200];
     if (command_fields_bad(mg, c, why, sizeof why)) {
@@ -151,23 +143,22 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
     }
     switch (c->command) {
     case AUV_MISSION_COMMAND_T_CMD_START:
-        mg->opt.wait_start = 0;
-        ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, mg->started ? "already running" : "starting");
+        ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, manager_request_start(mg) ? "already running" : "starting");
         break;
     case AUV_MISSION_COMMAND_T_CMD_PAUSE:
     case AUV_MISSION_COMMAND_T_CMD_RESUME:
-        chasm_pause(mg->m, c->command == AUV_MISSION_COMMAND_T_CMD_PAUSE);
+        chasm_pause(mg->plan.machine, c->command == AUV_MISSION_COMMAND_T_CMD_PAUSE);
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, c->command == AUV_MISSION_COMMAND_T_CMD_PAUSE ? "paused" : "resumed");
         break;
     case AUV_MISSION_COMMAND_T_CMD_ABORT:
-        chasm_abort(mg->m, mg->now_us, c->reason && *c->reason ? c->reason : "operator abort");
+        chasm_abort(mg->plan.machine, mg->now_us, c->reason && *c->reason ? c->reason : "operator abort");
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, "aborting");
         break;
     case AUV_MISSION_COMMAND_T_CMD_LOAD_PLAN:
         load_plan(mg, c);
         break;
     case AUV_MISSION_COMMAND_T_CMD_STOP:
-        mg->stop = 1;
+        manager_request_stop(mg);
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, "stopping");
         break;
     default: /* command_fields_bad() refused it already */
@@ -183,16 +174,16 @@ static void on_upload(const char *channel, const void *msg, int64_t recv_utime, 
     const auv_plugin_upload_t *u = msg;
     if (!for_me(mg, u->manager))
         return;
-    if (!mgr_command_header_ok(mg, u->utime, u->vehicle, u->seq))
+    if (!header_ok(mg, u->utime, u->vehicle, u->seq))
         return;
-    char text[2048];
+    char text[MGR_ACK_MAX_CHARS + 1];
     int8_t result = mgr_upload_plugin(mg, u, text, sizeof text);
     ack(mg, u->seq, result, text);
 }
 
 int mgr_commands_subscribe(manager_t *mg)
 {
-    char ch[80];
+    char ch[MGR_MAX_CHANNEL + 1];
     snprintf(ch, sizeof ch, "%s.MISSION_CMD", mg->opt.vehicle);
     if (!(mg->cmd_sub = rx_subscribe(mg->lcm, ch, auv_type_find("mission_command_t"), on_command, mg)))
         return -1;

@@ -2,7 +2,8 @@
  * manager accepts (a LOAD_PLAN of MGR_MAX_PLAN_BYTES), and find out what the
  * kernel actually grants: net.core.rmem_max may cap it, and a fragmented
  * message that does not fit the buffer is lost without a trace. When the
- * buffer cannot be had, the manager accepts smaller plans and says so. */
+ * buffer cannot be had, the manager accepts smaller plans and says so. The
+ * sizes, and why they are what they are: mgr_limits.h. */
 #include "managers/mgr_lcm.h"
 
 #include <stdio.h>
@@ -12,18 +13,6 @@
 #include <unistd.h>
 
 #define DEFAULT_URL "udpm://239.255.76.67:7667?ttl=0"
-/* LCM fragments a large message into datagrams of up to 64 KB. liblcm's
- * reader thread drains the socket as fragments come, but a loaded machine
- * can starve it: the buffer must hold a whole message of the maximum size,
- * plus two fragments of slack for the kernel's per-datagram overhead and
- * other traffic. (Measured on loopback: with 425984 bytes granted, a 400 KB
- * message arrives and a 1 MB one does not.) */
-#define FRAGMENT_BYTES (64 * 1024)
-/* What the manager asks for: more than the maximum needs, because a plan over
- * the maximum must still arrive whole to be refused with its size (an
- * over-size plan the buffer cannot hold is lost without an answer; a 400 KB
- * plan into a 393 KB buffer was, on a loaded machine and under ASan). */
-#define RECV_BUFFER_GOAL_BYTES (2 * 1024 * 1024)
 
 static size_t granted_rcvbuf(size_t want)
 {
@@ -43,8 +32,8 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
     const char *base = url_opt ? url_opt : getenv("LCM_DEFAULT_URL");
     if (!base || !*base)
         base = DEFAULT_URL;
-    const size_t need = (size_t)MGR_MAX_PLAN_BYTES + 2 * FRAGMENT_BYTES; /* capacity for the maximum */
-    const size_t want = RECV_BUFFER_GOAL_BYTES / 2;                              /* what to ask: the kernel doubles */
+    const size_t need = (size_t)MGR_MAX_PLAN_BYTES + 2 * MGR_LCM_FRAGMENT_BYTES; /* capacity for the maximum */
+    const size_t want = MGR_RECV_BUFFER_BYTES / 2;                              /* what to ask: the kernel doubles */
     char url[1024];
     int is_udpm = !strncmp(base, "udpm://", 7);
     if (is_udpm && !strstr(base, "recv_buf_size="))
@@ -61,7 +50,7 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
     size_t asked = rb ? strtoul(rb + 14, NULL, 10) : 0;
     size_t cap = is_udpm ? granted_rcvbuf(asked ? asked : want) : need;
     if (is_udpm && cap < need) {
-        size_t fit = cap > 2 * FRAGMENT_BYTES ? cap - 2 * FRAGMENT_BYTES : 0;
+        size_t fit = cap > 2 * MGR_LCM_FRAGMENT_BYTES ? cap - 2 * MGR_LCM_FRAGMENT_BYTES : 0;
         if (fit < MGR_MIN_PLAN_BYTES)
             fit = MGR_MIN_PLAN_BYTES;
         if (fit < *max_plan_bytes)

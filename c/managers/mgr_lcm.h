@@ -7,7 +7,7 @@
 
 #include <lcm/lcm.h>
 
-#include "managers/manager.h"
+#include "managers/mgr_limits.h"
 
 /* NULL on failure (printed). *max_plan_bytes: the plan size the buffer the
  * kernel granted can carry (MGR_MAX_PLAN_BYTES when it is large enough). */

@@ -5,12 +5,13 @@
 #include <lcm/lcm.h>
 
 #include "chasm/chasm.h"
+#include "managers/mgr_limits.h"
 
 typedef struct {
     const char *vehicle;
     const char *manager;
     const char *plan;
-    char channel[64];           /* <VEHICLE>.CHASM.<MANAGER> */
+    char channel[MGR_MAX_CHANNEL + 1]; /* <VEHICLE>.CHASM.<MANAGER> */
 } mgr_status_ctx;
 
 /* What the manager counted and dropped, for the status message. */

@@ -17,8 +17,6 @@
 #define REJECTED AUV_MISSION_ACK_T_RESULT_REJECTED
 #define FAILED AUV_MISSION_ACK_T_RESULT_FAILED
 #define OK AUV_MISSION_ACK_T_RESULT_OK
-/* Same limit as the Loader's (cm_elf_check.h): an upload bigger can never load. */
-#define MAX_UPLOAD_BYTES (64 * 1024 * 1024)
 #define TEMP_PREFIX ".chasm_"
 #define TEMP_MARK ".upload-"
 
@@ -129,8 +127,8 @@ int8_t mgr_upload_plugin(manager_t *mg, const auv_plugin_upload_t *u, char *text
         snprintf(text, tl, "plugin rejected: bad plugin name: %s", why);
         return REJECTED;
     }
-    if (u->n_bytes <= 0 || u->n_bytes > MAX_UPLOAD_BYTES) {
-        snprintf(text, tl, "plugin rejected: %d bytes (a plugin has 1 to %d)", (int)u->n_bytes, MAX_UPLOAD_BYTES);
+    if (u->n_bytes <= 0 || u->n_bytes > MGR_MAX_UPLOAD_BYTES) {
+        snprintf(text, tl, "plugin rejected: %d bytes (a plugin has 1 to %d)", (int)u->n_bytes, MGR_MAX_UPLOAD_BYTES);
         return REJECTED;
     }
     char hex[65];
@@ -152,9 +150,9 @@ int8_t mgr_upload_plugin(manager_t *mg, const auv_plugin_upload_t *u, char *text
      * running plan does not use is kept only if it would load. */
     char err[1400];
     chasm_plugin_file *pf = chasm_plugin_file_open(tmp, name, err, sizeof err);
-    int uses = chasm_uses_plugin(mg->m, name);
+    int uses = chasm_uses_plugin(mg->plan.machine, name);
     if (pf) chasm_plugin_file_close(pf);
-    if (!pf || (uses && chasm_hotplug(mg->m, tmp, err, sizeof err) != 0)) {
+    if (!pf || (uses && chasm_hotplug(mg->plan.machine, tmp, err, sizeof err) != 0)) {
         unlink(tmp);
         name_the_upload(err, sizeof err, tmp, path);
         snprintf(text, tl, "plugin %s %s not loaded, mission unchanged: %s", name, version, err);

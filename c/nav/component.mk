@@ -18,8 +18,8 @@ $(1)/bin/auv-nav-replay: $(patsubst %.cpp,$(1)/obj/%.o,$(NAV_REPLAY_SRCS)) $(1)/
 	@mkdir -p $$(@D)
 	$$(Q)$$(CXX) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 # The unit tests count allocations (operator new and, wrapped, malloc) to
-# prove an update allocates nothing.
-$(1)/bin/nav_unit_tests: $(patsubst %.cpp,$(1)/obj/%.o,$(NAV_UNIT_SRCS)) $(1)/lib/libauvnav.a $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
+# prove an update allocates nothing; the harness is C (tests/harness).
+$(1)/bin/nav_unit_tests: $(patsubst %.cpp,$(1)/obj/%.o,$(NAV_UNIT_SRCS)) $(patsubst %.c,$(1)/obj/%.o,$(UNIT_HARNESS_SRCS) $(UNIT_ALLOC_SRCS)) $(1)/lib/libauvnav.a $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
 	@mkdir -p $$(@D)
 	$$(Q)$$(CXX) $$(vflags) $$^ -o $$@ -Wl,--wrap=malloc,--wrap=calloc,--wrap=realloc $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 endef

@@ -5,13 +5,13 @@
 # c/plugins/lib/ holds code shared by plugins (angles, PID, geometry); it is
 # linked into each plugin, so a plugin still depends on nothing at run time.
 # Unit tests of plugin NAME are tests/plugins/NAME/*.c, linked with libchasm,
-# the plugin's own objects and the shared test harness tests/plugins/common/*.c,
-# as bin/test_plugin_NAME.
+# the plugin's own objects, tests/plugins/common/*.c (main) and the shared
+# unit-test harness (tests/harness), as bin/test_plugin_NAME.
 PLUGIN_DIRS := $(sort $(patsubst c/plugins/%/,%,$(dir $(wildcard c/plugins/*/*.c))))
 PLUGIN_NAMES := $(filter-out lib,$(PLUGIN_DIRS))
 PLUGIN_LIB_SRCS := $(sort $(wildcard c/plugins/lib/*.c))
 PLUGIN_TESTED := $(sort $(filter $(PLUGIN_NAMES),$(patsubst tests/plugins/%/,%,$(dir $(wildcard tests/plugins/*/*.c)))))
-PLUGIN_TEST_COMMON := $(sort $(wildcard tests/plugins/common/*.c))
+PLUGIN_TEST_COMMON := $(sort $(wildcard tests/plugins/common/*.c)) $(UNIT_HARNESS_SRCS) $(PLAN_TEST_SRCS)
 
 define plugin_lib_rules
 $(1)/lib/libchasm_plugin_util.a: $(patsubst %.c,$(1)/obj/%.o,$(PLUGIN_LIB_SRCS))

@@ -1,41 +1,42 @@
 /* Semantics of the engine on small plans and a scripted clock. */
 #include <stdlib.h>
 
-#include "harness.h"
+#include "../../harness/plan_test.h"
+#include "../../harness/unit_alloc.h"
 
 #define IO "input x : double m\ninput flag : bool\n"
 
 /* A parent's transition pre-empts its child's; within a state the first true one wins. */
 static void priority_outer_first(void)
 {
-    chasm_machine *m = load_plan(IO "test hi : x > 1 m\n"
+    chasm_machine *m = pt_load(IO "test hi : x > 1 m\n"
                                     "state a {\n  when hi -> p\n  state b {\n    when hi -> q\n  }\n}\n"
                                     "state p {\n}\nstate q {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK_STR(leaf(m), "a/b");
-    set_d(m, "x", 2, 0);
+    CHECK_STR(pt_leaf(m), "a/b");
+    pt_set(m, "x", 2, 0);
     chasm_step(m, 100000);
-    CHECK_STR(leaf(m), "p");
+    CHECK_STR(pt_leaf(m), "p");
     chasm_free(m);
 }
 
 static void priority_declaration_order(void)
 {
-    chasm_machine *m = load_plan(IO "test hi : x > 1 m\ntest hi2 : x > 0.5 m\n"
+    chasm_machine *m = pt_load(IO "test hi : x > 1 m\ntest hi2 : x > 0.5 m\n"
                                     "state a {\n  when hi2 -> q\n  when hi -> p\n}\nstate p {\n}\nstate q {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    set_d(m, "x", 2, 0);
+    pt_set(m, "x", 2, 0);
     chasm_step(m, 100000);
-    CHECK_STR(leaf(m), "q");
+    CHECK_STR(pt_leaf(m), "q");
     chasm_free(m);
 }
 
 /* Exit innermost-first to the LCA, entry outermost-first to the target's default leaf. */
 static void exit_entry_order_through_lca(void)
 {
-    chasm_machine *m = load_plan("use test_basic\n" IO "test hi : x > 1 m\n"
+    chasm_machine *m = pt_load("use test_basic\n" IO "test hi : x > 1 m\n"
                                  "state r {\n do trace(tag = \"r\") on exit\n"
                                  " state a {\n  do trace(tag = \"a\") on exit\n"
                                  "  state a1 {\n   do trace(tag = \"a1\") on exit\n   when hi -> b\n  }\n }\n"
@@ -43,13 +44,13 @@ static void exit_entry_order_through_lca(void)
                                  "  state b1 {\n   do trace(tag = \"b1\") on entry\n  }\n }\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK_STR(leaf(m), "r/a/a1");
-    log_clear();
-    set_d(m, "x", 2, 0);
+    CHECK_STR(pt_leaf(m), "r/a/a1");
+    pt_log_clear();
+    pt_set(m, "x", 2, 0);
     chasm_step(m, 100000);
-    CHECK_STR(leaf(m), "r/b/b1");
+    CHECK_STR(pt_leaf(m), "r/b/b1");
     /* r is the LCA: it is neither exited nor entered */
-    CHECK_STR(logbuf, "step a1 v1;stop a1 v1;step a v1;stop a v1;"
+    CHECK_STR(pt_log, "step a1 v1;stop a1 v1;step a v1;stop a v1;"
                       "start b v1;step b v1;start b1 v1;step b1 v1;");
     chasm_free(m);
 }
@@ -57,24 +58,24 @@ static void exit_entry_order_through_lca(void)
 /* A transition to an ancestor of the active state exits and re-enters it. */
 static void self_transition_reenters(void)
 {
-    chasm_machine *m = load_plan("use test_basic\n" IO "test hi : x > 1 m\n"
+    chasm_machine *m = pt_load("use test_basic\n" IO "test hi : x > 1 m\n"
                                  "state r {\n do trace(tag = \"r\") on entry\n start s2\n"
                                  " state s1 {\n }\n state s2 {\n  when hi -> r\n }\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK_STR(leaf(m), "r/s2");
-    log_clear();
-    set_d(m, "x", 2, 0);
+    CHECK_STR(pt_leaf(m), "r/s2");
+    pt_log_clear();
+    pt_set(m, "x", 2, 0);
     chasm_step(m, 100000);
-    CHECK_STR(leaf(m), "r/s2");
-    CHECK_STR(logbuf, "stop r v1;start r v1;step r v1;");
+    CHECK_STR(pt_leaf(m), "r/s2");
+    CHECK_STR(pt_log, "stop r v1;start r v1;step r v1;");
     chasm_free(m);
 }
 
 /* `start` picks the default child, otherwise the first; `next` follows completion. */
 static void default_child_and_next(void)
 {
-    chasm_machine *m = load_plan("use test_basic\n"
+    chasm_machine *m = pt_load("use test_basic\n"
                                  "state top {\n start two\n"
                                  " state one {\n }\n"
                                  " state two {\n  do count_to(n = 3, count = c2)\n  next three\n }\n"
@@ -82,35 +83,35 @@ static void default_child_and_next(void)
                                  "var c2 : int\nvar c3 : int\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK_STR(leaf(m), "top/two");
-    run_until(m, 0.1, 0.2);
-    CHECK_STR(leaf(m), "top/two");
-    run_until(m, 0.3, 0.3); /* third step: done, then `next` in the same cycle */
-    CHECK_STR(leaf(m), "top/three");
-    CHECK(get_i(m, "c2") == 3);
+    CHECK_STR(pt_leaf(m), "top/two");
+    pt_run_until(m, 0.1, 0.2);
+    CHECK_STR(pt_leaf(m), "top/two");
+    pt_run_until(m, 0.3, 0.3); /* third step: done, then `next` in the same cycle */
+    CHECK_STR(pt_leaf(m), "top/three");
+    CHECK(pt_get_int(m, "c2") == 3);
     chasm_free(m);
 }
 
 /* The last child completing completes its parent, which follows its own `next`. */
 static void completion_bubbles_up(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nvar c : int\nvar d : int\n"
+    chasm_machine *m = pt_load("use test_basic\nvar c : int\nvar d : int\n"
                                  "state seq {\n next after\n"
                                  " state s1 {\n  do count_to(n = 2, count = c)\n  next s2\n }\n"
                                  " state s2 {\n  do count_to(n = 2, count = d)\n }\n}\n"
                                  "state after {\n do count_to(n = 1, count = c)\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 0.2);
-    CHECK_STR(leaf(m), "seq/s2");
-    run_until(m, 0.3, 0.4);
-    CHECK_STR(leaf(m), "after");
+    pt_run_until(m, 0.1, 0.2);
+    CHECK_STR(pt_leaf(m), "seq/s2");
+    pt_run_until(m, 0.3, 0.4);
+    CHECK_STR(pt_leaf(m), "after");
     chasm_status st;
     chasm_status_get(m, 400000, &st);
     CHECK_STR(st.last_condition, "completed");
     CHECK_STR(st.last_from, "seq/s2");
     /* `after` is a root with no next: its completion ends the mission */
-    CHECK(run_until(m, 0.5, 0.5) == CHASM_RUN_DONE);
+    CHECK(pt_run_until(m, 0.5, 0.5) == CHASM_RUN_DONE);
     chasm_free(m);
 }
 
@@ -118,31 +119,31 @@ static void completion_bubbles_up(void)
  * end the parent (the survey-leg pattern `state line3 { ... when done -> line4 }`). */
 static void child_when_done_stays(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nvar c : int\nvar d : int\n"
+    chasm_machine *m = pt_load("use test_basic\nvar c : int\nvar d : int\n"
                                  "state survey {\n"
                                  " state line1 {\n  do count_to(n = 2, count = c)\n  when done -> line2\n }\n"
                                  " state line2 {\n  do count_to(n = 2, count = d)\n }\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 0.2);
-    CHECK_STR(leaf(m), "survey/line2");
+    pt_run_until(m, 0.1, 0.2);
+    CHECK_STR(pt_leaf(m), "survey/line2");
     CHECK(chasm_run_state_of(m) == CHASM_RUN_RUNNING);
     /* line2 has no `when done`: its completion bubbles up and ends the mission */
-    CHECK(run_until(m, 0.3, 0.4) == CHASM_RUN_DONE);
+    CHECK(pt_run_until(m, 0.3, 0.4) == CHASM_RUN_DONE);
     chasm_free(m);
 }
 
 /* A `when done` in the parent pre-empts the parent's `next`. */
 static void done_condition(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nvar c : int\n"
+    chasm_machine *m = pt_load("use test_basic\nvar c : int\n"
                                  "state p {\n next n1\n when done -> n2\n"
                                  " state s {\n  do count_to(n = 1, count = c)\n }\n}\n"
                                  "state n1 {\n}\nstate n2 {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 0.1);
-    CHECK_STR(leaf(m), "n2");
+    pt_run_until(m, 0.1, 0.1);
+    CHECK_STR(pt_leaf(m), "n2");
     chasm_free(m);
 }
 
@@ -159,18 +160,18 @@ static void history(const char *how, const char *expect)
 {
     char plan[2048];
     snprintf(plan, sizeof plan, HISTORY_PLAN, how);
-    chasm_machine *m = load_plan(plan);
+    chasm_machine *m = pt_load(plan);
     if (!m) return;
-    set_b(m, "fix", 1, 0);
+    pt_set_bool(m, "fix", 1, 0);
     chasm_start(m, 0);
-    run_until(m, 0.1, 2.5); /* line1 -> line2/part_a -> part_b */
-    CHECK_STR(leaf(m), "survey/line2/part_b");
-    set_b(m, "fix", 0, 2.5);
-    run_until(m, 2.6, 2.6);
-    CHECK_STR(leaf(m), "surface");
-    set_b(m, "fix", 1, 2.7);
-    run_until(m, 2.7, 2.7);
-    CHECK_STR(leaf(m), expect);
+    pt_run_until(m, 0.1, 2.5); /* line1 -> line2/part_a -> part_b */
+    CHECK_STR(pt_leaf(m), "survey/line2/part_b");
+    pt_set_bool(m, "fix", 0, 2.5);
+    pt_run_until(m, 2.6, 2.6);
+    CHECK_STR(pt_leaf(m), "surface");
+    pt_set_bool(m, "fix", 1, 2.7);
+    pt_run_until(m, 2.7, 2.7);
+    CHECK_STR(pt_leaf(m), expect);
     chasm_free(m);
 }
 static void history_none(void) { history("", "survey/line1"); }
@@ -180,7 +181,7 @@ static void history_deep(void) { history("resume deep", "survey/line2/part_b"); 
 /* Every time model against a scripted clock (100 ms cycles). */
 static void time_models(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nvar ce : int\nvar cx : int\nvar cc : int\nvar cv : int\nvar ca : int\n"
+    chasm_machine *m = pt_load("use test_basic\nvar ce : int\nvar cx : int\nvar cc : int\nvar cv : int\nvar ca : int\n"
                                  "input go : bool\ntest leave : go\n"
                                  "state s {\n"
                                  " do count_to(n = 1000, count = ce) on entry\n"
@@ -191,45 +192,45 @@ static void time_models(void)
                                  " when leave -> t\n}\nstate t {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK(get_i(m, "ce") == 1);
-    run_until(m, 0.1, 2.0); /* 20 cycles after entry */
-    CHECK(get_i(m, "ce") == 1);
-    CHECK(get_i(m, "cx") == 0);
-    CHECK(get_i(m, "cc") == 20);
-    CHECK(get_i(m, "cv") == 5);  /* first cycle after entry, then entry + k * 0.5 s: 0.1, 0.5, 1.0, 1.5, 2.0 */
-    CHECK(get_i(m, "ca") == 1);  /* once, at 1.0 s */
-    set_b(m, "go", 1, 2.0);
-    run_until(m, 2.1, 2.1);
-    CHECK_STR(leaf(m), "t");
-    CHECK(get_i(m, "cx") == 1);
-    CHECK(get_i(m, "cc") == 21);
+    CHECK(pt_get_int(m, "ce") == 1);
+    pt_run_until(m, 0.1, 2.0); /* 20 cycles after entry */
+    CHECK(pt_get_int(m, "ce") == 1);
+    CHECK(pt_get_int(m, "cx") == 0);
+    CHECK(pt_get_int(m, "cc") == 20);
+    CHECK(pt_get_int(m, "cv") == 5);  /* first cycle after entry, then entry + k * 0.5 s: 0.1, 0.5, 1.0, 1.5, 2.0 */
+    CHECK(pt_get_int(m, "ca") == 1);  /* once, at 1.0 s */
+    pt_set_bool(m, "go", 1, 2.0);
+    pt_run_until(m, 2.1, 2.1);
+    CHECK_STR(pt_leaf(m), "t");
+    CHECK(pt_get_int(m, "cx") == 1);
+    CHECK(pt_get_int(m, "cc") == 21);
     chasm_free(m);
 }
 
 /* `every` does not burst after a long gap between cycles. */
 static void every_skips_missed_periods(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nvar cv : int\nstate s {\n do count_to(n = 1000, count = cv) every 1 s\n}\n");
+    chasm_machine *m = pt_load("use test_basic\nvar cv : int\nstate s {\n do count_to(n = 1000, count = cv) every 1 s\n}\n");
     if (!m) return;
     chasm_start(m, 0);
     chasm_step(m, 100000);
     chasm_step(m, 10000000);
     chasm_step(m, 10100000);
-    CHECK(get_i(m, "cv") == 2);
+    CHECK(pt_get_int(m, "cv") == 2);
     chasm_free(m);
 }
 
 /* The root-level abort pre-empts every state's transitions. */
 static void abort_preempts(void)
 {
-    chasm_machine *m = load_plan(IO "test hi : x > 1 m\n"
+    chasm_machine *m = pt_load(IO "test hi : x > 1 m\n"
                                     "abort when hi -> emergency\n"
                                     "state a {\n when hi -> b\n}\nstate b {\n}\nstate emergency {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    set_d(m, "x", 2, 0);
+    pt_set(m, "x", 2, 0);
     chasm_step(m, 100000);
-    CHECK_STR(leaf(m), "emergency");
+    CHECK_STR(pt_leaf(m), "emergency");
     chasm_step(m, 200000); /* already there: no re-entry */
     chasm_status st;
     chasm_status_get(m, 200000, &st);
@@ -241,70 +242,70 @@ static void abort_preempts(void)
 
 static void operator_abort(void)
 {
-    chasm_machine *m = load_plan("state a {\n}\n");
+    chasm_machine *m = pt_load("state a {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
     chasm_abort(m, 100000, "test");
     CHECK(chasm_run_state_of(m) == CHASM_RUN_ABORTED);
     chasm_free(m);
-    m = load_plan(IO "test never : x > 1 m\nabort when never -> safe\nstate a {\n}\nstate safe {\n}\n");
+    m = pt_load(IO "test never : x > 1 m\nabort when never -> safe\nstate a {\n}\nstate safe {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
     chasm_abort(m, 100000, "operator");
-    CHECK_STR(leaf(m), "safe");
+    CHECK_STR(pt_leaf(m), "safe");
     chasm_free(m);
 }
 
 /* A failure is caught by a `when failed`, or ends the mission as failed. */
 static void failure_caught_and_uncaught(void)
 {
-    chasm_machine *m = load_plan("use test_basic\nstate a {\n when failed -> recover\n"
+    chasm_machine *m = pt_load("use test_basic\nstate a {\n when failed -> recover\n"
                                  " state b {\n  do fail_after(n = 2)\n }\n}\nstate recover {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 0.1);
-    CHECK_STR(leaf(m), "a/b");
-    run_until(m, 0.2, 0.2);
-    CHECK_STR(leaf(m), "recover");
+    pt_run_until(m, 0.1, 0.1);
+    CHECK_STR(pt_leaf(m), "a/b");
+    pt_run_until(m, 0.2, 0.2);
+    CHECK_STR(pt_leaf(m), "recover");
     chasm_free(m);
-    m = load_plan("use test_basic\nstate a {\n do fail_after(n = 1)\n}\n");
+    m = pt_load("use test_basic\nstate a {\n do fail_after(n = 1)\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK(run_until(m, 0.1, 1) == CHASM_RUN_FAILED);
+    CHECK(pt_run_until(m, 0.1, 1) == CHASM_RUN_FAILED);
     chasm_free(m);
     /* Caught inside its parent: the parent stays active and must not keep the
      * failure (it used to, and the mission failed a cycle later). */
-    m = load_plan("use test_basic\nstate a {\n state b {\n  do fail_after(n = 1)\n  when failed -> c\n }\n"
+    m = pt_load("use test_basic\nstate a {\n state b {\n  do fail_after(n = 1)\n  when failed -> c\n }\n"
                   " state c {\n }\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK(run_until(m, 0.1, 1) == CHASM_RUN_RUNNING);
-    CHECK_STR(leaf(m), "a/c");
+    CHECK(pt_run_until(m, 0.1, 1) == CHASM_RUN_RUNNING);
+    CHECK_STR(pt_leaf(m), "a/c");
     chasm_free(m);
 }
 
 /* `for T`: the criterion must hold without a break for T. */
 static void test_hold_time(void)
 {
-    chasm_machine *m = load_plan(IO "state a {\n test deep : x >= 5 m for 1 s\n when deep -> b\n}\nstate b {\n}\n");
+    chasm_machine *m = pt_load(IO "state a {\n test deep : x >= 5 m for 1 s\n when deep -> b\n}\nstate b {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    set_d(m, "x", 6, 0);
-    run_until(m, 0.1, 0.5);
-    set_d(m, "x", 4, 0.5); /* a break restarts the timer */
-    run_until(m, 0.6, 0.6);
-    set_d(m, "x", 6, 0.6);
-    run_until(m, 0.7, 1.6);
-    CHECK_STR(leaf(m), "a");
-    run_until(m, 1.7, 1.7); /* true since 0.7 s: 1.0 s at 1.7 s */
-    CHECK_STR(leaf(m), "b");
+    pt_set(m, "x", 6, 0);
+    pt_run_until(m, 0.1, 0.5);
+    pt_set(m, "x", 4, 0.5); /* a break restarts the timer */
+    pt_run_until(m, 0.6, 0.6);
+    pt_set(m, "x", 6, 0.6);
+    pt_run_until(m, 0.7, 1.6);
+    CHECK_STR(pt_leaf(m), "a");
+    pt_run_until(m, 1.7, 1.7); /* true since 0.7 s: 1.0 s at 1.7 s */
+    CHECK_STR(pt_leaf(m), "b");
     chasm_free(m);
 }
 
 /* Built-in handlers: comparisons with tolerance, within (angles wrap), age, elapsed. */
 static void builtin_handlers(void)
 {
-    chasm_machine *m = load_plan("input h : double rad\ninput x : double m\n"
+    chasm_machine *m = pt_load("input h : double rad\ninput x : double m\n"
                                  "test north : h within 5 deg of 0 deg\n"
                                  "test ge_tol : x >= 10 m tolerance 0.5 m\n"
                                  "test eq_tol : x == 10 m +- 0.1 m\n"
@@ -313,8 +314,8 @@ static void builtin_handlers(void)
                                  "state a {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    set_d(m, "h", 6.2, 0); /* 6.2 rad is 4.8 deg west of north */
-    set_d(m, "x", 9.6, 0);
+    pt_set(m, "h", 6.2, 0); /* 6.2 rad is 4.8 deg west of north */
+    pt_set(m, "x", 9.6, 0);
     chasm_step(m, 100000);
     chasm_status st;
     (void)st;
@@ -332,43 +333,41 @@ static void builtin_handlers(void)
         char plan[512];
         snprintf(plan, sizeof plan, "input h : double rad\ninput x : double m\nstate a {\n test t : %s\n when t -> b\n}\nstate b {\n}\n",
                  cases[i].crit);
-        m = load_plan(plan);
+        m = pt_load(plan);
         if (!m) continue;
         chasm_start(m, 0);
-        set_d(m, "h", cases[i].h, 0);
-        set_d(m, "x", cases[i].x, 0);
+        pt_set(m, "h", cases[i].h, 0);
+        pt_set(m, "x", cases[i].x, 0);
         chasm_step(m, 100000);
-        int went = !strcmp(leaf(m), "b");
-        if (went != cases[i].expect) {
-            fprintf(stderr, "case '%s' x=%g h=%g: expected %d\n", cases[i].crit, cases[i].x, cases[i].h, cases[i].expect);
-            failures++;
-        }
+        int went = !strcmp(pt_leaf(m), "b");
+        if (went != cases[i].expect)
+            UNIT_FAIL("case '%s' x=%g h=%g: expected %d", cases[i].crit, cases[i].x, cases[i].h, cases[i].expect);
         chasm_free(m);
     }
     /* age and elapsed over time */
-    m = load_plan("input x : double m\nstate a {\n test old : age x > 2 s\n when old -> b\n}\nstate b {\n test long : elapsed > 3 s\n when long -> c\n}\nstate c {\n}\n");
+    m = pt_load("input x : double m\nstate a {\n test old : age x > 2 s\n when old -> b\n}\nstate b {\n test long : elapsed > 3 s\n when long -> c\n}\nstate c {\n}\n");
     if (!m) return;
-    set_d(m, "x", 1, 0);
+    pt_set(m, "x", 1, 0);
     chasm_start(m, 0);
-    run_until(m, 0.1, 2.0);
-    CHECK_STR(leaf(m), "a");
-    run_until(m, 2.1, 2.1);
-    CHECK_STR(leaf(m), "b");
-    run_until(m, 2.2, 5.1);
-    CHECK_STR(leaf(m), "b");
-    run_until(m, 5.2, 5.2);
-    CHECK_STR(leaf(m), "c");
+    pt_run_until(m, 0.1, 2.0);
+    CHECK_STR(pt_leaf(m), "a");
+    pt_run_until(m, 2.1, 2.1);
+    CHECK_STR(pt_leaf(m), "b");
+    pt_run_until(m, 2.2, 5.1);
+    CHECK_STR(pt_leaf(m), "b");
+    pt_run_until(m, 5.2, 5.2);
+    CHECK_STR(pt_leaf(m), "c");
     chasm_free(m);
 }
 
 /* A test on an input that was never written is false. */
 static void unset_input_is_false(void)
 {
-    chasm_machine *m = load_plan(IO "state a {\n test t : x < 1 m\n when t -> b\n}\nstate b {\n}\n");
+    chasm_machine *m = pt_load(IO "state a {\n test t : x < 1 m\n when t -> b\n}\nstate b {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 1);
-    CHECK_STR(leaf(m), "a");
+    pt_run_until(m, 0.1, 1);
+    CHECK_STR(pt_leaf(m), "a");
     chasm_free(m);
 }
 
@@ -385,16 +384,14 @@ static void conditions(void)
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char text[512];
         snprintf(text, sizeof text, plan, cases[i].cond);
-        chasm_machine *m = load_plan(text);
+        chasm_machine *m = pt_load(text);
         if (!m) continue;
-        set_b(m, "p", cases[i].p, 0);
-        set_b(m, "q", cases[i].q, 0);
+        pt_set_bool(m, "p", cases[i].p, 0);
+        pt_set_bool(m, "q", cases[i].q, 0);
         chasm_start(m, 0);
         chasm_step(m, 100000);
-        if ((strcmp(leaf(m), "b") == 0) != cases[i].expect) {
-            fprintf(stderr, "condition '%s' p=%d q=%d: expected %d\n", cases[i].cond, cases[i].p, cases[i].q, cases[i].expect);
-            failures++;
-        }
+        if ((strcmp(pt_leaf(m), "b") == 0) != cases[i].expect)
+            UNIT_FAIL("condition '%s' p=%d q=%d: expected %d", cases[i].cond, cases[i].p, cases[i].q, cases[i].expect);
         chasm_free(m);
     }
 }
@@ -402,10 +399,10 @@ static void conditions(void)
 /* Parameters: defaults, units converted, the outer definition wins, -D wins over all. */
 static void parameters_and_units(void)
 {
-    chasm_machine *m = load_plan("param d = 12 ft\noutput sp : double m\nstate a {\n do set sp = $d on entry\n}\n");
+    chasm_machine *m = pt_load("param d = 12 ft\noutput sp : double m\nstate a {\n do set sp = $d on entry\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    CHECK(get_d(m, "sp") > 3.6575 && get_d(m, "sp") < 3.6577);
+    CHECK(pt_get(m, "sp") > 3.6575 && pt_get(m, "sp") < 3.6577);
     chasm_free(m);
     const char *names[] = {"d"}, *vals[] = {"2 km"};
     chasm_options o = {0};
@@ -417,18 +414,18 @@ static void parameters_and_units(void)
     CHECK(m != NULL);
     if (!m) return;
     chasm_start(m, 0);
-    CHECK(get_d(m, "sp") == 2000.0);
+    CHECK(pt_get(m, "sp") == 2000.0);
     chasm_free(m);
 }
 
 /* Status: path, time in state, last transition with its condition and test values. */
 static void status_introspection(void)
 {
-    chasm_machine *m = load_plan(IO "test hi : x > 1 m\ntest lo : x < -1 m\n"
+    chasm_machine *m = pt_load(IO "test hi : x > 1 m\ntest lo : x < -1 m\n"
                                     "state a {\n state a1 {\n  when hi or lo -> b\n }\n}\nstate b {\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    run_until(m, 0.1, 1.0);
+    pt_run_until(m, 0.1, 1.0);
     chasm_status st;
     chasm_status_get(m, 1000000, &st);
     CHECK(st.path_len == 2);
@@ -436,7 +433,7 @@ static void status_introspection(void)
     CHECK_STR(st.active_path[1], "a1");
     CHECK(st.time_in_state_s[1] > 0.999 && st.time_in_state_s[1] < 1.001);
     CHECK(st.cycle == 10);
-    set_d(m, "x", 5, 1.0);
+    pt_set(m, "x", 5, 1.0);
     chasm_step(m, 1100000);
     chasm_status_get(m, 1100000, &st);
     CHECK_STR(st.last_from, "a/a1");
@@ -451,9 +448,9 @@ static void status_introspection(void)
 /* Two writers in different branches are fine (never active together). */
 static void one_writer_branches_ok(void)
 {
-    chasm_machine *m = load_plan("output sp : double m\nstate a {\n do set sp = 1 m\n}\nstate b {\n do set sp = 2 m\n}\n");
+    chasm_machine *m = pt_load("output sp : double m\nstate a {\n do set sp = 1 m\n}\nstate b {\n do set sp = 2 m\n}\n");
     chasm_free(m);
-    CHECK_STR(first_error("output sp : double m\nstate a {\n do set sp = 1 m\n state b {\n  do set sp = 2 m\n }\n}\n"),
+    CHECK_STR(pt_first_error("output sp : double m\nstate a {\n do set sp = 1 m\n state b {\n  do set sp = 2 m\n }\n}\n"),
               "t.chasm:5:10: error: variable 'sp' has two writers active at once: 'set' in state 'a' (at t.chasm:3:9) "
               "and 'set' in state 'a/b'");
 }
@@ -462,7 +459,7 @@ static void one_writer_branches_ok(void)
  * allocates nothing: everything was built at load. */
 static void step_does_not_allocate(void)
 {
-    chasm_machine *m = load_plan("use test_basic\n" IO "output test.out : double m\nvar c : int\n"
+    chasm_machine *m = pt_load("use test_basic\n" IO "output test.out : double m\nvar c : int\n"
                                  "test hi : x > 1 m\ntest lo : x < 1 m for 0.2 s\n"
                                  "state a {\n do hold(value = 2 m)\n do count_to(n = 1000, count = c) every 0.3 s\n"
                                  " do trace(tag = \"a\") on exit\n when hi -> b\n"
@@ -470,10 +467,10 @@ static void step_does_not_allocate(void)
                                  "state b {\n when lo -> a\n}\n");
     if (!m) return;
     chasm_start(m, 0);
-    long before = alloc_count;
+    long before = unit_allocs;
     CHECK(before > 0); /* the wrapper does see the loader allocate */
     for (int k = 0; k < 2000; k++) {
-        set_d(m, "x", (k / 7) % 2 ? 2.0 : 0.0, k * 0.1);
+        pt_set(m, "x", (k / 7) % 2 ? 2.0 : 0.0, k * 0.1);
         chasm_step(m, (int64_t)k * 100000 + 100000);
         chasm_status st;
         chasm_status_get(m, (int64_t)k * 100000, &st);
@@ -481,7 +478,7 @@ static void step_does_not_allocate(void)
     chasm_status st;
     chasm_status_get(m, 0, &st);
     CHECK(st.last_transition_us > 100000000); /* it kept moving */
-    CHECK(alloc_count == before);
+    CHECK(unit_allocs == before);
     chasm_free(m);
 }
 
@@ -497,29 +494,29 @@ static void time_extremes(void)
                        "state surface {\n}\nvar y : int = 0\n";
     const int64_t stamps[] = {INT64_MIN, -1, INT64_C(1000000000000000000), INT64_MAX, INT64_C(4102444800000000)};
     for (size_t k = 0; k < sizeof stamps / sizeof stamps[0]; k++) {
-        chasm_machine *m = load_plan(plan);
+        chasm_machine *m = pt_load(plan);
         CHECK(m != NULL);
         if (!m) return;
         int id = chasm_var_find(m, "x");
         chasm_start(m, 0);
         /* one message stamped at the extreme, then silence */
         chasm_var_set_double(m, id, 5.0, stamps[k]);
-        run_until(m, 0.1, 5.0);
-        CHECK_STR(leaf(m), "surface");
+        pt_run_until(m, 0.1, 5.0);
+        CHECK_STR(pt_leaf(m), "surface");
         chasm_free(m);
     }
     /* a stamp a little ahead (within the tolerance) counts as fresh, age 0 */
-    chasm_machine *m = load_plan(plan);
+    chasm_machine *m = pt_load(plan);
     CHECK(m != NULL);
     if (!m) return;
     chasm_start(m, 0);
     chasm_var_set_double(m, chasm_var_find(m, "x"), 5.0, 500000);
     chasm_step(m, 100000);
-    CHECK(strcmp(leaf(m), "surface") != 0);
+    CHECK(strcmp(pt_leaf(m), "surface") != 0);
     chasm_free(m);
     /* `now` itself at the extremes: steps never overflow and never burst */
     const int64_t nows[] = {INT64_MIN, -5, 0, INT64_C(4102444800000000), INT64_MAX - 1, INT64_MAX};
-    m = load_plan(plan);
+    m = pt_load(plan);
     CHECK(m != NULL);
     if (!m) return;
     chasm_start(m, INT64_MIN);
@@ -542,7 +539,7 @@ static void string_limit(void)
     /* at the limit: loads, and a test on it is true */
     snprintf(plan, 4 * CHASM_STRING_MAX + 200, "input s : string\ntest same : s == \"%.*s\"\nstate a {\n when same -> b\n}\nstate b {\n}\n",
              CHASM_STRING_MAX, big);
-    chasm_machine *m = load_plan(plan);
+    chasm_machine *m = pt_load(plan);
     CHECK(m != NULL);
     if (m) {
         big[CHASM_STRING_MAX] = 0;
@@ -550,7 +547,7 @@ static void string_limit(void)
         big[CHASM_STRING_MAX] = 'a';
         chasm_start(m, 0);
         chasm_step(m, 100000);
-        CHECK_STR(leaf(m), "b");
+        CHECK_STR(pt_leaf(m), "b");
         /* one past it: refused at run time, nothing written */
         CHECK(chasm_var_set_string(m, chasm_var_find(m, "s"), big, 200000) == -1);
         CHECK(chasm_var_updated_us(m, chasm_var_find(m, "s")) == 0);
@@ -558,8 +555,8 @@ static void string_limit(void)
     }
     /* one past the limit in the plan: a load error naming it */
     snprintf(plan, 4 * CHASM_STRING_MAX + 200, "input s : string\ntest same : s == \"%s\"\nstate a {\n when same -> b\n}\nstate b {\n}\n", big);
-    CHECK(strstr(first_error(plan), "CHASM_STRING_MAX") != NULL);
-    CHECK(strstr(first_error(plan), ":2:") != NULL);
+    CHECK(strstr(pt_first_error(plan), "CHASM_STRING_MAX") != NULL);
+    CHECK(strstr(pt_first_error(plan), ":2:") != NULL);
     free(plan);
     free(big);
 }

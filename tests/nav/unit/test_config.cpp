@@ -1,9 +1,10 @@
 // Chi-square gates and the nav config file: values, and errors that say
 // file:line:col what is wrong.
+#include <cmath>
 #include <string>
 #include <vector>
 
-#include "harness.hpp"
+#include "../../harness/unit.h"
 #include "nav/chi2.hpp"
 #include "nav/nav_config.hpp"
 
@@ -66,14 +67,14 @@ TEST(config_errors_name_file_line_and_column)
     CHECK(errors.size() == 8);
     if (errors.size() != 8)
         return;
-    CHECK_EQ_STR(errors[0], "bad.nav:1:1: unknown key 'compas_noise_rad' (did you mean 'compass_noise_rad'?)");
-    CHECK_EQ_STR(errors[1], "bad.nav:2:15: 'abc' is not a number");
-    CHECK_EQ_STR(errors[2], "bad.nav:3:20: gate_probability = 2 is outside 0.5 .. 1");
-    CHECK_EQ_STR(errors[3], "bad.nav:4:17: 'reset_after_dvl' must be an integer");
-    CHECK_EQ_STR(errors[4], "bad.nav:5:1: transponder needs 5 values: ID NORTH_M EAST_M DEPTH_M TURNAROUND_S");
-    CHECK_EQ_STR(errors[5], "bad.nav:7:13: transponder 2 is defined twice");
-    CHECK_EQ_STR(errors[6], "bad.nav:8:14: 'dvl_noise_mps' needs a value");
-    CHECK_EQ_STR(errors[7], "bad.nav:9:15: 'gps_noise_m' takes one value");
+    CHECK_STR(errors[0].c_str(), "bad.nav:1:1: unknown key 'compas_noise_rad' (did you mean 'compass_noise_rad'?)");
+    CHECK_STR(errors[1].c_str(), "bad.nav:2:15: 'abc' is not a number");
+    CHECK_STR(errors[2].c_str(), "bad.nav:3:20: gate_probability = 2 is outside 0.5 .. 1");
+    CHECK_STR(errors[3].c_str(), "bad.nav:4:17: 'reset_after_dvl' must be an integer");
+    CHECK_STR(errors[4].c_str(), "bad.nav:5:1: transponder needs 5 values: ID NORTH_M EAST_M DEPTH_M TURNAROUND_S");
+    CHECK_STR(errors[5].c_str(), "bad.nav:7:13: transponder 2 is defined twice");
+    CHECK_STR(errors[6].c_str(), "bad.nav:8:14: 'dvl_noise_mps' needs a value");
+    CHECK_STR(errors[7].c_str(), "bad.nav:9:15: 'gps_noise_m' takes one value");
 }
 
 TEST(config_file_that_is_missing_is_an_error)

@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "harness.hpp"
+#include "../../harness/unit.h"
 #include "nav/nav_filter.hpp"
 #include "synth.hpp"
 

@@ -2,7 +2,7 @@
 #include <cmath>
 #include <cstring>
 
-#include "harness.hpp"
+#include "../../harness/unit.h"
 #include "nav/nav_lcm.hpp"
 
 extern "C" {

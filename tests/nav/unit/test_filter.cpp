@@ -4,7 +4,8 @@
 #include <cmath>
 #include <vector>
 
-#include "harness.hpp"
+#include "../../harness/unit.h"
+#include "../../harness/unit_alloc.h"
 #include "nav/nav_filter.hpp"
 #include "nav/nav_status.hpp"
 #include "synth.hpp"
@@ -99,7 +100,7 @@ TEST(push_allocates_nothing)
     for (size_t i = 0; i < 400; i++)       // warm up: the history ring fills
         f.push(ms[i]);
     FilterState est;
-    const long before = g_allocs;
+    const long before = unit_allocs;
     for (size_t i = 400; i < ms.size(); i++) {
         f.push(ms[i]);
         if (i % 7 == 0) {       // and a late one now and then: the replay path
@@ -111,7 +112,7 @@ TEST(push_allocates_nothing)
         f.estimate_at(ms[i].utime + 50000, est);
         evaluate_status(est, ms[i].utime + 50000, c);
     }
-    CHECK(g_allocs == before);
+    CHECK(unit_allocs == before);
     CHECK(f.stats().out_of_order > 1000);
     CHECK(h_err(f, s) < 5);
 }

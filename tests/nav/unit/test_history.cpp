@@ -1,6 +1,6 @@
 // The time-ordering ring: insertion keeps time order, a full ring forgets
 // its oldest entry, and the search finds the insertion point.
-#include "harness.hpp"
+#include "../../harness/unit.h"
 #include "nav/history.hpp"
 
 static nav::Measurement at(int64_t t)

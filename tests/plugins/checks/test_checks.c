@@ -202,7 +202,7 @@ static void polygon_geometry(void)
     CHECK(p.n == 4 && pu_polygon_contains(&p, 3.9, 5.9) && !pu_polygon_contains(&p, 4.1, 5));
 }
 
-const plugin_test plugin_tests[] = {
+const unit_test plugin_tests[] = {
     {"checks_within", checks_within},
     {"checks_heading_wraps", checks_heading_wraps},
     {"checks_near", checks_near},
@@ -212,5 +212,5 @@ const plugin_test plugin_tests[] = {
     {"checks_param_errors", checks_param_errors},
     {"polygon_parser", polygon_parser},
     {"polygon_geometry", polygon_geometry},
+    {NULL, NULL},
 };
-const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

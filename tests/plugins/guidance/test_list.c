@@ -1,7 +1,7 @@
 /* The list the harness runs (tests/plugins/common/plugin_test.h). */
 #include "gd_tests.h"
 
-const plugin_test plugin_tests[] = {
+const unit_test plugin_tests[] = {
     {"line_frame", line_frame},
     {"los_heading_wraps", los_heading_wraps},
     {"los_cross_track_decays", los_cross_track_decays},
@@ -23,5 +23,5 @@ const plugin_test plugin_tests[] = {
     {"yoyo_stays_in_its_band", yoyo_stays_in_its_band},
     {"holds_and_speed", holds_and_speed},
     {"loiter_circles_the_point", loiter_circles_the_point},
+    {NULL, NULL},
 };
-const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

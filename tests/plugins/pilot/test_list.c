@@ -2,7 +2,7 @@
 #include "../common/plugin_test.h"
 #include "pilot_tests.h"
 
-const plugin_test plugin_tests[] = {
+const unit_test plugin_tests[] = {
     {"lib_angle_wrap", lib_angle_wrap},
     {"lib_clamp_and_slew", lib_clamp_and_slew},
     {"lib_lowpass", lib_lowpass},
@@ -28,5 +28,5 @@ const plugin_test plugin_tests[] = {
     {"pilot_bad_rpm_limits_fail_at_start", pilot_bad_rpm_limits_fail_at_start},
     {"pilot_speed_through_the_water", pilot_speed_through_the_water},
     {"pilot_setpoint_watch_counts_ignored", pilot_setpoint_watch_counts_ignored},
+    {NULL, NULL},
 };
-const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

@@ -2,7 +2,7 @@
 #include "../common/plugin_test.h"
 #include "team_tests.h"
 
-const plugin_test plugin_tests[] = {
+const unit_test plugin_tests[] = {
     {"contacts_merge_repeated_looks", contacts_merge_repeated_looks},
     {"targets_merge_across_reporters", targets_merge_across_reporters},
     {"route_beats_nearest_neighbour", route_beats_nearest_neighbour},
@@ -27,5 +27,5 @@ const plugin_test plugin_tests[] = {
     {"keep_clear_gives_way_in_depth", keep_clear_gives_way_in_depth},
     {"out_of_range_values_are_refused_and_logged", out_of_range_values_are_refused_and_logged},
     {"abort_state_keeps_the_store_and_says_abort", abort_state_keeps_the_store_and_says_abort},
+    {NULL, NULL},
 };
-const size_t plugin_tests_count = sizeof plugin_tests / sizeof plugin_tests[0];

@@ -1,10 +1,7 @@
-#include "plugin_test.h"
+/* Plan-test helpers (plan_test.h). */
+#include "plan_test.h"
 
-#include <stdlib.h>
-
-int pt_failures;
-char pt_log[8192];
-static const char *plugin_dir = ".";
+char pt_log[65536];
 
 static void on_log(void *user, int64_t now, const char *path, const char *msg)
 {
@@ -19,7 +16,7 @@ void pt_log_clear(void) { pt_log[0] = '\0'; }
 
 static chasm_machine *load(const char *plan, chasm_errors **errs)
 {
-    const char *dirs[] = {plugin_dir};
+    const char *dirs[] = {unit_plugin_dir};
     chasm_options o = {0};
     o.plugin_path = dirs;
     o.n_plugin_path = 1;
@@ -34,10 +31,8 @@ chasm_machine *pt_load(const char *plan)
     for (size_t i = 0; i < chasm_errors_count(e); i++)
         fprintf(stderr, "%s\n", chasm_errors_get(e, i));
     chasm_errors_free(e);
-    if (!m) {
-        fprintf(stderr, "the plan did not load\n");
-        pt_failures++;
-    }
+    if (!m)
+        unit_fail(NULL, 0, "the plan did not load");
     return m;
 }
 
@@ -56,68 +51,65 @@ const char *pt_errors(const char *plan)
     return buf;
 }
 
+const char *pt_first_error(const char *plan)
+{
+    static char first[4096];
+    snprintf(first, sizeof first, "%s", pt_errors(plan));
+    first[strcspn(first, "\n")] = '\0';
+    return first;
+}
+
 static int var(chasm_machine *m, const char *name)
 {
     int id = chasm_var_find(m, name);
-    if (id < 0) {
-        fprintf(stderr, "no variable '%s'\n", name);
-        pt_failures++;
-    }
+    if (id < 0)
+        unit_fail(NULL, 0, "no variable '%s'", name);
     return id;
 }
 
 static int64_t us(double t_s) { return (int64_t)llround(t_s * 1e6); }
 
+/* A set the engine refused (wrong type, out of range, an output) is a failure. */
+static void set_done(int rc, const char *name)
+{
+    if (rc)
+        unit_fail(NULL, 0, "cannot set %s", name);
+}
+
 void pt_set(chasm_machine *m, const char *name, double v, double t_s)
 {
-    chasm_var_set_double(m, var(m, name), v, us(t_s));
+    set_done(chasm_var_set_double(m, var(m, name), v, us(t_s)), name);
+}
+
+void pt_set_bool(chasm_machine *m, const char *name, int v, double t_s)
+{
+    set_done(chasm_var_set_bool(m, var(m, name), v, us(t_s)), name);
 }
 
 void pt_set_int(chasm_machine *m, const char *name, long v, double t_s)
 {
-    chasm_var_set_int(m, var(m, name), v, us(t_s));
+    set_done(chasm_var_set_int(m, var(m, name), v, us(t_s)), name);
 }
 
 double pt_get(chasm_machine *m, const char *name) { return chasm_var_get_double(m, var(m, name)); }
 
+int64_t pt_get_int(chasm_machine *m, const char *name) { return chasm_var_get_int(m, var(m, name)); }
+
 void pt_start(chasm_machine *m, double t_s) { chasm_start(m, us(t_s)); }
 
 chasm_run_state pt_step(chasm_machine *m, double t_s) { return chasm_step(m, us(t_s)); }
+
+chasm_run_state pt_run_until(chasm_machine *m, double t0_s, double t1_s)
+{
+    for (int64_t t = us(t0_s); t <= us(t1_s); t += 100000)
+        if (chasm_step(m, t) != CHASM_RUN_RUNNING)
+            break;
+    return chasm_run_state_of(m);
+}
 
 const char *pt_leaf(chasm_machine *m)
 {
     static chasm_status st;
     chasm_status_get(m, 0, &st);
     return st.leaf_path;
-}
-
-int main(int argc, char **argv)
-{
-    const char *only = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (!strcmp(argv[i], "--plugins") && i + 1 < argc)
-            plugin_dir = argv[++i];
-        else
-            only = argv[i];
-    }
-    int ran = 0, failed = 0;
-    for (size_t i = 0; i < plugin_tests_count; i++) {
-        if (only && strcmp(only, plugin_tests[i].name))
-            continue;
-        ran++;
-        pt_failures = 0;
-        pt_log_clear();
-        plugin_tests[i].fn();
-        if (pt_failures) {
-            printf("FAIL %s (%d checks)\n", plugin_tests[i].name, pt_failures);
-            failed++;
-        } else {
-            printf("ok %s\n", plugin_tests[i].name);
-        }
-    }
-    if (!ran) {
-        fprintf(stderr, "no test named '%s'\n", only ? only : "");
-        return 2;
-    }
-    return failed ? 1 : 0;
 }
