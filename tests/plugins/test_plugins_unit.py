@@ -1,5 +1,5 @@
 """The C unit tests of the behavior plugins (the files in tests/plugins/NAME,
-built as build/bin/test_plugin_NAME with the harness tests/plugins/common):
+built as build/bin/test_plugin_NAME on the shared harness tests/harness, helpers in tests/plugins/common):
 one pytest per C test and build variant (normal and ASan+UBSan). Tests are
 found as `{"name", function},` lines of the C test lists."""
 
