@@ -111,8 +111,9 @@ def read_page(port: int, stats: dict, stop: threading.Event) -> None:
 
 def run(rate: float, pages: int) -> None:
     env = dict(os.environ)
-    proc = subprocess.Popen([sys.executable, "-m", "tools.console", "--url", URL,
-                             "--port", "0"], env=env, stdout=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "tools.console", "--url", URL, "--port", "0"], env=env, stdout=subprocess.PIPE, text=True
+    )
     port = int(proc.stdout.readline().split("http://", 1)[1].split("/")[0].rsplit(":", 1)[1])
     stop = threading.Event()
     stats = [{"bytes": 0, "updates": 0} for _ in range(pages)]
@@ -121,7 +122,7 @@ def run(rate: float, pages: int) -> None:
     threads += [threading.Thread(target=read_page, args=(port, s, stop), daemon=True) for s in stats]
     for t in threads:
         t.start()
-    time.sleep(3.0)                     # warm up: imports done, trails growing
+    time.sleep(3.0)  # warm up: imports done, trails growing
     c0, w0 = cpu_s(proc.pid), time.monotonic()
     b0 = [dict(s) for s in stats]
     time.sleep(SECONDS)
@@ -134,8 +135,10 @@ def run(rate: float, pages: int) -> None:
     ups = sum(b["updates"] - a["updates"] for a, b in zip(b0, b1)) / pages / wall
     bps = sum(b["bytes"] - a["bytes"] for a, b in zip(b0, b1)) / pages / wall
     n_msgs = len(VEHICLES) * 6 * rate + 20
-    print(f"  8 vehicles x {rate:4.0f} Hz ({n_msgs:5.0f} msg/s), {pages} page(s): server CPU "
-          f"{100 * (c1 - c0) / wall:5.1f} % of a core; per page {ups:4.1f} updates/s, {bps / 1024:6.1f} kB/s")
+    print(
+        f"  8 vehicles x {rate:4.0f} Hz ({n_msgs:5.0f} msg/s), {pages} page(s): server CPU "
+        f"{100 * (c1 - c0) / wall:5.1f} % of a core; per page {ups:4.1f} updates/s, {bps / 1024:6.1f} kB/s"
+    )
 
 
 def main() -> None:

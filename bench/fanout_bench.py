@@ -35,10 +35,12 @@ print(n[0], ts.user + ts.system, flush=True)
 
 
 def cpu_idle_receiver(channel: str, rate: int, seconds: float) -> tuple[int, float, int]:
-    rx = subprocess.Popen([sys.executable, "-c", RECEIVER, URL, channel, str(seconds + 2.0)],
-                          stdout=subprocess.PIPE, text=True)
+    rx = subprocess.Popen(
+        [sys.executable, "-c", RECEIVER, URL, channel, str(seconds + 2.0)], stdout=subprocess.PIPE, text=True
+    )
     time.sleep(1.0)
     import lcm
+
     lc = lcm.LCM(URL)
     payload = bytes(200)
     sent, t0 = 0, time.monotonic()
@@ -55,13 +57,15 @@ def cpu_idle_receiver(channel: str, rate: int, seconds: float) -> tuple[int, flo
 def main() -> int:
     argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter).parse_args()
     print(f"fanout_bench ({os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start)")
-    base_n, base_cpu, _ = cpu_idle_receiver("QUIET", 1, 4.0)       # startup and idle polling
+    base_n, base_cpu, _ = cpu_idle_receiver("QUIET", 1, 4.0)  # startup and idle polling
     for rate in (2000, 8000):
         for channel, what in (("OTHER", "not subscribed"), ("NOISE", "subscribed, empty handler")):
             n, cpu, sent = cpu_idle_receiver(channel, rate, 4.0)
             per = (cpu - base_cpu) / sent * 1e6
-            print(f"  {rate:5d} msg/s of 200 B, receiver {what:26}: {per:5.1f} us CPU per message in the world "
-                  f"({100 * (cpu - base_cpu) / 4.0:4.1f} % of a core; handled {n}/{sent})")
+            print(
+                f"  {rate:5d} msg/s of 200 B, receiver {what:26}: {per:5.1f} us CPU per message in the world "
+                f"({100 * (cpu - base_cpu) / 4.0:4.1f} % of a core; handled {n}/{sent})"
+            )
     return 0
 
 

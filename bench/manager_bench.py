@@ -58,7 +58,7 @@ class Client:
 
     def __init__(self, url: str) -> None:
         self.lc = lcm.LCM(url)
-        self.rpm_seen: dict[float, int] = {}      # rpm value -> first arrival [ns]
+        self.rpm_seen: dict[float, int] = {}  # rpm value -> first arrival [ns]
         self.pong: dict[bytes, int] = {}
         self.costs: list[float] = []
         self.lc.subscribe("AUV1.ACTUATORS", self._on_act)
@@ -128,10 +128,28 @@ def stop(p: subprocess.Popen) -> None:
 
 
 def manager(url: str, clock: str, rate: float) -> subprocess.Popen:
-    return start([str(BUILD / "bin" / "chasm-manager"), "--plan", str(ROOT / "missions" / "pilot" / "pilot.chasm"),
-                  "--bind", str(ROOT / "missions" / "bindings" / "pilot.bind"), "--vehicle", "AUV1",
-                  "--name", "PILOT", "--rate", str(rate), "--clock", clock, "--url", url,
-                  "--plugin-path", str(BUILD / "plugins")], "PILOT: running")
+    return start(
+        [
+            str(BUILD / "bin" / "chasm-manager"),
+            "--plan",
+            str(ROOT / "missions" / "pilot" / "pilot.chasm"),
+            "--bind",
+            str(ROOT / "missions" / "bindings" / "pilot.bind"),
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "PILOT",
+            "--rate",
+            str(rate),
+            "--clock",
+            clock,
+            "--url",
+            url,
+            "--plugin-path",
+            str(BUILD / "plugins"),
+        ],
+        "PILOT: running",
+    )
 
 
 def cpu_ns(pid: int) -> int:
@@ -146,8 +164,7 @@ def cpu_ns(pid: int) -> int:
 def figures(name: str, lat_ns: list[int], extra: str = "") -> None:
     us = sorted(x / 1000 for x in lat_ns)
     p99 = us[min(len(us) - 1, int(0.99 * len(us)))]
-    print(f"  {name:44} median {statistics.median(us):8.1f} us   p99 {p99:8.1f} us   "
-          f"n={len(us)}{extra}")
+    print(f"  {name:44} median {statistics.median(us):8.1f} us   p99 {p99:8.1f} us   n={len(us)}{extra}")
 
 
 def bench_echo(c: Client, url: str, n: int) -> None:
@@ -195,7 +212,7 @@ def bench_system(c: Client, url: str, rate: float, seconds: float) -> None:
     k, rng = 1, random.Random(7)
     next_nav = next_sp = time.monotonic()
     try:
-        c.pump_until(lambda: False, 0.5)              # let it subscribe
+        c.pump_until(lambda: False, 0.5)  # let it subscribe
         cpu0, wall0 = cpu_ns(p.pid), time.monotonic()
         while time.monotonic() - wall0 < seconds:
             now = time.monotonic()
@@ -219,8 +236,11 @@ def bench_system(c: Client, url: str, rate: float, seconds: float) -> None:
         wall = time.monotonic() - wall0
     finally:
         stop(p)
-    figures(f"manager, system clock {rate:5.0f} Hz", lat[5:],
-            f"   CPU {100 * cpu / wall:5.2f} % of a core ({1e6 * cpu / (wall * rate):.0f} us per cycle)")
+    figures(
+        f"manager, system clock {rate:5.0f} Hz",
+        lat[5:],
+        f"   CPU {100 * cpu / wall:5.2f} % of a core ({1e6 * cpu / (wall * rate):.0f} us per cycle)",
+    )
 
 
 def main() -> int:
@@ -236,8 +256,10 @@ def main() -> int:
         print(f"{BUILD / 'bin' / 'chasm-manager'} is not built: run `make build`", file=sys.stderr)
         return 1
     c = Client(args.url)
-    print(f"manager_bench: chasm-manager + missions/pilot/pilot.chasm over {args.url}, "
-          f"{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}")
+    print(
+        f"manager_bench: chasm-manager + missions/pilot/pilot.chasm over {args.url}, "
+        f"{os.cpu_count()} CPUs, load average {os.getloadavg()[0]:.2f}"
+    )
     bench_echo(c, args.url, args.n)
     bench_driven(c, args.url, args.n)
     for rate in (10.0, 100.0):

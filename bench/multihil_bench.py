@@ -60,10 +60,25 @@ class Clocks:
 
 
 def node(out: Path, node_id: str, url: str, prio: int, *extra) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "sim.multihil", "node", "--id", node_id,
-                             "--url", url, "--priority", str(prio), *map(str, extra)],
-                            stdout=open(out / f"{node_id}.out", "w"), stderr=subprocess.STDOUT,
-                            env=ENV, start_new_session=True)
+    return subprocess.Popen(
+        [
+            sys.executable,
+            "-m",
+            "sim.multihil",
+            "node",
+            "--id",
+            node_id,
+            "--url",
+            url,
+            "--priority",
+            str(prio),
+            *map(str, extra),
+        ],
+        stdout=open(out / f"{node_id}.out", "w"),
+        stderr=subprocess.STDOUT,
+        env=ENV,
+        start_new_session=True,
+    )
 
 
 def end(procs) -> None:
@@ -107,11 +122,15 @@ def failover(out: Path, url: str, runs: int) -> None:
         gaps.append((seen[k][1] - seen[k - 1][1]) / 1e6)
         jumps.append(abs(seen[k][1] - (seen[k - 1][1] + (seen[k][0] - seen[k - 1][0]) * 1e6)) / 1e3)
     print(f"failover ({len(times)} runs, failover timeout 0.5 s, heartbeats 10 Hz, realtime):")
-    print(f"  server death -> new server's first SIM.CLOCK: mean {sum(times) / len(times):.3f} s, "
-          f"max {max(times):.3f} s   (goal < 1 s)")
+    print(
+        f"  server death -> new server's first SIM.CLOCK: mean {sum(times) / len(times):.3f} s, "
+        f"max {max(times):.3f} s   (goal < 1 s)"
+    )
     print(f"  largest SIM.CLOCK gap at clients: {max(gaps):.3f} s of global time")
-    print(f"  jump off the global time line: mean {sum(jumps) / len(jumps):.2f} ms, "
-          f"max {max(jumps):.2f} ms (one clock period: 100 ms)")
+    print(
+        f"  jump off the global time line: mean {sum(jumps) / len(jumps):.2f} ms, "
+        f"max {max(jumps):.2f} ms (one clock period: 100 ms)"
+    )
 
 
 def sync(out: Path, url: str, seconds: float, relay: bool) -> None:
@@ -120,35 +139,72 @@ def sync(out: Path, url: str, seconds: float, relay: bool) -> None:
     if relay:
         port = int(url.split(":")[-1].split("?")[0])
         client_url = url.replace(str(port), str(port + 500))
-        procs.append(subprocess.Popen(
-            [sys.executable, "-m", "tools.lcm_relay", "--in", url, "--out",
-             client_url, "--channel", r"SIM\..*", "--both", "--delay-ms", "2", "--jitter-ms", "1",
-             "--loss", "0.05"], stdout=open(out / "relay.out", "w"), stderr=subprocess.STDOUT,
-            env=ENV, start_new_session=True))
+        procs.append(
+            subprocess.Popen(
+                [
+                    sys.executable,
+                    "-m",
+                    "tools.lcm_relay",
+                    "--in",
+                    url,
+                    "--out",
+                    client_url,
+                    "--channel",
+                    r"SIM\..*",
+                    "--both",
+                    "--delay-ms",
+                    "2",
+                    "--jitter-ms",
+                    "1",
+                    "--loss",
+                    "0.05",
+                ],
+                stdout=open(out / "relay.out", "w"),
+                stderr=subprocess.STDOUT,
+                env=ENV,
+                start_new_session=True,
+            )
+        )
     tag = "R" if relay else "L"
-    procs.append(node(out, f"S{tag}-sim", url, 9, "--probe", out / f"s{tag}.probe",
-                      "--offset-us", 12000, "--drift-ppm", -30))
+    procs.append(
+        node(out, f"S{tag}-sim", url, 9, "--probe", out / f"s{tag}.probe", "--offset-us", 12000, "--drift-ppm", -30)
+    )
     time.sleep(1.5)
     clients = [("1", 55000, 90), ("2", -38000, -110)]
     for name, off, drift in clients:
-        procs.append(node(out, f"C{tag}{name}-sim", client_url, 1, "--probe",
-                          out / f"c{tag}{name}.probe", "--offset-us", off, "--drift-ppm", drift))
+        procs.append(
+            node(
+                out,
+                f"C{tag}{name}-sim",
+                client_url,
+                1,
+                "--probe",
+                out / f"c{tag}{name}.probe",
+                "--offset-us",
+                off,
+                "--drift-ppm",
+                drift,
+            )
+        )
     start = time.monotonic()
     time.sleep(seconds)
     end(procs)
     server = load_probe(out / f"s{tag}.probe")
     errs: list[float] = []
     for name, _, _ in clients:
-        errs += probe_errors(server, load_probe(out / f"c{tag}{name}.probe"),
-                             after_us=(start + 10.0) * 1e6)
+        errs += probe_errors(server, load_probe(out / f"c{tag}{name}.probe"), after_us=(start + 10.0) * 1e6)
     a = [abs(e) for e in errs]
-    where = ("through the relay (2 ms +- 1 ms, 5 % loss)" if relay else "on one host")
+    where = "through the relay (2 ms +- 1 ms, 5 % loss)" if relay else "on one host"
     goal = "1 ms" if relay else "200 us"
-    print(f"clock sync {where}: 2 clients, offsets 55/-38 ms, drifts +90/-110 ppm "
-          f"(server -30 ppm), {len(a)} samples after 10 s:")
+    print(
+        f"clock sync {where}: 2 clients, offsets 55/-38 ms, drifts +90/-110 ppm "
+        f"(server -30 ppm), {len(a)} samples after 10 s:"
+    )
     if a:
-        print(f"  |error| p50 {percentile(a, 0.5):.0f} us, p99 {percentile(a, 0.99):.0f} us, "
-              f"max {max(a):.0f} us   (goal p99 < {goal})")
+        print(
+            f"  |error| p50 {percentile(a, 0.5):.0f} us, p99 {percentile(a, 0.99):.0f} us, "
+            f"max {max(a):.0f} us   (goal p99 < {goal})"
+        )
 
 
 def lockstep(out: Path, url: str, seconds: float) -> None:
@@ -169,20 +225,20 @@ def lockstep(out: Path, url: str, seconds: float) -> None:
         world.stop()
         clocks.stop = True
     rate = (n1 - n0) / (t1 - t0)
-    print(f"lockstep: 3 simulators + 3 navigator managers (6 participants), 0.1 s steps, "
-          f"50 Hz physics:\n  {rate:.1f} steps/s = {rate * 0.1:.1f}x real time")
+    print(
+        f"lockstep: 3 simulators + 3 navigator managers (6 participants), 0.1 s steps, "
+        f"50 Hz physics:\n  {rate:.1f} steps/s = {rate * 0.1:.1f}x real time"
+    )
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--quick", action="store_true", help="fewer runs, shorter windows")
     a = ap.parse_args()
     url = "udpm://239.255.76.67:7910?ttl=0"
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp)
-        print(f"multihil_bench ({os.cpu_count()} cores, load average "
-              f"{os.getloadavg()[0]:.1f} at start)")
+        print(f"multihil_bench ({os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start)")
         failover(out, url, 2 if a.quick else 5)
         sync(out, url, 16 if a.quick else 30, relay=False)
         sync(out, url, 16 if a.quick else 30, relay=True)

@@ -61,16 +61,14 @@ class Clocks:
 
 
 def main() -> int:
-    ap = argparse.ArgumentParser(description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--tries", type=int, default=10)
     ap.add_argument("--freeze", type=float, default=3.0, help="wall seconds stopped")
     ap.add_argument("--python-root", type=Path, default=ROOT / "python")
     ap.add_argument("--no-managers", action="store_true", help="simulators only")
     ap.add_argument("--url", default="udpm://239.255.76.67:7791?ttl=0")
     a = ap.parse_args()
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join(
-        [str(a.python_root), str(ROOT / "build" / "gen" / "python")])}
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(a.python_root), str(ROOT / "build" / "gen" / "python")])}
     out = Path(tempfile.mkdtemp(prefix="freeze-bench-"))
     world = World(out, a.url, env=env)
     clocks = Clocks(a.url)
@@ -85,7 +83,7 @@ def main() -> int:
         if not clocks.wait(lambda: len(clocks.seen) > 20, 60.0):
             print("no SIM.CLOCK within 60 s", file=sys.stderr)
             return 1
-        time.sleep(2.0)                 # the second simulator has joined
+        time.sleep(2.0)  # the second simulator has joined
         for k in range(a.tries):
             utime, term, server = clocks.seen[-1]
             start = len(clocks.seen)
@@ -94,23 +92,28 @@ def main() -> int:
             os.killpg(sims[server].pid, signal.SIGCONT)
             clocks.wait(lambda: any(t > term for _, t, _ in clocks.seen[start:]), 10.0)
             time.sleep(2.0)
-            seg = clocks.seen[start - 1:]
+            seg = clocks.seen[start - 1 :]
             back = sum(b[0] < x[0] for x, b in zip(seg, seg[1:]))
             old = sum(b[1] < x[1] for x, b in zip(seg, seg[1:]))
             worst = min((b[0] - x[0] for x, b in zip(seg, seg[1:])), default=0)
             back_tries += back > 0
             old_term_tries += old > 0
-            print(f"try {k + 1}: froze {server} (term {term}); after: server "
-                  f"{clocks.seen[-1][2]} term {clocks.seen[-1][1]}; {back} backwards "
-                  f"(worst {worst / 1e6:+.3f} s), {old} old-term after new", flush=True)
+            print(
+                f"try {k + 1}: froze {server} (term {term}); after: server "
+                f"{clocks.seen[-1][2]} term {clocks.seen[-1][1]}; {back} backwards "
+                f"(worst {worst / 1e6:+.3f} s), {old} old-term after new",
+                flush=True,
+            )
     finally:
         clocks.stop = True
         for p in sims.values():
             if p.poll() is None:
                 os.killpg(p.pid, signal.SIGCONT)
         world.stop()
-    print(f"{a.tries} tries, {a.freeze:g} s freezes, code {a.python_root}: time ran backwards "
-          f"in {back_tries}, an old term followed a newer one in {old_term_tries}")
+    print(
+        f"{a.tries} tries, {a.freeze:g} s freezes, code {a.python_root}: time ran backwards "
+        f"in {back_tries}, an old term followed a newer one in {old_term_tries}"
+    )
     return 0
 
 

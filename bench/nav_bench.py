@@ -42,10 +42,15 @@ def record(out: Path, url: str, extra: list[str], reuse: bool) -> tuple[Path, Pa
     nav = out.with_suffix(".nav")
     if not (reuse and log.exists() and nav.exists()):
         env = dict(os.environ, PYTHONPATH=str(ROOT / "build" / "gen" / "python"))
-        subprocess.run([sys.executable, "-m", "tools.survey_log", "--out", log, "--url", url,
-                        *SURVEY, *extra], check=True, env=env, stdout=subprocess.DEVNULL)
-        subprocess.run([sys.executable, "-m", "tools.navconf", log.with_suffix(".sim.yaml"),
-                        "-o", nav], check=True, env=env)
+        subprocess.run(
+            [sys.executable, "-m", "tools.survey_log", "--out", log, "--url", url, *SURVEY, *extra],
+            check=True,
+            env=env,
+            stdout=subprocess.DEVNULL,
+        )
+        subprocess.run(
+            [sys.executable, "-m", "tools.navconf", log.with_suffix(".sim.yaml"), "-o", nav], check=True, env=env
+        )
     return log, nav
 
 
@@ -62,8 +67,10 @@ def replay(nav: Path, log: Path, *extra: str) -> dict[str, float]:
 
 
 def row(name: str, aids: str, s: dict[str, float]) -> str:
-    return (f"  {name:16} {aids:34} {s['h_err_rms_m']:7.2f} {s['h_err_max_m']:7.2f} {s['h_err_final_m']:7.2f} "
-            f"{s['h_err_final_pct']:8.2f} {s['h_err_max_pct']:8.2f} {s['nees_pos_mean']:7.2f}")
+    return (
+        f"  {name:16} {aids:34} {s['h_err_rms_m']:7.2f} {s['h_err_max_m']:7.2f} {s['h_err_final_m']:7.2f} "
+        f"{s['h_err_final_pct']:8.2f} {s['h_err_max_pct']:8.2f} {s['nees_pos_mean']:7.2f}"
+    )
 
 
 def main() -> int:
@@ -78,8 +85,9 @@ def main() -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     base_log, base_nav = record(args.out / "survey", args.url, [], args.reuse)
     gps_log, gps_nav = record(args.out / "survey_gps", args.url, ["--surface-crossovers"], args.reuse)
-    spec_log, spec_nav = record(args.out / "survey_bias025", args.url,
-                                ["--set", f"sensors.ahrs.bias={math.radians(0.25):.6f}"], args.reuse)
+    spec_log, spec_nav = record(
+        args.out / "survey_bias025", args.url, ["--set", f"sensors.ahrs.bias={math.radians(0.25):.6f}"], args.reuse
+    )
 
     dive = ["--drop", "lbl", "--score-from", "60"]
     dr = replay(base_nav, base_log, *dive)
@@ -93,29 +101,40 @@ def main() -> int:
         ("LBL", "compass + DVL + LBL (first fix)", lbl),
         ("all aids", "compass + DVL + LBL + GPS 60 s", timed),
     ]
-    print(f"nav_bench: standard survey, 4 x 460 m lines 50 m apart at 12 m, {timed['distance_m']:.0f} m travelled "
-          f"in {timed['duration_s']:.0f} s ({dr['distance_m']:.0f} m after the dive); default sensor "
-          f"specifications (compass bias 1 deg, noise 0.5 deg)")
-    print(f"  {'case':16} {'aids':34} {'RMS m':>7} {'max m':>7} {'final m':>7} {'final %':>8} {'max %':>8} "
-          f"{'NEES':>7}")
+    print(
+        f"nav_bench: standard survey, 4 x 460 m lines 50 m apart at 12 m, {timed['distance_m']:.0f} m travelled "
+        f"in {timed['duration_s']:.0f} s ({dr['distance_m']:.0f} m after the dive); default sensor "
+        f"specifications (compass bias 1 deg, noise 0.5 deg)"
+    )
+    print(f"  {'case':16} {'aids':34} {'RMS m':>7} {'max m':>7} {'final m':>7} {'final %':>8} {'max %':>8} {'NEES':>7}")
     for name, aids, s in cases:
         print(row(name, aids, s))
-    print("  (% of the distance travelled; max %: worst point once 200 m are travelled; NEES: mean position "
-          "NEES, 2 expected)")
-    print(f"goal DR < 0.5 % of distance: final error {dr['h_err_final_pct']:.2f} % "
-          f"({'met' if dr['h_err_final_pct'] < 0.5 else 'NOT met'}), worst point {dr['h_err_max_pct']:.2f} % "
-          f"({'met' if dr['h_err_max_pct'] < 0.5 else 'NOT met'}). A compass bias b rotates the dead-reckoned "
-          f"track about the dive point: tan 1 deg = 1.75 % of the straight-line displacement, which the "
-          f"lawnmower's back-and-forth lines undo by the end. The minute of surface GPS only narrows the bias "
-          f"to {dr['final_bias_sigma_deg']:.2f} deg (1 sigma).")
-    print(f"  with a 0.25 deg compass bias (0.44 % of the displacement) the same run gives "
-          f"{spec['h_err_max_pct']:.2f} % at worst and {spec['h_err_final_pct']:.2f} % at the end: "
-          f"{'meets' if spec['h_err_max_pct'] < 0.5 else 'does NOT meet'} the goal everywhere")
-    print(f"goal LBL-aided < 2 m RMS: {lbl['h_err_rms_m']:.2f} m ({'met' if lbl['h_err_rms_m'] < 2 else 'NOT met'}); "
-          f"{lbl['lbl_rejected']:.0f} of {lbl['lbl_accepted'] + lbl['lbl_rejected']:.0f} replies gated out")
+    print(
+        "  (% of the distance travelled; max %: worst point once 200 m are travelled; NEES: mean position "
+        "NEES, 2 expected)"
+    )
+    print(
+        f"goal DR < 0.5 % of distance: final error {dr['h_err_final_pct']:.2f} % "
+        f"({'met' if dr['h_err_final_pct'] < 0.5 else 'NOT met'}), worst point {dr['h_err_max_pct']:.2f} % "
+        f"({'met' if dr['h_err_max_pct'] < 0.5 else 'NOT met'}). A compass bias b rotates the dead-reckoned "
+        f"track about the dive point: tan 1 deg = 1.75 % of the straight-line displacement, which the "
+        f"lawnmower's back-and-forth lines undo by the end. The minute of surface GPS only narrows the bias "
+        f"to {dr['final_bias_sigma_deg']:.2f} deg (1 sigma)."
+    )
+    print(
+        f"  with a 0.25 deg compass bias (0.44 % of the displacement) the same run gives "
+        f"{spec['h_err_max_pct']:.2f} % at worst and {spec['h_err_final_pct']:.2f} % at the end: "
+        f"{'meets' if spec['h_err_max_pct'] < 0.5 else 'does NOT meet'} the goal everywhere"
+    )
+    print(
+        f"goal LBL-aided < 2 m RMS: {lbl['h_err_rms_m']:.2f} m ({'met' if lbl['h_err_rms_m'] < 2 else 'NOT met'}); "
+        f"{lbl['lbl_rejected']:.0f} of {lbl['lbl_accepted'] + lbl['lbl_rejected']:.0f} replies gated out"
+    )
     t = timed
-    print(f"filter cost per measurement (CPU, this run): baseline timer {t['baseline_timer_ns']:.0f} ns, "
-          f"one 50 ms prediction {t['baseline_predict_50ms_ns']:.0f} ns")
+    print(
+        f"filter cost per measurement (CPU, this run): baseline timer {t['baseline_timer_ns']:.0f} ns, "
+        f"one 50 ms prediction {t['baseline_predict_50ms_ns']:.0f} ns"
+    )
     for k in ("ahrs", "depth", "dvl", "gps", "lbl"):
         note = " (incl. reprocessing what arrived while the replies travelled)" if k == "lbl" else ""
         print(f"  {k:6} {t[f'cost_{k}_ns']:9.0f} ns x {t[f'cost_{k}_count']:.0f}{note}")

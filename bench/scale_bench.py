@@ -59,7 +59,7 @@ def _stat(pid: int) -> tuple[int, int] | None:
         s = Path(f"/proc/{pid}/stat").read_text()
     except OSError:
         return None
-    f = s[s.rindex(")") + 2:].split()
+    f = s[s.rindex(")") + 2 :].split()
     return int(f[1]), int(f[11]) + int(f[12])
 
 
@@ -112,20 +112,43 @@ def profile_summary(raw: Path, top: int = 15) -> list[str]:
     lines = [f"  {total} samples; self time (top {top}):"]
     lines += [f"    {100 * c / total:5.1f} %  {f}" for f, c in self_n.most_common(top)]
     lines.append(f"  inclusive (top {top}):")
-    lines += [f"    {100 * c / total:5.1f} %  {f}" for f, c in incl.most_common(top + 5)[5:top + 5]]
+    lines += [f"    {100 * c / total:5.1f} %  {f}" for f, c in incl.most_common(top + 5)[5 : top + 5]]
     return lines
 
 
 def run_case(n: int, args, out: Path) -> dict:
     case = out / f"v{n}"
     shutil.rmtree(case, ignore_errors=True)
-    plan = subprocess.run([sys.executable, "-m", "tools.plan_survey",
-                           "--polygon", polygon(n, args.length, args.width), "--vehicles", str(n), *PLAN_ARGS,
-                           "--name", f"scale{n}", "--out", str(case / "plan")], capture_output=True, text=True)
+    plan = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.plan_survey",
+            "--polygon",
+            polygon(n, args.length, args.width),
+            "--vehicles",
+            str(n),
+            *PLAN_ARGS,
+            "--name",
+            f"scale{n}",
+            "--out",
+            str(case / "plan"),
+        ],
+        capture_output=True,
+        text=True,
+    )
     if plan.returncode:
         return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
-    launch = [sys.executable, "-m", "tools.launch", str(case / "plan" / f"scale{n}.yaml"),
-              "--out", str(case / "run"), "--progress", "0"] + (["--url", args.url] if args.url else [])
+    launch = [
+        sys.executable,
+        "-m",
+        "tools.launch",
+        str(case / "plan" / f"scale{n}.yaml"),
+        "--out",
+        str(case / "run"),
+        "--progress",
+        "0",
+    ] + (["--url", args.url] if args.url else [])
     env = dict(os.environ)
     if args.cprofile:
         prof_dir = case / "cprofile"
@@ -145,9 +168,23 @@ def run_case(n: int, args, out: Path) -> dict:
             if pid not in kinds:
                 kinds[pid] = kind_of(cmdline(pid))
                 if args.profile and spy is None and kinds[pid] == "simulator" and PYSPY:
-                    spy = subprocess.Popen([PYSPY, "record", "--pid", str(pid), "--format", "raw", "--rate",
-                                            "200", "--nonblocking", "-o", str(case / "sim.pyspy.txt")],
-                                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                    spy = subprocess.Popen(
+                        [
+                            PYSPY,
+                            "record",
+                            "--pid",
+                            str(pid),
+                            "--format",
+                            "raw",
+                            "--rate",
+                            "200",
+                            "--nonblocking",
+                            "-o",
+                            str(case / "sim.pyspy.txt"),
+                        ],
+                        stdout=subprocess.DEVNULL,
+                        stderr=subprocess.DEVNULL,
+                    )
         time.sleep(0.25)
     wall = time.monotonic() - wall0
     text = proc.stdout.read()
@@ -162,12 +199,19 @@ def run_case(n: int, args, out: Path) -> dict:
     except (OSError, ValueError):
         outcome = {"outcome": "no outcome", "sim_time_s": 0.0}
     sim = outcome.get("sim_time_s", 0.0)
-    res = {"vehicles": n, "outcome": outcome.get("outcome"), "sim_time_s": sim, "wall_s": wall,
-           "rtf": sim / wall if wall else 0.0, "vehicle_s_per_s": n * sim / wall if wall else 0.0,
-           "cpu_s": {k: round(cpu[k], 2) for k in KINDS},
-           "cpu_total_s": (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime),
-           "processes": Counter(kinds.values()), "recorder": outcome.get("recorder"),
-           "reason": outcome.get("reason", "")}
+    res = {
+        "vehicles": n,
+        "outcome": outcome.get("outcome"),
+        "sim_time_s": sim,
+        "wall_s": wall,
+        "rtf": sim / wall if wall else 0.0,
+        "vehicle_s_per_s": n * sim / wall if wall else 0.0,
+        "cpu_s": {k: round(cpu[k], 2) for k in KINDS},
+        "cpu_total_s": (after.ru_utime + after.ru_stime) - (before.ru_utime + before.ru_stime),
+        "processes": Counter(kinds.values()),
+        "recorder": outcome.get("recorder"),
+        "reason": outcome.get("reason", ""),
+    }
     res["load_avg"] = os.getloadavg()[0]
     if outcome.get("outcome") != "done":
         res["tail"] = text.strip().splitlines()[-5:]
@@ -198,6 +242,7 @@ if _d:
 def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
     """The functions each kind of Python process spent most wall time in (self time)."""
     import pstats
+
     lines = []
     for kind in ("sim", "launch"):
         files = sorted(folder.glob(f"{kind}.*.prof"))
@@ -207,8 +252,7 @@ def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
         total = max(st.total_tt, 1e-9)
         rows = sorted(st.stats.items(), key=lambda kv: -kv[1][2])[:top]
         lines.append(f"  cProfile {kind} ({len(files)} process(es), {total:.0f} s wall in all), self time:")
-        lines += [f"    {100 * tt / total:5.1f} %  {fn}:{line} {name}" for (fn, line, name), (_, _, tt, _, _)
-                  in rows]
+        lines += [f"    {100 * tt / total:5.1f} %  {fn}:{line} {name}" for (fn, line, name), (_, _, tt, _, _) in rows]
     return lines or ["  (no cProfile output: did the processes exit normally?)"]
 
 
@@ -219,8 +263,12 @@ def main() -> int:
     ap.add_argument("--length", type=float, default=150.0, help="each share's length [m] (north)")
     ap.add_argument("--width", type=float, default=60.0, help="each share's width [m] (east)")
     ap.add_argument("--profile", action="store_true", help="py-spy one simulator of each run")
-    ap.add_argument("--cprofile", action="store_true", help="cProfile every Python process of each run (the "
-                    "simulators, the launcher): where their wall time goes, without py-spy")
+    ap.add_argument(
+        "--cprofile",
+        action="store_true",
+        help="cProfile every Python process of each run (the "
+        "simulators, the launcher): where their wall time goes, without py-spy",
+    )
     ap.add_argument("--url", help="LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
     args = ap.parse_args()
@@ -229,12 +277,17 @@ def main() -> int:
     except ValueError:
         ap.error("--vehicles: comma-separated integers")
     args.out.mkdir(parents=True, exist_ok=True)
-    print(f"scale_bench: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start; "
-          f"shares of {args.length:g} m x {args.width:g} m each")
+    print(
+        f"scale_bench: {os.cpu_count()} cores, load average {os.getloadavg()[0]:.1f} at start; "
+        f"shares of {args.length:g} m x {args.width:g} m each"
+    )
     if args.profile and not PYSPY:
         print("scale_bench: --profile: py-spy not found (pip install -r requirements.txt)")
-    print(f"{'veh':>3} {'sim s':>7} {'wall s':>7} {'RTF':>6} {'veh-s/s':>8}  cpu s: "
-          + " ".join(f"{k:>9}" for k in KINDS) + "   outcome")
+    print(
+        f"{'veh':>3} {'sim s':>7} {'wall s':>7} {'RTF':>6} {'veh-s/s':>8}  cpu s: "
+        + " ".join(f"{k:>9}" for k in KINDS)
+        + "   outcome"
+    )
     results = []
     for n in counts:
         r = run_case(n, args, args.out)
@@ -242,18 +295,26 @@ def main() -> int:
         if "cpu_s" not in r:
             print(f"{n:>3}  {r['outcome']}: {r.get('error', '')}")
             continue
-        print(f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
-              + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS) + f"   {r['outcome']}"
-              + (f" ({r['reason']})" if r["outcome"] != "done" else ""), flush=True)
+        print(
+            f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
+            + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS)
+            + f"   {r['outcome']}"
+            + (f" ({r['reason']})" if r["outcome"] != "done" else ""),
+            flush=True,
+        )
         if r["sim_time_s"] > 0:
             # Load-independent: CPU per vehicle-second of sim, and the throughput that
             # would give if these cores did nothing else (a ceiling, not a measurement).
             per = {k: 1000 * r["cpu_s"][k] / (n * r["sim_time_s"]) for k in KINDS}
             total = sum(per.values())
             r["cpu_ms_per_vehicle_s"] = per
-            print(f"    cpu per vehicle-second: {total:.1f} ms ("
-                  + ", ".join(f"{k} {v:.1f}" for k, v in per.items() if v) + f"); on {os.cpu_count()} idle "
-                  f"cores at most {os.cpu_count() * 1000 / total:.0f} vehicle-s/s", flush=True)
+            print(
+                f"    cpu per vehicle-second: {total:.1f} ms ("
+                + ", ".join(f"{k} {v:.1f}" for k, v in per.items() if v)
+                + f"); on {os.cpu_count()} idle "
+                f"cores at most {os.cpu_count() * 1000 / total:.0f} vehicle-s/s",
+                flush=True,
+            )
         for line in r.get("profile", []):
             print(line)
     (args.out / "scale.json").write_text(json.dumps(results, indent=1))

@@ -69,7 +69,9 @@ class _LcmGenSimulator(Simulator):
             def poll(tr):
                 msg = sen.poll(tr)
                 return None if msg is None else msg.encode()
+
             return poll
+
         self._sensor_polls = [(sen.next_due, lcmgen(sen), ch) for sen, ch in self._sensor_channels]
 
 
@@ -79,8 +81,7 @@ def _run(sim: Simulator, seconds: float) -> dict:
         sim.run()
     wall, cpu = time.perf_counter() - w0, time.thread_time() - c0
     proc = time.process_time() - p0
-    out = {"wall_x": seconds / wall, "cpu_x": seconds / cpu, "proc_x": seconds / proc,
-           "msgs": sim.published / seconds}
+    out = {"wall_x": seconds / wall, "cpu_x": seconds / cpu, "proc_x": seconds / proc, "msgs": sim.published / seconds}
     # Let go of its LCM instance (see Simulator.close), or every earlier
     # round's liblcm receive thread would still be woken by each packet of
     # the later rounds.
@@ -138,8 +139,10 @@ def _machine_line(before: list[int] | None, load: float) -> str:
     if before and after and len(after) > 7:
         d = [a - b for a, b in zip(after, before)]
         total = sum(d[:8]) or 1
-        line += (f", during the run {100 * (total - d[3] - d[4]) / total:.0f} % busy, "
-                 f"{100 * d[7] / total:.0f} % stolen by the host")
+        line += (
+            f", during the run {100 * (total - d[3] - d[4]) / total:.0f} % busy, "
+            f"{100 * d[7] / total:.0f} % stolen by the host"
+        )
     return line
 
 
@@ -150,10 +153,12 @@ def main() -> None:
     args = ap.parse_args()
     n = int(args.seconds / DT)
     physics = [("bare integrator (baseline)", bare), ("vehicle model", model_only)]
-    loops = [("loop, no network, lcm-gen encode", loop_lcmgen),
-             ("loop, no network (sensors+encode)", loop_no_network),
-             ("HIL over LCM, loop publishes", hil_in_loop),
-             ("HIL over LCM, all output", hil)]
+    loops = [
+        ("loop, no network, lcm-gen encode", loop_lcmgen),
+        ("loop, no network (sensors+encode)", loop_no_network),
+        ("HIL over LCM, loop publishes", hil_in_loop),
+        ("HIL over LCM, all output", hil),
+    ]
     best = {name: 0.0 for name, _ in physics}
     runs: dict[str, list[dict]] = {name: [] for name, _ in loops}
     errors: dict[str, str] = {}
@@ -172,8 +177,10 @@ def main() -> None:
                 errors[name] = str(exc)
     base = best["bare integrator (baseline)"]
     machine = _machine_line(cpu0, load)
-    print(f"sim_bench: REMUS 100, RK4 at {1 / DT:.0f} Hz, default configuration "
-          f"({CONFIG.relative_to(ROOT)}), best of {args.rounds} rounds of {args.seconds:.0f} sim s")
+    print(
+        f"sim_bench: REMUS 100, RK4 at {1 / DT:.0f} Hz, default configuration "
+        f"({CONFIG.relative_to(ROOT)}), best of {args.rounds} rounds of {args.seconds:.0f} sim s"
+    )
     print(f"  {'case':44} {'steps/s':>8}  {'real time':>9}  {'of baseline':>11}")
     for name, _ in physics:
         r = best[name]
@@ -187,14 +194,14 @@ def main() -> None:
             x = max(r[key] for r in rs)
             extra = ""
             if key == "wall_x":
-                extra = (f"   median {statistics.median(r[key] for r in rs):.0f}x, "
-                         f"{rs[0]['msgs']:.0f} msgs per sim s")
-            print(f"  {name + ' (' + kind + ')':44} {x / DT:8.0f}  {x:8.1f}x  "
-                  f"{x / (base * DT):11.2f}{extra}")
+                extra = f"   median {statistics.median(r[key] for r in rs):.0f}x, {rs[0]['msgs']:.0f} msgs per sim s"
+            print(f"  {name + ' (' + kind + ')':44} {x / DT:8.0f}  {x:8.1f}x  {x / (base * DT):11.2f}{extra}")
     if "HIL over LCM, all output" not in errors:
         x = max(r["wall_x"] for r in runs["HIL over LCM, all output"])
-        print(f"  goal >= {GOAL_X:.0f}x over LCM on wall time: {'met' if x >= GOAL_X else 'NOT met'} "
-              f"({x:.0f}x, best round)")
+        print(
+            f"  goal >= {GOAL_X:.0f}x over LCM on wall time: {'met' if x >= GOAL_X else 'NOT met'} "
+            f"({x:.0f}x, best round)"
+        )
     print(f"  {machine}")
 
 

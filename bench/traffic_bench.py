@@ -28,8 +28,8 @@ from auvlcm.log import read_events
 ROOT = Path(__file__).resolve().parents[1]
 
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_demo" / "mcm_demo.yaml"
-FRAMING = 38 + 20 + 8 + 8 + 1          # bytes on the wire besides channel name and payload
-CLASSES = [                             # (class, channel regex), first match wins
+FRAMING = 38 + 20 + 8 + 8 + 1  # bytes on the wire besides channel name and payload
+CLASSES = [  # (class, channel regex), first match wins
     ("sensors", r"^[A-Z0-9]+\.(AHRS|DEPTH|DVL|ALTIMETER|GPS|LBL|NAV_INS)$"),
     ("navigation", r"^[A-Z0-9]+\.(NAV|NAV_STATUS)$"),
     ("control", r"^[A-Z0-9]+\.(ACTUATORS|ACTUATOR_STATE|SETPOINT)$"),
@@ -50,13 +50,15 @@ def classify(channel: str) -> str:
 def run_scenario(limit: float, out: Path) -> Path:
     text = SCENARIO.read_text()
     base = SCENARIO.parent
-    text = re.sub(r"(config|plan|bind|survey): (\S+)", lambda m: f"{m[1]}: {(base / m[2]).resolve()}"
-                  if not m[2].startswith("/") else m[0], text)
+    text = re.sub(
+        r"(config|plan|bind|survey): (\S+)",
+        lambda m: f"{m[1]}: {(base / m[2]).resolve()}" if not m[2].startswith("/") else m[0],
+        text,
+    )
     text = re.sub(r"limit: \d+(\.\d*)?", f"limit: {limit:g}", text, count=1)
     sc = out / "traffic.yaml"
     sc.write_text(text)
-    subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--out", str(out),
-                    "--progress", "0"], check=False)
+    subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--out", str(out), "--progress", "0"], check=False)
     return out / "run.lcmlog"
 
 
@@ -79,7 +81,7 @@ def main() -> int:
         if ev.channel == "SIM.CLOCK":
             t0 = u if t0 is None else min(t0, u)
             t1 = u if t1 is None else max(t1, u)
-        c, size = classify(ev.channel), len(ev.msg.encode())     # the same bytes as sent
+        c, size = classify(ev.channel), len(ev.msg.encode())  # the same bytes as sent
         count[c] += 1
         nbytes[c] += size
         wire[c] += size + len(ev.channel) + FRAMING
@@ -94,15 +96,19 @@ def main() -> int:
         per = 1.0 / (span * nv)
         tot_m += count[c] * per
         tot_w += wire[c] * per
-        print(f"{c:26} {count[c] * per:10.1f} {nbytes[c] * per:16.0f} {wire[c] * per:13.0f} "
-              f"{nbytes[c] / count[c]:14.0f}")
+        print(
+            f"{c:26} {count[c] * per:10.1f} {nbytes[c] * per:16.0f} {wire[c] * per:13.0f} {nbytes[c] / count[c]:14.0f}"
+        )
     print(f"{'total':26} {tot_m:10.1f} {'':16} {tot_w:13.0f}")
     print(f"per vehicle at 1x real time: {tot_m:.0f} msg/s, {tot_w * 8 / 1e6:.3f} Mbit/s on the wire")
-    for name, mbps in [("1 GbE LAN (70 % usable)", 700.0)] + [(f"WAN {w:g} Mbit/s (70 %)", 0.7 * w)
-                                                             for w in (args.wan_mbps or [10.0, 2.0])]:
+    for name, mbps in [("1 GbE LAN (70 % usable)", 700.0)] + [
+        (f"WAN {w:g} Mbit/s (70 %)", 0.7 * w) for w in (args.wan_mbps or [10.0, 2.0])
+    ]:
         cap = mbps * 1e6 / 8 / tot_w
-        print(f"{name:28} carries {cap:8.0f} vehicle-seconds per second (e.g. {cap:.0f} vehicles at 1x, "
-              f"{cap / 10:.0f} at 10x)")
+        print(
+            f"{name:28} carries {cap:8.0f} vehicle-seconds per second (e.g. {cap:.0f} vehicles at 1x, "
+            f"{cap / 10:.0f} at 10x)"
+        )
     return 0
 
 

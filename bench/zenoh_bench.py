@@ -43,22 +43,42 @@ EP = "tcp/127.0.0.1:17460"
 
 def bridges(out: Path) -> list[subprocess.Popen]:
     cmd = [sys.executable, "-m", "tools.zenoh_bridge", "--realm", "bench", "--stats-period", "2"]
-    return [subprocess.Popen(cmd + args, stdout=open(out / f"bridge.{name}.out", "w"), stderr=subprocess.STDOUT,
-                             env=ENV, start_new_session=True)
-            for name, args in (("A", ["--site", "A", "--url", URL_A, "--listen", EP]),
-                               ("B", ["--site", "B", "--url", URL_B, "--connect", EP]))]
+    return [
+        subprocess.Popen(
+            cmd + args,
+            stdout=open(out / f"bridge.{name}.out", "w"),
+            stderr=subprocess.STDOUT,
+            env=ENV,
+            start_new_session=True,
+        )
+        for name, args in (
+            ("A", ["--site", "A", "--url", URL_A, "--listen", EP]),
+            ("B", ["--site", "B", "--url", URL_B, "--connect", EP]),
+        )
+    ]
 
 
 def sync(out: Path, seconds: float) -> None:
     procs = bridges(out)
     time.sleep(1.5)
-    procs.append(node(out, "SZ-sim", URL_A, 9, "--probe", out / "sz.probe", "--offset-us", 12000,
-                      "--drift-ppm", -30))
+    procs.append(node(out, "SZ-sim", URL_A, 9, "--probe", out / "sz.probe", "--offset-us", 12000, "--drift-ppm", -30))
     time.sleep(1.5)
     clients = [("1", 55000, 90), ("2", -38000, -110)]
     for name, off, drift in clients:
-        procs.append(node(out, f"CZ{name}-sim", URL_B, 1, "--probe", out / f"cz{name}.probe",
-                          "--offset-us", off, "--drift-ppm", drift))
+        procs.append(
+            node(
+                out,
+                f"CZ{name}-sim",
+                URL_B,
+                1,
+                "--probe",
+                out / f"cz{name}.probe",
+                "--offset-us",
+                off,
+                "--drift-ppm",
+                drift,
+            )
+        )
     start = time.monotonic()
     time.sleep(seconds)
     end(procs)
@@ -67,8 +87,10 @@ def sync(out: Path, seconds: float) -> None:
     for name, _, _ in clients:
         errs += probe_errors(server, load_probe(out / f"cz{name}.probe"), after_us=(start + 10.0) * 1e6)
     a = [abs(e) for e in errs]
-    print(f"clock sync across the Zenoh bridge (server at site A, 2 clients at site B, offsets 55/-38 ms, "
-          f"drifts +90/-110 ppm), {len(a)} samples after 10 s:")
+    print(
+        f"clock sync across the Zenoh bridge (server at site A, 2 clients at site B, offsets 55/-38 ms, "
+        f"drifts +90/-110 ppm), {len(a)} samples after 10 s:"
+    )
     if a:
         print(f"  |error| p50 {percentile(a, 0.5):.0f} us, p99 {percentile(a, 0.99):.0f} us, max {max(a):.0f} us")
 
@@ -97,15 +119,22 @@ def failover(out: Path, runs: int) -> None:
         takers.append(clocks.seen[k][2])
     if times:
         print(f"failover across sites ({len(times)} runs; server at A killed, next best at B):")
-        print(f"  kill -> new server's first SIM.CLOCK at site A: mean {sum(times) / len(times):.3f} s, "
-              f"max {max(times):.3f} s; new servers: {', '.join(takers)}")
+        print(
+            f"  kill -> new server's first SIM.CLOCK at site A: mean {sum(times) / len(times):.3f} s, "
+            f"max {max(times):.3f} s; new servers: {', '.join(takers)}"
+        )
 
 
 def six(out: Path, seconds: float) -> None:
     procs = bridges(out)
     time.sleep(1.5)
-    worlds = {"A": World(out / "six.A", URL_A, ROOT / "build", ENV), "B": World(out / "six.B", URL_B, ROOT / "build", ENV)}
-    specs = [(("A" if i <= 3 else "B"), VehicleSpec(f"AUV{i}", priority=60 - 10 * i, east_m=25.0 * i)) for i in range(1, 7)]
+    worlds = {
+        "A": World(out / "six.A", URL_A, ROOT / "build", ENV),
+        "B": World(out / "six.B", URL_B, ROOT / "build", ENV),
+    }
+    specs = [
+        (("A" if i <= 3 else "B"), VehicleSpec(f"AUV{i}", priority=60 - 10 * i, east_m=25.0 * i)) for i in range(1, 7)
+    ]
     try:
         for site, s in specs:
             worlds[site].managers(s)
@@ -125,8 +154,10 @@ def six(out: Path, seconds: float) -> None:
         servers += re.findall(r"(\S+): server for term (\d+)", before_stop[s.vehicle])
         joined += [f"{s.vehicle}@{site}"] if "client of AUV1-sim" in text or s.vehicle == "AUV1" else []
         mism += [int(m) for m in re.findall(r"(\d+) mismatches", text)]
-    print(f"six vehicles, 3 per site, scaled x2, {seconds:.0f} s: servers before the stop {servers}; in AUV1-sim's world: "
-          f"{len(joined)}/6; environment sample mismatches {sum(mism)}")
+    print(
+        f"six vehicles, 3 per site, scaled x2, {seconds:.0f} s: servers before the stop {servers}; in AUV1-sim's world: "
+        f"{len(joined)}/6; environment sample mismatches {sum(mism)}"
+    )
     for name in ("A", "B"):
         lines = (out / f"bridge.{name}.out").read_text().strip().splitlines()
         print(f"  {lines[-1] if lines else 'bridge ' + name + ': no output'}")

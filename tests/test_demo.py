@@ -12,13 +12,31 @@ from conftest import BUILD
 
 # Two vehicles, two lines each: about 6 min of sim time over part of the
 # target field of missions/sim/remus100_mcm.yaml (seed 7).
-POLYGON = "140,120; 240,110; 250,200; 150,210"   # six of the seeded mines are inside
+POLYGON = "140,120; 240,110; 250,200; 150,210"  # six of the seeded mines are inside
 
 
 def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
-    run = subprocess.run([sys.executable, "-m", "tools.demo", "--out", tmp_path, "--url", lcm_url,
-                          "--build", BUILD, "--polygon", POLYGON, "--vehicles", "2"],
-                         env=child_env, capture_output=True, text=True, timeout=600)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.demo",
+            "--out",
+            tmp_path,
+            "--url",
+            lcm_url,
+            "--build",
+            BUILD,
+            "--polygon",
+            POLYGON,
+            "--vehicles",
+            "2",
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     rep = json.loads((tmp_path / "report.json").read_text())
     # every vehicle's navigator ran its plan to the end (not aborted, not timed out)
@@ -38,7 +56,7 @@ def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
     assert rep["coverage"]["fraction_once"] > 0.95, rep["coverage"]
     det = rep["detection"]
     assert rep["undecodable_events"] == 0
-    assert det["mine_like_targets"] == 12           # SIM.TARGETS reached the log (one publisher)
+    assert det["mine_like_targets"] == 12  # SIM.TARGETS reached the log (one publisher)
     assert all(v["contacts"] > 0 for v in det["per_vehicle"].values()), det
     # pd_max 0.9 per look and nearly everything seen twice: 0.5 is far below what
     # the curve gives, far above chance
@@ -58,9 +76,27 @@ def test_demo_team_mission_end_to_end(tmp_path, lcm_url, child_env):
     """`make demo`'s team mission, planned here at reduced size: 2 search + 1
     reacquire-identify vehicles in lockstep, contacts handed over the
     simulated acoustic link (fsk80, TDMA), identified."""
-    run = subprocess.run([sys.executable, "-m", "tools.demo", "--out", tmp_path, "--url", lcm_url,
-                          "--build", BUILD, "--polygon", TEAM_POLYGON, "--team", "2"],
-                         env=child_env, capture_output=True, text=True, timeout=900)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.demo",
+            "--out",
+            tmp_path,
+            "--url",
+            lcm_url,
+            "--build",
+            BUILD,
+            "--polygon",
+            TEAM_POLYGON,
+            "--team",
+            "2",
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     rep = json.loads((tmp_path / "report.json").read_text())
     assert rep["vehicle_outcomes"] == {f"AUV{i}": "done" for i in range(1, 4)}, rep["vehicle_outcomes"]

@@ -30,14 +30,30 @@ import tomllib
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPTS = set(tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["scripts"])
 DOCS = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
-WRAPPERS = {"tests/isolated_net.sh", "--only-if-needed", ".venv/bin/python", "python", "python3",
-            "PY", "$PY", "${PY}", "$(VPY)", "exec", "time", "env"}
+WRAPPERS = {
+    "tests/isolated_net.sh",
+    "--only-if-needed",
+    ".venv/bin/python",
+    "python",
+    "python3",
+    "PY",
+    "$PY",
+    "${PY}",
+    "$(VPY)",
+    "exec",
+    "time",
+    "env",
+}
 # a word that is a placeholder, not a value: the line is a synopsis
 PLACEHOLDER = re.compile(r"^(\[.*|.*\]|\.\.\.|[A-Z][A-Z_0-9]*(\.\.\.)?|<.*>|.*[A-Z]{3,}\.\w+)$")
 SKIP_WHY = {"sudo": "changes the host's routing (needs root; the README's one-line fix)"}
 # run for real: programs that work offline, on files in the repository
-OFFLINE = {("build/bin/chasm", "check"), ("build/bin/chasm", "dot"), ("build/bin/chasm", "describe"),
-           ("build/bin/chasm", "run")}
+OFFLINE = {
+    ("build/bin/chasm", "check"),
+    ("build/bin/chasm", "dot"),
+    ("build/bin/chasm", "describe"),
+    ("build/bin/chasm", "run"),
+}
 
 
 def command_lines(path: Path) -> list[tuple[int, str]]:
@@ -69,15 +85,15 @@ def program_of(words: list[str]) -> tuple[str, list[str]] | None:
         i += 1
     if i >= len(words):
         return None
-    prog, args = words[i], words[i + 1:]
+    prog, args = words[i], words[i + 1 :]
     if prog == "chasm":
         prog = "build/bin/chasm"
     if prog == "chasm-manager":
         prog = "build/bin/chasm-manager"
     if prog == "-m" and args:
-        return None                              # python -m MODULE: not a file path
+        return None  # python -m MODULE: not a file path
     if prog.endswith("/"):
-        return None                              # a folder in a layout listing
+        return None  # a folder in a layout listing
     if prog.removeprefix(".venv/bin/") in SCRIPTS:
         return ".venv/bin/" + prog.removeprefix(".venv/bin/"), args
     if prog == "make" or prog.startswith(("build/bin/", "python/tools/", "python/sim", "bench/")):
@@ -137,10 +153,14 @@ def test_doc_command_runs(cmd, child_env):
     else:
         exe = [str(path)]
     sub = args[0] if args and re.fullmatch(r"[a-z][a-z_-]*", args[0]) and prog != "make" else None
-    args = [g for a in args for g in (sorted(str(p.relative_to(ROOT)) for p in ROOT.glob(a)) or [a]
-                                      if "*" in a and "/" in a else [a])]
+    args = [
+        g
+        for a in args
+        for g in (sorted(str(p.relative_to(ROOT)) for p in ROOT.glob(a)) or [a] if "*" in a and "/" in a else [a])
+    ]
     concrete = not any(PLACEHOLDER.match(a) for a in args) and all(
-        (ROOT / a).exists() for a in args if "/" in a and not a.startswith(("-", "udpm:", "http")))
+        (ROOT / a).exists() for a in args if "/" in a and not a.startswith(("-", "udpm:", "http"))
+    )
     env = child_env
     if concrete and (prog, sub) in OFFLINE:
         p = subprocess.run(exe + args, cwd=ROOT, env=env, capture_output=True, text=True, timeout=60)
@@ -162,13 +182,22 @@ def _help(argv: tuple[str, ...], env: tuple[tuple[str, str], ...]) -> tuple[int,
 def test_missions_completion_example_runs(tmp_path, child_env):
     """docs/missions.md, "Completion": the plan there goes where the text says."""
     text = (ROOT / "docs" / "missions.md").read_text()
-    section = text[text.index("## Completion"):]
-    plan = section[section.index("```chasm\n") + 9:]
-    plan = plan[:plan.index("```")]
+    section = text[text.index("## Completion") :]
+    plan = section[section.index("```chasm\n") + 9 :]
+    plan = plan[: plan.index("```")]
     (tmp_path / "plan.chasm").write_text(plan)
-    p = subprocess.run([ROOT / "build/bin/chasm", "run", tmp_path / "plan.chasm", "--inputs", "/dev/null",
-                        "--until", "200"], capture_output=True, text=True, env=child_env, timeout=60)
+    p = subprocess.run(
+        [ROOT / "build/bin/chasm", "run", tmp_path / "plan.chasm", "--inputs", "/dev/null", "--until", "200"],
+        capture_output=True,
+        text=True,
+        env=child_env,
+        timeout=60,
+    )
     assert p.returncode == 0, p.stderr
     got = re.findall(r"^\s*([\d.]+) s  (\S+)", p.stdout, re.M)
-    assert [(float(t), s) for t, s in got[:4]] == [(0.0, "mission/leg1"), (60.0, "mission/leg2"),
-                                                  (120.0, "recover"), (130.0, "done")], p.stdout
+    assert [(float(t), s) for t, s in got[:4]] == [
+        (0.0, "mission/leg1"),
+        (60.0, "mission/leg2"),
+        (120.0, "recover"),
+        (130.0, "done"),
+    ], p.stdout

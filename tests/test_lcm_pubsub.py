@@ -27,11 +27,24 @@ def test_c_publisher_python_subscriber(lcm_url, child_env, sanitized):
     rx.subscribe("AUV7.DEPTH", depth_t, lambda c, m: depths.append(m), queue_capacity=200)
     rx.subscribe("AUV7.ACTUATORS", actuators_t, lambda c, m: acts.append(m), queue_capacity=200)
     count, rate = 40, 100.0
-    pub = subprocess.Popen([c_program("bin/auv-lcm-probe", sanitized), "publish-track", "--url", lcm_url,
-                            "--vehicle", "AUV7", "--count", str(count), "--rate", str(rate)],
-                           env=child_env, stderr=subprocess.PIPE, text=True)
-    assert pump(lc, lambda: len(acts) == count, timeout=20), \
-        f"got {len(navs)}/{len(depths)}/{len(acts)} of {count}"
+    pub = subprocess.Popen(
+        [
+            c_program("bin/auv-lcm-probe", sanitized),
+            "publish-track",
+            "--url",
+            lcm_url,
+            "--vehicle",
+            "AUV7",
+            "--count",
+            str(count),
+            "--rate",
+            str(rate),
+        ],
+        env=child_env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert pump(lc, lambda: len(acts) == count, timeout=20), f"got {len(navs)}/{len(depths)}/{len(acts)} of {count}"
     assert pub.wait(10) == 0, pub.stderr.read()
     assert [len(navs), len(depths)] == [count, count]
     omega = 1.5 / 50.0
@@ -50,9 +63,25 @@ def test_c_publisher_python_subscriber(lcm_url, child_env, sanitized):
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_python_publisher_c_subscriber_counts_bad_messages(lcm_url, child_env, sanitized):
     listener = subprocess.Popen(
-        [c_program("bin/auv-lcm-probe", sanitized), "listen", "--url", lcm_url,
-         "--channel", "AUV2.NAV", "--type", "nav_solution_t", "--count", "4", "--timeout-ms", "15000"],
-        env=child_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        [
+            c_program("bin/auv-lcm-probe", sanitized),
+            "listen",
+            "--url",
+            lcm_url,
+            "--channel",
+            "AUV2.NAV",
+            "--type",
+            "nav_solution_t",
+            "--count",
+            "4",
+            "--timeout-ms",
+            "15000",
+        ],
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         wait_for_line(listener, "ready")
         lc = lcm.LCM(lcm_url)
@@ -63,10 +92,12 @@ def test_python_publisher_c_subscriber_counts_bad_messages(lcm_url, child_env, s
             msg.vehicle, msg.utime, msg.north_m = "AUV2", 1000 * i, 10.5 * i
             good.append(msg)
         encoded = good[0].encode()
-        bad = [depth_t().encode(),            # another type: wrong fingerprint
-               encoded[:-3],                   # truncated
-               b"\x01\x02\x03",                # garbage shorter than a fingerprint
-               encoded + b"\x00\x00"]          # trailing bytes: another layout
+        bad = [
+            depth_t().encode(),  # another type: wrong fingerprint
+            encoded[:-3],  # truncated
+            b"\x01\x02\x03",  # garbage shorter than a fingerprint
+            encoded + b"\x00\x00",
+        ]  # trailing bytes: another layout
         for bad_msg, msg in zip(bad, good):  # each bad one before a good one
             lc.publish("AUV2.NAV", bad_msg)
             lc.publish("AUV2.NAV", msg.encode())
@@ -113,7 +144,7 @@ def test_a_message_its_handler_cannot_use_is_counted_not_fatal(lcm_url, capfd):
     got = []
 
     def handler(_c, m):
-        got.append(1.0 / m.depth_m)          # ZeroDivisionError on a depth of 0
+        got.append(1.0 / m.depth_m)  # ZeroDivisionError on a depth of 0
 
     sub = rx.subscribe("AUV3.DEPTH", depth_t, handler)
     msg = depth_t()

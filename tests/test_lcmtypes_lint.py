@@ -62,6 +62,7 @@ def test_every_world_message_of_a_server_carries_its_term():
     """Receivers refuse clocks and world messages of an election term that is over
     (a paused server resuming, issue 12): each needs the term to tell."""
     from auv import env_election_t, env_heartbeat_t, env_model_t, env_sample_t, sim_clock_t
+
     for cls in (sim_clock_t, env_model_t, env_sample_t, env_heartbeat_t, env_election_t):
         assert "term" in cls.__slots__, cls.__name__
         assert cls.__typenames__[cls.__slots__.index("term")] == "int32_t", cls.__name__

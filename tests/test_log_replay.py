@@ -19,14 +19,14 @@ COUNT = 30
 CHANNELS = {"AUV5.NAV": nav_solution_t, "AUV5.DEPTH": depth_t, "AUV5.ACTUATORS": actuators_t}
 
 
-WARMUP = "TEST.WARMUP"   # published until the logger has it: then it listens
+WARMUP = "TEST.WARMUP"  # published until the logger has it: then it listens
 
 
 def logged_count(path, channels) -> int:
     """Events on channels in the log so far (the logger flushes every 100 ms)."""
     try:
         return sum(1 for ev in read_events(path) if ev.channel in channels)
-    except Exception:   # a half-written last event while the logger writes
+    except Exception:  # a half-written last event while the logger writes
         return -1
 
 
@@ -37,8 +37,9 @@ def without_warmup(counter: Counter) -> Counter:
 def record(url: str, path, child_env) -> None:
     """Log what the probe publishes. Waits on the file's contents, not on
     sleeps, so a loaded machine is slower but never loses the end of the run."""
-    logger = subprocess.Popen([lcm_tool("lcm-logger"), f"--lcm-url={url}", "--quiet", str(path)],
-                              stderr=subprocess.PIPE, text=True)
+    logger = subprocess.Popen(
+        [lcm_tool("lcm-logger"), f"--lcm-url={url}", "--quiet", str(path)], stderr=subprocess.PIPE, text=True
+    )
     try:
         lc = lcm.LCM(url)
         deadline = time.monotonic() + 30
@@ -46,13 +47,26 @@ def record(url: str, path, child_env) -> None:
             assert time.monotonic() < deadline and logger.poll() is None, "lcm-logger did not start"
             lc.publish(WARMUP, depth_t().encode())
             time.sleep(0.1)
-        pub = subprocess.run([c_program("bin/auv-lcm-probe"), "publish-track", "--url", url,
-                              "--vehicle", "AUV5", "--count", str(COUNT), "--rate", "100"],
-                             env=child_env, timeout=30)
+        pub = subprocess.run(
+            [
+                c_program("bin/auv-lcm-probe"),
+                "publish-track",
+                "--url",
+                url,
+                "--vehicle",
+                "AUV5",
+                "--count",
+                str(COUNT),
+                "--rate",
+                "100",
+            ],
+            env=child_env,
+            timeout=30,
+        )
         assert pub.returncode == 0
         deadline = time.monotonic() + 30
         while logged_count(path, CHANNELS) < 3 * COUNT and time.monotonic() < deadline:
-            lc.publish(WARMUP, depth_t().encode())   # the logger flushes when it writes
+            lc.publish(WARMUP, depth_t().encode())  # the logger flushes when it writes
             time.sleep(0.1)
     finally:
         assert stop(logger) == 0, logger.stderr.read()
@@ -87,8 +101,9 @@ def test_logplayer_replays_to_another_url(tmp_path, lcm_url, child_env):
     got = []
     for ch, cls in CHANNELS.items():
         rx.subscribe(ch, cls, lambda c, m: got.append((c, m.encode())), queue_capacity=500)
-    player = subprocess.Popen([lcm_tool("lcm-logplayer"), f"--lcm-url={replay_url}", "--speed=4",
-                               str(log)], stderr=subprocess.PIPE, text=True)
+    player = subprocess.Popen(
+        [lcm_tool("lcm-logplayer"), f"--lcm-url={replay_url}", "--speed=4", str(log)], stderr=subprocess.PIPE, text=True
+    )
     try:
         assert pump(lc, lambda: len(got) == 3 * COUNT, timeout=20), f"{len(got)} replayed"
         assert player.wait(10) == 0

@@ -28,7 +28,7 @@ from auv import (
 from auvlcm.rx import Receiver
 
 HERE = ROOT / "tests" / "managers"
-PERIOD_US = 100_000   # start_manager runs the manager at --rate 10
+PERIOD_US = 100_000  # start_manager runs the manager at --rate 10
 
 
 class World:
@@ -44,7 +44,7 @@ class World:
         self.rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, lambda c, m: self.status.append(m), 1000)
         self.rx.subscribe("AUV1.MISSION_ACK", mission_ack_t, lambda c, m: self.acks.append(m), 100)
         self.utime = 0
-        self.term = 0          # the election term of the clock it sends
+        self.term = 0  # the election term of the clock it sends
 
     def tick(self, dt_s: float, depth: float | None = None) -> None:
         """Advance the global clock (and send a NAV fix valid at that time).
@@ -61,13 +61,14 @@ class World:
         clock.utime, clock.server_id, clock.step_us = self.utime, "test", int(dt_s * 1e6)
         clock.term = self.term
         self.lc.publish("SIM.CLOCK", clock.encode())
-        if not self.status:     # not subscribed yet, or still starting: nothing is due
+        if not self.status:  # not subscribed yet, or still starting: nothing is due
             pump(self.lc, lambda: bool(self.status), timeout=0.05)
             return
         due = self.status[-1].utime + PERIOD_US
         if self.utime >= due:
-            assert pump(self.lc, lambda: self.status[-1].utime >= due, timeout=30), \
+            assert pump(self.lc, lambda: self.status[-1].utime >= due, timeout=30), (
                 f"the manager did not run its cycle at {due} us"
+            )
 
     def command(self, cmd: int, seq: int, **fields) -> mission_ack_t:
         msg = mission_command_t()
@@ -95,9 +96,28 @@ class World:
 
 def start_manager(url, env, sanitized=False, plan="dive.chasm", extra=(), bind="vehicle.bind"):
     return subprocess.Popen(
-        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / plan, "--bind", HERE / bind,
-         "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim", "--url", url, *extra],
-        env=env, stderr=subprocess.PIPE, text=True)
+        [
+            c_program("bin/chasm-manager", sanitized),
+            "--plan",
+            HERE / plan,
+            "--bind",
+            HERE / bind,
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "NAVIGATOR",
+            "--rate",
+            "10",
+            "--clock",
+            "sim",
+            "--url",
+            url,
+            *extra,
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
@@ -166,8 +186,10 @@ def test_mission_commands_are_acknowledged(lcm_url, child_env):
         w.tick(0.1, depth=0.0)
         assert w.leaf() == "surface", "a rejected plan must leave the mission untouched"
         good = (HERE / "dive.chasm").read_text()
-        assert w.command(mission_command_t.CMD_LOAD_PLAN, 5, plan_name="new.chasm",
-                         plan_text=good).result == mission_ack_t.RESULT_OK
+        assert (
+            w.command(mission_command_t.CMD_LOAD_PLAN, 5, plan_name="new.chasm", plan_text=good).result
+            == mission_ack_t.RESULT_OK
+        )
         w.tick(0.1, depth=0.0)
         w.tick(0.1, depth=0.0)
         assert w.leaf() == "dive"
@@ -210,23 +232,48 @@ def test_plugin_uploads_are_checked_before_anything_is_written(lcm_url, child_en
         assert stop(mgr, signal.SIGTERM) == 0
 
 
-@pytest.mark.parametrize("plan_edit,error", [
-    (("nav.depth_m > 5", "nav.depht_m > 5"), None),
-    (("input  nav.vehicle        : string", "input  nav.vehicle : string\ninput nav.depht_m : double m"),
-     "vehicle.bind:2:1: plan variable 'nav.depht_m': nav_solution_t has no field 'depht_m' (did you mean 'depth_m'?)"),
-    (("input  nav.vehicle        : string", "input  nav.vehicle : string\noutput gps.fix_m : double m"),
-     "plan output 'gps.fix_m' has no binding"),
-    (("input  nav.vehicle        : string", "input  nav.status        : string"),
-     "plan variable 'nav.status' is a string but the field is a number"),
-])
+@pytest.mark.parametrize(
+    "plan_edit,error",
+    [
+        (("nav.depth_m > 5", "nav.depht_m > 5"), None),
+        (
+            ("input  nav.vehicle        : string", "input  nav.vehicle : string\ninput nav.depht_m : double m"),
+            "vehicle.bind:2:1: plan variable 'nav.depht_m': nav_solution_t has no field 'depht_m' (did you mean 'depth_m'?)",
+        ),
+        (
+            ("input  nav.vehicle        : string", "input  nav.vehicle : string\noutput gps.fix_m : double m"),
+            "plan output 'gps.fix_m' has no binding",
+        ),
+        (
+            ("input  nav.vehicle        : string", "input  nav.status        : string"),
+            "plan variable 'nav.status' is a string but the field is a number",
+        ),
+    ],
+)
 def test_plans_and_bindings_that_do_not_fit_are_refused(tmp_path, lcm_url, child_env, plan_edit, error):
     text = (HERE / "dive.chasm").read_text()
     assert plan_edit[0] in text
     plan = tmp_path / "p.chasm"
     plan.write_text(text.replace(*plan_edit))
-    run = subprocess.run([c_program("bin/chasm-manager"), "--plan", plan, "--bind", HERE / "vehicle.bind",
-                          "--vehicle", "AUV1", "--name", "NAVIGATOR", "--url", lcm_url],
-                         env=child_env, capture_output=True, text=True, timeout=20)
+    run = subprocess.run(
+        [
+            c_program("bin/chasm-manager"),
+            "--plan",
+            plan,
+            "--bind",
+            HERE / "vehicle.bind",
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "NAVIGATOR",
+            "--url",
+            lcm_url,
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=20,
+    )
     assert run.returncode == 1
     assert (error or "p.chasm:") in run.stderr
 
@@ -268,15 +315,34 @@ def test_a_required_input_holds_the_start(lcm_url, child_env, tmp_path):
         assert stop(mgr, signal.SIGTERM) == 0
 
 
-@pytest.mark.parametrize("line,error", [
-    ("input gps ${VEHICLE}.GPS gps_fix_t maybe", "strict.bind:1:36: the only flag after the type is `optional`"),
-    ("output gps ${VEHICLE}.GPS gps_fix_t optional", "strict.bind:1:37: only an input can be optional"),
-])
+@pytest.mark.parametrize(
+    "line,error",
+    [
+        ("input gps ${VEHICLE}.GPS gps_fix_t maybe", "strict.bind:1:36: the only flag after the type is `optional`"),
+        ("output gps ${VEHICLE}.GPS gps_fix_t optional", "strict.bind:1:37: only an input can be optional"),
+    ],
+)
 def test_bad_binding_flags_are_refused(tmp_path, lcm_url, child_env, line, error):
     bind = tmp_path / "strict.bind"
     bind.write_text(line + "\n" + (HERE / "vehicle.bind").read_text())
-    run = subprocess.run([c_program("bin/chasm-manager"), "--plan", HERE / "gps_fix.chasm", "--bind", bind,
-                          "--vehicle", "AUV1", "--name", "NAVIGATOR", "--url", lcm_url],
-                         env=child_env, capture_output=True, text=True, timeout=20)
+    run = subprocess.run(
+        [
+            c_program("bin/chasm-manager"),
+            "--plan",
+            HERE / "gps_fix.chasm",
+            "--bind",
+            bind,
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "NAVIGATOR",
+            "--url",
+            lcm_url,
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=20,
+    )
     assert run.returncode == 1
     assert error in run.stderr, run.stderr

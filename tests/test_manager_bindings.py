@@ -18,19 +18,30 @@ GOOD = "input nav ${VEHICLE}.NAV nav_solution_t\noutput setpoint ${VEHICLE}.SETP
 # (binding file text, exit code, message expected on stderr)
 CASES = [
     (GOOD, None, None),
-    ("# " + "c" * 5000 + "\n" + GOOD, None, None),                      # a long comment line is not split
-    ("input nav " + "${VEHICLE}" * 20 + ".NAV nav_solution_t\n" + GOOD.splitlines()[1] + "\n", 1,
-     "b.bind:1:11: channel name too long (LCM allows 63 characters)"),
+    ("# " + "c" * 5000 + "\n" + GOOD, None, None),  # a long comment line is not split
+    (
+        "input nav " + "${VEHICLE}" * 20 + ".NAV nav_solution_t\n" + GOOD.splitlines()[1] + "\n",
+        1,
+        "b.bind:1:11: channel name too long (LCM allows 63 characters)",
+    ),
     ("input nav " + "C" * 64 + " nav_solution_t\n" + GOOD, 1, "b.bind:1:11: channel name too long"),
     ("input nav " + "C" * 63 + " nav_solution_t\n" + GOOD.splitlines()[1] + "\n", None, None),
     (GOOD + "input " + "p" * 3000 + " X.Y nav_solution_t\n", None, None),  # a long prefix binds nothing, but is fine
     (GOOD + "input gps X.GPS gps_fix_t optional extra\n", 1, "b.bind:3:1: expected `input|output"),
-    (GOOD + "input gps X.GPS gps_fix_t optional a b c d\n", 1, "b.bind:3:38: unexpected 'b' after the line's last field"),
+    (
+        GOOD + "input gps X.GPS gps_fix_t optional a b c d\n",
+        1,
+        "b.bind:3:38: unexpected 'b' after the line's last field",
+    ),
     (GOOD + "input gps X.GPS \x01gps_fix_t\n", 1, "b.bind:3:17: unexpected byte 0x01"),
     (GOOD + "input gps X.GPS gps_fix_t\xff\n", 1, "unexpected byte 0xc3"),
     (GOOD + "input gps X.GPS " + "t" * 500 + "\n", 1, "b.bind:3:17: unknown message type 'tttt"),
     (GOOD + "input nav X.NAV2 nav_solution_t\n", 1, "b.bind:3:7: prefix 'nav' is already bound on line 1"),
-    ("input nav ${VEHICLE}.NAV nav_solution_t\x00\n" + GOOD.splitlines()[1] + "\n", 1, "b.bind:1:40: unexpected NUL byte"),
+    (
+        "input nav ${VEHICLE}.NAV nav_solution_t\x00\n" + GOOD.splitlines()[1] + "\n",
+        1,
+        "b.bind:1:40: unexpected NUL byte",
+    ),
 ]
 
 
@@ -40,8 +51,19 @@ def test_hostile_binding_files(tmp_path, lcm_url, child_env, sanitized, text, co
     bind = tmp_path / "b.bind"
     bind.write_bytes(text.encode("utf-8"))
     # A good file: the manager loads it and runs (then is stopped); a bad one: exit 1.
-    cmd = [c_program("bin/chasm-manager", sanitized), "--plan", HERE / "dive.chasm", "--bind", bind,
-           "--vehicle", "AUV1", "--name", "NAVIGATOR", "--lcm-url", lcm_url]
+    cmd = [
+        c_program("bin/chasm-manager", sanitized),
+        "--plan",
+        HERE / "dive.chasm",
+        "--bind",
+        bind,
+        "--vehicle",
+        "AUV1",
+        "--name",
+        "NAVIGATOR",
+        "--lcm-url",
+        lcm_url,
+    ]
     if code is None:
         p = subprocess.Popen(cmd, env=child_env, stderr=subprocess.PIPE, text=True)
         try:
@@ -64,8 +86,14 @@ def test_hostile_binding_files(tmp_path, lcm_url, child_env, sanitized, text, co
 def test_fuzz_binding_parser_short(build_dir, child_env, tmp_path):
     exe = build_dir / "san" / "bin" / "chasm_bind_fuzz"
     assert exe.exists(), f"{exe} is not built: run `make sanitize`"
-    p = subprocess.run([exe, "--runs", "30000", "--seed", "11", CORPUS], env=child_env, cwd=tmp_path,
-                       capture_output=True, text=True, timeout=300)
+    p = subprocess.run(
+        [exe, "--runs", "30000", "--seed", "11", CORPUS],
+        env=child_env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert p.returncode == 0, p.stdout + p.stderr
     assert "no crash" in p.stdout
     assert not list(tmp_path.glob("chasm-crash-*"))

@@ -42,8 +42,11 @@ def settle(w: World, n: int = 3) -> None:
         w.tick(0.1, depth=0.0)
 
 
-@pytest.mark.parametrize("stamp", [INT64_MIN, -1, 10**18, INT64_MAX, UTIME_MAX + 1, None],
-                         ids=["int64_min", "minus1", "1e18", "int64_max", "past_2100", "future_60s"])
+@pytest.mark.parametrize(
+    "stamp",
+    [INT64_MIN, -1, 10**18, INT64_MAX, UTIME_MAX + 1, None],
+    ids=["int64_min", "minus1", "1e18", "int64_max", "past_2100", "future_60s"],
+)
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_one_bad_nav_stamp_cannot_switch_off_the_stale_abort(lcm_url, child_env, sanitized, stamp):
     w = World(lcm_url)
@@ -72,8 +75,8 @@ def test_out_of_order_nav_is_dropped_and_counted(lcm_url, child_env):
     mgr = start_manager(lcm_url, child_env)
     try:
         w.wait_for_first_cycle()
-        nav(w, w.utime, depth=6.0)           # newest: deep
-        nav(w, w.utime - 40_000, depth=0.0)   # older: must not undo it
+        nav(w, w.utime, depth=6.0)  # newest: deep
+        nav(w, w.utime - 40_000, depth=0.0)  # older: must not undo it
         w.tick(0.1)
         w.tick(0.1)
         assert w.leaf() == "hold"
@@ -90,12 +93,12 @@ def test_extreme_clock_values_neither_stop_nor_throw_time_nor_speed_up_cycles(lc
         w.wait_for_first_cycle()
         for bad in (INT64_MAX, INT64_MIN, -1, UTIME_MAX + 1):
             clock(w, bad)
-        clock(w, w.utime - 50_000)                # backwards
-        clock(w, w.utime + 3600 * 1_000_000)      # a jump of an hour, once
+        clock(w, w.utime - 50_000)  # backwards
+        clock(w, w.utime + 3600 * 1_000_000)  # a jump of an hour, once
         w.lc.publish("SIM.CLOCK", b"\x01garbage that is not a clock")
         n0 = len(w.status)
         t0 = w.utime
-        for _ in range(40):                       # 2 s of good clock
+        for _ in range(40):  # 2 s of good clock
             w.tick(0.05, depth=0.0)
         s = w.status[-1]
         assert s.clock_invalid == 4 and s.clock_backwards == 1 and s.clock_jumps == 1, fields(s)
@@ -126,12 +129,12 @@ def test_a_clock_from_an_older_term_is_refused(lcm_url, child_env, sanitized):
     mgr = start_manager(lcm_url, child_env, sanitized)
     try:
         w.wait_for_first_cycle()
-        w.term = 3                                 # a new server took over
+        w.term = 3  # a new server took over
         for _ in range(4):
             w.tick(0.05, depth=0.0)
         old = sim_clock_t()
         old.utime, old.server_id, old.step_us, old.term = w.utime + 30_000_000, "frozen", 50_000, 2
-        w.lc.publish("SIM.CLOCK", old.encode())    # 30 s ahead: within the jump limit
+        w.lc.publish("SIM.CLOCK", old.encode())  # 30 s ahead: within the jump limit
         n0 = len(w.status)
         for _ in range(20):
             w.tick(0.05, depth=0.0)
@@ -170,8 +173,10 @@ BAD_FIELDS = [
     (dict(command=mission_command_t.CMD_ABORT, reason="x" * 1025), "at most 1024 characters"),
     (dict(command=mission_command_t.CMD_ABORT, reason="line\ninjected"), "printable text"),
     (dict(command=mission_command_t.CMD_LOAD_PLAN, plan_name="", plan_text="state a {\n}\n"), "needs a plan_name"),
-    (dict(command=mission_command_t.CMD_LOAD_PLAN, plan_name="p\n.chasm", plan_text="state a {\n}\n"),
-     "needs a plan_name"),
+    (
+        dict(command=mission_command_t.CMD_LOAD_PLAN, plan_name="p\n.chasm", plan_text="state a {\n}\n"),
+        "needs a plan_name",
+    ),
     (dict(command=mission_command_t.CMD_LOAD_PLAN, plan_name="p.chasm", plan_text=""), "needs a plan_text"),
     (dict(command=mission_command_t.CMD_START, utime=-5), "refused: utime -5 is outside"),
 ]
@@ -201,9 +206,11 @@ def test_a_rejected_plan_ack_carries_its_errors(lcm_url, child_env):
         typo = (HERE / "dive.chasm").read_text().replace("nav.depth_m > 5", "nav.depht_m > 5")
         ack = w.command(mission_command_t.CMD_LOAD_PLAN, 3, plan_name="typo.chasm", plan_text=typo)
         assert ack.result == mission_ack_t.RESULT_REJECTED
-        assert re.fullmatch(r"plan rejected, mission unchanged: 1 error: typo\.chasm:\d+:\d+: error: unknown "
-                            r"variable 'nav.depht_m' in test 'deep' \(did you mean 'nav.depth_m'\?\)", ack.message), \
-            ack.message
+        assert re.fullmatch(
+            r"plan rejected, mission unchanged: 1 error: typo\.chasm:\d+:\d+: error: unknown "
+            r"variable 'nav.depht_m' in test 'deep' \(did you mean 'nav.depth_m'\?\)",
+            ack.message,
+        ), ack.message
         bad = (HERE / "dive.chasm").read_text() + "".join(f"bogus{i}\n" for i in range(7))
         ack = w.command(mission_command_t.CMD_LOAD_PLAN, 4, plan_name="bad.chasm", plan_text=bad)
         assert ack.result == mission_ack_t.RESULT_REJECTED
@@ -211,8 +218,11 @@ def test_a_rejected_plan_ack_carries_its_errors(lcm_url, child_env):
         assert ack.message.count(": error: unknown statement 'bogus") == 5
         assert ack.message.endswith("(and 2 more)") and len(ack.message) <= 2000
         # a binding error is quoted too
-        unbound = (HERE / "dive.chasm").read_text().replace(
-            "input  nav.vehicle        : string", "input  nav.vehicle : string\noutput gps.fix_m : double m")
+        unbound = (
+            (HERE / "dive.chasm")
+            .read_text()
+            .replace("input  nav.vehicle        : string", "input  nav.vehicle : string\noutput gps.fix_m : double m")
+        )
         ack = w.command(mission_command_t.CMD_LOAD_PLAN, 5, plan_name="unbound.chasm", plan_text=unbound)
         assert "1 error: " in ack.message and "vehicle.bind:1:1: plan output 'gps.fix_m' has no binding" in ack.message
         w.tick(0.1, depth=0.0)
@@ -239,10 +249,14 @@ def padded_plan(size: int) -> str:
     return out
 
 
-@pytest.mark.parametrize("sanitized,small_buffer", [(False, False), (True, False), (False, True)],
-                         ids=["normal", "sanitized", "capped_buffer"])
-def test_the_documented_maximum_plan_gets_through_and_one_byte_more_is_refused(lcm_url, child_env, sanitized,
-                                                                               small_buffer):
+@pytest.mark.parametrize(
+    "sanitized,small_buffer",
+    [(False, False), (True, False), (False, True)],
+    ids=["normal", "sanitized", "capped_buffer"],
+)
+def test_the_documented_maximum_plan_gets_through_and_one_byte_more_is_refused(
+    lcm_url, child_env, sanitized, small_buffer
+):
     """The maximum is 256 KiB when the kernel grants the receive buffer it needs;
     with a buffer capped like a host whose net.core.rmem_max is small (here by
     asking for less in the URL), the manager says so at start and the smaller
@@ -276,31 +290,67 @@ def test_manager_overrides_are_values_and_names_are_checked(lcm_url, child_env, 
     import subprocess
 
     from conftest import c_program
+
     plan = tmp_path / "p.chasm"
-    plan.write_text("param depth = 10 m\n" + (HERE / "dive.chasm").read_text().replace(
-        "setpoint.depth_m = 10 m", "setpoint.depth_m = $depth"))
-    base = [c_program("bin/chasm-manager"), "--plan", plan, "--bind", HERE / "vehicle.bind", "--vehicle", "AUV1",
-            "--name", "NAVIGATOR", "--lcm-url", lcm_url]
-    for define, error in [("depth=12 m\nstate evil {\n}", "control character"),
-                          ("depht=12 m", "did you mean 'depth'"),
-                          ("depth=12 s", "the value is a duration")]:
+    plan.write_text(
+        "param depth = 10 m\n"
+        + (HERE / "dive.chasm").read_text().replace("setpoint.depth_m = 10 m", "setpoint.depth_m = $depth")
+    )
+    base = [
+        c_program("bin/chasm-manager"),
+        "--plan",
+        plan,
+        "--bind",
+        HERE / "vehicle.bind",
+        "--vehicle",
+        "AUV1",
+        "--name",
+        "NAVIGATOR",
+        "--lcm-url",
+        lcm_url,
+    ]
+    for define, error in [
+        ("depth=12 m\nstate evil {\n}", "control character"),
+        ("depht=12 m", "did you mean 'depth'"),
+        ("depth=12 s", "the value is a duration"),
+    ]:
         p = subprocess.run([*base, "-D", define], env=child_env, capture_output=True, text=True, timeout=20)
         assert p.returncode == 2 and error in p.stderr, p.stderr
     p = subprocess.run([*base, "--help"], env=child_env, capture_output=True, text=True, timeout=20)
     assert p.returncode == 0 and "--lcm-url" in p.stdout
 
 
-@pytest.mark.parametrize("args", [
-    ["--vehicle", "AUV 1"], ["--vehicle", ""], ["--vehicle", "V" * 49], ["--name", "N" * 60],
-    ["--name", "NAV\nIGATOR"], ["--rate", "0"], ["--rate", "1e300"], ["--rate", "nan"], ["--rate", "10x"],
-    ["--future-tolerance", "-1"], ["--max-clock-jump", "0"], ["--bogus"], ["-D", "noequals"], ["-D", "=1 m"],
-])
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--vehicle", "AUV 1"],
+        ["--vehicle", ""],
+        ["--vehicle", "V" * 49],
+        ["--name", "N" * 60],
+        ["--name", "NAV\nIGATOR"],
+        ["--rate", "0"],
+        ["--rate", "1e300"],
+        ["--rate", "nan"],
+        ["--rate", "10x"],
+        ["--future-tolerance", "-1"],
+        ["--max-clock-jump", "0"],
+        ["--bogus"],
+        ["-D", "noequals"],
+        ["-D", "=1 m"],
+    ],
+)
 def test_bad_manager_options_are_usage_errors(lcm_url, child_env, args):
     import subprocess
 
     from conftest import c_program
-    opts = {"--plan": str(HERE / "dive.chasm"), "--bind": str(HERE / "vehicle.bind"), "--vehicle": "AUV1",
-            "--name": "NAVIGATOR", "--lcm-url": lcm_url}
+
+    opts = {
+        "--plan": str(HERE / "dive.chasm"),
+        "--bind": str(HERE / "vehicle.bind"),
+        "--vehicle": "AUV1",
+        "--name": "NAVIGATOR",
+        "--lcm-url": lcm_url,
+    }
     extra = []
     if args[0] in opts and len(args) == 2:
         opts[args[0]] = args[1]

@@ -20,10 +20,17 @@ from test_manager import HERE, World, start_manager
 from auv import mission_ack_t, plugin_upload_t
 
 # dive.chasm with a plugin test handler, so uploads of test_basic hot-load.
-PLAN = (HERE / "dive.chasm").read_text().replace(
-    'mission "manager test"', 'mission "manager test"\nuse test_basic').replace(
-    "    when deep -> hold\n", "    test very_deep : above(x = nav.depth_m, limit = 50 m)\n"
-    "    when very_deep -> hold\n    when deep -> hold\n", 1)
+PLAN = (
+    (HERE / "dive.chasm")
+    .read_text()
+    .replace('mission "manager test"', 'mission "manager test"\nuse test_basic')
+    .replace(
+        "    when deep -> hold\n",
+        "    test very_deep : above(x = nav.depth_m, limit = 50 m)\n"
+        "    when very_deep -> hold\n    when deep -> hold\n",
+        1,
+    )
+)
 
 
 def _digest(b: bytes) -> str:
@@ -47,8 +54,13 @@ class Uploader:
 
 def _start(lcm_url, env, sanitized, plan: Path, pdir: Path, allow: Path):
     variant = BUILD / "san" if sanitized else BUILD
-    return start_manager(lcm_url, env, sanitized, plan=plan,
-                         extra=["--plugin-path", variant / "plugins", "--plugin-dir", pdir, "--allowlist", allow])
+    return start_manager(
+        lcm_url,
+        env,
+        sanitized,
+        plan=plan,
+        extra=["--plugin-path", variant / "plugins", "--plugin-dir", pdir, "--allowlist", allow],
+    )
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
@@ -62,8 +74,11 @@ def test_hostile_uploads_fail_and_leave_nothing(lcm_url, child_env, tmp_path, sa
     plan.write_text(PLAN)
     pdir.mkdir()
     child_env["TMPDIR"] = str(tmp_path)
-    allow.write_text("# digest name\n" + "".join(f"{_digest(c.data)} test_basic\n" for c in cases)
-                     + f"{_digest(good)} test_basic\n{_digest(v2)} other_name\n{_digest(noschema)}\n")
+    allow.write_text(
+        "# digest name\n"
+        + "".join(f"{_digest(c.data)} test_basic\n" for c in cases)
+        + f"{_digest(good)} test_basic\n{_digest(v2)} other_name\n{_digest(noschema)}\n"
+    )
     w = World(lcm_url)
     mgr = _start(lcm_url, child_env, sanitized, plan, pdir, allow)
     up = Uploader(w)

@@ -17,8 +17,9 @@ S = 1_000_000
 
 
 def probe(sanitized, *args) -> list[str]:
-    p = subprocess.run([c_program("bin/auv-lcm-probe", sanitized), "time", *map(str, args)],
-                       capture_output=True, text=True, timeout=30)
+    p = subprocess.run(
+        [c_program("bin/auv-lcm-probe", sanitized), "time", *map(str, args)], capture_output=True, text=True, timeout=30
+    )
     assert p.returncode == 0, p.stderr
     return p.stdout.splitlines()
 
@@ -27,14 +28,18 @@ CLOCK_CASES = [
     # values offered in turn -> what each gives
     ([0, 5 * S, 4 * S], ["ok 0", f"ok {5 * S}", "clock backwards"]),
     ([INT64_MIN, -1, INT64_MAX, UTIME_MAX + 1, UTIME_MAX], ["invalid time"] * 4 + [f"ok {UTIME_MAX}"]),
-    ([10 * S, 10 * S + 60 * S], ["ok 10000000", "ok 70000000"]),                  # exactly the maximum jump
+    ([10 * S, 10 * S + 60 * S], ["ok 10000000", "ok 70000000"]),  # exactly the maximum jump
     ([10 * S, 10 * S + 60 * S + 1, 20 * S], ["ok 10000000", "unconfirmed clock jump", "ok 20000000"]),
     ([10 * S, 1000 * S, 1000 * S + S], ["ok 10000000", "unconfirmed clock jump", "ok 1001000000"]),  # confirmed
     ([10 * S, 1000 * S, 999 * S], ["ok 10000000", "unconfirmed clock jump", "unconfirmed clock jump"]),
-    ([10 * S, 1000 * S, 2000 * S, 2000 * S], ["ok 10000000", "unconfirmed clock jump", "unconfirmed clock jump",
-                                              "ok 2000000000"]),
-    ([10 * S, 1000 * S, 11 * S, 1001 * S], ["ok 10000000", "unconfirmed clock jump", "ok 11000000",
-                                            "unconfirmed clock jump"]),                    # a good tick clears it
+    (
+        [10 * S, 1000 * S, 2000 * S, 2000 * S],
+        ["ok 10000000", "unconfirmed clock jump", "unconfirmed clock jump", "ok 2000000000"],
+    ),
+    (
+        [10 * S, 1000 * S, 11 * S, 1001 * S],
+        ["ok 10000000", "unconfirmed clock jump", "ok 11000000", "unconfirmed clock jump"],
+    ),  # a good tick clears it
 ]
 
 

@@ -27,6 +27,7 @@ def samples(cls, seed: int = 1):
 def test_the_type_set_is_complete():
     # The generated package must hold one class per lcmtypes/*.lcm file.
     from conftest import ROOT
+
     files = {p.stem for p in (ROOT / "lcmtypes").glob("*.lcm")}
     assert files == {cls.__name__ for cls in all_types()}
 
@@ -76,8 +77,9 @@ def test_c_reports_a_missing_or_corrupt_sample_file(tmp_path):
     cls = all_types()[0]
     data = random_message(cls, random.Random(3)).encode()
     (tmp_path / f"{full_name(cls)}.bin").write_bytes(struct.pack(">I", len(data)) + data[:-1])
-    run = subprocess.run([c_program("bin/auv-lcm-probe"), "roundtrip", tmp_path],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        [c_program("bin/auv-lcm-probe"), "roundtrip", tmp_path], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 1
     assert f"FAIL {full_name(cls)}" in run.stdout
     assert "no samples" in run.stderr  # every other type has no file

@@ -12,14 +12,16 @@ def test_default_url_stays_local(monkeypatch):
     assert default_url().endswith(":7700?ttl=0")
 
 
-@pytest.mark.parametrize("url", ["udpm://239.255.76.67:7667?ttl=0", "udpm://239.255.76.67:7667",
-                                 "memq://", "file:///tmp/x.lcmlog?mode=w"])
+@pytest.mark.parametrize(
+    "url", ["udpm://239.255.76.67:7667?ttl=0", "udpm://239.255.76.67:7667", "memq://", "file:///tmp/x.lcmlog?mode=w"]
+)
 def test_local_urls_pass(url):
     assert check_local(url) == url
 
 
-@pytest.mark.parametrize("url", ["udpm://239.255.76.67:7667?ttl=1", "udpm://239.255.76.67:7667?ttl=32",
-                                 "udpm://239.255.76.67:7667?ttl=x"])
+@pytest.mark.parametrize(
+    "url", ["udpm://239.255.76.67:7667?ttl=1", "udpm://239.255.76.67:7667?ttl=32", "udpm://239.255.76.67:7667?ttl=x"]
+)
 def test_urls_that_would_leave_the_host_are_refused(url):
     with pytest.raises(ValueError):
         check_local(url)

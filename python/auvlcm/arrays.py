@@ -24,30 +24,39 @@ import numpy as np
 from auvlcm.log import LogStats, read_events
 from auvlcm.types import by_name
 
-_NUMERIC = {"int8_t": np.int64, "int16_t": np.int64, "int32_t": np.int64, "int64_t": np.int64,
-            "byte": np.int64, "float": np.float64, "double": np.float64, "boolean": np.bool_}
+_NUMERIC = {
+    "int8_t": np.int64,
+    "int16_t": np.int64,
+    "int32_t": np.int64,
+    "int64_t": np.int64,
+    "byte": np.int64,
+    "float": np.float64,
+    "double": np.float64,
+    "boolean": np.bool_,
+}
 
 
 @dataclass
 class Column:
-    name: str           # C-style path, e.g. "position_cov_m2[0][1]"
-    expr: str           # Python expression on message `m`
-    dtype: Any          # numpy dtype, or object for strings
+    name: str  # C-style path, e.g. "position_cov_m2[0][1]"
+    expr: str  # Python expression on message `m`
+    dtype: Any  # numpy dtype, or object for strings
 
 
 @dataclass
 class Layout:
     """How one message type flattens: fixed columns and variable-length fields."""
+
     columns: list[Column]
-    ragged: list[str]               # top-level fields with a variable length
-    row: Callable[[Any], tuple]     # message -> values of `columns`, in order
+    ragged: list[str]  # top-level fields with a variable length
+    row: Callable[[Any], tuple]  # message -> values of `columns`, in order
 
 
 def _walk(cls: type, prefix: str, expr: str, cols: list[Column], ragged: list[str]) -> None:
     for name, tname, dims in zip(cls.__slots__, cls.__typenames__, cls.__dimensions__):
         path, code = f"{prefix}{name}", f"{expr}.{name}"
         if dims and any(not isinstance(d, int) for d in dims):
-            ragged.append(path)     # size read from another field: differs per message
+            ragged.append(path)  # size read from another field: differs per message
             continue
         for index in _indices(dims or []):
             sub = "".join(f"[{i}]" for i in index)
@@ -85,11 +94,12 @@ def layout(cls: type) -> Layout:
 @dataclass
 class ChannelArrays:
     """One channel's messages as columns; `t` is the messages' own sim time [s]."""
+
     channel: str
     type_name: str
-    log_time_us: np.ndarray                 # the logging host's receive time
+    log_time_us: np.ndarray  # the logging host's receive time
     columns: dict[str, np.ndarray]
-    ragged: dict[str, list]                 # variable-length fields, one list per message
+    ragged: dict[str, list]  # variable-length fields, one list per message
 
     def __len__(self) -> int:
         return len(self.log_time_us)
@@ -110,9 +120,9 @@ class LogArrays:
     path: Path
     channels: dict[str, ChannelArrays]
     stats: LogStats
-    undecodable: Counter = field(default_factory=Counter)     # per channel
+    undecodable: Counter = field(default_factory=Counter)  # per channel
     type_conflicts: Counter = field(default_factory=Counter)  # other types on a channel
-    messages: dict[str, list] = field(default_factory=dict)   # kept decoded messages
+    messages: dict[str, list] = field(default_factory=dict)  # kept decoded messages
 
     def __getitem__(self, channel: str) -> ChannelArrays:
         try:
@@ -147,12 +157,14 @@ class _Builder:
         by_col = list(zip(*self.rows)) if self.rows else [()] * len(self.layout.columns)
         for col, values in zip(self.layout.columns, by_col):
             cols[col.name] = np.array(values, dtype=col.dtype)
-        return ChannelArrays(self.channel, self.cls.__name__, np.array(self.log_time, dtype=np.int64),
-                             cols, self.ragged)
+        return ChannelArrays(
+            self.channel, self.cls.__name__, np.array(self.log_time, dtype=np.int64), cols, self.ragged
+        )
 
 
-def load_log(path: str | Path, channels: str | Iterable[str] | None = None,
-             keep_messages: str | None = None) -> LogArrays:
+def load_log(
+    path: str | Path, channels: str | Iterable[str] | None = None, keep_messages: str | None = None
+) -> LogArrays:
     """Read a log into arrays.
 
     channels: a regular expression or a list of names to load (default: all).
@@ -180,7 +192,7 @@ def load_log(path: str | Path, channels: str | Iterable[str] | None = None,
         b = builders.get(ev.channel)
         if b is None:
             b = builders[ev.channel] = _Builder(ev.channel, type(ev.msg))
-        elif type(ev.msg) is not b.cls:   # one type per channel is the rule; count the rest
+        elif type(ev.msg) is not b.cls:  # one type per channel is the rule; count the rest
             out.type_conflicts[ev.channel] += 1
             continue
         b.add(ev.timestamp, ev.msg)

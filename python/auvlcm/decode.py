@@ -36,10 +36,8 @@ def decode_strict(cls: type, data: bytes):
     buf.seek(8)
     try:
         msg = cls._decode_one(buf)
-    except (EOFError, struct.error, ValueError, UnicodeDecodeError, IndexError, OverflowError,
-            MemoryError) as exc:
+    except (EOFError, struct.error, ValueError, UnicodeDecodeError, IndexError, OverflowError, MemoryError) as exc:
         raise DecodeError(f"truncated or malformed {cls.__name__}: {exc}", "malformed") from None
     if buf.tell() != len(data):
-        raise DecodeError(f"{len(data) - buf.tell()} bytes left over after {cls.__name__}",
-                          "malformed")
+        raise DecodeError(f"{len(data) - buf.tell()} bytes left over after {cls.__name__}", "malformed")
     return msg

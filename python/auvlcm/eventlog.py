@@ -28,7 +28,7 @@ from typing import Iterator
 SYNC = 0xEDA1DA01
 SYNC_BYTES = struct.pack(">I", SYNC)
 HEADER = struct.Struct(">Iqqii")
-MAX_CHANNEL = 255           # LCM allows 63 (LCM_MAX_CHANNEL_NAME_LENGTH); lcm-logger writes what it got
+MAX_CHANNEL = 255  # LCM allows 63 (LCM_MAX_CHANNEL_NAME_LENGTH); lcm-logger writes what it got
 
 
 @dataclass
@@ -39,18 +39,19 @@ class RawEvent:
     data: bytes
     offset: int
     bad_channel: bool = False
-    suspect: bool = False     # garbage follows it: its length may be wrong (decode to be sure)
+    suspect: bool = False  # garbage follows it: its length may be wrong (decode to be sure)
 
 
 @dataclass
 class Damage:
     """What a read skipped. lost_events > 0 means events were lost."""
+
     skipped_bytes: int = 0
-    regions: list[tuple[int, int]] = field(default_factory=list)   # (offset, length) skipped
+    regions: list[tuple[int, int]] = field(default_factory=list)  # (offset, length) skipped
     lost_events: int = 0
-    truncated: bool = False       # the file ends inside an event
-    bad_channel_names: int = 0    # not UTF-8: kept, with U+FFFD in the name
-    number_gaps: int = 0          # sound events whose numbers jump forward: whole events cut out
+    truncated: bool = False  # the file ends inside an event
+    bad_channel_names: int = 0  # not UTF-8: kept, with U+FFFD in the name
+    number_gaps: int = 0  # sound events whose numbers jump forward: whole events cut out
 
     @property
     def any(self) -> bool:
@@ -61,15 +62,21 @@ class Damage:
         out = []
         if self.skipped_bytes:
             where = ", ".join(f"{o}+{n}" for o, n in self.regions[:5]) + (" ..." if len(self.regions) > 5 else "")
-            out.append(f"{path}: damaged: skipped {self.skipped_bytes} byte(s) in {len(self.regions)} "
-                       f"region(s) (offset+length: {where}); about {self.lost_events} event(s) lost"
-                       + ("; the file ends inside an event" if self.truncated else ""))
+            out.append(
+                f"{path}: damaged: skipped {self.skipped_bytes} byte(s) in {len(self.regions)} "
+                f"region(s) (offset+length: {where}); about {self.lost_events} event(s) lost"
+                + ("; the file ends inside an event" if self.truncated else "")
+            )
         if self.number_gaps:
-            out.append(f"{path}: the event numbers jump {self.number_gaps} time(s) between sound events "
-                       f"(whole events missing; {self.lost_events} event(s) lost in all)")
+            out.append(
+                f"{path}: the event numbers jump {self.number_gaps} time(s) between sound events "
+                f"(whole events missing; {self.lost_events} event(s) lost in all)"
+            )
         if self.bad_channel_names:
-            out.append(f"{path}: {self.bad_channel_names} event(s) with a channel name that is not UTF-8 "
-                       "(kept, shown with U+FFFD)")
+            out.append(
+                f"{path}: {self.bad_channel_names} event(s) with a channel name that is not UTF-8 "
+                "(kept, shown with U+FFFD)"
+            )
         return out
 
 
@@ -83,7 +90,7 @@ class _Numbers:
         self.damage, self.base, self.odd, self.after_skip = damage, -1, None, False
 
     def see(self, n: int) -> None:
-        if self.base < 0 or self.after_skip:        # the gap before it was counted with the skip
+        if self.base < 0 or self.after_skip:  # the gap before it was counted with the skip
             self.base, self.odd, self.after_skip = n, None, False
         elif self.odd is None:
             if n == self.base + 1:
@@ -92,10 +99,10 @@ class _Numbers:
                 self.odd = n
         else:
             odd, self.odd = self.odd, None
-            if n == odd + 1 and odd > self.base + 1:    # confirmed: events base+1 .. odd-1 are missing
+            if n == odd + 1 and odd > self.base + 1:  # confirmed: events base+1 .. odd-1 are missing
                 self.damage.lost_events += odd - self.base - 1
                 self.damage.number_gaps += 1
-            self.base = n                                # else a damaged number, or a restart
+            self.base = n  # else a damaged number, or a restart
 
 
 def _header_at(buf, pos: int, size: int, need_sync: bool = True) -> tuple[int, int, int, int] | None:
@@ -114,13 +121,13 @@ def _chains(buf, pos: int, size: int, hdr) -> bool:
     """The event at pos ends at the end of the file or where the next sync word
     starts (that header is judged on its own when it is reached)."""
     end = pos + HEADER.size + hdr[2] + hdr[3]
-    if end == size or buf[end:end + 4] == SYNC_BYTES[:min(4, size - end)]:
+    if end == size or buf[end : end + 4] == SYNC_BYTES[: min(4, size - end)]:
         return True
-    nxt = _header_at(buf, end, size, need_sync=False)    # the next one's sync word damaged?
+    nxt = _header_at(buf, end, size, need_sync=False)  # the next one's sync word damaged?
     if nxt is None:
         return False
     after = end + HEADER.size + nxt[2] + nxt[3]
-    return after == size or buf[after:after + 4] == SYNC_BYTES[:min(4, size - after)]
+    return after == size or buf[after : after + 4] == SYNC_BYTES[: min(4, size - after)]
 
 
 def _resync(buf, start: int, size: int) -> int:
@@ -148,19 +155,24 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
             numbers = _Numbers(damage)
             unpack, hsize = HEADER.unpack_from, HEADER.size
             while pos < size:
-                if pos + hsize <= size:     # the common case, inline: a sound event followed by a sync word
+                if pos + hsize <= size:  # the common case, inline: a sound event followed by a sync word
                     sync, number, ts, clen, dlen = unpack(buf, pos)
                     end = pos + hsize + clen + dlen
-                    if (sync == SYNC and 0 < clen <= MAX_CHANNEL and number >= 0 and dlen >= 0
-                            and (end == size or (end + 4 <= size and buf[end:end + 4] == SYNC_BYTES))):
-                        raw_name = buf[pos + hsize:pos + hsize + clen]
+                    if (
+                        sync == SYNC
+                        and 0 < clen <= MAX_CHANNEL
+                        and number >= 0
+                        and dlen >= 0
+                        and (end == size or (end + 4 <= size and buf[end : end + 4] == SYNC_BYTES))
+                    ):
+                        raw_name = buf[pos + hsize : pos + hsize + clen]
                         try:
                             name, bad = raw_name.decode("utf-8"), False
                         except UnicodeDecodeError:
                             name, bad = raw_name.decode("utf-8", errors="replace"), True
                             damage.bad_channel_names += 1
                         numbers.see(number)
-                        yield RawEvent(number, ts, name, buf[pos + hsize + clen:end], pos, bad)
+                        yield RawEvent(number, ts, name, buf[pos + hsize + clen : end], pos, bad)
                         last_number, pos = number, end
                         continue
                 hdr = _header_at(buf, pos, size)
@@ -186,13 +198,13 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
                     continue
                 number, ts, clen, dlen = hdr
                 start = pos + HEADER.size
-                raw_name = bytes(buf[start:start + clen])
+                raw_name = bytes(buf[start : start + clen])
                 try:
                     name, bad = raw_name.decode("utf-8"), False
                 except UnicodeDecodeError:
                     name, bad = raw_name.decode("utf-8", errors="replace"), True
                     damage.bad_channel_names += 1
-                data = bytes(buf[start + clen:start + clen + dlen])
+                data = bytes(buf[start + clen : start + clen + dlen])
                 numbers.see(number)
                 yield RawEvent(number, ts, name, data, pos, bad, suspect)
                 last_number = number
@@ -201,4 +213,4 @@ def read_raw(path: str | Path, damage: Damage | None = None) -> Iterator[RawEven
 
 def _partial(buf, pos: int, size: int) -> bool:
     """The skipped tail starts with a sync word: an event cut off by the end of the file."""
-    return buf[pos:pos + 4] == SYNC_BYTES[:max(0, min(4, size - pos))]
+    return buf[pos : pos + 4] == SYNC_BYTES[: max(0, min(4, size - pos))]

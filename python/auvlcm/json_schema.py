@@ -49,8 +49,13 @@ def _struct_schema(cls: type) -> dict[str, Any]:
             if isinstance(dim, int):
                 schema.update(minItems=dim, maxItems=dim)
         props[name] = schema
-    return {"type": "object", "title": f"auv.{cls.__name__}", "properties": props,
-            "required": list(cls.__slots__), "additionalProperties": False}
+    return {
+        "type": "object",
+        "title": f"auv.{cls.__name__}",
+        "properties": props,
+        "required": list(cls.__slots__),
+        "additionalProperties": False,
+    }
 
 
 @lru_cache(maxsize=None)
@@ -78,5 +83,7 @@ def _value(v: Any, typename: str, dims: list | None) -> Any:
 def to_json(msg: Any) -> dict[str, Any]:
     """A decoded message as a JSON-ready dictionary that its schema accepts."""
     cls = type(msg)
-    return {name: _value(getattr(msg, name), t, d)
-            for name, t, d in zip(cls.__slots__, cls.__typenames__, cls.__dimensions__)}
+    return {
+        name: _value(getattr(msg, name), t, d)
+        for name, t, d in zip(cls.__slots__, cls.__typenames__, cls.__dimensions__)
+    }

@@ -20,9 +20,9 @@ from auvlcm.types import type_of
 
 @dataclass
 class Event:
-    timestamp: int      # the logging host's receive time [us] (not sim time)
+    timestamp: int  # the logging host's receive time [us] (not sim time)
     channel: str
-    msg: Any            # decoded message, or None if it did not decode
+    msg: Any  # decoded message, or None if it did not decode
     error: str = ""
 
 
@@ -34,11 +34,11 @@ LCM_INTERNAL_CHANNELS = frozenset({"LCM_SELF_TEST"})
 @dataclass
 class LogStats:
     events: int = 0
-    internal: int = 0   # liblcm's own traffic, skipped
+    internal: int = 0  # liblcm's own traffic, skipped
     decoded: int = 0
     undecodable: int = 0
     per_channel: Counter = field(default_factory=Counter)
-    damage: Damage = field(default_factory=Damage)     # what a damaged file made us skip
+    damage: Damage = field(default_factory=Damage)  # what a damaged file made us skip
 
     @property
     def events_lost(self) -> int:
@@ -70,7 +70,7 @@ def read_events(path: str | Path, stats: LogStats | None = None) -> Iterator[Eve
     stats = stats if stats is not None else LogStats()
     for ev in read_raw(path, stats.damage):
         cls = type_of(ev.data)
-        if ev.suspect and not _decodes(cls, ev.data):   # its length was damaged, not garbage after it
+        if ev.suspect and not _decodes(cls, ev.data):  # its length was damaged, not garbage after it
             stats.damage.lost_events += 1
             continue
         if ev.channel in LCM_INTERNAL_CHANNELS:

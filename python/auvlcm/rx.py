@@ -55,13 +55,12 @@ class Subscription:
             setattr(self.stats, exc.kind, getattr(self.stats, exc.kind) + 1)
             self.stats.last_error = str(exc)
             if self.stats.decode_errors <= self.REPORT_FIRST:
-                print(f"lcm_rx: {channel}: dropped {len(data)}-byte message ({exc})",
-                      file=sys.stderr)
+                print(f"lcm_rx: {channel}: dropped {len(data)}-byte message ({exc})", file=sys.stderr)
             return
         self.stats.delivered += 1
         try:
             self.handler(channel, msg)
-        except Exception as exc:     # noqa: BLE001  (one message must not end the process)
+        except Exception as exc:  # noqa: BLE001  (one message must not end the process)
             self.stats.handler_errors += 1
             self.stats.last_error = f"{type(exc).__name__}: {exc}"
             if self.stats.handler_errors <= self.REPORT_FIRST:
@@ -69,8 +68,11 @@ class Subscription:
                 while tb is not None and tb.tb_next is not None:
                     tb = tb.tb_next
                 where = f" at {tb.tb_frame.f_code.co_filename}:{tb.tb_lineno}" if tb else ""
-                print(f"lcm_rx: {channel}: dropped a message its handler could not use "
-                      f"({type(exc).__name__}: {exc}{where})", file=sys.stderr)
+                print(
+                    f"lcm_rx: {channel}: dropped a message its handler could not use "
+                    f"({type(exc).__name__}: {exc}{where})",
+                    file=sys.stderr,
+                )
 
 
 class Receiver:
@@ -80,8 +82,9 @@ class Receiver:
         self.lc = lc
         self.subscriptions: list[Subscription] = []
 
-    def subscribe(self, channel: str, msg_type: type, handler: Handler,
-                  queue_capacity: int | None = None) -> Subscription:
+    def subscribe(
+        self, channel: str, msg_type: type, handler: Handler, queue_capacity: int | None = None
+    ) -> Subscription:
         sub = Subscription(channel, msg_type, handler)
         sub.lcm_sub = self.lc.subscribe(channel, sub.on_raw)
         if queue_capacity is not None:

@@ -87,8 +87,7 @@ class ThreadedLcm:
     on one CPU only (a spinning sender would hold the publisher's only core).
     """
 
-    def __init__(self, url: str, lc: lcm.LCM | None = None, slots: int = 512,
-                 spin_us: int | None = None) -> None:
+    def __init__(self, url: str, lc: lcm.LCM | None = None, slots: int = 512, spin_us: int | None = None) -> None:
         if spin_us is None:
             spin_us = DEFAULT_SPIN_US if len(os.sched_getaffinity(0)) > 1 else 0
         fast, slow = _load()
@@ -153,8 +152,10 @@ class ThreadedLcm:
     def summary(self) -> str:
         st = self.stats()
         err = self.last_error()
-        return (f"sender thread: {st['full_waits']} waits on a full queue, "
-                f"{st['send_errors']} send errors{f' (last: {err})' if err else ''}")
+        return (
+            f"sender thread: {st['full_waits']} waits on a full queue, "
+            f"{st['send_errors']} send errors{f' (last: {err})' if err else ''}"
+        )
 
     def close(self) -> None:
         """Send what is queued, stop the thread. Receiving still works."""
@@ -171,7 +172,7 @@ class ThreadedLcm:
 
     # ------------------------------------------------------- everything else
     def __getattr__(self, name: str):
-        if name in ("lc", "_h"):      # not set yet: __init__ failed part-way
+        if name in ("lc", "_h"):  # not set yet: __init__ failed part-way
             raise AttributeError(name)
         return getattr(self.lc, name)
 

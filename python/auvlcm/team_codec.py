@@ -68,10 +68,11 @@ class DecodedMessage:
 @dataclass
 class Decoded:
     """What one frame held: its messages up to the first fault, if any."""
+
     messages: list[DecodedMessage] = field(default_factory=list)
-    error: str | None = None           # None: the frame decoded to its end
-    fault: str | None = None           # "truncated", "unknown_id" or "corrupt" (C: TEAM_ERR_*)
-    undecodable_bits: int = 0          # bits from the fault to the frame's end
+    error: str | None = None  # None: the frame decoded to its end
+    fault: str | None = None  # "truncated", "unknown_id" or "corrupt" (C: TEAM_ERR_*)
+    undecodable_bits: int = 0  # bits from the fault to the frame's end
 
     @property
     def ok(self) -> bool:
@@ -94,8 +95,9 @@ class FrameWriter:
         """Append one message; EncodeError/FrameFull leave the frame unchanged."""
         acc, nbits = self.codec.encode_bits(name, values)
         if self._nbits + nbits > self.max_bits:
-            raise FrameFull(f"{name}: {nbits} bits do not fit in the "
-                            f"{self.max_bits - self._nbits} bits left of the frame")
+            raise FrameFull(
+                f"{name}: {nbits} bits do not fit in the {self.max_bits - self._nbits} bits left of the frame"
+            )
         self._acc = (self._acc << nbits) | acc
         self._nbits += nbits
         self.count += 1
@@ -138,8 +140,7 @@ class TeamCodec:
     def writer(self, max_bytes: int) -> FrameWriter:
         return FrameWriter(self, max_bytes)
 
-    def encode_frame(self, messages: Iterable[tuple[str, Mapping[str, object]]],
-                     max_bytes: int = 256) -> bytes:
+    def encode_frame(self, messages: Iterable[tuple[str, Mapping[str, object]]], max_bytes: int = 256) -> bytes:
         """All messages in one frame; the first refused one raises."""
         w = self.writer(max_bytes)
         for name, values in messages:
@@ -170,8 +171,7 @@ class TeamCodec:
             if m is None:
                 out.error, out.fault = f"unknown message id {ident} at bit {start}", "unknown_id"
             elif total - start < m.bits:
-                out.error = (f"truncated {m.name} at bit {start}: {m.bits} bits needed, "
-                             f"{total - start} left")
+                out.error = f"truncated {m.name} at bit {start}: {m.bits} bits needed, {total - start} left"
                 out.fault = "truncated"
             else:
                 values: dict[str, float | int] = {}

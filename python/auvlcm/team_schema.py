@@ -28,10 +28,12 @@ DEFAULT_SCHEMA = Path(__file__).resolve().parents[2] / "c" / "plugins" / "team" 
 
 NAME_RE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 # C keywords (C11) and names that would clash with what the generator writes.
-C_KEYWORDS = frozenset("""auto break case char const continue default do double else enum
+C_KEYWORDS = frozenset(
+    """auto break case char const continue default do double else enum
 extern float for goto if inline int long register restrict return short signed sizeof
 static struct switch typedef union unsigned void volatile while _Alignas _Alignof _Atomic
-_Bool _Complex _Generic _Imaginary _Noreturn _Static_assert _Thread_local""".split())
+_Bool _Complex _Generic _Imaginary _Noreturn _Static_assert _Thread_local""".split()
+)
 RESERVED_FIELDS = frozenset({"id"})
 
 
@@ -46,11 +48,11 @@ class SchemaError(Exception):
 @dataclass(frozen=True)
 class Field:
     name: str
-    kind: str          # "int" or "fixed"
+    kind: str  # "int" or "fixed"
     lo: float
     hi: float
     step: float
-    steps: int         # raw values run 0..steps
+    steps: int  # raw values run 0..steps
     bits: int
     line: int
     comment: str = ""
@@ -68,7 +70,7 @@ class Message:
     line: int
     col: int
     fields: list[Field] = field(default_factory=list)
-    faulty: bool = False   # a field line was refused: no size or emptiness check
+    faulty: bool = False  # a field line was refused: no size or emptiness check
 
     @property
     def bits(self) -> int:
@@ -90,8 +92,7 @@ class Schema:
         for m in self.messages:
             if m.name == name:
                 return m
-        raise KeyError(f"team schema has no message {name!r} (known: "
-                       f"{', '.join(m.name for m in self.messages)})")
+        raise KeyError(f"team schema has no message {name!r} (known: {', '.join(m.name for m in self.messages)})")
 
     def by_id(self, ident: int) -> Message | None:
         for m in self.messages:
@@ -160,8 +161,12 @@ def parse_text(text: str, path: str = "<schema>") -> Schema:
         if not m.fields:
             err(m.line, m.col, f"message '{m.name}' has no fields")
         elif m.nbytes > m.max_bytes:
-            err(m.line, m.col, f"message '{m.name}' takes {m.bits} bits = {m.nbytes} bytes, "
-                f"over its max_bytes {m.max_bytes}: widen a step or narrow a range")
+            err(
+                m.line,
+                m.col,
+                f"message '{m.name}' takes {m.bits} bits = {m.nbytes} bytes, "
+                f"over its max_bytes {m.max_bytes}: widen a step or narrow a range",
+            )
     if not messages and not errors:
         err(1, 1, "the schema declares no message")
     if errors:
@@ -217,8 +222,7 @@ def _parse_field(toks, lineno, err, msg: Message, comment: str) -> Field | None:
     want = 4 if kind == "int" else 5
     if len(toks) != want:
         col = toks[want][1] if len(toks) > want else toks[-1][1]
-        err(lineno, col, f"field '{name}': expected "
-            + ("'int MIN MAX'" if kind == "int" else "'fixed MIN MAX STEP'"))
+        err(lineno, col, f"field '{name}': expected " + ("'int MIN MAX'" if kind == "int" else "'fixed MIN MAX STEP'"))
         return None
     ok = True
     bad = _bad_name(name)
@@ -237,7 +241,7 @@ def _parse_field(toks, lineno, err, msg: Message, comment: str) -> Field | None:
         if v is None:
             err(lineno, col, f"'{text}' is not a number")
             ok = False
-        elif kind == "int" and (_whole(v) is None or not -2**31 <= v <= 2**31 - 1):
+        elif kind == "int" and (_whole(v) is None or not -(2**31) <= v <= 2**31 - 1):
             err(lineno, col, f"'{text}': an int field's bounds are whole numbers of 32 bits")
             ok = False
         values.append(v)
@@ -253,8 +257,11 @@ def _parse_field(toks, lineno, err, msg: Message, comment: str) -> Field | None:
         return None
     steps = _whole((hi - lo) / step)
     if steps is None:
-        err(lineno, toks[4][1], f"field '{name}': MAX - MIN ({hi - lo:g}) is not a whole number "
-            f"of steps of {step:g}: adjust MAX or STEP")
+        err(
+            lineno,
+            toks[4][1],
+            f"field '{name}': MAX - MIN ({hi - lo:g}) is not a whole number of steps of {step:g}: adjust MAX or STEP",
+        )
         return None
     bits = max(1, steps.bit_length())
     if bits > MAX_FIELD_BITS:

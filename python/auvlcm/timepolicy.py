@@ -22,17 +22,17 @@ import sys
 from dataclasses import dataclass, field
 from typing import Callable
 
-UTIME_MAX = 4_102_444_800_000_000       # 2100-01-01T00:00:00Z [us]
-MAX_CLOCK_JUMP_US = 60_000_000          # global time a clock may move forward unconfirmed
-FUTURE_TOLERANCE_US = 1_000_000         # how far ahead of `now` a data stamp may be
+UTIME_MAX = 4_102_444_800_000_000  # 2100-01-01T00:00:00Z [us]
+MAX_CLOCK_JUMP_US = 60_000_000  # global time a clock may move forward unconfirmed
+FUTURE_TOLERANCE_US = 1_000_000  # how far ahead of `now` a data stamp may be
 
 # the reasons, as counters and log lines name them
-INVALID = "invalid"             # outside [0, UTIME_MAX]
-FUTURE = "future"               # more than the tolerance ahead of the receiver's clock
-OUT_OF_ORDER = "out_of_order"   # older than the newest accepted on the same input
-REGRESSION = "regression"       # a clock value behind the current one
-JUMP = "jump"                   # a clock jump not (yet) confirmed
-OLD_TERM = "old_term"           # a clock (or world message) from an election term already over
+INVALID = "invalid"  # outside [0, UTIME_MAX]
+FUTURE = "future"  # more than the tolerance ahead of the receiver's clock
+OUT_OF_ORDER = "out_of_order"  # older than the newest accepted on the same input
+REGRESSION = "regression"  # a clock value behind the current one
+JUMP = "jump"  # a clock jump not (yet) confirmed
+OLD_TERM = "old_term"  # a clock (or world message) from an election term already over
 REASONS = (INVALID, FUTURE, OUT_OF_ORDER, REGRESSION, JUMP, OLD_TERM)
 
 
@@ -48,15 +48,14 @@ def _stderr(line: str) -> None:
 class TimeDrops:
     """Per-reason counts of dropped timestamps; one log line per reason, the first time."""
 
-    who: str                                    # log prefix, e.g. "sim: AUV1"
+    who: str  # log prefix, e.g. "sim: AUV1"
     log: Callable[[str], None] = _stderr
     counts: dict[str, int] = field(default_factory=lambda: dict.fromkeys(REASONS, 0))
 
     def drop(self, reason: str, what: str, detail: str) -> None:
         self.counts[reason] = self.counts.get(reason, 0) + 1
         if self.counts[reason] == 1:
-            self.log(f"{self.who}: {what}: dropped a message: {detail} ({reason}; "
-                     "counted, logged once)")
+            self.log(f"{self.who}: {what}: dropped a message: {detail} ({reason}; counted, logged once)")
 
     @property
     def total(self) -> int:
@@ -85,16 +84,15 @@ class ClockGate:
     (raise_term) is never undercut.
     """
 
-    def __init__(self, drops: TimeDrops, what: str = "SIM.CLOCK",
-                 max_jump_us: int = MAX_CLOCK_JUMP_US) -> None:
+    def __init__(self, drops: TimeDrops, what: str = "SIM.CLOCK", max_jump_us: int = MAX_CLOCK_JUMP_US) -> None:
         self.drops = drops
         self.what = what
         self.max_jump_us = max_jump_us
         self.now: int | None = None
         self.term = 0
-        self.term_floor = 0                     # raised by what else the process knows
-        self._pending: tuple[int, int] | None = None   # (utime, term) waiting for confirmation
-        self._provisional = False               # the first value, not yet confirmed
+        self.term_floor = 0  # raised by what else the process knows
+        self._pending: tuple[int, int] | None = None  # (utime, term) waiting for confirmation
+        self._provisional = False  # the first value, not yet confirmed
 
     def raise_term(self, term: int) -> None:
         """A term known to have started (e.g. its server's heartbeat): older ones are over."""
@@ -106,8 +104,7 @@ class ClockGate:
             self.drops.drop(INVALID, self.what, f"utime {utime} outside [0, {UTIME_MAX}]")
             return False
         if term < self.term_floor:
-            self.drops.drop(OLD_TERM, self.what, f"term {term} after term {self.term_floor} "
-                            f"(utime {utime})")
+            self.drops.drop(OLD_TERM, self.what, f"term {term} after term {self.term_floor} (utime {utime})")
             return False
         if self.now is None:
             self._take(utime, term)
@@ -120,7 +117,7 @@ class ClockGate:
         confirmable = reason == JUMP or self._provisional
         p = self._pending
         if confirmable and p is not None and p[1] == term and 0 <= utime - p[0] <= self.max_jump_us:
-            self._take(utime, term)             # the second message confirms the first
+            self._take(utime, term)  # the second message confirms the first
             return True
         if confirmable:
             self._pending = (utime, term)
@@ -145,8 +142,7 @@ class ClockGate:
 class InputGate:
     """One data input (a channel, a sender): stamps valid, not from the future, in order."""
 
-    def __init__(self, drops: TimeDrops, what: str,
-                 tolerance_us: int = FUTURE_TOLERANCE_US) -> None:
+    def __init__(self, drops: TimeDrops, what: str, tolerance_us: int = FUTURE_TOLERANCE_US) -> None:
         self.drops = drops
         self.what = what
         self.tolerance_us = tolerance_us
@@ -158,12 +154,14 @@ class InputGate:
             self.drops.drop(INVALID, self.what, f"utime {utime} outside [0, {UTIME_MAX}]")
             return False
         if now_us is not None and utime > now_us + self.tolerance_us:
-            self.drops.drop(FUTURE, self.what, f"utime {utime} is more than "
-                            f"{self.tolerance_us / 1e6:g} s ahead of the clock's {int(now_us)}")
+            self.drops.drop(
+                FUTURE,
+                self.what,
+                f"utime {utime} is more than {self.tolerance_us / 1e6:g} s ahead of the clock's {int(now_us)}",
+            )
             return False
         if self.newest is not None and utime < self.newest:
-            self.drops.drop(OUT_OF_ORDER, self.what, f"utime {utime} older than the newest "
-                            f"accepted {self.newest}")
+            self.drops.drop(OUT_OF_ORDER, self.what, f"utime {utime} older than the newest accepted {self.newest}")
             return False
         self.newest = utime
         return True
@@ -171,9 +169,13 @@ class InputGate:
     def judge_held(self, now_us: int | float) -> bool:
         """Once a clock exists: is the value held before it (the newest) still acceptable?"""
         if self.newest is not None and self.newest > now_us + self.tolerance_us:
-            self.drops.drop(FUTURE, self.what, f"utime {self.newest}, held before the clock "
-                            f"started, is more than {self.tolerance_us / 1e6:g} s ahead of "
-                            f"its {int(now_us)}")
+            self.drops.drop(
+                FUTURE,
+                self.what,
+                f"utime {self.newest}, held before the clock "
+                f"started, is more than {self.tolerance_us / 1e6:g} s ahead of "
+                f"its {int(now_us)}",
+            )
             self.newest = None
             return False
         return True

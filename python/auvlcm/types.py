@@ -20,8 +20,9 @@ def package() -> ModuleType:
 @lru_cache(maxsize=1)
 def all_types() -> tuple[type, ...]:
     """Every struct in lcmtypes/, nested ones included, sorted by name."""
-    found = [obj for _, obj in inspect.getmembers(_generated, inspect.isclass)
-             if hasattr(obj, "_get_packed_fingerprint")]
+    found = [
+        obj for _, obj in inspect.getmembers(_generated, inspect.isclass) if hasattr(obj, "_get_packed_fingerprint")
+    ]
     return tuple(sorted(found, key=lambda c: c.__name__))
 
 

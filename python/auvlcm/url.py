@@ -35,8 +35,10 @@ def check_local(url: str, inside_netns: bool | None = None) -> str:
         raise ValueError(f"{url}: ttl must be a number")
     ttl = int(ttl_values[-1])
     if ttl > 1 or (ttl == 1 and not inside_netns):
-        raise ValueError(f"{url}: ttl={ttl} would send beyond this host; use ttl=0 "
-                         "(a TTL of 1 only inside a network namespace made for the run)")
+        raise ValueError(
+            f"{url}: ttl={ttl} would send beyond this host; use ttl=0 "
+            "(a TTL of 1 only inside a network namespace made for the run)"
+        )
     return url
 
 

@@ -13,5 +13,17 @@ from confcheck.names import VEHICLE_ID, vehicle_id_problem
 from confcheck.reader import LIMITS, Limits, read_yaml
 from confcheck.rules import Rule, rule_of, setting
 
-__all__ = ["Checker", "ConfigError", "LIMITS", "Limits", "Rule", "VEHICLE_ID", "join", "read_yaml", "report",
-           "rule_of", "setting", "vehicle_id_problem"]
+__all__ = [
+    "Checker",
+    "ConfigError",
+    "LIMITS",
+    "Limits",
+    "Rule",
+    "VEHICLE_ID",
+    "join",
+    "read_yaml",
+    "report",
+    "rule_of",
+    "setting",
+    "vehicle_id_problem",
+]

@@ -35,7 +35,8 @@ def control_character(s: str, multiline: bool = False) -> str:
             continue
         if unicodedata.category(ch) in ("Cc", "Cf", "Zl", "Zp") and ch != "\ufeff":
             return {"\n": "a newline", "\r": "a carriage return", "\t": "a tab"}.get(
-                ch, f"control character U+{ord(ch):04X}")
+                ch, f"control character U+{ord(ch):04X}"
+            )
     return ""
 
 
@@ -44,7 +45,7 @@ class Checker:
         self.path = path
         self.root = root
         self.errors: list[str] = []
-        self._constructor = yaml.constructor.SafeConstructor()    # scalars only (no tags reach it)
+        self._constructor = yaml.constructor.SafeConstructor()  # scalars only (no tags reach it)
 
     @classmethod
     def from_file(cls, path: str | Path, limits: Limits = LIMITS) -> "Checker":
@@ -82,8 +83,9 @@ class Checker:
         return value if isinstance(value, (bool, int, float, str, type(None))) else node.value
 
     def is_empty(self, node) -> bool:
-        return node is None or (isinstance(node, yaml.ScalarNode) and node.value in _EMPTY
-                                and node.tag.endswith(":null"))
+        return node is None or (
+            isinstance(node, yaml.ScalarNode) and node.value in _EMPTY and node.tag.endswith(":null")
+        )
 
     def mapping(self, node, key: str) -> dict[str, tuple[Any, Any]]:
         """{name: (key node, value node)} of a mapping, reporting duplicates and odd keys."""
@@ -113,8 +115,11 @@ class Checker:
         for name, (knode, _) in items.items():
             if name not in allowed:
                 hint = difflib.get_close_matches(name, allowed, n=1)
-                extra = f"; did you mean '{hint[0]}'?" if hint else (
-                    f"; expected one of: {', '.join(sorted(allowed))}" if allowed else "")
+                extra = (
+                    f"; did you mean '{hint[0]}'?"
+                    if hint
+                    else (f"; expected one of: {', '.join(sorted(allowed))}" if allowed else "")
+                )
                 self.err(knode, join(key, name), f"unknown key{extra}")
 
     def required(self, items: dict, names: Iterable[str], node, key: str) -> None:
@@ -167,7 +172,7 @@ class Checker:
             return dataclasses.MISSING
         value = self.scalar(node)
         if want is str and isinstance(value, bool):
-            value = node.value      # YAML 1.1 reads yes/no/on/off as booleans: keep the word
+            value = node.value  # YAML 1.1 reads yes/no/on/off as booleans: keep the word
         if want is float and isinstance(value, int) and not isinstance(value, bool):
             value = float(value)
         if type(value) is not want:
@@ -188,8 +193,14 @@ class Checker:
             return dataclasses.MISSING
         return value
 
-    def fill(self, node, key: str, obj: Any, skip: Iterable[str] = (),
-             special: dict[str, Callable[[Any, str], Any]] | None = None) -> Any:
+    def fill(
+        self,
+        node,
+        key: str,
+        obj: Any,
+        skip: Iterable[str] = (),
+        special: dict[str, Callable[[Any, str], Any]] | None = None,
+    ) -> Any:
         """Update a dataclass instance from a mapping node, field by field.
 
         Nested dataclass fields are filled recursively; `special` maps a YAML key
@@ -207,7 +218,7 @@ class Checker:
             current = getattr(obj, f.name)
             if special and name in special:
                 v = special[name](vnode, join(key, name))
-            elif dataclasses.is_dataclass(current):     # a nested section
+            elif dataclasses.is_dataclass(current):  # a nested section
                 self.fill(vnode, join(key, name), current)
                 continue
             else:

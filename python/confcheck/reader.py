@@ -36,9 +36,9 @@ CORE_TAGS = {f"tag:yaml.org,2002:{t}" for t in ("str", "int", "float", "bool", "
 
 @dataclass(frozen=True)
 class Limits:
-    max_bytes: int = 256 << 10    # 256 KiB: the largest shipped file is under 4 KB
-    max_depth: int = 32           # nesting of mappings and lists; shipped files use 5
-    max_nodes: int = 10000        # values, mappings and lists; shipped files hold under 400
+    max_bytes: int = 256 << 10  # 256 KiB: the largest shipped file is under 4 KB
+    max_depth: int = 32  # nesting of mappings and lists; shipped files use 5
+    max_nodes: int = 10000  # values, mappings and lists; shipped files hold under 400
 
 
 LIMITS = Limits()
@@ -54,8 +54,9 @@ def _decode(path: Path, data: bytes) -> str:
     except UnicodeDecodeError as exc:
         line = data.count(b"\n", 0, exc.start) + 1
         col = exc.start - (data.rfind(b"\n", 0, exc.start) + 1) + 1
-        raise ConfigError([f"{path}:{line}:{col}: not UTF-8 (byte 0x{data[exc.start]:02x}); "
-                           "save the file as UTF-8"]) from None
+        raise ConfigError(
+            [f"{path}:{line}:{col}: not UTF-8 (byte 0x{data[exc.start]:02x}); save the file as UTF-8"]
+        ) from None
 
 
 def _text_position(text: str, index: int) -> str:
@@ -69,25 +70,34 @@ def _scan(path: Path, text: str, limits: Limits) -> None:
     depth, nodes = 0, 0
     for ev in yaml.parse(text, Loader=LOADER):
         if isinstance(ev, yaml.AliasEvent):
-            raise ConfigError([f"{_where(path, ev.start_mark)}: YAML alias '*{ev.anchor}' refused: "
-                               "aliases are not supported (write the value out)"])
+            raise ConfigError(
+                [
+                    f"{_where(path, ev.start_mark)}: YAML alias '*{ev.anchor}' refused: "
+                    "aliases are not supported (write the value out)"
+                ]
+            )
         if getattr(ev, "anchor", None):
-            raise ConfigError([f"{_where(path, ev.start_mark)}: YAML anchor '&{ev.anchor}' refused: "
-                               "anchors and aliases are not supported (write the value out)"])
+            raise ConfigError(
+                [
+                    f"{_where(path, ev.start_mark)}: YAML anchor '&{ev.anchor}' refused: "
+                    "anchors and aliases are not supported (write the value out)"
+                ]
+            )
         tag = getattr(ev, "tag", None)
         if tag is not None and tag != "!" and tag not in CORE_TAGS:
-            raise ConfigError([f"{_where(path, ev.start_mark)}: YAML tag '{tag}' refused: "
-                               "only plain values, mappings and lists"])
+            raise ConfigError(
+                [f"{_where(path, ev.start_mark)}: YAML tag '{tag}' refused: only plain values, mappings and lists"]
+            )
         if isinstance(ev, (yaml.ScalarEvent, yaml.MappingStartEvent, yaml.SequenceStartEvent)):
             nodes += 1
             if nodes > limits.max_nodes:
-                raise ConfigError([f"{_where(path, ev.start_mark)}: more than {limits.max_nodes} values "
-                                   "(the limit)"])
+                raise ConfigError([f"{_where(path, ev.start_mark)}: more than {limits.max_nodes} values (the limit)"])
         if isinstance(ev, (yaml.MappingStartEvent, yaml.SequenceStartEvent)):
             depth += 1
             if depth > limits.max_depth:
-                raise ConfigError([f"{_where(path, ev.start_mark)}: nested deeper than "
-                                   f"{limits.max_depth} levels (the limit)"])
+                raise ConfigError(
+                    [f"{_where(path, ev.start_mark)}: nested deeper than {limits.max_depth} levels (the limit)"]
+                )
         elif isinstance(ev, (yaml.MappingEndEvent, yaml.SequenceEndEvent)):
             depth -= 1
 
@@ -96,11 +106,12 @@ def parse_text(path: Path, text: str, limits: Limits = LIMITS) -> yaml.Node:
     """The root node of YAML text (ConfigError on any refusal above)."""
     if len(text.encode("utf-8", "surrogatepass")) > limits.max_bytes:
         raise ConfigError([f"{path}: larger than {limits.max_bytes} bytes (the limit)"])
-    try:        # a command-line value holds undecodable bytes as lone surrogates
+    try:  # a command-line value holds undecodable bytes as lone surrogates
         text.encode("utf-8")
     except UnicodeEncodeError as exc:
-        raise ConfigError([f"{path}:{_text_position(text, exc.start)}: not UTF-8 "
-                           f"(byte 0x{ord(text[exc.start]) & 0xff:02x})"]) from None
+        raise ConfigError(
+            [f"{path}:{_text_position(text, exc.start)}: not UTF-8 (byte 0x{ord(text[exc.start]) & 0xFF:02x})"]
+        ) from None
     try:
         _scan(path, text, limits)
         root = yaml.compose(text, Loader=LOADER)
@@ -109,11 +120,15 @@ def parse_text(path: Path, text: str, limits: Limits = LIMITS) -> yaml.Node:
         raise ConfigError([f"{_where(path, mark)}: YAML syntax: {exc.problem or exc}"]) from None
     except yaml.reader.ReaderError as exc:
         # PyYAML's reader counts characters, libyaml's bytes
-        at = exc.position if LOADER is yaml.SafeLoader else len(
-            text.encode("utf-8", "surrogatepass")[:exc.position].decode("utf-8", "replace"))
+        at = (
+            exc.position
+            if LOADER is yaml.SafeLoader
+            else len(text.encode("utf-8", "surrogatepass")[: exc.position].decode("utf-8", "replace"))
+        )
         bad = text[at] if 0 <= at < len(text) else exc.character
-        raise ConfigError([f"{path}:{_text_position(text, at)}: character {bad!r} is not allowed "
-                           "in YAML (a control character?)"]) from None
+        raise ConfigError(
+            [f"{path}:{_text_position(text, at)}: character {bad!r} is not allowed in YAML (a control character?)"]
+        ) from None
     except yaml.YAMLError as exc:
         raise ConfigError([f"{path}: YAML: {exc}"]) from None
     if root is None:
@@ -136,7 +151,7 @@ def read_yaml(path: str | Path, limits: Limits = LIMITS) -> tuple[yaml.Node, str
 
 
 class _NoAliasDumper(yaml.SafeDumper):
-    def ignore_aliases(self, data) -> bool:   # the same object twice is written out twice
+    def ignore_aliases(self, data) -> bool:  # the same object twice is written out twice
         return True
 
 

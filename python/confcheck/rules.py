@@ -22,13 +22,13 @@ class Rule:
     gt: float | None = None
     le: float | None = None
     lt: float | None = None
-    one_of: tuple = ()             # allowed values (also allowed besides `pattern`)
-    pattern: str = ""              # a string must match this (fully) ...
-    pattern_hint: str = ""         # ... described so: "upper-case letters, ..."
-    key: str = ""                  # the YAML key, when it is not the field's name
-    multiline: bool = False        # a string may hold newlines (never other control chars)
-    unit: str = ""                 # named in the message: "must be > 0 [Hz]"
-    old_names: tuple = ()          # ((old, current), ...): an old spelling, read as the current one
+    one_of: tuple = ()  # allowed values (also allowed besides `pattern`)
+    pattern: str = ""  # a string must match this (fully) ...
+    pattern_hint: str = ""  # ... described so: "upper-case letters, ..."
+    key: str = ""  # the YAML key, when it is not the field's name
+    multiline: bool = False  # a string may hold newlines (never other control chars)
+    unit: str = ""  # named in the message: "must be > 0 [Hz]"
+    old_names: tuple = ()  # ((old, current), ...): an old spelling, read as the current one
 
     def canonical(self, value: Any) -> Any:
         """value under its current name (old_names), else value itself."""
@@ -57,8 +57,12 @@ class Rule:
             return f"expected one of: {', '.join(map(str, self.one_of))}, got {value!r}"
         lo = self.gt if self.gt is not None else self.ge
         hi = self.lt if self.lt is not None else self.le
-        ok = ((self.gt is None or value > self.gt) and (self.ge is None or value >= self.ge)
-              and (self.lt is None or value < self.lt) and (self.le is None or value <= self.le))
+        ok = (
+            (self.gt is None or value > self.gt)
+            and (self.ge is None or value >= self.ge)
+            and (self.lt is None or value < self.lt)
+            and (self.le is None or value <= self.le)
+        )
         if ok:
             return ""
         unit = f" [{self.unit}]" if self.unit else ""
@@ -66,15 +70,15 @@ class Rule:
             return f"must be {'>' if self.gt is not None else '>='} {lo:g}{unit}"
         if lo is None:
             return f"must be {'<' if self.lt is not None else '<='} {hi:g}{unit}"
-        return (f"must be in {'(' if self.gt is not None else '['}{lo:g}, {hi:g}"
-                f"{')' if self.lt is not None else ']'}{unit}")
+        return (
+            f"must be in {'(' if self.gt is not None else '['}{lo:g}, {hi:g}{')' if self.lt is not None else ']'}{unit}"
+        )
 
 
 NO_RULE = Rule()
 
 
-def setting(default: Any = dataclasses.MISSING, *, factory: Any = dataclasses.MISSING,
-            **rule: Any) -> Any:
+def setting(default: Any = dataclasses.MISSING, *, factory: Any = dataclasses.MISSING, **rule: Any) -> Any:
     """A dataclass field whose rule (Rule's keywords) the Checker enforces."""
     if default is not dataclasses.MISSING and factory is not dataclasses.MISSING:
         raise TypeError("setting: a default or a factory, not both")

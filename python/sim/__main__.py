@@ -12,13 +12,20 @@ def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "validate":
         from sim.validate import main as vmain
+
         return vmain(argv[1:])
-    ap = argparse.ArgumentParser(prog="python -m sim",
-                                 description="CHASM-AUV vehicle simulator (one vehicle, over LCM). "
-                                 "`python -m sim.validate` (or `python -m sim validate`) prints the validation report.")
+    ap = argparse.ArgumentParser(
+        prog="python -m sim",
+        description="CHASM-AUV vehicle simulator (one vehicle, over LCM). "
+        "`python -m sim.validate` (or `python -m sim validate`) prints the validation report.",
+    )
     ap.add_argument("config", help="simulator configuration (YAML), e.g. missions/sim/remus100.yaml")
-    ap.add_argument("--clock", type=clock_modes.argument, metavar="{realtime,scaled,lockstep}",
-                    help="override simulation.clock (`stepped`, its old name, is read as lockstep)")
+    ap.add_argument(
+        "--clock",
+        type=clock_modes.argument,
+        metavar="{realtime,scaled,lockstep}",
+        help="override simulation.clock (`stepped`, its old name, is read as lockstep)",
+    )
     ap.add_argument("--warp", type=float, help="override simulation.warp (scaled mode)")
     ap.add_argument("--fast", action="store_true", help="scaled mode as fast as the CPU allows")
     ap.add_argument("--duration", type=float, help="stop after this many sim seconds")
@@ -31,6 +38,7 @@ def main(argv: list[str] | None = None) -> int:
     args = ap.parse_args(argv)
 
     from sim.config import load_or_report
+
     cfg = load_or_report(args.config)
     if cfg is None:
         return 2
@@ -47,11 +55,13 @@ def main(argv: list[str] | None = None) -> int:
     if args.lcm_url:
         cfg.sim.lcm_url = args.lcm_url
     from sim.multihil.hook import apply_cli
+
     apply_cli(cfg, args)
     if args.check:
         print(f"{args.config}: ok (vehicle {cfg.vehicle_id}, {len(cfg.sensors)} sensors configured)")
         return 0
     from sim.hil import Simulator
+
     try:
         sim = Simulator(cfg, fast=args.fast)
     except ValueError as exc:

@@ -26,9 +26,9 @@ def wrap_pi(a: float) -> float:
 @dataclass
 class Autopilot:
     heading_kp: float = 2.0
-    heading_kd: float = 1.0       # on yaw rate [s]
-    depth_kp: float = 0.3         # [rad/m] depth error -> pitch command
-    pitch_limit: float = 0.4      # [rad]
+    heading_kd: float = 1.0  # on yaw rate [s]
+    depth_kp: float = 0.3  # [rad/m] depth error -> pitch command
+    pitch_limit: float = 0.4  # [rad]
     pitch_kp: float = 2.0
     pitch_kd: float = 2.0
     fin_limit: float = math.radians(20.0)

@@ -40,14 +40,12 @@ def parse_ref(ref: str) -> tuple[str, dict[str, float] | str]:
             raise BathymetryError("grid bathymetry needs a file: 'grid:PATH.npz'")
         return kind, rest
     if kind not in SHAPES:
-        raise BathymetryError(f"unknown bathymetry shape {kind!r}; one of "
-                              f"{', '.join(sorted(SHAPES) + ['grid'])}")
+        raise BathymetryError(f"unknown bathymetry shape {kind!r}; one of {', '.join(sorted(SHAPES) + ['grid'])}")
     params: dict[str, float] = {}
     for item in filter(None, rest.split(",")):
         key, eq, val = item.partition("=")
         if not eq or key.strip() not in SHAPES[kind]:
-            raise BathymetryError(f"{kind}: unknown parameter {item!r}; "
-                                  f"expected {', '.join(sorted(SHAPES[kind]))}")
+            raise BathymetryError(f"{kind}: unknown parameter {item!r}; expected {', '.join(sorted(SHAPES[kind]))}")
         try:
             params[key.strip()] = float(val)
         except ValueError:
@@ -78,18 +76,17 @@ class Bathymetry:
                     self._e = np.asarray(data["east_m"], float)
                     self._d = np.asarray(data["depth_m"], float)
             except (OSError, KeyError, ValueError) as exc:
-                raise BathymetryError(f"{path}: cannot load bathymetry grid ({exc}); "
-                                      "expected arrays north_m, east_m, depth_m") from None
+                raise BathymetryError(
+                    f"{path}: cannot load bathymetry grid ({exc}); expected arrays north_m, east_m, depth_m"
+                ) from None
             if self._d.shape != (self._n.size, self._e.size) or self._n.size < 2 or self._e.size < 2:
-                raise BathymetryError(f"{path}: depth_m must be len(north_m) x len(east_m), "
-                                      "at least 2 x 2")
+                raise BathymetryError(f"{path}: depth_m must be len(north_m) x len(east_m), at least 2 x 2")
             if np.any(np.diff(self._n) <= 0) or np.any(np.diff(self._e) <= 0):
                 raise BathymetryError(f"{path}: north_m and east_m must increase")
             self.sha256 = hashlib.sha256(raw).hexdigest()
             self._dn = float(self._n[1] - self._n[0])
             self._de = float(self._e[1] - self._e[0])
-            self._uniform = (np.allclose(np.diff(self._n), self._dn)
-                             and np.allclose(np.diff(self._e), self._de))
+            self._uniform = np.allclose(np.diff(self._n), self._dn) and np.allclose(np.diff(self._e), self._de)
         else:
             self.p = params
 
@@ -108,8 +105,7 @@ class Bathymetry:
         if k == "ripple":
             a = p.get("direction", 0.0)
             s = north * math.cos(a) + east * math.sin(a)
-            return p["depth"] + p.get("amplitude", 0.0) * math.sin(
-                2.0 * math.pi * s / p.get("wavelength", 1.0))
+            return p["depth"] + p.get("amplitude", 0.0) * math.sin(2.0 * math.pi * s / p.get("wavelength", 1.0))
         return self._grid(north, east)
 
     def _grid(self, north: float, east: float) -> float:

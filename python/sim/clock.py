@@ -28,11 +28,11 @@ class Pacer:
         self.mode = mode
         self.warp = 1.0 if mode == REALTIME else warp
         self.dt = dt
-        self.fast = fast            # scaled, as fast as the CPU allows
+        self.fast = fast  # scaled, as fast as the CPU allows
         self.wall0 = time.monotonic()
         self.sim0 = 0.0
-        self.target_t: float | None = None   # lockstep: advance up to here
-        self.late_steps = 0         # steps that ran behind their wall deadline
+        self.target_t: float | None = None  # lockstep: advance up to here
+        self.late_steps = 0  # steps that ran behind their wall deadline
         # multi-HIL free-running: the process's global clock [s] (None before it has one)
         # paces the steps instead of this process's own wall clock (set_clock_source)
         self._global_now: Callable[[], float | None] | None = None

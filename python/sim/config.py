@@ -29,8 +29,20 @@ __all__ = ["ConfigError", "SimConfig", "VEHICLE_ID", "load", "load_or_report", "
 
 ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
 # <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's
-RESERVED_TOPICS = {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "TRUTH", "ACTUATOR_STATE",
-                   "ACTUATORS", "HEALTH", "CONTACTS", "SETPOINT"}
+RESERVED_TOPICS = {
+    "AHRS",
+    "DEPTH",
+    "DVL",
+    "ALTIMETER",
+    "GPS",
+    "LBL",
+    "TRUTH",
+    "ACTUATOR_STATE",
+    "ACTUATORS",
+    "HEALTH",
+    "CONTACTS",
+    "SETPOINT",
+}
 
 
 @dataclass
@@ -38,18 +50,18 @@ class SimSettings:
     # the integrator is validated from 50 Hz up; above 10 kHz a second of sim time costs minutes
     physics_rate_hz: float = setting(50.0, ge=50.0, le=10000.0, unit="Hz")
     clock: str = setting(clock_modes.REALTIME, one_of=clock_modes.MODES, old_names=clock_modes.OLD_NAMES)
-    warp: float = setting(1.0, gt=0.0)   # sim seconds per wall second (scaled)
-    publish_clock: str = setting("auto", one_of=("auto", "yes", "no"))   # auto: not in lockstep
-    clock_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")   # SIM.CLOCK rate when this process publishes it
+    warp: float = setting(1.0, gt=0.0)  # sim seconds per wall second (scaled)
+    publish_clock: str = setting("auto", one_of=("auto", "yes", "no"))  # auto: not in lockstep
+    clock_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")  # SIM.CLOCK rate when this process publishes it
     truth_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
     actuator_state_rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
-    health_period_s: float = setting(1.0, ge=0.0)   # sim seconds between process_health_t
+    health_period_s: float = setting(1.0, ge=0.0)  # sim seconds between process_health_t
     command_timeout_s: float = setting(1.0, ge=0.0)
     on_stale: str = setting("hold", one_of=("hold", "safe"))
-    duration_s: float = setting(0.0, ge=0.0)    # 0 = until stopped
-    seed: int = setting(-1, ge=-1)   # sensor seed; -1 = the environment's seed
-    lcm_url: str = ""                # "" = $LCM_DEFAULT_URL or the project default
-    publish_thread: bool = True      # messages go out from a sender thread (auvlcm.sender)
+    duration_s: float = setting(0.0, ge=0.0)  # 0 = until stopped
+    seed: int = setting(-1, ge=-1)  # sensor seed; -1 = the environment's seed
+    lcm_url: str = ""  # "" = $LCM_DEFAULT_URL or the project default
+    publish_thread: bool = True  # messages go out from a sender thread (auvlcm.sender)
 
 
 @dataclass
@@ -66,21 +78,21 @@ class InitialState:
 
 @dataclass
 class MultiHil:
-    client_id: str = ""              # "" = "<vehicle>-sim"
-    priority: int = 0                # higher wins the env-server role on failover
+    client_id: str = ""  # "" = "<vehicle>-sim"
+    priority: int = 0  # higher wins the env-server role on failover
     needs: list = setting(factory=lambda: list(ENV_VARIABLES), one_of=ENV_VARIABLES)
     sample_rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
     # the rest is docs/multihil.md: joining a world shared by several simulators
-    enabled: bool = False            # join a multi-HIL world (server or client)
-    step_s: float = setting(0.1, gt=0.0)   # lockstep step (simulation.clock: lockstep)
-    lockstep_participants: int = setting(0, ge=0)   # wait for this many participants before step 0
+    enabled: bool = False  # join a multi-HIL world (server or client)
+    step_s: float = setting(0.1, gt=0.0)  # lockstep step (simulation.clock: lockstep)
+    lockstep_participants: int = setting(0, ge=0)  # wait for this many participants before step 0
     lockstep_timeout_s: float = setting(5.0, ge=0.0)  # drop a participant silent this long
     heartbeat_hz: float = setting(10.0, gt=0.0, unit="Hz")
     failover_timeout_s: float = setting(0.5, ge=0.0)
     join_window_s: float = setting(1.0, ge=0.0)
     sync_hz: float = setting(10.0, gt=0.0, unit="Hz")
-    clock_offset_us: float = 0.0     # tests: inject an offset into this process's clock
-    clock_drift_ppm: float = 0.0     # tests: inject a drift into this process's clock
+    clock_offset_us: float = 0.0  # tests: inject an offset into this process's clock
+    clock_drift_ppm: float = 0.0  # tests: inject a drift into this process's clock
 
 
 @dataclass
@@ -94,9 +106,9 @@ class SimConfig:
     sensors: dict[str, Any]
     multihil: MultiHil
     safe_command: Command
-    sonar: SonarConfig | None = None     # None: no sonar section
-    modem: Any = None                # sim.modem.ModemConfig, None without a modem: section
-    identify: Any = None             # sim.sonar.identify.IdentifyConfig, None without identify:
+    sonar: SonarConfig | None = None  # None: no sonar section
+    modem: Any = None  # sim.modem.ModemConfig, None without a modem: section
+    identify: Any = None  # sim.sonar.identify.IdentifyConfig, None without identify:
 
 
 # --------------------------------------------------------------- sections
@@ -112,8 +124,12 @@ def _vehicle(doc: Checker, node) -> tuple[str, VehicleParams]:
     if "model" in items:
         _, mnode = items.pop("model")
         if doc.scalar(mnode) != "remus100":
-            doc.err(mnode, "vehicle.model", "the built-in model is 'remus100'; describe "
-                    "another vehicle by overriding its parameters in this section")
+            doc.err(
+                mnode,
+                "vehicle.model",
+                "the built-in model is 'remus100'; describe "
+                "another vehicle by overriding its parameters in this section",
+            )
     vp = REMUS100.with_updates({})
     hydro_items = {}
     if "hydro" in items:
@@ -129,8 +145,10 @@ def _vehicle(doc: Checker, node) -> tuple[str, VehicleParams]:
         default = getattr(vp, name)
         if isinstance(default, tuple):
             vals = [doc.scalar(n) for n in doc.sequence(vnode, f"vehicle.{name}")]
-            if len(vals) != 3 or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                                         and v == v and abs(v) != float("inf") for v in vals):
+            if len(vals) != 3 or not all(
+                isinstance(v, (int, float)) and not isinstance(v, bool) and v == v and abs(v) != float("inf")
+                for v in vals
+            ):
                 doc.err(vnode, f"vehicle.{name}", "expected a list of 3 finite numbers")
                 continue
             updates[name] = tuple(float(v) for v in vals)
@@ -180,13 +198,17 @@ def _bathymetry(doc: Checker, bnode, base: Path) -> str | None:
                 else:
                     ref = make_ref(shape, params)
         else:
-            doc.err(bnode, key, "expected 'shape: ...' with its parameters, "
-                    "'grid: FILE.npz', or a reference string like 'flat:depth=40'")
+            doc.err(
+                bnode,
+                key,
+                "expected 'shape: ...' with its parameters, "
+                "'grid: FILE.npz', or a reference string like 'flat:depth=40'",
+            )
     if ref is not None:
         try:
             Bathymetry(ref, base)
             return ref
-        except (BathymetryError, ValueError, OSError) as exc:   # a bad grid file included
+        except (BathymetryError, ValueError, OSError) as exc:  # a bad grid file included
             doc.err(bnode, key, str(exc).replace("\n", " "))
     return None
 
@@ -194,8 +216,11 @@ def _bathymetry(doc: Checker, bnode, base: Path) -> str | None:
 def _waves(doc: Checker, wnode, env: EnvParams) -> None:
     w = doc.mapping(wnode, "environment.waves")
     doc.unknown(w, {"height_m", "period_s", "direction_rad"}, "environment.waves")
-    for name, attr in (("height_m", "wave_height_m"), ("period_s", "wave_period_s"),
-                       ("direction_rad", "wave_direction_rad")):
+    for name, attr in (
+        ("height_m", "wave_height_m"),
+        ("period_s", "wave_period_s"),
+        ("direction_rad", "wave_direction_rad"),
+    ):
         if name in w:
             v = doc.value(w[name][1], f"environment.waves.{name}", 0.0, rule_of(EnvParams, attr))
             if v is not dataclasses.MISSING:
@@ -215,8 +240,11 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
     seen: set[int] = set()
     for i, tr in enumerate(env.transponders):
         if tr.id in seen:
-            doc.err(items["transponders"][1].value[i], f"environment.transponders[{i}].id",
-                    f"duplicate transponder id {tr.id}")
+            doc.err(
+                items["transponders"][1].value[i],
+                f"environment.transponders[{i}].id",
+                f"duplicate transponder id {tr.id}",
+            )
         seen.add(tr.id)
     if "waves" in items:
         _waves(doc, items["waves"][1], env)
@@ -243,8 +271,11 @@ def _sensors(doc: Checker, node) -> dict[str, Any]:
     ins = out.get("ins")
     if ins is not None and ins.channel in RESERVED_TOPICS:
         cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
-        doc.err(cnode, "sensors.ins.channel", f"{ins.channel} is another channel of this "
-                "vehicle's simulator or pilot (one writer per channel)")
+        doc.err(
+            cnode,
+            "sensors.ins.channel",
+            f"{ins.channel} is another channel of this vehicle's simulator or pilot (one writer per channel)",
+        )
     return out
 
 
@@ -268,8 +299,18 @@ def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
     return _check(Checker.from_text(text, path), path)
 
 
-SECTIONS = ("vehicle", "simulation", "initial", "environment", "sensors", "multihil",
-            "safe_command", "sonar", "modem", "identify")
+SECTIONS = (
+    "vehicle",
+    "simulation",
+    "initial",
+    "environment",
+    "sensors",
+    "multihil",
+    "safe_command",
+    "sonar",
+    "modem",
+    "identify",
+)
 
 
 def _check(doc: Checker, path: Path) -> SimConfig:
@@ -288,23 +329,25 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     sonar = None
     if "sonar" in top:
         from sim.sonar.config_check import check_sonar
+
         sonar = check_sonar(doc, get("sonar"), path.parent)
     from sim.modem.config import parse as parse_modem
+
     modem = parse_modem(doc, get("modem"))
     identify = None
     if "identify" in top:
         from sim.sonar.identify import check_identify
+
         identify = check_identify(doc, get("identify"), path.parent, "sonar" in top)
     doc.raise_errors()
     if sim.seed < 0:
         sim.seed = env.seed
     if sonar is not None and sonar.targets.seed < 0:
-        sonar.targets.seed = env.seed    # one world, one field: every vehicle's sim agrees
+        sonar.targets.seed = env.seed  # one world, one field: every vehicle's sim agrees
     if not mh.client_id:
         mh.client_id = f"{vid}-sim"
     if modem is not None and modem.seed < 0:
-        modem.seed = env.seed        # the world's: the same for every simulator in it
+        modem.seed = env.seed  # the world's: the same for every simulator in it
     if identify is not None and identify.targets.seed < 0:
-        identify.targets.seed = env.seed     # the same field as the search vehicles' sonars
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem,
-                     identify=identify)
+        identify.targets.seed = env.seed  # the same field as the search vehicles' sonars
+    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem, identify=identify)

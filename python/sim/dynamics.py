@@ -42,14 +42,16 @@ def mass_matrix(vp: VehicleParams) -> np.ndarray:
     m = vp.mass_kg
     xg, yg, zg = vp.cg_m
     ixx, iyy, izz = vp.inertia_kgm2
-    return np.array([
-        [m - h["Xud"], 0.0, 0.0, 0.0, m * zg, -m * yg],
-        [0.0, m - h["Yvd"], 0.0, -m * zg, 0.0, m * xg - h["Yrd"]],
-        [0.0, 0.0, m - h["Zwd"], m * yg, -m * xg - h["Zqd"], 0.0],
-        [0.0, -m * zg, m * yg, ixx - h["Kpd"], 0.0, 0.0],
-        [m * zg, 0.0, -m * xg - h["Mwd"], 0.0, iyy - h["Mqd"], 0.0],
-        [-m * yg, m * xg - h["Nvd"], 0.0, 0.0, 0.0, izz - h["Nrd"]],
-    ])
+    return np.array(
+        [
+            [m - h["Xud"], 0.0, 0.0, 0.0, m * zg, -m * yg],
+            [0.0, m - h["Yvd"], 0.0, -m * zg, 0.0, m * xg - h["Yrd"]],
+            [0.0, 0.0, m - h["Zwd"], m * yg, -m * xg - h["Zqd"], 0.0],
+            [0.0, -m * zg, m * yg, ixx - h["Kpd"], 0.0, 0.0],
+            [m * zg, 0.0, -m * xg - h["Mwd"], 0.0, iyy - h["Mqd"], 0.0],
+            [-m * yg, m * xg - h["Nvd"], 0.0, 0.0, 0.0, izz - h["Nrd"]],
+        ]
+    )
 
 
 def submerged_fraction(depth_m: float, radius_m: float) -> float:
@@ -77,16 +79,17 @@ class Coefficients:
     uses (the added-mass derivatives Xud... enter through M instead, apart
     from the five below).
     """
+
     mass_kg: float
-    xg: float                       # CG relative to the CB [m]
+    xg: float  # CG relative to the CB [m]
     yg: float
     zg: float
-    ixx: float                      # rigid-body inertia [kg m^2]
+    ixx: float  # rigid-body inertia [kg m^2]
     iyy: float
     izz: float
     weight_n: float
     buoyancy_n: float
-    radius_m: float                 # the hull breaks the surface within this depth
+    radius_m: float  # the hull breaks the surface within this depth
     Xuu: float
     Xwq: float
     Xqq: float
@@ -135,11 +138,23 @@ class Coefficients:
         xg, yg, zg = vp.cg_m
         ixx, iyy, izz = vp.inertia_kgm2
         return cls(
-            mass_kg=vp.mass_kg, xg=xg, yg=yg, zg=zg, ixx=ixx, iyy=iyy, izz=izz,
-            weight_n=vp.weight_n, buoyancy_n=vp.buoyancy_n, radius_m=vp.radius_m,
-            added_u=-h["Xud"], added_v=-h["Yvd"], added_w=-h["Zwd"], added_qw=-h["Mwd"],
+            mass_kg=vp.mass_kg,
+            xg=xg,
+            yg=yg,
+            zg=zg,
+            ixx=ixx,
+            iyy=iyy,
+            izz=izz,
+            weight_n=vp.weight_n,
+            buoyancy_n=vp.buoyancy_n,
+            radius_m=vp.radius_m,
+            added_u=-h["Xud"],
+            added_v=-h["Yvd"],
+            added_w=-h["Zwd"],
+            added_qw=-h["Mwd"],
             added_rv=-h["Nvd"],
-            **{f.name: h[f.name] for f in fields(cls) if f.name in h})
+            **{f.name: h[f.name] for f in fields(cls) if f.name in h},
+        )
 
 
 class Dynamics:
@@ -193,33 +208,80 @@ class Dynamics:
         dt = self.dt
         h = 0.5 * dt
         cn, ce, cd = self.current_ned
-        u = (cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust, self.torque,
-             self.external_tau)
+        u = (cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust, self.torque, self.external_tau)
         f = self._f
         x0, x1, x2, x3, x4, x5, x6, x7, x8, x9, x10, x11 = x = self.x
         k1 = a0, a1, a2, a3, a4, a5, a6, a7, a8, a9, a10, a11 = f(x, *u)
-        b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11 = f((
-            x0 + h * a0, x1 + h * a1, x2 + h * a2, x3 + h * a3, x4 + h * a4, x5 + h * a5,
-            x6 + h * a6, x7 + h * a7, x8 + h * a8, x9 + h * a9, x10 + h * a10, x11 + h * a11), *u)
-        c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11 = f((
-            x0 + h * b0, x1 + h * b1, x2 + h * b2, x3 + h * b3, x4 + h * b4, x5 + h * b5,
-            x6 + h * b6, x7 + h * b7, x8 + h * b8, x9 + h * b9, x10 + h * b10, x11 + h * b11), *u)
-        d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11 = f((
-            x0 + dt * c0, x1 + dt * c1, x2 + dt * c2, x3 + dt * c3, x4 + dt * c4, x5 + dt * c5,
-            x6 + dt * c6, x7 + dt * c7, x8 + dt * c8, x9 + dt * c9, x10 + dt * c10,
-            x11 + dt * c11), *u)
+        b0, b1, b2, b3, b4, b5, b6, b7, b8, b9, b10, b11 = f(
+            (
+                x0 + h * a0,
+                x1 + h * a1,
+                x2 + h * a2,
+                x3 + h * a3,
+                x4 + h * a4,
+                x5 + h * a5,
+                x6 + h * a6,
+                x7 + h * a7,
+                x8 + h * a8,
+                x9 + h * a9,
+                x10 + h * a10,
+                x11 + h * a11,
+            ),
+            *u,
+        )
+        c0, c1, c2, c3, c4, c5, c6, c7, c8, c9, c10, c11 = f(
+            (
+                x0 + h * b0,
+                x1 + h * b1,
+                x2 + h * b2,
+                x3 + h * b3,
+                x4 + h * b4,
+                x5 + h * b5,
+                x6 + h * b6,
+                x7 + h * b7,
+                x8 + h * b8,
+                x9 + h * b9,
+                x10 + h * b10,
+                x11 + h * b11,
+            ),
+            *u,
+        )
+        d0, d1, d2, d3, d4, d5, d6, d7, d8, d9, d10, d11 = f(
+            (
+                x0 + dt * c0,
+                x1 + dt * c1,
+                x2 + dt * c2,
+                x3 + dt * c3,
+                x4 + dt * c4,
+                x5 + dt * c5,
+                x6 + dt * c6,
+                x7 + dt * c7,
+                x8 + dt * c8,
+                x9 + dt * c9,
+                x10 + dt * c10,
+                x11 + dt * c11,
+            ),
+            *u,
+        )
         w = dt / 6.0
         # keep roll in (-pi, pi] and yaw in [0, 2pi)
         roll = x3 + w * (a3 + 2.0 * (b3 + c3) + d3)
         if roll > math.pi or roll <= -math.pi:
             roll = (roll + math.pi) % TWO_PI - math.pi
         self.x = [
-            x0 + w * (a0 + 2.0 * (b0 + c0) + d0), x1 + w * (a1 + 2.0 * (b1 + c1) + d1),
-            x2 + w * (a2 + 2.0 * (b2 + c2) + d2), roll,
-            x4 + w * (a4 + 2.0 * (b4 + c4) + d4), (x5 + w * (a5 + 2.0 * (b5 + c5) + d5)) % TWO_PI,
-            x6 + w * (a6 + 2.0 * (b6 + c6) + d6), x7 + w * (a7 + 2.0 * (b7 + c7) + d7),
-            x8 + w * (a8 + 2.0 * (b8 + c8) + d8), x9 + w * (a9 + 2.0 * (b9 + c9) + d9),
-            x10 + w * (a10 + 2.0 * (b10 + c10) + d10), x11 + w * (a11 + 2.0 * (b11 + c11) + d11)]
+            x0 + w * (a0 + 2.0 * (b0 + c0) + d0),
+            x1 + w * (a1 + 2.0 * (b1 + c1) + d1),
+            x2 + w * (a2 + 2.0 * (b2 + c2) + d2),
+            roll,
+            x4 + w * (a4 + 2.0 * (b4 + c4) + d4),
+            (x5 + w * (a5 + 2.0 * (b5 + c5) + d5)) % TWO_PI,
+            x6 + w * (a6 + 2.0 * (b6 + c6) + d6),
+            x7 + w * (a7 + 2.0 * (b7 + c7) + d7),
+            x8 + w * (a8 + 2.0 * (b8 + c8) + d8),
+            x9 + w * (a9 + 2.0 * (b9 + c9) + d9),
+            x10 + w * (a10 + 2.0 * (b10 + c10) + d10),
+            x11 + w * (a11 + 2.0 * (b11 + c11) + d11),
+        ]
         self.nu_dot = k1[6:12]
         self.t += dt
 
@@ -232,8 +294,9 @@ class Dynamics:
     def _deriv(self, x):
         """x_dot for state x with the inputs held now (the validation's Jacobian)."""
         cn, ce, cd = self.current_ned
-        return self._f(x, cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust,
-                       self.torque, self.external_tau)
+        return self._f(
+            x, cn, ce, cd, self.water_accel_ned, self.rudder, self.stern, self.thrust, self.torque, self.external_tau
+        )
 
 
 def make_rhs(k: Coefficients, minv: tuple):
@@ -256,9 +319,44 @@ def make_rhs(k: Coefficients, minv: tuple):
     Nvv, Nrr, Nuv, Nur, Nwp, Npq, Nuudr = k.Nvv, k.Nrr, k.Nuv, k.Nur, k.Nwp, k.Npq, k.Nuudr
     ma_u, ma_v, ma_w, ma_qw, ma_rv = k.added_u, k.added_v, k.added_w, k.added_qw, k.added_rv
     # M^-1 row by row (a matrix: its entries are positional by nature)
-    (i00, i01, i02, i03, i04, i05, i10, i11, i12, i13, i14, i15,
-     i20, i21, i22, i23, i24, i25, i30, i31, i32, i33, i34, i35,
-     i40, i41, i42, i43, i44, i45, i50, i51, i52, i53, i54, i55) = minv
+    (
+        i00,
+        i01,
+        i02,
+        i03,
+        i04,
+        i05,
+        i10,
+        i11,
+        i12,
+        i13,
+        i14,
+        i15,
+        i20,
+        i21,
+        i22,
+        i23,
+        i24,
+        i25,
+        i30,
+        i31,
+        i32,
+        i33,
+        i34,
+        i35,
+        i40,
+        i41,
+        i42,
+        i43,
+        i44,
+        i45,
+        i50,
+        i51,
+        i52,
+        i53,
+        i54,
+        i55,
+    ) = minv
 
     def rhs(x, cn, ce, cd, acc, dr, ds, thrust, torque, et):
         _, _, z, phi, theta, psi, u, v, w, p, q, r = x
@@ -296,29 +394,70 @@ def make_rhs(k: Coefficients, minv: tuple):
         ar = r if r >= 0.0 else -r
         ap = p if p >= 0.0 else -p
 
-        X = (Xuu * uau + Xwq * wr * q + Xqq * qq + Xvr * vr * r + Xrr * rr
-             + m * (v * r - w * q + xg * (qq + rr) - yg * p * q - zg * p * r)
-             + fw * ex + thrust)
-        Y = (Yvv * vav + Yrr * r * ar + Yuv * ur * vr + Ywp * wr * p + Yur * ur * r
-             + Ypq * p * q + Yuudr * uau * dr
-             + m * (w * p - u * r + yg * (rr + pp) - zg * q * r - xg * q * p)
-             + fw * ey)
-        Z = (Zww * waw + Zqq * q * aq + Zuw * ur * wr + Zuq * ur * q + Zvp * vr * p
-             + Zrp * r * p + Zuuds * uau * ds
-             + m * (u * q - v * p + zg * (pp + qq) - xg * r * p - yg * r * q)
-             + fw * ez)
+        X = (
+            Xuu * uau
+            + Xwq * wr * q
+            + Xqq * qq
+            + Xvr * vr * r
+            + Xrr * rr
+            + m * (v * r - w * q + xg * (qq + rr) - yg * p * q - zg * p * r)
+            + fw * ex
+            + thrust
+        )
+        Y = (
+            Yvv * vav
+            + Yrr * r * ar
+            + Yuv * ur * vr
+            + Ywp * wr * p
+            + Yur * ur * r
+            + Ypq * p * q
+            + Yuudr * uau * dr
+            + m * (w * p - u * r + yg * (rr + pp) - zg * q * r - xg * q * p)
+            + fw * ey
+        )
+        Z = (
+            Zww * waw
+            + Zqq * q * aq
+            + Zuw * ur * wr
+            + Zuq * ur * q
+            + Zvp * vr * p
+            + Zrp * r * p
+            + Zuuds * uau * ds
+            + m * (u * q - v * p + zg * (pp + qq) - xg * r * p - yg * r * q)
+            + fw * ez
+        )
         # moments of weight about the CB: W (r_g x e)
-        K = (Kpp * p * ap - (izz - iyy) * q * r
-             - m * (yg * (v * p - u * q) - zg * (u * r - w * p))
-             + W * (yg * ez - zg * ey) + torque)
-        Mm = (Mww * waw + Mqq * q * aq + Muw * ur * wr + Muq * ur * q + Mvp * vr * p
-              + Mrp * r * p + Muuds * uau * ds
-              - (ixx - izz) * r * p - m * (zg * (w * q - v * r) - xg * (v * p - u * q))
-              + W * (zg * ex - xg * ez))
-        N = (Nvv * vav + Nrr * r * ar + Nuv * ur * vr + Nur * ur * r + Nwp * wr * p
-             + Npq * p * q + Nuudr * uau * dr
-             - (iyy - ixx) * p * q - m * (xg * (u * r - w * p) - yg * (w * q - v * r))
-             + W * (xg * ey - yg * ex))
+        K = (
+            Kpp * p * ap
+            - (izz - iyy) * q * r
+            - m * (yg * (v * p - u * q) - zg * (u * r - w * p))
+            + W * (yg * ez - zg * ey)
+            + torque
+        )
+        Mm = (
+            Mww * waw
+            + Mqq * q * aq
+            + Muw * ur * wr
+            + Muq * ur * q
+            + Mvp * vr * p
+            + Mrp * r * p
+            + Muuds * uau * ds
+            - (ixx - izz) * r * p
+            - m * (zg * (w * q - v * r) - xg * (v * p - u * q))
+            + W * (zg * ex - xg * ez)
+        )
+        N = (
+            Nvv * vav
+            + Nrr * r * ar
+            + Nuv * ur * vr
+            + Nur * ur * r
+            + Nwp * wr * p
+            + Npq * p * q
+            + Nuudr * uau * dr
+            - (iyy - ixx) * p * q
+            - m * (xg * (u * r - w * p) - yg * (w * q - v * r))
+            + W * (xg * ey - yg * ex)
+        )
         # added mass acts on the relative acceleration: + M_A nu_c_dot,
         # nu_c_dot = v_c^b x omega (current fixed in NED)
         if uc or vc or wc:
@@ -335,7 +474,7 @@ def make_rhs(k: Coefficients, minv: tuple):
         # water, + M_A R^T a (its w and v columns couple into pitch and yaw).
         an, ae, ad = acc
         if an or ae or ad:
-            rho_v = (W - fw) / G                     # displaced mass, less when surfacing
+            rho_v = (W - fw) / G  # displaced mass, less when surfacing
             abx = r00 * an + r10 * ae + r20 * ad
             aby = r01 * an + r11 * ae + r21 * ad
             abz = r02 * an + r12 * ae + r22 * ad

@@ -18,7 +18,7 @@ from confcheck import setting
 from sim.bathymetry import Bathymetry
 
 G = 9.81
-RHO_SEAWATER = 1025.0   # kg/m^3, the depth sensor's conversion too
+RHO_SEAWATER = 1025.0  # kg/m^3, the depth sensor's conversion too
 # Spatial wavelength of the slow current variation [m]: large against a
 # vehicle's range, so the variation reads as "the tide turning".
 CURRENT_VARIATION_WAVELENGTH_M = 10_000.0
@@ -62,7 +62,7 @@ class EnvParams:
 
 def _pm_weight(ratio: float) -> float:
     """Pierson-Moskowitz spectral shape at omega/omega_peak (peak = 1)."""
-    return ratio ** -5 * math.exp(-1.25 * ratio ** -4)
+    return ratio**-5 * math.exp(-1.25 * ratio**-4)
 
 
 class Environment:
@@ -83,7 +83,7 @@ class Environment:
             total = sum(weights)
             # sum a_i^2 = Hs^2 / 8, so 4 sqrt(m0) = Hs
             for r, wgt in zip(WAVE_COMPONENTS, weights):
-                a = math.sqrt(p.wave_height_m ** 2 / 8.0 * wgt / total)
+                a = math.sqrt(p.wave_height_m**2 / 8.0 * wgt / total)
                 w = wp * r
                 self._waves.append((a, w, w * w / G, rng.uniform(0.0, 2.0 * math.pi)))
         self._wave_cos = math.cos(p.wave_direction_rad)
@@ -129,8 +129,9 @@ class Environment:
         """Water velocity (NED) from the profile, the slow variation and the waves."""
         return self.water(t, north, east, depth)[0]
 
-    def water(self, t: float, north: float, east: float, depth: float
-              ) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    def water(
+        self, t: float, north: float, east: float, depth: float
+    ) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
         """The water's velocity and acceleration (NED) at a point, in one call
         (the simulator's hot path). Only the waves accelerate it: the tide's
         variation is hours slow."""
@@ -141,7 +142,8 @@ class Environment:
             s = north * vc + east * vs
             amp = p.current_variation_mps * math.sin(
                 2.0 * math.pi * (t / p.current_variation_period_s + s / CURRENT_VARIATION_WAVELENGTH_M)
-                + self._var_phase)
+                + self._var_phase
+            )
             cn += amp * vc
             ce += amp * vs
         if self._orbital:
@@ -157,8 +159,7 @@ class Environment:
         uh, uv, _, _ = self.wave_kinematics(t, north, east, depth)
         return uh, uv
 
-    def wave_kinematics(self, t: float, north: float, east: float, depth: float
-                        ) -> tuple[float, float, float, float]:
+    def wave_kinematics(self, t: float, north: float, east: float, depth: float) -> tuple[float, float, float, float]:
         """Deep-water (Airy) velocity and acceleration of the water: along the
         wave direction and down [m/s, m/s^2]. Per component of amplitude a,
         frequency w, wavenumber k = w^2/g, phase th = k s - w t + ph:
@@ -169,7 +170,7 @@ class Environment:
         s = north * self._wave_cos + east * self._wave_sin
         d = max(depth, 0.0)
         uh = uv = ah = av = 0.0
-        gc = gs = 0.0          # sums of a w k e^-kz cos th and of ... sin th
+        gc = gs = 0.0  # sums of a w k e^-kz cos th and of ... sin th
         exp, cos, sin = math.exp, math.cos, math.sin
         for aw, nk, k, w, ph in self._orbital:
             decay = exp(nk * d)
@@ -192,8 +193,9 @@ class Environment:
         rho g sum a e^-kz cos th (in phase with the surface above)."""
         s = north * self._wave_cos + east * self._wave_sin
         d = max(depth, 0.0)
-        return RHO_SEAWATER * G * sum(a * math.exp(-k * d) * math.cos(k * s - w * t + ph)
-                                      for a, w, k, ph in self._waves)
+        return (
+            RHO_SEAWATER * G * sum(a * math.exp(-k * d) * math.cos(k * s - w * t + ph) for a, w, k, ph in self._waves)
+        )
 
     def wave_elevation(self, t: float, north: float, east: float) -> float:
         """Sea-surface elevation, positive up [m]."""
@@ -224,21 +226,32 @@ class Environment:
         for c in p.current:
             layer = current_layer_t()
             layer.depth_m, layer.north_mps, layer.east_mps, layer.down_mps = (
-                c.depth_m, c.north_mps, c.east_mps, c.down_mps)
+                c.depth_m,
+                c.north_mps,
+                c.east_mps,
+                c.down_mps,
+            )
             m.current.append(layer)
         m.n_current_layers = len(m.current)
         m.current_variation_mps = p.current_variation_mps
         m.current_variation_period_s = p.current_variation_period_s
         m.wave_height_m, m.wave_period_s, m.wave_direction_rad = (
-            p.wave_height_m, p.wave_period_s, p.wave_direction_rad)
+            p.wave_height_m,
+            p.wave_period_s,
+            p.wave_direction_rad,
+        )
         m.bathymetry_ref, m.bathymetry_sha256 = p.bathymetry_ref, self.bathymetry.sha256
-        m.sound_speed_mps, m.sound_speed_gradient_per_m = (
-            p.sound_speed_mps, p.sound_speed_gradient_per_m)
+        m.sound_speed_mps, m.sound_speed_gradient_per_m = (p.sound_speed_mps, p.sound_speed_gradient_per_m)
         m.transponders = []
         for tr in p.transponders:
             x = lbl_transponder_t()
             x.id, x.north_m, x.east_m, x.depth_m, x.turnaround_s = (
-                tr.id, tr.north_m, tr.east_m, tr.depth_m, tr.turnaround_s)
+                tr.id,
+                tr.north_m,
+                tr.east_m,
+                tr.depth_m,
+                tr.turnaround_s,
+            )
             m.transponders.append(x)
         m.n_transponders = len(m.transponders)
         return m
@@ -246,14 +259,18 @@ class Environment:
     @staticmethod
     def params_from_env_model(m) -> EnvParams:
         return EnvParams(
-            world=m.world, seed=m.seed,
-            origin_latitude_deg=m.origin_latitude_deg, origin_longitude_deg=m.origin_longitude_deg,
+            world=m.world,
+            seed=m.seed,
+            origin_latitude_deg=m.origin_latitude_deg,
+            origin_longitude_deg=m.origin_longitude_deg,
             current=[CurrentLayer(c.depth_m, c.north_mps, c.east_mps, c.down_mps) for c in m.current],
             current_variation_mps=m.current_variation_mps,
             current_variation_period_s=m.current_variation_period_s,
-            wave_height_m=m.wave_height_m, wave_period_s=m.wave_period_s,
-            wave_direction_rad=m.wave_direction_rad, bathymetry_ref=m.bathymetry_ref,
+            wave_height_m=m.wave_height_m,
+            wave_period_s=m.wave_period_s,
+            wave_direction_rad=m.wave_direction_rad,
+            bathymetry_ref=m.bathymetry_ref,
             sound_speed_mps=m.sound_speed_mps,
             sound_speed_gradient_per_m=m.sound_speed_gradient_per_m,
-            transponders=[Transponder(t.id, t.north_m, t.east_m, t.depth_m, t.turnaround_s)
-                          for t in m.transponders])
+            transponders=[Transponder(t.id, t.north_m, t.east_m, t.depth_m, t.turnaround_s) for t in m.transponders],
+        )

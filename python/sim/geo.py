@@ -4,15 +4,15 @@ from __future__ import annotations
 
 import math
 
-_A = 6378137.0            # WGS-84 semi-major axis [m]
-_E2 = 6.69437999014e-3    # first eccentricity squared
+_A = 6378137.0  # WGS-84 semi-major axis [m]
+_E2 = 6.69437999014e-3  # first eccentricity squared
 
 
 def radii(lat_deg: float) -> tuple[float, float]:
     """Meridian and prime-vertical radii of curvature at a latitude [m]."""
     s = math.sin(math.radians(lat_deg))
     d = 1.0 - _E2 * s * s
-    return _A * (1.0 - _E2) / d ** 1.5, _A / math.sqrt(d)
+    return _A * (1.0 - _E2) / d**1.5, _A / math.sqrt(d)
 
 
 class LocalFrame:

@@ -68,9 +68,11 @@ def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
     out: list = []
     if cfg.sonar is not None:
         from sim.sonar.publisher import SonarOutputs
+
         out.append(SonarOutputs(cfg, sensors, publish_world))
     if getattr(cfg, "identify", None) is not None:
         from sim.sonar.identify import IdentifyOutputs
+
         out.append(IdentifyOutputs(cfg, sensors))
     return out
 
@@ -79,8 +81,11 @@ def build_model(cfg: SimConfig) -> VehicleModel:
     env = Environment(cfg.env, cfg.path.parent)
     model = VehicleModel(cfg.vehicle, env, 1.0 / cfg.sim.physics_rate_hz)
     i = cfg.initial
-    model.set_pose((i.north_m, i.east_m, i.depth_m, i.roll_rad, i.pitch_rad, i.heading_rad),
-                   (i.speed_mps, 0.0, 0.0, 0.0, 0.0, 0.0), rpm=i.prop_rpm)
+    model.set_pose(
+        (i.north_m, i.east_m, i.depth_m, i.roll_rad, i.pitch_rad, i.heading_rad),
+        (i.speed_mps, 0.0, 0.0, 0.0, 0.0, 0.0),
+        rpm=i.prop_rpm,
+    )
     model.command = Command(0.0, 0.0, i.prop_rpm)
     return model
 
@@ -97,39 +102,39 @@ class Simulator:
         s = cfg.sim
         self.dt = self.model.dt
         self.pacer = Pacer(s.clock, s.warp, self.dt, fast=fast)
-        self.publish_clock = (s.publish_clock == "yes"
-                              or (s.publish_clock == "auto" and s.clock != LOCKSTEP))
-        self.publish_clock &= not cfg.multihil.enabled     # the world's server does it
+        self.publish_clock = s.publish_clock == "yes" or (s.publish_clock == "auto" and s.clock != LOCKSTEP)
+        self.publish_clock &= not cfg.multihil.enabled  # the world's server does it
         url = check_local(s.lcm_url or default_url())
         # The sender thread serves a loop that runs as fast as it can (fast,
         # stepped): a loop paced by the wall clock has the time to publish,
         # and its multi-HIL clock sync wants no queue between it and the wire.
-        self.lc = lc or open_lcm(url, s.publish_thread and (fast or s.clock == LOCKSTEP),
-                                 lambda line: print(f"sim: {self.vid}: {line}", flush=True))
+        self.lc = lc or open_lcm(
+            url,
+            s.publish_thread and (fast or s.clock == LOCKSTEP),
+            lambda line: print(f"sim: {self.vid}: {line}", flush=True),
+        )
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
         self.time_drops = TimeDrops(f"sim: {self.vid}", lambda line: print(line, flush=True))
-        self.clock_gate = ClockGate(self.time_drops)     # stepped: the SIM.CLOCK followed
+        self.clock_gate = ClockGate(self.time_drops)  # stepped: the SIM.CLOCK followed
         self._cmd_gate = InputGate(self.time_drops, f"{self.vid}.ACTUATORS")
         # where a command that passed the checks goes, if not applied at once
         self._command_filter: Callable[[str, actuators_t], None] | None = None
-        self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators,
-                          queue_capacity=200)
-        if s.clock == LOCKSTEP and not cfg.multihil.enabled:   # multi-HIL: the node's clock
+        self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators, queue_capacity=200)
+        if s.clock == LOCKSTEP and not cfg.multihil.enabled:  # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
-        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops,
-                                self.clock_now_us)
+        self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops, self.clock_now_us)
         self._fd = self.lc.fileno()
         poller = select.poll()
         poller.register(self._fd, select.POLLIN)
         self._poll = poller.poll
-        self.last_cmd_t: float | None = None     # sim time a command was applied
+        self.last_cmd_t: float | None = None  # sim time a command was applied
         self.last_cmd_utime = 0
         self.stale = False
         self.stale_events = 0
         self.rejected_commands = 0
-        self.missed_commands = 0     # gaps in actuators_t.seq
+        self.missed_commands = 0  # gaps in actuators_t.seq
         self._last_seq: int | None = None
         self.published = 0
         self.stop_requested = False
@@ -139,12 +144,11 @@ class Simulator:
         self._act_every = Periodic(1.0 / s.actuator_state_rate_hz)
         self._clock_every = Periodic(1.0 / s.clock_rate_hz)
         self._health_every = Periodic(s.health_period_s, s.health_period_s)
-        self._next_due = 0.0        # earliest of every output's next time
+        self._next_due = 0.0  # earliest of every output's next time
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
         # what _outputs() calls per sensor: when it is due next, its poll as bytes
         # (or None), its channel
-        self._sensor_polls = [(sen.next_due, sen.poll_encoded, ch)
-                              for sen, ch in self._sensor_channels]
+        self._sensor_polls = [(sen.next_due, sen.poll_encoded, ch) for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
@@ -156,13 +160,15 @@ class Simulator:
         self._step_us = utime(self.dt)
         self._cpu0 = os.times()
         self._wall_health = time.monotonic()
-        self.mh = None      # multi-HIL: shared world, global clock (docs/multihil.md)
+        self.mh = None  # multi-HIL: shared world, global clock (docs/multihil.md)
         self.follow = None  # stepped on its own: a participant when the clock is lockstep
         if cfg.multihil.enabled:
             from sim.multihil.hook import SimHook
+
             self.mh = SimHook(self)
         elif s.clock == LOCKSTEP:
             from sim.lockstep_follow import LockstepFollower
+
             self.follow = LockstepFollower(self)
 
     # ------------------------------------------------------------ handlers
@@ -170,7 +176,7 @@ class Simulator:
         """The global time this simulator judges stamps against (None: it has none yet):
         the SIM.CLOCK it follows (stepped), the world's clock (multi-HIL), else its own."""
         if self.mh is not None:
-            return self.mh.node.global_now_us()     # lockstep: its last accepted SIM.CLOCK
+            return self.mh.node.global_now_us()  # lockstep: its last accepted SIM.CLOCK
         if self.cfg.sim.clock == LOCKSTEP:
             return self.clock_gate.now
         return utime(self.model.t)
@@ -193,7 +199,7 @@ class Simulator:
         vals = (msg.rudder_rad, msg.stern_plane_rad, msg.prop_rpm)
         if self._last_seq is not None and msg.seq > self._last_seq + 1:
             self.missed_commands += msg.seq - self._last_seq - 1
-        self._last_seq = msg.seq     # a pilot restart (seq going back) just resyncs
+        self._last_seq = msg.seq  # a pilot restart (seq going back) just resyncs
         self.model.command = Command(*vals)
         self.last_cmd_t = self.model.t
         self.last_cmd_utime = msg.utime
@@ -253,7 +259,7 @@ class Simulator:
         for extra in self.extras:
             extra.restart(t)
         self._t_start = t
-        if not self._cmd_gate.judge_held(utime(t)):     # a command from before the clock
+        if not self._cmd_gate.judge_held(utime(t)):  # a command from before the clock
             self.model.command = Command(0.0, 0.0, self.cfg.initial.prop_rpm)
             self.last_cmd_utime = 0
         self._outputs()
@@ -270,12 +276,16 @@ class Simulator:
             self.stale = True
             self.stale_events += 1
             if self.cfg.sim.on_stale == "safe":
-                self.model.command = Command(self.cfg.safe_command.rudder_rad,
-                                             self.cfg.safe_command.stern_plane_rad,
-                                             self.cfg.safe_command.prop_rpm)
-            print(f"sim: {self.vid}: no actuator command for {since:.2f}s at t={t:.2f}s: "
-                  f"{'safe command' if self.cfg.sim.on_stale == 'safe' else 'holding last command'}",
-                  flush=True)
+                self.model.command = Command(
+                    self.cfg.safe_command.rudder_rad,
+                    self.cfg.safe_command.stern_plane_rad,
+                    self.cfg.safe_command.prop_rpm,
+                )
+            print(
+                f"sim: {self.vid}: no actuator command for {since:.2f}s at t={t:.2f}s: "
+                f"{'safe command' if self.cfg.sim.on_stale == 'safe' else 'holding last command'}",
+                flush=True,
+            )
 
     def _outputs(self) -> None:
         """Publish whatever is due at the current sim time.
@@ -285,7 +295,7 @@ class Simulator:
         taken when something will read it.
         """
         t = self.model.t
-        if self.modem is not None:      # every step: a frame may arrive at any step
+        if self.modem is not None:  # every step: a frame may arrive at any step
             self.modem.step(t, tuple(self.model.dyn.x[0:3]))
         if t < self._next_due - 1e-9:
             return
@@ -293,7 +303,7 @@ class Simulator:
         publish = self._publish
         sensors_due = math.inf
         for next_due, poll, channel in self._sensor_polls:
-            if t >= next_due() - 1e-9:      # what poll() itself checks first: skip the call
+            if t >= next_due() - 1e-9:  # what poll() itself checks first: skip the call
                 data = poll(tr)
                 if data is not None:
                     publish(channel, data)
@@ -303,30 +313,56 @@ class Simulator:
         for extra in self.extras:
             for channel, data in extra.poll(tr):
                 publish(channel, data)
-        truth, act, clock, health = (self._truth_every, self._act_every, self._clock_every,
-                                     self._health_every)
+        truth, act, clock, health = (self._truth_every, self._act_every, self._clock_every, self._health_every)
         if truth.due(t):
             truth.advance(t)
-            publish(self._ch_truth, self._enc_truth.pack(
-                utime(tr.t), *tr.eta, *tr.nu, *tr.nu_dot, *tr.current_ned, tr.altitude_m,
-                tr.water_depth_m, tr.latitude_deg, tr.longitude_deg))
+            publish(
+                self._ch_truth,
+                self._enc_truth.pack(
+                    utime(tr.t),
+                    *tr.eta,
+                    *tr.nu,
+                    *tr.nu_dot,
+                    *tr.current_ned,
+                    tr.altitude_m,
+                    tr.water_depth_m,
+                    tr.latitude_deg,
+                    tr.longitude_deg,
+                ),
+            )
         if act.due(t):
             act.advance(t)
             a = self.model.act
-            publish(self._ch_act, self._enc_act.pack(
-                utime(t), a.rudder, a.stern, a.rpm, a.thrust, a.torque, self.stale,
-                self.last_cmd_utime))
+            publish(
+                self._ch_act,
+                self._enc_act.pack(
+                    utime(t), a.rudder, a.stern, a.rpm, a.thrust, a.torque, self.stale, self.last_cmd_utime
+                ),
+            )
         if self.publish_clock and clock.due(t):
             clock.advance(t)
-            publish("SIM.CLOCK", self._enc_clock.pack(
-                utime(t), 0, CLOCK_MODE[self.cfg.sim.clock],
-                self.pacer.warp if not self.pacer.fast else 0.0, 0, self._step_us))
+            publish(
+                "SIM.CLOCK",
+                self._enc_clock.pack(
+                    utime(t),
+                    0,
+                    CLOCK_MODE[self.cfg.sim.clock],
+                    self.pacer.warp if not self.pacer.fast else 0.0,
+                    0,
+                    self._step_us,
+                ),
+            )
         if health.due(t):
             health.advance(t)
             self._health()
-        self._next_due = min(sensors_due, min((x.next_due() for x in self.extras), default=math.inf),
-                             truth.next_t, act.next_t,
-                             clock.next_t if self.publish_clock else math.inf, health.next_t)
+        self._next_due = min(
+            sensors_due,
+            min((x.next_due() for x in self.extras), default=math.inf),
+            truth.next_t,
+            act.next_t,
+            clock.next_t if self.publish_clock else math.inf,
+            health.next_t,
+        )
 
     def _health(self) -> None:
         """process_health_t every health_period_s of sim time (like every other output).
@@ -340,10 +376,18 @@ class Simulator:
         wall = now - self._wall_health
         load = ((cpu.user + cpu.system) - (self._cpu0.user + self._cpu0.system)) / wall if wall > 0 else 0.0
         self._cpu0, self._wall_health = cpu, now
-        self._publish(self._ch_health, self._enc_health.pack(
-            utime(self.model.t), os.getpid(), self.messages_received(),
-            self.decode_errors(), self.missed_commands, load))
-        if isinstance(self.lc, ThreadedLcm):     # sends fail on the sender thread: say so here
+        self._publish(
+            self._ch_health,
+            self._enc_health.pack(
+                utime(self.model.t),
+                os.getpid(),
+                self.messages_received(),
+                self.decode_errors(),
+                self.missed_commands,
+                load,
+            ),
+        )
+        if isinstance(self.lc, ThreadedLcm):  # sends fail on the sender thread: say so here
             line = self.lc.new_errors()
             if line:
                 print(f"sim: {self.vid}: {line}", flush=True)
@@ -404,15 +448,20 @@ class Simulator:
         cfg = self.cfg
         self._t_start = self.model.t
         # stop cleanly on SIGINT/SIGTERM; the previous handlers come back at the end
-        previous = {sig: signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
-                    for sig in (signal.SIGINT, signal.SIGTERM)}
+        previous = {
+            sig: signal.signal(sig, lambda *_: setattr(self, "stop_requested", True))
+            for sig in (signal.SIGINT, signal.SIGTERM)
+        }
         duration = cfg.sim.duration_s
-        print(f"sim: {self.vid} running: clock={cfg.sim.clock} warp={self.pacer.warp:g}"
-              f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
-              f"sensors={','.join(s.name for s in self.sensors)} "
-              f"publish_clock={'yes' if self.publish_clock else 'no'}", flush=True)
+        print(
+            f"sim: {self.vid} running: clock={cfg.sim.clock} warp={self.pacer.warp:g}"
+            f"{' (fast)' if self.pacer.fast else ''} physics={cfg.sim.physics_rate_hz:g}Hz "
+            f"sensors={','.join(s.name for s in self.sensors)} "
+            f"publish_clock={'yes' if self.publish_clock else 'no'}",
+            flush=True,
+        )
         if cfg.sim.clock != LOCKSTEP and self.mh is None:
-            self._outputs()   # stepped, multi-HIL: nothing until the global clock says when
+            self._outputs()  # stepped, multi-HIL: nothing until the global clock says when
         self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
@@ -428,7 +477,7 @@ class Simulator:
                 break
             now = monotonic()
             if pacer.may_step(model.t, now):
-                if poll(0):                 # anything from LCM (one poll() per step)
+                if poll(0):  # anything from LCM (one poll() per step)
                     self._drain(0.0)
                 self._check_stale()
                 model.step()
@@ -441,15 +490,18 @@ class Simulator:
             self.follow.close()
         sender = self._close_sender()
         for sig, handler in previous.items():
-            if handler is not None:     # None: not set from Python, nothing to restore
+            if handler is not None:  # None: not set from Python, nothing to restore
                 signal.signal(sig, handler)
         wall = time.monotonic() - wall_start
         steps = self.model.steps - steps0
-        print(f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
-              f"{wall:.2f}s wall ({steps * self.dt / wall if wall > 0 else 0:.1f}x real time), "
-              f"{self.published} messages published, {self.decode_errors()} decode errors, "
-              f"{self.rejected_commands} commands rejected, {self.stale_events} stale events, "
-              f"{self.time_drops.summary()}{sender}", flush=True)
+        print(
+            f"sim: {self.vid} stopped at t={self.model.t:.2f}s after {steps} steps in "
+            f"{wall:.2f}s wall ({steps * self.dt / wall if wall > 0 else 0:.1f}x real time), "
+            f"{self.published} messages published, {self.decode_errors()} decode errors, "
+            f"{self.rejected_commands} commands rejected, {self.stale_events} stale events, "
+            f"{self.time_drops.summary()}{sender}",
+            flush=True,
+        )
         if self.modem is not None:
             print(self.modem.summary(), flush=True)
         return 0

@@ -25,11 +25,10 @@ from sim.multihil.lockstep import Participation
 class LockstepFollower:
     def __init__(self, sim) -> None:
         self.sim = sim
-        self.part = Participation(f"{sim.vid}.sim",
-                                  lambda m: sim.lc.publish("SIM.LOCKSTEP", m.encode()))
-        self.active = False              # the clock followed is a lockstep clock
-        self._clock: tuple[int, int] | None = None   # (step, utime) not yet passed on
-        self._held: list[tuple[float, int, tuple]] = []   # (t, seq, (channel, msg))
+        self.part = Participation(f"{sim.vid}.sim", lambda m: sim.lc.publish("SIM.LOCKSTEP", m.encode()))
+        self.active = False  # the clock followed is a lockstep clock
+        self._clock: tuple[int, int] | None = None  # (step, utime) not yet passed on
+        self._held: list[tuple[float, int, tuple]] = []  # (t, seq, (channel, msg))
         self._held_seq = 0
         # a command that passed the simulator's checks waits for its time stamp
         sim.set_command_filter(self._hold_command)
@@ -60,7 +59,7 @@ class LockstepFollower:
             self._clock = None
         pend = part.pending
         if pend is not None and sim.clock_started and sim.model.t >= pend[1] / 1e6 - 0.5 * sim.dt:
-            part.done()     # after the step's messages: the same sender, in order
+            part.done()  # after the step's messages: the same sender, in order
 
     def close(self) -> None:
         if self.part.seen_clock or self.part._next_register:

@@ -19,6 +19,7 @@ from sim.vehicle import VehicleParams
 @dataclass
 class Truth:
     """A snapshot the sensors read: the true state and the world around it."""
+
     t: float = 0.0
     eta: tuple = (0.0,) * 6
     nu: tuple = (0.0,) * 6
@@ -28,7 +29,7 @@ class Truth:
     altitude_m: float = 0.0
     latitude_deg: float = 0.0
     longitude_deg: float = 0.0
-    wave_pressure_pa: float = 0.0   # the waves' dynamic pressure at the vehicle
+    wave_pressure_pa: float = 0.0  # the waves' dynamic pressure at the vehicle
 
     @property
     def depth(self) -> float:

@@ -18,14 +18,23 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 
 PLAN = Path(__file__).resolve().parents[2] / "missions" / "pilot" / "pilot.chasm"
-_UNITS = {"": 1.0, "rad": 1.0, "deg": math.pi / 180.0, "deg/s": math.pi / 180.0, "rad/s": 1.0,
-          "s": 1.0, "m": 1.0, "m/s": 1.0}
+_UNITS = {
+    "": 1.0,
+    "rad": 1.0,
+    "deg": math.pi / 180.0,
+    "deg/s": math.pi / 180.0,
+    "rad/s": 1.0,
+    "s": 1.0,
+    "m": 1.0,
+    "m/s": 1.0,
+}
 _PARAM = re.compile(r"^param\s+(\w+)\s*=\s*([-+0-9.eE]+)\s*([a-z/]*)")
 
 
 @dataclass
 class PilotGains:
     """Every number the pilot plan sets (SI units); from_plan() fills them."""
+
     heading_kp: float
     heading_kd: float
     heading_ki: float
@@ -106,8 +115,9 @@ class PilotModel:
     def __init__(self, g: PilotGains | None = None, dt: float = 0.05) -> None:
         self.g = g = g or PilotGains.from_plan()
         self.dt = dt
-        self.heading = Pid(g.heading_kp, g.heading_ki, g.heading_kd, g.max_rudder, g.rudder_slew,
-                           g.heading_i_limit, g.heading_i_zone)
+        self.heading = Pid(
+            g.heading_kp, g.heading_ki, g.heading_kd, g.max_rudder, g.rudder_slew, g.heading_i_limit, g.heading_i_zone
+        )
         self.depth = Pid(g.depth_kp, g.depth_ki, g.depth_kd, g.max_pitch, g.pitch_slew, g.max_pitch)
         self.pitch = Pid(g.pitch_kp, g.pitch_ki, g.pitch_kd, g.max_plane, g.plane_slew, g.plane_i_limit)
         self.speed = Pid(g.speed_kp, g.speed_ki, 0.0, g.max_rpm, g.rpm_slew, g.speed_i_limit, lo=0.0)
@@ -133,8 +143,11 @@ class PilotModel:
         if self._last_depth is not None:
             raw = (depth - self._last_depth) / dt
             tau = self.g.depth_rate_tau
-            self._rate = raw if self._rate is None or tau <= 0.0 else \
-                self._rate + (1.0 - math.exp(-dt / tau)) * (raw - self._rate)
+            self._rate = (
+                raw
+                if self._rate is None or tau <= 0.0
+                else self._rate + (1.0 - math.exp(-dt / tau)) * (raw - self._rate)
+            )
         self._last_depth = depth
         pitch_cmd = self.depth.step(depth - target, self._rate or 0.0, 0.0, dt)
         return self.stern_for_pitch(pitch_cmd, pitch, q)
@@ -143,8 +156,11 @@ class PilotModel:
         """rpm for speed_cmd; through the water: the rpm law alone (setpoint_t)."""
         if through_water:
             self.speed.integral = 0.0
-            return self.speed.step(0.0, 0.0, self.g.rpm_per_mps * max(speed_cmd, 0.0), self.dt, 0.0) \
-                if speed_cmd > 0.0 else self.speed.step(0.0, 0.0, 0.0, self.dt, 0.0)
+            return (
+                self.speed.step(0.0, 0.0, self.g.rpm_per_mps * max(speed_cmd, 0.0), self.dt, 0.0)
+                if speed_cmd > 0.0
+                else self.speed.step(0.0, 0.0, 0.0, self.dt, 0.0)
+            )
         if not speed_cmd > 0.0:
             self.speed.integral = 0.0
             return self.speed.step(0.0, 0.0, 0.0, self.dt, 0.0)

@@ -30,21 +30,36 @@ def _forces(vp: VehicleParams, x: np.ndarray, thrust: float, dr: float) -> np.nd
     xg, yg, _ = vp.cg_m
     u, v, r = x
     uau = u * abs(u)
-    X = (h["Xuu"] * uau + h["Xvr"] * v * r + h["Xrr"] * r * r
-         + m * (v * r + xg * r * r) + thrust)
-    Y = (h["Yvv"] * v * abs(v) + h["Yrr"] * r * abs(r) + h["Yuv"] * u * v + h["Yur"] * u * r
-         + h["Yuudr"] * uau * dr + m * (-u * r + yg * r * r))
-    N = (h["Nvv"] * v * abs(v) + h["Nrr"] * r * abs(r) + h["Nuv"] * u * v + h["Nur"] * u * r
-         + h["Nuudr"] * uau * dr - m * (xg * u * r + yg * v * r))
+    X = h["Xuu"] * uau + h["Xvr"] * v * r + h["Xrr"] * r * r + m * (v * r + xg * r * r) + thrust
+    Y = (
+        h["Yvv"] * v * abs(v)
+        + h["Yrr"] * r * abs(r)
+        + h["Yuv"] * u * v
+        + h["Yur"] * u * r
+        + h["Yuudr"] * uau * dr
+        + m * (-u * r + yg * r * r)
+    )
+    N = (
+        h["Nvv"] * v * abs(v)
+        + h["Nrr"] * r * abs(r)
+        + h["Nuv"] * u * v
+        + h["Nur"] * u * r
+        + h["Nuudr"] * uau * dr
+        - m * (xg * u * r + yg * v * r)
+    )
     return np.array([X, Y, N])
 
 
 def _mass3(vp: VehicleParams) -> np.ndarray:
     h, m = vp.hydro, vp.mass_kg
     xg, yg, _ = vp.cg_m
-    return np.array([[m - h["Xud"], 0.0, -m * yg],
-                     [0.0, m - h["Yvd"], m * xg - h["Yrd"]],
-                     [-m * yg, m * xg - h["Nvd"], vp.inertia_kgm2[2] - h["Nrd"]]])
+    return np.array(
+        [
+            [m - h["Xud"], 0.0, -m * yg],
+            [0.0, m - h["Yvd"], m * xg - h["Yrd"]],
+            [-m * yg, m * xg - h["Nvd"], vp.inertia_kgm2[2] - h["Nrd"]],
+        ]
+    )
 
 
 def _jacobian(vp, x, thrust, dr, eps=1e-7) -> np.ndarray:
@@ -77,21 +92,28 @@ def equilibria(vp: VehicleParams, rudder_rad: float, rpm: float = 1500.0) -> lis
     """Every steady turn found at this commanded rudder and rpm, stable or not."""
     n0 = vp.prop_nominal_rpm
     thrust = vp.prop_nominal_thrust_n * (rpm / n0) ** 2
-    dr = vp.rudder_sign * rudder_rad          # the model's fin sign
+    dr = vp.rudder_sign * rudder_rad  # the model's fin sign
     u0 = math.sqrt(thrust / -vp.hydro["Xuu"])
     minv = np.linalg.inv(_mass3(vp))
     found: list[dict] = []
-    for rs in np.linspace(-1.5, 1.5, 13):     # yaw rate guesses [rad/s]
-        for vs in (-0.5, 0.0, 0.5):            # sway guesses, fractions of u0
+    for rs in np.linspace(-1.5, 1.5, 13):  # yaw rate guesses [rad/s]
+        for vs in (-0.5, 0.0, 0.5):  # sway guesses, fractions of u0
             x = _newton(vp, (u0, vs * u0, rs), thrust, dr)
             if x is None or x[0] <= 0.0 or any(np.allclose(x, e["x"], atol=1e-6) for e in found):
                 continue
             ev = np.linalg.eigvals(minv @ _jacobian(vp, x, thrust, dr))
             speed = math.hypot(x[0], x[1])
-            found.append({"x": x, "u_mps": x[0], "v_mps": x[1], "yaw_rate_radps": x[2],
-                          "speed_mps": speed,
-                          "diameter_m": 2.0 * speed / abs(x[2]) if x[2] != 0.0 else math.inf,
-                          "stable": bool(np.max(ev.real) < 0.0)})
+            found.append(
+                {
+                    "x": x,
+                    "u_mps": x[0],
+                    "v_mps": x[1],
+                    "yaw_rate_radps": x[2],
+                    "speed_mps": speed,
+                    "diameter_m": 2.0 * speed / abs(x[2]) if x[2] != 0.0 else math.inf,
+                    "stable": bool(np.max(ev.real) < 0.0),
+                }
+            )
     return found
 
 
@@ -111,5 +133,9 @@ def linear_turn(vp: VehicleParams, rudder_rad: float | None = None) -> dict:
     dr = vp.rudder_sign * rudder_rad
     A = np.array([[h["Yuv"], h["Yur"] - m], [h["Nuv"], h["Nur"]]])
     v_u, r_u = np.linalg.solve(A, -np.array([h["Yuudr"], h["Nuudr"]]) * dr)  # v/U, r/U [1/m]
-    return {"r_per_speed": float(r_u), "diameter_m": 2.0 / abs(r_u),
-            "turns_to_starboard": bool(r_u > 0), "index": float(np.linalg.det(A))}
+    return {
+        "r_per_speed": float(r_u),
+        "diameter_m": 2.0 / abs(r_u),
+        "turns_to_starboard": bool(r_u > 0),
+        "index": float(np.linalg.det(A)),
+    }

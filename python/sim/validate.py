@@ -24,7 +24,7 @@ from sim.steady_turn import equilibria, steady_turn
 from sim.vehicle import REMUS100, VehicleParams
 
 DEG = math.pi / 180.0
-FOSSEN_TURN_M = {5: 81.0, 10: 49.0, 15: 37.0}   # MSS remus100.py at 2.5 m/s (reference page)
+FOSSEN_TURN_M = {5: 81.0, 10: 49.0, 15: 37.0}  # MSS remus100.py at 2.5 m/s (reference page)
 LINEAR_WAVES = {3: (0.187, 0.18, 1800.0), 5: (0.150, 0.14, 1440.0), 8: (0.107, 0.10, 1030.0)}
 DEPTH_RMS_LIMIT_M = {3: 0.3, 5: 0.2, 8: 0.2}
 
@@ -34,7 +34,7 @@ class Figure:
     name: str
     measured: float
     reference: float
-    tolerance: float     # absolute; for a limit, the reference is the bound
+    tolerance: float  # absolute; for a limit, the reference is the bound
     unit: str
     source: str
     limit: bool = False  # PASS if measured <= reference (a requirement)
@@ -53,28 +53,36 @@ def waves() -> list[Figure]:
     for depth, (speed, heave, pressure) in LINEAR_WAVES.items():
         a = v.wave_amplitudes(depth)
         src = "Airy theory, 0.5 m 6 s swell (reference page)"
-        figs += [Figure(f"wave orbital speed at {depth} m", a["orbital_mps"], speed, 0.01 * speed + 0.001, "m/s", src),
-                 Figure(f"wave particle heave at {depth} m", a["heave_m"], heave, 0.01, "m", src),
-                 Figure(f"wave dynamic pressure at {depth} m", a["pressure_pa"], pressure, 0.01 * pressure + 10,
-                        "Pa", src)]
+        figs += [
+            Figure(f"wave orbital speed at {depth} m", a["orbital_mps"], speed, 0.01 * speed + 0.001, "m/s", src),
+            Figure(f"wave particle heave at {depth} m", a["heave_m"], heave, 0.01, "m", src),
+            Figure(f"wave dynamic pressure at {depth} m", a["pressure_pa"], pressure, 0.01 * pressure + 10, "Pa", src),
+        ]
     return figs
 
 
 def speeds(vp: VehicleParams, quick: bool) -> list[Figure]:
     figs = []
-    for rpm in ((1500,) if quick else (1250, 1500, 2000, vp.prop_max_rpm)):
+    for rpm in (1500,) if quick else (1250, 1500, 2000, vp.prop_max_rpm):
         if rpm == 1500:
             ref, tol, src = 1.5, 0.05, "Prestero 2001: about 1.5 m/s at about 1500 rpm"
         elif rpm == vp.prop_max_rpm:
             ref, tol, src = 2.5, 0.05, "published maximum about 2.5 m/s"
         else:
             ref, tol, src = v.trim_speed(vp, rpm), 0.02, "level-flight trim of the same coefficients"
-        figs.append(Figure(f"speed at {rpm:.0f} rpm, depth held", v.speed_at_rpm(vp, rpm), ref, tol * ref,
-                           "m/s", src))
+        figs.append(Figure(f"speed at {rpm:.0f} rpm, depth held", v.speed_at_rpm(vp, rpm), ref, tol * ref, "m/s", src))
     if not quick:
         cd = v.coast_down(vp)
-        figs.append(Figure("coast-down from 1.5 m/s: time to half speed", cd["t_half_s"], cd["theory_s"],
-                           0.05 * cd["theory_s"], "s", "(m - X_u.) / (-X_u|u| u0), neutral ballast"))
+        figs.append(
+            Figure(
+                "coast-down from 1.5 m/s: time to half speed",
+                cd["t_half_s"],
+                cd["theory_s"],
+                0.05 * cd["theory_s"],
+                "s",
+                "(m - X_u.) / (-X_u|u| u0), neutral ballast",
+            )
+        )
     return figs
 
 
@@ -82,19 +90,47 @@ def stability(vp: VehicleParams, quick: bool) -> tuple[list[Figure], list[str]]:
     lin = v.linearised(vp)
     figs, notes = [], []
     yaw = v.linear_check(vp, 11, 11, 5.0)
-    figs.append(Figure("yaw: r 5 s after a 1e-5 rad/s kick (x1e-5)", yaw["simulated"] / 1e-5,
-                       yaw["linear"] / 1e-5, 0.05 * abs(yaw["linear"]) / 1e-5, "rad/s",
-                       "exp(J t) of the published model linearised at trim"))
+    figs.append(
+        Figure(
+            "yaw: r 5 s after a 1e-5 rad/s kick (x1e-5)",
+            yaw["simulated"] / 1e-5,
+            yaw["linear"] / 1e-5,
+            0.05 * abs(yaw["linear"]) / 1e-5,
+            "rad/s",
+            "exp(J t) of the published model linearised at trim",
+        )
+    )
     if not quick:
         pitch = v.linear_check(vp, 10, 4, 10.0)
-        figs.append(Figure("pitch: theta 10 s after a 1e-5 rad/s kick (x1e-5)", pitch["simulated"] / 1e-5,
-                           pitch["linear"] / 1e-5, 0.05 * abs(pitch["linear"]) / 1e-5, "rad",
-                           "exp(J t) of the published model linearised at trim"))
+        figs.append(
+            Figure(
+                "pitch: theta 10 s after a 1e-5 rad/s kick (x1e-5)",
+                pitch["simulated"] / 1e-5,
+                pitch["linear"] / 1e-5,
+                0.05 * abs(pitch["linear"]) / 1e-5,
+                "rad",
+                "exp(J t) of the published model linearised at trim",
+            )
+        )
     roll = v.roll_decay(vp)
-    figs += [Figure("roll: natural period at rest", roll["period_s"], roll["period_theory_s"],
-                    0.03 * roll["period_theory_s"], "s", "2 pi sqrt((I_xx - K_p.) / (W z_g))"),
-             Figure("roll: 10 deg -> 3 deg decay time at rest", roll["decay_s"], roll["decay_theory_s"],
-                    0.1 * roll["decay_theory_s"], "s", "quadratic K_p|p| energy balance")]
+    figs += [
+        Figure(
+            "roll: natural period at rest",
+            roll["period_s"],
+            roll["period_theory_s"],
+            0.03 * roll["period_theory_s"],
+            "s",
+            "2 pi sqrt((I_xx - K_p.) / (W z_g))",
+        ),
+        Figure(
+            "roll: 10 deg -> 3 deg decay time at rest",
+            roll["decay_s"],
+            roll["decay_theory_s"],
+            0.1 * roll["decay_theory_s"],
+            "s",
+            "quadratic K_p|p| energy balance",
+        ),
+    ]
     lat, lon = max(lin["lateral"].real), max(lin["longitudinal"].real)
     notes += [
         f"trim at 1.5 m/s: pitch {lin['trim']['pitch_rad'] / DEG:.1f} deg, heel "
@@ -114,12 +150,14 @@ def stability(vp: VehicleParams, quick: bool) -> tuple[list[Figure], list[str]]:
             f"finite kicks, fins fixed at trim: yaw rate 0.10 rad/s -> {big[-1, v.R]:.3f} rad/s after 30 s "
             f"(the cross-flow drag holds it in a steady circle, {spin_diameter(vp):.0f} m: "
             f"the straight run is not an attractor); pitch +2 deg -> {pk[-1, v.TH] / DEG:.1f} deg after 30 s "
-            f"(it departs into a steady dive or climb)")
+            f"(it departs into a steady dive or climb)"
+        )
         r10 = v.roll_decay(vp, speed=1.5)
-        swing = (f"period {r10['period_s']:.2f} s" if math.isfinite(r10["period_s"])
-                 else "no full swing (overdamped)")
-        notes.append(f"roll at 1.5 m/s (fins fixed): {swing}, 10 -> 3 deg in "
-                     f"{r10['decay_s']:.1f} s (sway and yaw coupling damp it)")
+        swing = f"period {r10['period_s']:.2f} s" if math.isfinite(r10["period_s"]) else "no full swing (overdamped)"
+        notes.append(
+            f"roll at 1.5 m/s (fins fixed): {swing}, 10 -> 3 deg in "
+            f"{r10['decay_s']:.1f} s (sway and yaw coupling damp it)"
+        )
     return figs, notes
 
 
@@ -137,52 +175,116 @@ def turns(vp: VehicleParams, quick: bool) -> tuple[list[Figure], list[str]]:
         tc = v.steady_turn_run(vp, deg * DEG)
         est = steady_turn(vp, deg * DEG)
         diameters.append(tc["diameter_m"])
-        figs += [Figure(f"turn diameter, {deg} deg rudder, 1500 rpm", tc["diameter_m"], est["diameter_m"],
-                        0.1 * est["diameter_m"], "m", "3-DOF steady-turn balance of the same coefficients"),
-                 Figure(f"turn yaw rate, {deg} deg rudder", tc["yaw_rate_radps"] / DEG,
-                        est["yaw_rate_radps"] / DEG, 0.1 * abs(est["yaw_rate_radps"]) / DEG, "deg/s",
-                        "3-DOF steady-turn balance of the same coefficients")]
+        figs += [
+            Figure(
+                f"turn diameter, {deg} deg rudder, 1500 rpm",
+                tc["diameter_m"],
+                est["diameter_m"],
+                0.1 * est["diameter_m"],
+                "m",
+                "3-DOF steady-turn balance of the same coefficients",
+            ),
+            Figure(
+                f"turn yaw rate, {deg} deg rudder",
+                tc["yaw_rate_radps"] / DEG,
+                est["yaw_rate_radps"] / DEG,
+                0.1 * abs(est["yaw_rate_radps"]) / DEG,
+                "deg/s",
+                "3-DOF steady-turn balance of the same coefficients",
+            ),
+        ]
         fossen = FOSSEN_TURN_M.get(deg)
-        lines.append(f"  {deg:>2} deg rudder: diameter {tc['diameter_m']:5.1f} m, speed {tc['speed_mps']:.2f} m/s, "
-                     f"yaw rate {tc['yaw_rate_radps'] / DEG:5.1f} deg/s, heel {tc['roll_rad'] / DEG:4.1f} deg"
-                     + (f"   | Fossen MSS: {fossen:.0f} m at 2.5 m/s" if fossen else "   | Fossen MSS: beyond its 15 deg fins"))
+        lines.append(
+            f"  {deg:>2} deg rudder: diameter {tc['diameter_m']:5.1f} m, speed {tc['speed_mps']:.2f} m/s, "
+            f"yaw rate {tc['yaw_rate_radps'] / DEG:5.1f} deg/s, heel {tc['roll_rad'] / DEG:4.1f} deg"
+            + (f"   | Fossen MSS: {fossen:.0f} m at 2.5 m/s" if fossen else "   | Fossen MSS: beyond its 15 deg fins")
+        )
     if len(diameters) > 1:
         shrinks = all(b < a for a, b in zip(diameters, diameters[1:]))
-        figs.append(Figure("turn diameter falls as rudder grows (1 = yes)", float(shrinks), 1.0, 0.0, "",
-                           "in kind with Fossen's MSS REMUS 100 (81 / 49 / 37 m)"))
+        figs.append(
+            Figure(
+                "turn diameter falls as rudder grows (1 = yes)",
+                float(shrinks),
+                1.0,
+                0.0,
+                "",
+                "in kind with Fossen's MSS REMUS 100 (81 / 49 / 37 m)",
+            )
+        )
     return figs, lines
 
 
 def planes(vp: VehicleParams, quick: bool) -> tuple[list[Figure], list[str]]:
     st = v.plane_step(vp)
-    figs = [Figure("plane step -5 deg: first pitch acceleration", st["q_dot0"] / DEG, st["q_dot0_theory"] / DEG,
-                   0.05 * abs(st["q_dot0_theory"]) / DEG, "deg/s2", "M^-1 of the fin force and moment")]
-    notes = [f"stern plane stepped 5 deg bow-up from trim, fins then fixed: pitch "
-             f"{st['pitch_end_rad'] / DEG:+.0f} deg and depth {st['depth_change_m']:+.2f} m after 4 s"]
+    figs = [
+        Figure(
+            "plane step -5 deg: first pitch acceleration",
+            st["q_dot0"] / DEG,
+            st["q_dot0_theory"] / DEG,
+            0.05 * abs(st["q_dot0_theory"]) / DEG,
+            "deg/s2",
+            "M^-1 of the fin force and moment",
+        )
+    ]
+    notes = [
+        f"stern plane stepped 5 deg bow-up from trim, fins then fixed: pitch "
+        f"{st['pitch_end_rad'] / DEG:+.0f} deg and depth {st['depth_change_m']:+.2f} m after 4 s"
+    ]
     if not quick:
         dv = v.pitch_command_dive(vp)
-        figs.append(Figure("dive at -10 deg pitch (pilot's pitch loop): rate", dv["dive_rate_mps"],
-                           dv["kinematic_rate_mps"], 0.02, "m/s", "U sin(theta) - w cos(theta)"))
-        notes.append(f"pitch command -10 deg: 10-90 % in {dv['rise_s']:.1f} s, overshoot "
-                     f"{dv['overshoot_rad'] / DEG:.1f} deg")
+        figs.append(
+            Figure(
+                "dive at -10 deg pitch (pilot's pitch loop): rate",
+                dv["dive_rate_mps"],
+                dv["kinematic_rate_mps"],
+                0.02,
+                "m/s",
+                "U sin(theta) - w cos(theta)",
+            )
+        )
+        notes.append(
+            f"pitch command -10 deg: 10-90 % in {dv['rise_s']:.1f} s, overshoot {dv['overshoot_rad'] / DEG:.1f} deg"
+        )
     return figs, notes
 
 
 def depth_hold(vp: VehicleParams, quick: bool) -> tuple[list[Figure], list[str]]:
     figs, notes = [], []
-    for depth in ((5,) if quick else (3, 5, 8)):
+    for depth in (5,) if quick else (3, 5, 8):
         r = v.depth_hold(vp, float(depth), seconds=60.0 if quick else 120.0)
-        figs.append(Figure(f"depth hold at {depth} m, 0.5 m 6 s swell: RMS error", r["rms_m"],
-                           DEPTH_RMS_LIMIT_M[depth], 0.0, "m", "pilot requirement (issue 13)", limit=True))
-        notes.append(f"  {depth} m: RMS {r['rms_m']:.3f} m, spread {r['spread_m']:.2f} m, pitch std "
-                     f"{r['pitch_std_rad'] / DEG:.2f} deg, mean plane {r['plane_mean_rad'] / DEG:.1f} deg")
+        figs.append(
+            Figure(
+                f"depth hold at {depth} m, 0.5 m 6 s swell: RMS error",
+                r["rms_m"],
+                DEPTH_RMS_LIMIT_M[depth],
+                0.0,
+                "m",
+                "pilot requirement (issue 13)",
+                limit=True,
+            )
+        )
+        notes.append(
+            f"  {depth} m: RMS {r['rms_m']:.3f} m, spread {r['spread_m']:.2f} m, pitch std "
+            f"{r['pitch_std_rad'] / DEG:.2f} deg, mean plane {r['plane_mean_rad'] / DEG:.1f} deg"
+        )
     if not quick:
         for speed in (1.0, 2.3):
             r = v.depth_hold(vp, 5.0, seconds=90.0, speed=speed)
-            figs.append(Figure(f"level flight at {speed} m/s, 5 m, swell: RMS error", r["rms_m"], 0.2, 0.0, "m",
-                               "pilot requirement: level flight 1.0-2.3 m/s", limit=True))
-            notes.append(f"  {speed} m/s: {r['rpm']:.0f} rpm, mean plane {r['plane_mean_rad'] / DEG:.1f} deg, "
-                         f"RMS {r['rms_m']:.3f} m")
+            figs.append(
+                Figure(
+                    f"level flight at {speed} m/s, 5 m, swell: RMS error",
+                    r["rms_m"],
+                    0.2,
+                    0.0,
+                    "m",
+                    "pilot requirement: level flight 1.0-2.3 m/s",
+                    limit=True,
+                )
+            )
+            notes.append(
+                f"  {speed} m/s: {r['rpm']:.0f} rpm, mean plane {r['plane_mean_rad'] / DEG:.1f} deg, "
+                f"RMS {r['rms_m']:.3f} m"
+            )
     return figs, notes
 
 
@@ -191,8 +293,10 @@ def steps(vp: VehicleParams) -> list[str]:
     for kind in ("heading", "depth", "speed"):
         s = v.step_response(kind, vp)
         scale, unit = (1 / DEG, "deg") if kind == "heading" else (1.0, s["unit"])
-        out.append(f"  {kind:<7} {s['step'] * scale:+5.1f} {unit:<4} {s['rise_s']:6.1f} s   "
-                   f"{s['overshoot'] * scale:7.2f} {unit:<4} {s['steady_error'] * scale:+8.3f} {unit}")
+        out.append(
+            f"  {kind:<7} {s['step'] * scale:+5.1f} {unit:<4} {s['rise_s']:6.1f} s   "
+            f"{s['overshoot'] * scale:7.2f} {unit:<4} {s['steady_error'] * scale:+8.3f} {unit}"
+        )
     return out
 
 
@@ -201,15 +305,20 @@ def table(figs: list[Figure]) -> str:
     lines = [f"{'case':<{w}}  {'measured':>10}  {'reference':>10}  {'tol':>8}  {'unit':<6}  result  reference"]
     for f in figs:
         tol = "<= ref" if f.limit else f"{f.tolerance:8.3g}"
-        lines.append(f"{f.name:<{w}}  {f.measured:10.4g}  {f.reference:10.4g}  {tol:>8}  {f.unit:<6}  "
-                     f"{'PASS' if f.ok else 'FAIL':<6}  {f.source}")
+        lines.append(
+            f"{f.name:<{w}}  {f.measured:10.4g}  {f.reference:10.4g}  {tol:>8}  {f.unit:<6}  "
+            f"{'PASS' if f.ok else 'FAIL':<6}  {f.source}"
+        )
     return "\n".join(lines)
 
 
 def run(vp: VehicleParams = REMUS100, quick: bool = False, out=None) -> list[Figure]:
     out = out or sys.stdout
-    print(f"Validation of {vp.name} (RK4, dt = {v.DT} s; pilot gains from missions/pilot/pilot.chasm)"
-          + (" [quick subset]" if quick else ""), file=out)
+    print(
+        f"Validation of {vp.name} (RK4, dt = {v.DT} s; pilot gains from missions/pilot/pilot.chasm)"
+        + (" [quick subset]" if quick else ""),
+        file=out,
+    )
     figs = waves() + speeds(vp, quick)
     sf, snotes = stability(vp, quick)
     tf, tlines = turns(vp, quick)
@@ -239,6 +348,7 @@ def main(argv: list[str] | None = None) -> int:
     vp = REMUS100
     if args.config:
         from sim.config import ConfigError, load
+
         try:
             vp = load(Path(args.config)).vehicle
         except (ConfigError, OSError) as e:

@@ -21,7 +21,7 @@ from sim.pilot_model import PilotModel
 from sim.vehicle import REMUS100, VehicleParams
 
 DT = 0.02
-PILOT_EVERY = 2            # the pilot runs every second physics step: 25 Hz
+PILOT_EVERY = 2  # the pilot runs every second physics step: 25 Hz
 SWELL = {"wave_height_m": 0.5, "wave_period_s": 6.0, "wave_direction_rad": 1.57}
 # history columns of fly()
 T, N, E, Z, PHI, TH, PSI, U, V, W, P, Q, R, PLANE, RPM, ZP = range(16)
@@ -65,10 +65,19 @@ def trim(vp: VehicleParams, speed: float) -> dict:
     x = state(z)
     thrust = float(z[5])
     rpm = vp.prop_nominal_rpm * math.sqrt(max(thrust, 0.0) / vp.prop_nominal_thrust_n)
-    return {"pitch_rad": float(z[0]), "roll_rad": float(z[1]), "v_mps": float(z[2]), "w_mps": x[8],
-            "plane_rad": float(z[3]) * vp.stern_plane_sign, "rudder_rad": float(z[4]) * vp.rudder_sign,
-            "thrust_n": thrust, "rpm": rpm, "speed_mps": speed, "state": x,
-            "residual": float(np.max(np.abs(residual(z))))}
+    return {
+        "pitch_rad": float(z[0]),
+        "roll_rad": float(z[1]),
+        "v_mps": float(z[2]),
+        "w_mps": x[8],
+        "plane_rad": float(z[3]) * vp.stern_plane_sign,
+        "rudder_rad": float(z[4]) * vp.rudder_sign,
+        "thrust_n": thrust,
+        "rpm": rpm,
+        "speed_mps": speed,
+        "state": x,
+        "residual": float(np.max(np.abs(residual(z)))),
+    }
 
 
 def trim_speed(vp: VehicleParams, rpm: float) -> float:
@@ -80,8 +89,9 @@ def trim_speed(vp: VehicleParams, rpm: float) -> float:
     return 0.5 * (lo + hi)
 
 
-def start(vp: VehicleParams, env: Environment, depth: float, speed: float = 1.5,
-          heading: float = 0.0) -> tuple[VehicleModel, dict]:
+def start(
+    vp: VehicleParams, env: Environment, depth: float, speed: float = 1.5, heading: float = 0.0
+) -> tuple[VehicleModel, dict]:
     """A model in trimmed level flight at depth and speed."""
     tr = trim(vp, speed)
     m = VehicleModel(vp, env, DT)
@@ -91,10 +101,19 @@ def start(vp: VehicleParams, env: Environment, depth: float, speed: float = 1.5,
     return m, tr
 
 
-def fly(m: VehicleModel, seconds: float, *, depth: float | None = None, heading: float | None = 0.0,
-        speed: float | None = None, rpm: float | None = None, rudder: float | None = None,
-        plane: float | None = None, pitch: float | None = None, pilot: PilotModel | None = None
-        ) -> np.ndarray:
+def fly(
+    m: VehicleModel,
+    seconds: float,
+    *,
+    depth: float | None = None,
+    heading: float | None = 0.0,
+    speed: float | None = None,
+    rpm: float | None = None,
+    rudder: float | None = None,
+    plane: float | None = None,
+    pitch: float | None = None,
+    pilot: PilotModel | None = None,
+) -> np.ndarray:
     """Fly for `seconds`; a fixed value (rudder, plane, rpm) overrides the
     pilot's loop for that actuator. The pilot reads depth as the pressure
     gauge does (the waves' dynamic pressure included). Returns the history
@@ -111,8 +130,7 @@ def fly(m: VehicleModel, seconds: float, *, depth: float | None = None, heading:
         if i % PILOT_EVERY == 0:
             tr = m.truth(tr)
             x = m.dyn.x
-            dr = rudder if rudder is not None else (
-                pilot.rudder(heading, x[5], x[11]) if heading is not None else 0.0)
+            dr = rudder if rudder is not None else (pilot.rudder(heading, x[5], x[11]) if heading is not None else 0.0)
             if plane is not None:
                 ds = plane
             elif pitch is not None:
@@ -138,7 +156,7 @@ def speed_at_rpm(vp: VehicleParams = REMUS100, rpm: float = 1500.0) -> float:
     """Mean surge speed over the last 20 s of 100 s at fixed rpm, depth held."""
     m, _ = start(vp, environment(), 10.0, 1.5)
     h = fly(m, 100.0, depth=10.0, rpm=rpm)
-    return float(np.mean(h[-int(20 / DT):, U]))
+    return float(np.mean(h[-int(20 / DT) :, U]))
 
 
 def coast_down(vp: VehicleParams = REMUS100, u0: float = 1.5) -> dict:
@@ -173,7 +191,9 @@ def linearised(vp: VehicleParams = REMUS100, speed: float = 1.5) -> dict:
     h, m = vp.hydro, vp.mass_kg
     roll_i = vp.inertia_kgm2[0] - h["Kpd"]
     return {
-        "J": J, "x0": x0, "trim": tr,
+        "J": J,
+        "x0": x0,
+        "trim": tr,
         "lateral": np.linalg.eigvals(J[np.ix_(LATERAL, LATERAL)]),
         "longitudinal": np.linalg.eigvals(J[np.ix_(LONGITUDINAL, LONGITUDINAL)]),
         # Y_v N_r - N_v (Y_r - m U) per U^2: > 0 directionally stable (linear)
@@ -183,8 +203,8 @@ def linearised(vp: VehicleParams = REMUS100, speed: float = 1.5) -> dict:
     }
 
 
-LATERAL = [3, 7, 9, 11]        # roll, v, p, r (yaw angle and position are neutral)
-LONGITUDINAL = [4, 6, 8, 10]   # pitch, u, w, q
+LATERAL = [3, 7, 9, 11]  # roll, v, p, r (yaw angle and position are neutral)
+LONGITUDINAL = [4, 6, 8, 10]  # pitch, u, w, q
 
 
 def disturbance(vp: VehicleParams, axis: int, size: float, seconds: float, speed: float = 1.5) -> np.ndarray:
@@ -207,12 +227,15 @@ def linear_check(vp: VehicleParams, axis: int, watch: int, seconds: float, size:
     h = disturbance(vp, axis, size, seconds)
     sim = h[-1, 1 + watch] - lin["x0"][watch]
     worst = float(max(ev.real))
-    return {"simulated": float(sim), "linear": float(pred), "max_real": worst,
-            "doubling_s": math.log(2) / worst if worst > 0 else math.inf}
+    return {
+        "simulated": float(sim),
+        "linear": float(pred),
+        "max_real": worst,
+        "doubling_s": math.log(2) / worst if worst > 0 else math.inf,
+    }
 
 
-def roll_decay(vp: VehicleParams = REMUS100, roll0_deg: float = 10.0, to_deg: float = 3.0,
-               speed: float = 0.0) -> dict:
+def roll_decay(vp: VehicleParams = REMUS100, roll0_deg: float = 10.0, to_deg: float = 3.0, speed: float = 0.0) -> dict:
     """Released at a roll angle, fins amidships, prop stopped (or at speed):
     period and the time the swing takes to fall below to_deg. Theory at rest:
     period 2 pi sqrt((I_xx - K_p.) / (W z_g)); quadratic damping K_p|p| shrinks
@@ -227,15 +250,18 @@ def roll_decay(vp: VehicleParams = REMUS100, roll0_deg: float = 10.0, to_deg: fl
     phi = h[:, PHI]
     ups = np.nonzero((phi[:-1] < 0) & (phi[1:] >= 0))[0]
     period = float(np.mean(np.diff(h[ups, T]))) if len(ups) > 2 else math.nan
-    peaks = [i for i in range(1, len(phi) - 1)
-             if abs(phi[i]) >= abs(phi[i - 1]) and abs(phi[i]) > abs(phi[i + 1])]
+    peaks = [i for i in range(1, len(phi) - 1) if abs(phi[i]) >= abs(phi[i - 1]) and abs(phi[i]) > abs(phi[i + 1])]
     below = [h[i, T] for i in peaks if abs(phi[i]) < math.radians(to_deg)]
     lin = linearised(vp)
     w = 2 * math.pi / lin["roll_period_s"]
     k = 4 * -vp.hydro["Kpp"] * w / (3 * math.pi * lin["roll_inertia"])
     theory = (1 / math.radians(to_deg) - 1 / math.radians(roll0_deg)) / k
-    return {"period_s": period, "period_theory_s": lin["roll_period_s"],
-            "decay_s": float(below[0]) if below else math.inf, "decay_theory_s": theory}
+    return {
+        "period_s": period,
+        "period_theory_s": lin["roll_period_s"],
+        "decay_s": float(below[0]) if below else math.inf,
+        "decay_theory_s": theory,
+    }
 
 
 def steady_turn_run(vp: VehicleParams = REMUS100, rudder: float = math.radians(20.0), rpm: float = 1500.0) -> dict:
@@ -243,16 +269,21 @@ def steady_turn_run(vp: VehicleParams = REMUS100, rudder: float = math.radians(2
     m, _ = start(vp, environment(), 10.0, 1.5)
     fly(m, 10.0, depth=10.0, rpm=rpm)
     h = fly(m, 100.0, rudder=rudder, depth=10.0, rpm=rpm)
-    last = h[-int(40.0 / DT):]
+    last = h[-int(40.0 / DT) :]
     north, east = last[:, N], last[:, E]
     A = np.column_stack([north, east, np.ones_like(north)])
-    D, Ee, F = np.linalg.lstsq(A, -(north ** 2 + east ** 2), rcond=None)[0]
+    D, Ee, F = np.linalg.lstsq(A, -(north**2 + east**2), rcond=None)[0]
     t = last[:, T]
     speed = float(np.mean(np.hypot(np.gradient(north, t), np.gradient(east, t))))
     r = float(np.mean(np.gradient(np.unwrap(last[:, PSI]), t)))
-    return {"diameter_m": 2.0 * math.sqrt(D * D / 4 + Ee * Ee / 4 - F), "speed_mps": speed,
-            "yaw_rate_radps": r, "kinematic_diameter_m": 2.0 * speed / abs(r),
-            "roll_rad": float(np.mean(last[:, PHI])), "rudder_rad": rudder}
+    return {
+        "diameter_m": 2.0 * math.sqrt(D * D / 4 + Ee * Ee / 4 - F),
+        "speed_mps": speed,
+        "yaw_rate_radps": r,
+        "kinematic_diameter_m": 2.0 * speed / abs(r),
+        "roll_rad": float(np.mean(last[:, PHI])),
+        "rudder_rad": rudder,
+    }
 
 
 def plane_step(vp: VehicleParams = REMUS100, step_rad: float = math.radians(-5.0), seconds: float = 4.0) -> dict:
@@ -268,38 +299,62 @@ def plane_step(vp: VehicleParams = REMUS100, step_rad: float = math.radians(-5.0
     u = 1.5
     tau = np.array([0, 0, vp.hydro["Zuuds"], 0, vp.hydro["Muuds"], 0]) * u * u * vp.stern_plane_sign * step_rad
     theory = float(np.linalg.solve(d.M, tau)[4])
-    return {"q_dot0": float(q_dot), "q_dot0_theory": theory, "pitch_end_rad": float(h[-1, TH]),
-            "depth_change_m": float(h[-1, Z] - 30.0), "trim_pitch_rad": tr["pitch_rad"]}
+    return {
+        "q_dot0": float(q_dot),
+        "q_dot0_theory": theory,
+        "pitch_end_rad": float(h[-1, TH]),
+        "depth_change_m": float(h[-1, Z] - 30.0),
+        "trim_pitch_rad": tr["pitch_rad"],
+    }
 
 
 def pitch_command_dive(vp: VehicleParams = REMUS100, pitch: float = math.radians(-10.0)) -> dict:
     """The pilot's pitch loop holding -10 deg at 1.5 m/s: dive rate vs U sin(theta - alpha)."""
     m, _ = start(vp, environment(), 5.0, 1.5)
     h = fly(m, 25.0, pitch=pitch, speed=1.5)
-    last = h[-int(10.0 / DT):]
+    last = h[-int(10.0 / DT) :]
     rate = float(np.polyfit(last[:, T], last[:, Z], 1)[0])
     u, w, th = (float(np.mean(last[:, c])) for c in (U, W, TH))
     rise = h[np.nonzero(h[:, TH] <= pitch * 0.9)[0][0], T] if np.any(h[:, TH] <= pitch * 0.9) else math.inf
-    return {"dive_rate_mps": rate, "kinematic_rate_mps": -u * math.sin(th) + w * math.cos(th),
-            "pitch_rad": th, "rise_s": float(rise), "overshoot_rad": float(pitch - h[:, TH].min())}
+    return {
+        "dive_rate_mps": rate,
+        "kinematic_rate_mps": -u * math.sin(th) + w * math.cos(th),
+        "pitch_rad": th,
+        "rise_s": float(rise),
+        "overshoot_rad": float(pitch - h[:, TH].min()),
+    }
 
 
-def depth_hold(vp: VehicleParams = REMUS100, depth: float = 5.0, seconds: float = 120.0,
-               speed: float = 1.5, waves: bool = True, seed: int = 3) -> dict:
+def depth_hold(
+    vp: VehicleParams = REMUS100,
+    depth: float = 5.0,
+    seconds: float = 120.0,
+    speed: float = 1.5,
+    waves: bool = True,
+    seed: int = 3,
+) -> dict:
     """The pilot holding depth, heading (across the swell) and speed; statistics
     after 20 s of settling. The error is the true depth's, not the gauge's."""
     m, _ = start(vp, environment(waves, seed), depth, speed)
     h = fly(m, seconds, depth=depth, speed=speed)
-    h = h[int(20.0 / DT):]
+    h = h[int(20.0 / DT) :]
     e = h[:, Z] - depth
-    return {"rms_m": float(np.sqrt(np.mean(e ** 2))), "spread_m": float(np.ptp(h[:, Z])),
-            "mean_error_m": float(np.mean(e)), "pitch_std_rad": float(np.std(h[:, TH])),
-            "plane_mean_rad": float(np.mean(h[:, PLANE])), "u_mps": float(np.mean(h[:, U])),
-            "rpm": float(np.mean(h[:, RPM]))}
+    return {
+        "rms_m": float(np.sqrt(np.mean(e**2))),
+        "spread_m": float(np.ptp(h[:, Z])),
+        "mean_error_m": float(np.mean(e)),
+        "pitch_std_rad": float(np.std(h[:, TH])),
+        "plane_mean_rad": float(np.mean(h[:, PLANE])),
+        "u_mps": float(np.mean(h[:, U])),
+        "rpm": float(np.mean(h[:, RPM])),
+    }
 
 
 STEPS = {  # kind: (column, start, target): steps of 90 deg, 5 m and 0.5 m/s
-    "heading": (PSI, 0.0, math.pi / 2), "depth": (Z, 3.0, 8.0), "speed": (U, 1.0, 1.5)}
+    "heading": (PSI, 0.0, math.pi / 2),
+    "depth": (Z, 3.0, 8.0),
+    "speed": (U, 1.0, 1.5),
+}
 
 
 def step_response(kind: str, vp: VehicleParams = REMUS100, waves: bool = True, seconds: float = 60.0) -> dict:
@@ -310,17 +365,26 @@ def step_response(kind: str, vp: VehicleParams = REMUS100, waves: bool = True, s
     speed0 = y0 if kind == "speed" else 1.5
     depth0 = y0 if kind == "depth" else 5.0
     m, _ = start(vp, environment(waves), depth0, speed0)
-    h = fly(m, seconds, heading=target if kind == "heading" else 0.0,
-            depth=target if kind == "depth" else depth0, speed=target if kind == "speed" else speed0)
+    h = fly(
+        m,
+        seconds,
+        heading=target if kind == "heading" else 0.0,
+        depth=target if kind == "depth" else depth0,
+        speed=target if kind == "speed" else speed0,
+    )
     y = h[:, col]
     if kind == "heading":
         y = np.unwrap((y + math.pi) % (2 * math.pi) - math.pi)
     frac = (y - y0) / (target - y0)
     t10 = h[np.argmax(frac >= 0.1), T]
     t90 = h[np.argmax(frac >= 0.9), T] if np.any(frac >= 0.9) else math.inf
-    return {"rise_s": float(t90 - t10), "overshoot": float(max(0.0, np.max(frac) - 1.0) * abs(target - y0)),
-            "steady_error": float(np.mean(y[-int(10.0 / DT):]) - target), "step": target - y0,
-            "unit": {"heading": "rad", "depth": "m", "speed": "m/s"}[kind]}
+    return {
+        "rise_s": float(t90 - t10),
+        "overshoot": float(max(0.0, np.max(frac) - 1.0) * abs(target - y0)),
+        "steady_error": float(np.mean(y[-int(10.0 / DT) :]) - target),
+        "step": target - y0,
+        "unit": {"heading": "rad", "depth": "m", "speed": "m/s"}[kind],
+    }
 
 
 def wave_amplitudes(depth: float, height: float = 0.5, period: float = 6.0) -> dict:
@@ -337,5 +401,10 @@ def wave_amplitudes(depth: float, height: float = 0.5, period: float = 6.0) -> d
     acc = np.hypot(kin[:, 2], kin[:, 3])
     # particle heave: the vertical velocity integrated over the period
     dz = np.concatenate([[0.0], np.cumsum(0.5 * (kin[1:, 1] + kin[:-1, 1]) * np.diff(ts))])
-    return {"orbital_mps": float(speed.max()), "heave_m": float(np.ptp(dz) / 2),
-            "pressure_pa": float(np.abs(pressure).max()), "accel_mps2": float(acc.max()), "k": k}
+    return {
+        "orbital_mps": float(speed.max()),
+        "heave_m": float(np.ptp(dz) / 2),
+        "pressure_pa": float(np.abs(pressure).max()),
+        "accel_mps2": float(acc.max()),
+        "k": k,
+    }

@@ -24,24 +24,57 @@ def _remus_hydro() -> dict[str, float]:
         # axial drag
         "Xuu": -1.62,
         # added mass
-        "Xud": -0.93, "Yvd": -35.5, "Zwd": -35.5, "Yrd": 1.93, "Zqd": -1.93,
-        "Mwd": -1.93, "Nvd": 1.93, "Mqd": -4.88, "Nrd": -4.88, "Kpd": -7.04e-2,
+        "Xud": -0.93,
+        "Yvd": -35.5,
+        "Zwd": -35.5,
+        "Yrd": 1.93,
+        "Zqd": -1.93,
+        "Mwd": -1.93,
+        "Nvd": 1.93,
+        "Mqd": -4.88,
+        "Nrd": -4.88,
+        "Kpd": -7.04e-2,
         # cross-flow drag and rolling resistance, thesis Tables C.2/C.3 as
         # printed. Asymmetric on purpose (Y_v|v| = 10 Z_w|w|, M_q|q| = 2 N_r|r|):
         # that is the published data (docs/simulator.md, "The default vehicle").
-        "Yvv": -1310.0, "Zww": -131.0, "Yrr": 0.632, "Zqq": -0.632,
-        "Mww": 3.18, "Nvv": -3.18, "Mqq": -188.0, "Nrr": -94.0, "Kpp": -0.130,
+        "Yvv": -1310.0,
+        "Zww": -131.0,
+        "Yrr": 0.632,
+        "Zqq": -0.632,
+        "Mww": 3.18,
+        "Nvv": -3.18,
+        "Mqq": -188.0,
+        "Nrr": -94.0,
+        "Kpp": -0.130,
         # added-mass cross terms (the entries of C_A(nu_r) nu_r not already in
         # the combined coefficients below)
-        "Xwq": -35.5, "Xqq": -1.93, "Xvr": 35.5, "Xrr": -1.93,
-        "Ywp": 35.5, "Ypq": 1.93, "Zvp": -35.5, "Zrp": 1.93,
-        "Mvp": -1.93, "Mrp": 4.86, "Nwp": -1.93, "Npq": -4.86,
+        "Xwq": -35.5,
+        "Xqq": -1.93,
+        "Xvr": 35.5,
+        "Xrr": -1.93,
+        "Ywp": 35.5,
+        "Ypq": 1.93,
+        "Zvp": -35.5,
+        "Zrp": 1.93,
+        "Mvp": -1.93,
+        "Mrp": 4.86,
+        "Nwp": -1.93,
+        "Npq": -4.86,
         # body lift and Munk moment
-        "Yuv": -28.6, "Zuw": -28.6, "Nuv": -24.0, "Muw": 24.0,
+        "Yuv": -28.6,
+        "Zuw": -28.6,
+        "Nuv": -24.0,
+        "Muw": 24.0,
         # combined added mass + fin lift
-        "Yur": 5.22, "Zuq": -5.22, "Nur": -2.00, "Muq": -2.00,
+        "Yur": 5.22,
+        "Zuq": -5.22,
+        "Nur": -2.00,
+        "Muq": -2.00,
         # control fins (Prestero's sign: + rudder pushes the tail to starboard)
-        "Yuudr": 9.64, "Zuuds": -9.64, "Nuudr": -6.15, "Muuds": -6.15,
+        "Yuudr": 9.64,
+        "Zuuds": -9.64,
+        "Nuudr": -6.15,
+        "Muuds": -6.15,
     }
 
 
@@ -58,8 +91,8 @@ class VehicleParams:
     hydro: dict[str, float] = field(default_factory=_remus_hydro)
 
     # fins
-    fin_max_rad: float = setting(math.radians(20.0), ge=0.0)      # MSS REMUS 100 figure
-    fin_rate_radps: float = setting(math.radians(40.0), ge=0.0)   # servo slew limit (assumed)
+    fin_max_rad: float = setting(math.radians(20.0), ge=0.0)  # MSS REMUS 100 figure
+    fin_rate_radps: float = setting(math.radians(40.0), ge=0.0)  # servo slew limit (assumed)
     # The channel contract (actuators_t) says positive rudder turns the bow to
     # starboard. This factor maps a commanded rudder angle onto the model's
     # fin coefficients; set it to -1 for a vehicle whose coefficients use the
@@ -72,7 +105,7 @@ class VehicleParams:
     prop_nominal_rpm: float = 1500.0
     prop_nominal_thrust_n: float = 3.86
     prop_nominal_torque_nm: float = -0.543
-    prop_max_rpm: float = setting(2450.0, ge=0.0)    # about 2.5 m/s, the published maximum
+    prop_max_rpm: float = setting(2450.0, ge=0.0)  # about 2.5 m/s, the published maximum
     prop_time_constant_s: float = setting(0.3, ge=0.0)
 
     @property

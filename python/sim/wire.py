@@ -20,8 +20,16 @@ from __future__ import annotations
 import struct
 from typing import Any, Callable
 
-_CODES = {"int8_t": "b", "int16_t": "h", "int32_t": "i", "int64_t": "q", "float": "f",
-          "double": "d", "boolean": "b", "byte": "B"}
+_CODES = {
+    "int8_t": "b",
+    "int16_t": "h",
+    "int32_t": "i",
+    "int64_t": "q",
+    "float": "f",
+    "double": "d",
+    "boolean": "b",
+    "byte": "B",
+}
 
 
 class Encoder:
@@ -34,7 +42,7 @@ class Encoder:
 
     def __init__(self, cls: type, **strings: str) -> None:
         fmt = [">8s"]
-        args = ["FP"]          # arguments of pack() in encode(msg)
+        args = ["FP"]  # arguments of pack() in encode(msg)
         params: list[str] = []  # parameters of pack_values(...)
         values: list[str] = []  # their use in pack()
         consts: dict[str, Any] = {"FP": cls._get_packed_fingerprint()}
@@ -77,9 +85,11 @@ class Encoder:
         self.size = self.struct.size
         self.n_values = len(params)
         consts["pack"] = self.struct.pack
-        src = (f"def encode(m):\n    return pack({', '.join(args)})\n"
-               f"def pack_values({', '.join(params)}):\n"
-               f"    return pack(FP, {', '.join(values)})\n")
+        src = (
+            f"def encode(m):\n    return pack({', '.join(args)})\n"
+            f"def pack_values({', '.join(params)}):\n"
+            f"    return pack(FP, {', '.join(values)})\n"
+        )
         exec(compile(src, f"<Encoder {cls.__name__}>", "exec"), consts)  # noqa: S102
         self.encode: Callable[[Any], bytes] = consts["encode"]
         self.pack: Callable[..., bytes] = consts["pack_values"]

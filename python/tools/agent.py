@@ -42,8 +42,8 @@ ROOT = Path(__file__).resolve().parents[2]
 
 C = agent_command_t
 TABLE_PERIOD_S = 1.0
-MAX_MESSAGE = 8000          # characters of errors in one ack
-MAX_CHANNEL = 63            # an LCM limit
+MAX_MESSAGE = 8000  # characters of errors in one ack
+MAX_CHANNEL = 63  # an LCM limit
 RESULT_WORDS = ("ok", "refused", "failed")
 
 
@@ -63,7 +63,7 @@ class Agent:
         self.procs: list[Supervised] = []
         self.deadman_s = 0.0
         self.last_heard = time.monotonic()
-        self.acks: dict[tuple[str, int], agent_ack_t] = {}     # (sender, seq) -> answer: resends are answered again
+        self.acks: dict[tuple[str, int], agent_ack_t] = {}  # (sender, seq) -> answer: resends are answered again
         self.next_table = 0.0
 
     def log(self, text: str) -> None:
@@ -77,7 +77,7 @@ class Agent:
             return
         try:
             result, message = self.execute(cmd)
-        except Exception as exc:      # an agent never dies of a command: the sender hears why
+        except Exception as exc:  # an agent never dies of a command: the sender hears why
             result, message = agent_ack_t.RESULT_FAILED, f"internal error: {type(exc).__name__}: {exc}"
         ack = agent_ack_t()
         ack.utime, ack.host, ack.sender, ack.seq = int(time.time() * 1e6), self.host, cmd.sender, cmd.seq
@@ -93,8 +93,9 @@ class Agent:
 
     def execute(self, cmd) -> tuple[int, str]:
         if cmd.host != self.host:
-            return agent_ack_t.RESULT_REJECTED, (f"command for host '{cmd.host}' reached the agent of host "
-                                                 f"'{self.host}' on {self.cmd_ch}: refused")
+            return agent_ack_t.RESULT_REJECTED, (
+                f"command for host '{cmd.host}' reached the agent of host '{self.host}' on {self.cmd_ch}: refused"
+            )
         if cmd.command == C.CMD_START:
             return self.start(cmd)
         if cmd.command == C.CMD_STOP:
@@ -111,18 +112,29 @@ class Agent:
 
     def start(self, cmd) -> tuple[int, str]:
         if self.active():
-            return agent_ack_t.RESULT_REJECTED, (f"already running '{self.run}' "
-                                                 f"({len(self.active())} process(es)); stop it first")
-        errors = [e for r in cmd.restart for e in rule_errors(r.process, r.policy, r.max_restarts,
-                                                               r.backoff_s, r.backoff_max_s)]
+            return agent_ack_t.RESULT_REJECTED, (
+                f"already running '{self.run}' ({len(self.active())} process(es)); stop it first"
+            )
+        errors = [
+            e
+            for r in cmd.restart
+            for e in rule_errors(r.process, r.policy, r.max_restarts, r.backoff_s, r.backoff_max_s)
+        ]
         if not (cmd.deadman_s >= 0 and cmd.deadman_s < float("inf")):
             errors.append(f"deadman_s {cmd.deadman_s} is not a finite number >= 0")
         if errors:
             return agent_ack_t.RESULT_REJECTED, "\n".join(errors)
         folder = re.sub(r"[^A-Za-z0-9_.-]+", "_", cmd.run or Path(cmd.scenario_path or "scenario").stem)
         try:
-            sc, specs = host_part(cmd.scenario_text, cmd.scenario_path, self.host, self.out / (folder[:63] or "run"),
-                                  self.url, self.build, self.netns)
+            sc, specs = host_part(
+                cmd.scenario_text,
+                cmd.scenario_path,
+                self.host,
+                self.out / (folder[:63] or "run"),
+                self.url,
+                self.build,
+                self.netns,
+            )
         except PartError as exc:
             return agent_ack_t.RESULT_REJECTED, "\n".join(exc.errors)
         run = cmd.run or sc.name
@@ -146,7 +158,7 @@ class Agent:
 
     def stop_run(self, why: str) -> int:
         n = len(self.active())
-        for p in reversed(self.procs):     # managers first, the logger last
+        for p in reversed(self.procs):  # managers first, the logger last
             p.stop()
         if self.run:
             self.status = f"stopped: {why}"
@@ -184,7 +196,7 @@ class Agent:
         while not stop():
             try:
                 self.lc.handle_timeout(100)
-            except OSError:         # a signal interrupted the wait: the loop checks stop()
+            except OSError:  # a signal interrupted the wait: the loop checks stop()
                 pass
             self.tick()
         self.stop_run("agent ending")
@@ -197,12 +209,16 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--out", type=Path, help="runs folder (default build/agents/<host>)")
     ap.add_argument("--build", type=Path, default=build_dir())
-    ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
-                    "allows ttl=1 URLs")
+    ap.add_argument(
+        "--netns", action="store_true", help="running in a network namespace made for this run: allows ttl=1 URLs"
+    )
     args = ap.parse_args(argv)
     if not re.fullmatch(HOST_NAME, args.host) or len(channels(args.host)[2]) > MAX_CHANNEL:
-        print(f"agent: --host '{args.host}': letters, digits, _.- and at most "
-              f"{MAX_CHANNEL - len('AGENT..PROCS')} characters", file=sys.stderr)
+        print(
+            f"agent: --host '{args.host}': letters, digits, _.- and at most "
+            f"{MAX_CHANNEL - len('AGENT..PROCS')} characters",
+            file=sys.stderr,
+        )
         return 2
     try:
         url = check_local(args.url or default_url(), inside_netns=args.netns or None)

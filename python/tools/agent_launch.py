@@ -20,7 +20,7 @@ from auv import agent_process_t, agent_table_t
 from tools.agent import channels
 from tools.agentctl import Control, parse_rule, report
 
-AGENT_SILENT_S = 5.0        # no process table for this long: the agent (and its part) is gone
+AGENT_SILENT_S = 5.0  # no process table for this long: the agent (and its part) is gone
 
 
 class Keepalive(threading.Thread):
@@ -38,7 +38,7 @@ class Keepalive(threading.Thread):
     def on_table(self, _c: str, data: bytes) -> None:
         t = agent_table_t.decode(data)
         self.heard[t.host] = time.monotonic()
-        if t.run != self.run_name and not self.failed:    # a new agent: the part it ran is gone
+        if t.run != self.run_name and not self.failed:  # a new agent: the part it ran is gone
             self.failed = f"the agent of host {t.host} no longer runs '{self.run_name}' ({t.status or 'idle'})"
         bad = [p for p in t.procs if p.state == agent_process_t.STATE_FAILED]
         if t.run == self.run_name and bad and not self.failed:
@@ -60,14 +60,19 @@ class Keepalive(threading.Thread):
 def run_on_agents(sc, args, url: str, sim_configs: dict, navs: dict) -> tuple[str, object]:
     """Start, watch and stop the run; returns (result, launcher) for launch.py's summary."""
     from tools.launch import Launcher
+
     rules = [parse_rule(r) for r in args.restart]
     run_name = sc.name
     ctl = Control(url)
-    starts = [ctl.command(h, C.CMD_START, run=run_name, path=str(sc.path), text=sc.text,
-                          deadman_s=args.deadman, restart=rules) for h in sc.hosts]
+    starts = [
+        ctl.command(
+            h, C.CMD_START, run=run_name, path=str(sc.path), text=sc.text, deadman_s=args.deadman, restart=rules
+        )
+        for h in sc.hosts
+    ]
     answers = ctl.send_all(starts, args.agent_timeout)
     args.host = None
-    launcher = Launcher(sc, args, url, sim_configs, navs, agents=True)   # the log host's agent records
+    launcher = Launcher(sc, args, url, sim_configs, navs, agents=True)  # the log host's agent records
     if report(answers):
         launcher.stop_reason = "not every agent started its part (above)"
         ctl.send_all([ctl.command(h, C.CMD_STOP, run=run_name) for h in sc.hosts], args.agent_timeout)
@@ -77,7 +82,7 @@ def run_on_agents(sc, args, url: str, sim_configs: dict, navs: dict) -> tuple[st
     result = "died"
     try:
         if sc.log_enabled:
-            time.sleep(0.5)              # the logger has just started on its host
+            time.sleep(0.5)  # the logger has just started on its host
             launcher.annotate()
         stop = lambda: args.stop_flag["stop"] or bool(keep.failed)  # noqa: E731
         result = launcher.wait_ready(stop) or launcher.supervise(stop)

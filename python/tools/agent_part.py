@@ -42,8 +42,9 @@ class PartError(Exception):
         self.errors = errors
 
 
-def host_part(text: str, sent_path: str, host: str, run_dir: Path, url: str, build: Path,
-              inside_netns: bool) -> tuple[Scenario, list[ProcSpec]]:
+def host_part(
+    text: str, sent_path: str, host: str, run_dir: Path, url: str, build: Path, inside_netns: bool
+) -> tuple[Scenario, list[ProcSpec]]:
     """Check the scenario as this host sees it and return its processes in
     start order; PartError lists every problem (`file:line:col: ...`)."""
     run_dir.mkdir(parents=True, exist_ok=True)
@@ -52,14 +53,18 @@ def host_part(text: str, sent_path: str, host: str, run_dir: Path, url: str, bui
     local.write_text(text)
     base = sent.parent if sent.is_absolute() and sent.parent.is_dir() else None
     if sent.is_absolute() and base is None:
-        raise PartError([f"{sent}: its folder does not exist on host {host}: agents resolve the scenario's "
-                         "relative paths from the sender's folder (the same checkout path on every host)"])
+        raise PartError(
+            [
+                f"{sent}: its folder does not exist on host {host}: agents resolve the scenario's "
+                "relative paths from the sender's folder (the same checkout path on every host)"
+            ]
+        )
     try:
         sc = load_scenario(local, base)
-    except ConfigError as exc:     # point at the sender's file: same text, same lines
+    except ConfigError as exc:  # point at the sender's file: same text, same lines
         raise PartError([e.replace(str(local), str(sent)) for e in exc.errors]) from None
     if base is not None:
-        sc.path = sent          # world grids and config comments resolve as on the sender
+        sc.path = sent  # world grids and config comments resolve as on the sender
     if host not in sc.hosts:
         raise PartError([f"{local}: hosts: this agent's host '{host}' is not one of: {', '.join(sc.hosts)}"])
     try:
@@ -79,9 +84,20 @@ def host_part(text: str, sent_path: str, host: str, run_dir: Path, url: str, bui
     procs = []
     if sc.log_enabled and sc.log_host == host:
         logger = Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"
-        procs.append(ProcSpec("logger", [str(logger), f"--lcm-url={with_receive_buffer(url)}", "--quiet",
-                                         "--flush-interval=100", "-f", str(run_dir / sc.log_file)],
-                              run_dir / "logger.out"))
+        procs.append(
+            ProcSpec(
+                "logger",
+                [
+                    str(logger),
+                    f"--lcm-url={with_receive_buffer(url)}",
+                    "--quiet",
+                    "--flush-interval=100",
+                    "-f",
+                    str(run_dir / sc.log_file),
+                ],
+                run_dir / "logger.out",
+            )
+        )
     for v in mine.vehicles:
         procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out"))
     for v in mine.vehicles:

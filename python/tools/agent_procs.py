@@ -17,7 +17,7 @@ from pathlib import Path
 
 from tools.procs import Child
 
-RUNNING, BACKOFF, EXITED, FAILED, STOPPED = range(5)     # agent_process_t.STATE_*
+RUNNING, BACKOFF, EXITED, FAILED, STOPPED = range(5)  # agent_process_t.STATE_*
 STATE_NAMES = ("running", "backoff", "exited", "failed", "stopped")
 _TICK = os.sysconf("SC_CLK_TCK")
 _PAGE = os.sysconf("SC_PAGE_SIZE")
@@ -25,13 +25,13 @@ _PAGE = os.sysconf("SC_PAGE_SIZE")
 
 @dataclass
 class Policy:
-    on_failure: bool = False        # False: never restart
+    on_failure: bool = False  # False: never restart
     max_restarts: int = 0
-    backoff_s: float = 1.0          # first wait; doubles each restart
+    backoff_s: float = 1.0  # first wait; doubles each restart
     backoff_max_s: float = 30.0
 
     def wait_s(self, restarts_done: int) -> float:
-        return min(self.backoff_s * 2.0 ** restarts_done, self.backoff_max_s)
+        return min(self.backoff_s * 2.0**restarts_done, self.backoff_max_s)
 
 
 def rule_errors(pattern: str, policy: int, max_restarts: int, backoff_s: float, backoff_max_s: float) -> list[str]:
@@ -63,7 +63,7 @@ def proc_usage(pid: int) -> tuple[float, int]:
         stat = Path(f"/proc/{pid}/stat").read_text()
     except OSError:
         return 0.0, 0
-    fields = stat[stat.rfind(")") + 2:].split()     # the name may hold spaces
+    fields = stat[stat.rfind(")") + 2 :].split()  # the name may hold spaces
     return (int(fields[11]) + int(fields[12])) / _TICK, int(fields[21]) * _PAGE
 
 
@@ -74,10 +74,10 @@ class Supervised:
         self.state = STOPPED
         self.exit_code = 0
         self.restarts = 0
-        self.due = 0.0                  # BACKOFF: when to restart (monotonic)
+        self.due = 0.0  # BACKOFF: when to restart (monotonic)
         self.cpu_load = 0.0
         self.rss = 0
-        self._last = (0.0, 0.0)         # (monotonic, cpu seconds) of the last sample
+        self._last = (0.0, 0.0)  # (monotonic, cpu seconds) of the last sample
 
     @property
     def pid(self) -> int:
@@ -87,13 +87,15 @@ class Supervised:
         out = self.out if self.restarts == 0 else self.out.with_suffix(f".{self.restarts}.out")
         self.child = Child(self.name, self.cmd, out, stopping=False).start()
         self.state, self._last, self.cpu_load = RUNNING, (time.monotonic(), 0.0), 0.0
-        self.log(f"{self.name}: started pid {self.child.pid}"
-                 + (f" (restart {self.restarts}/{self.policy.max_restarts})" if self.restarts else ""))
+        self.log(
+            f"{self.name}: started pid {self.child.pid}"
+            + (f" (restart {self.restarts}/{self.policy.max_restarts})" if self.restarts else "")
+        )
 
     def tick(self, now: float) -> bool:
         """Notice a death, restart when due; True if the state changed."""
         if self.state == RUNNING and self.child is not None and self.child.poll() is not None:
-            self.child.stop()               # anything the process left in its group
+            self.child.stop()  # anything the process left in its group
             self.exit_code = self.child.proc.returncode
             if self.exit_code == 0:
                 self.state = EXITED
@@ -101,9 +103,10 @@ class Supervised:
                 self.state, self.due = BACKOFF, now + self.policy.wait_s(self.restarts)
             else:
                 self.state = FAILED
-            self.log(f"{self.name}: pid {self.child.pid} exited with status {self.exit_code}: "
-                     f"{STATE_NAMES[self.state]}"
-                     + (f", restart in {self.due - now:.1f} s" if self.state == BACKOFF else ""))
+            self.log(
+                f"{self.name}: pid {self.child.pid} exited with status {self.exit_code}: "
+                f"{STATE_NAMES[self.state]}" + (f", restart in {self.due - now:.1f} s" if self.state == BACKOFF else "")
+            )
             return True
         if self.state == BACKOFF and now >= self.due:
             self.restarts += 1
@@ -128,5 +131,5 @@ class Supervised:
         if self.child is not None and self.state == RUNNING:
             self.exit_code = self.child.stop(timeout) or 0
             self.log(f"{self.name}: pid {self.child.pid} stopped, status {self.exit_code}")
-        if self.state in (RUNNING, BACKOFF):    # a failed or exited process keeps saying so
+        if self.state in (RUNNING, BACKOFF):  # a failed or exited process keeps saying so
             self.state = STOPPED

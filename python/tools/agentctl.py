@@ -49,7 +49,9 @@ RULE = re.compile(r"(?P<pat>[^=]+)=(?P<pol>never|on-failure)(?::(?P<lim>\d+))?(?
 def parse_rule(text: str) -> agent_restart_t:
     m = RULE.fullmatch(text)
     if not m:
-        raise ValueError(f"--restart {text!r}: expected PATTERN=never or PATTERN=on-failure[:LIMIT[:BACKOFF_S[:MAX_S]]]")
+        raise ValueError(
+            f"--restart {text!r}: expected PATTERN=never or PATTERN=on-failure[:LIMIT[:BACKOFF_S[:MAX_S]]]"
+        )
     r = agent_restart_t()
     r.process, r.policy = m["pat"], int(m["pol"] == "on-failure")
     r.max_restarts = int(m["lim"] or 3)
@@ -80,16 +82,30 @@ class Control:
             return
         self._subscribed.add(host)
         _, ack_ch, table_ch = channels(host)
-        self.rx.subscribe(ack_ch, agent_ack_t, lambda _c, a: self.acks.__setitem__((a.host, a.seq), a)
-                          if a.sender == self.sender else None, queue_capacity=200)
+        self.rx.subscribe(
+            ack_ch,
+            agent_ack_t,
+            lambda _c, a: self.acks.__setitem__((a.host, a.seq), a) if a.sender == self.sender else None,
+            queue_capacity=200,
+        )
         self.rx.subscribe(table_ch, agent_table_t, lambda _c, t: self.tables.__setitem__(t.host, t))
 
     def command(self, host: str, kind: int, **fields) -> agent_command_t:
         self.watch(host)
         self.seq += 1
         cmd = agent_command_t()
-        cmd.utime, cmd.host, cmd.sender, cmd.seq, cmd.command = int(time.time() * 1e6), host, self.sender, self.seq, kind
-        cmd.run, cmd.scenario_path, cmd.scenario_text = fields.get("run", ""), fields.get("path", ""), fields.get("text", "")
+        cmd.utime, cmd.host, cmd.sender, cmd.seq, cmd.command = (
+            int(time.time() * 1e6),
+            host,
+            self.sender,
+            self.seq,
+            kind,
+        )
+        cmd.run, cmd.scenario_path, cmd.scenario_text = (
+            fields.get("run", ""),
+            fields.get("path", ""),
+            fields.get("text", ""),
+        )
         cmd.deadman_s = fields.get("deadman_s", 0.0)
         cmd.restart = fields.get("restart", [])
         cmd.n_restart = len(cmd.restart)
@@ -139,17 +155,34 @@ def report(answers: dict) -> int:
 def table_text(t: agent_table_t) -> str:
     rows = [f"{t.host}: run '{t.run or '-'}' {t.status} (agent pid {t.agent_pid})"]
     for p in t.procs:
-        rows.append(f"  {p.name:<24} {STATE_NAMES[p.state] if 0 <= p.state < 5 else p.state:<8} pid {p.pid:>7} "
-                    f"cpu {100 * p.cpu_load:5.1f}%  rss {p.rss_bytes / 2**20:7.1f} MiB  "
-                    f"restarts {p.restarts}  exit {p.exit_code}  up {p.uptime_s:7.1f} s")
+        rows.append(
+            f"  {p.name:<24} {STATE_NAMES[p.state] if 0 <= p.state < 5 else p.state:<8} pid {p.pid:>7} "
+            f"cpu {100 * p.cpu_load:5.1f}%  rss {p.rss_bytes / 2**20:7.1f} MiB  "
+            f"restarts {p.restarts}  exit {p.exit_code}  up {p.uptime_s:7.1f} s"
+        )
     return "\n".join(rows)
 
 
 def table_dict(t: agent_table_t) -> dict:
-    return {"host": t.host, "run": t.run, "status": t.status, "agent_pid": t.agent_pid,
-            "procs": [{"name": p.name, "pid": p.pid, "state": STATE_NAMES[p.state] if 0 <= p.state < 5 else p.state,
-                       "exit_code": p.exit_code, "restarts": p.restarts, "cpu_load": p.cpu_load,
-                       "rss_bytes": p.rss_bytes, "uptime_s": p.uptime_s} for p in t.procs]}
+    return {
+        "host": t.host,
+        "run": t.run,
+        "status": t.status,
+        "agent_pid": t.agent_pid,
+        "procs": [
+            {
+                "name": p.name,
+                "pid": p.pid,
+                "state": STATE_NAMES[p.state] if 0 <= p.state < 5 else p.state,
+                "exit_code": p.exit_code,
+                "restarts": p.restarts,
+                "cpu_load": p.cpu_load,
+                "rss_bytes": p.rss_bytes,
+                "uptime_s": p.uptime_s,
+            }
+            for p in t.procs
+        ],
+    }
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -159,8 +192,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--host", action="append", default=[], help="an agent's host (repeat); default: the scenario's")
     ap.add_argument("--run", default="", help="run name (default: the scenario's name)")
     ap.add_argument("--restart", action="append", default=[], metavar="RULE")
-    ap.add_argument("--deadman", type=float, default=0.0, help="agents stop the run after this many seconds "
-                    "without a command for it (0: never)")
+    ap.add_argument(
+        "--deadman",
+        type=float,
+        default=0.0,
+        help="agents stop the run after this many seconds without a command for it (0: never)",
+    )
     ap.add_argument("--url", help="LCM URL (default $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--netns", action="store_true", help="allow ttl=1 (a network namespace made for this run)")
     ap.add_argument("--timeout", type=float, default=30.0, help="seconds to wait for every answer")
@@ -172,7 +209,7 @@ def main(argv: list[str] | None = None) -> int:
             raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
         url = check_local(args.url or default_url(), inside_netns=args.netns or None)
         sc = load_scenario(args.scenario) if args.scenario else None
-    except ConfigError as exc:      # a ValueError too: first
+    except ConfigError as exc:  # a ValueError too: first
         print("\n".join(exc.errors), file=sys.stderr)
         print(f"agentctl: {args.scenario}: {len(exc.errors)} error(s)", file=sys.stderr)
         return 2
@@ -184,26 +221,38 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     hosts = args.host or (sc.hosts if sc else [])
     if not hosts or (args.action == "start" and sc is None):
-        print(f"agentctl: {args.action}: " + ("needs a SCENARIO" if args.action == "start" else
-                                              "needs a SCENARIO or --host"), file=sys.stderr)
+        print(
+            f"agentctl: {args.action}: "
+            + ("needs a SCENARIO" if args.action == "start" else "needs a SCENARIO or --host"),
+            file=sys.stderr,
+        )
         return 2
     if sc and (unknown := [h for h in hosts if h not in sc.hosts]):
-        print(f"agentctl: --host {', '.join(unknown)}: not among the scenario's hosts: {', '.join(sc.hosts)}",
-              file=sys.stderr)
+        print(
+            f"agentctl: --host {', '.join(unknown)}: not among the scenario's hosts: {', '.join(sc.hosts)}",
+            file=sys.stderr,
+        )
         return 2
     ctl = Control(url)
     if args.action == "status":
         ctl.wait_tables(hosts, args.timeout)
         missing = [h for h in hosts if h not in ctl.tables]
         found = [ctl.tables[h] for h in hosts if h in ctl.tables]
-        print(json.dumps([table_dict(t) for t in found], indent=2) if args.json
-              else "\n".join(table_text(t) for t in found))
+        print(
+            json.dumps([table_dict(t) for t in found], indent=2)
+            if args.json
+            else "\n".join(table_text(t) for t in found)
+        )
         for h in missing:
             print(f"{h}: no process table (is its agent running on this LCM URL?)", file=sys.stderr)
         return 4 if missing else 0
     if args.action == "start":
-        cmds = [ctl.command(h, C.CMD_START, run=args.run, path=str(sc.path), text=sc.text,
-                            deadman_s=args.deadman, restart=rules) for h in hosts]
+        cmds = [
+            ctl.command(
+                h, C.CMD_START, run=args.run, path=str(sc.path), text=sc.text, deadman_s=args.deadman, restart=rules
+            )
+            for h in hosts
+        ]
     else:
         cmds = [ctl.command(h, C.CMD_STOP, run=args.run) for h in hosts]
     return report(ctl.send_all(cmds, args.timeout))

@@ -15,11 +15,11 @@ import numpy as np
 
 @dataclass
 class Association:
-    targets: list[Any]          # seabed_target_t, in the order of the field
-    contacts: list[tuple[str, Any]]   # (vehicle, sidescan_contact_t)
-    mine: np.ndarray            # per target: mine-like
-    hit: np.ndarray             # per target: some contact went to it
-    nearest: np.ndarray         # per contact: index of its target, -1 for a false alarm
+    targets: list[Any]  # seabed_target_t, in the order of the field
+    contacts: list[tuple[str, Any]]  # (vehicle, sidescan_contact_t)
+    mine: np.ndarray  # per target: mine-like
+    hit: np.ndarray  # per target: some contact went to it
+    nearest: np.ndarray  # per contact: index of its target, -1 for a false alarm
 
     @property
     def false_alarm(self) -> np.ndarray:

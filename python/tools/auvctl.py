@@ -32,7 +32,7 @@ from tools import mission_commands as mc
 from tools.live.model import Model
 from tools.live.sources import decode
 
-SETTLE_S = 0.5      # after the last expected ack, wait this long for stragglers
+SETTLE_S = 0.5  # after the last expected ack, wait this long for stragglers
 
 
 def _parser() -> argparse.ArgumentParser:
@@ -67,8 +67,10 @@ def main(argv: list[str] | None = None) -> int:
         if args.cmd == "load":
             plan_text = args.plan.read_text()
             if len(plan_text.encode()) > mc.MAX_PLAN_BYTES:
-                raise ValueError(f"{args.plan}: {len(plan_text.encode())} bytes, the managers take plans "
-                                 f"of at most {mc.MAX_PLAN_BYTES} bytes")
+                raise ValueError(
+                    f"{args.plan}: {len(plan_text.encode())} bytes, the managers take plans "
+                    f"of at most {mc.MAX_PLAN_BYTES} bytes"
+                )
         if args.cmd == "upload" and not args.plugin.is_file():
             raise OSError(f"{args.plugin}: no such file")
     except (OSError, ValueError, UnicodeDecodeError) as exc:
@@ -82,6 +84,7 @@ def main(argv: list[str] | None = None) -> int:
         msg = decode(data)
         if msg is not None and getattr(msg, "vehicle", vid) == vid:
             model.apply(channel, msg)
+
     lc.subscribe(rf"{vid}\.(CHASM\.[A-Za-z0-9_]+|MISSION_ACK|NAV|NAV_STATUS|TRUTH|MODEM_STATUS)", on_raw)
     if args.cmd == "status":
         return _status(lc, model, vid, args)
@@ -91,14 +94,23 @@ def main(argv: list[str] | None = None) -> int:
         msg = mc.upload(vid, args.manager, args.plugin, seq, args.version, args.name)
         lc.publish(f"{vid}.PLUGIN_UPLOAD", msg.encode())
     else:
-        msg = mc.command(vid, args.manager, args.cmd, seq, plan_name=getattr(args, "plan", Path()).name,
-                         plan_text=plan_text if args.cmd == "load" else "",
-                         reason=getattr(args, "reason", "") or f"auvctl ({mc.who()})")
+        msg = mc.command(
+            vid,
+            args.manager,
+            args.cmd,
+            seq,
+            plan_name=getattr(args, "plan", Path()).name,
+            plan_text=plan_text if args.cmd == "load" else "",
+            reason=getattr(args, "reason", "") or f"auvctl ({mc.who()})",
+        )
         lc.publish(f"{vid}.MISSION_CMD", msg.encode())
     acks = _wait_acks(lc, model, vid, seq, args.manager, args.timeout)
     if not acks:
-        print(f"auvctl: no acknowledgement from {vid} {args.manager or '(any manager)'} within "
-              f"{args.timeout:g} s (seq {seq})", file=sys.stderr)
+        print(
+            f"auvctl: no acknowledgement from {vid} {args.manager or '(any manager)'} within "
+            f"{args.timeout:g} s (seq {seq})",
+            file=sys.stderr,
+        )
         return 3
     for a in acks:
         print(f"{vid} {a['manager']} {a['result']}: {a['message']}")
@@ -133,7 +145,7 @@ def _status(lc: lcm.LCM, model: Model, vid: str, args: argparse.Namespace) -> in
         v = model.vehicles.get(vid)
         if v and v["managers"] and (not args.manager or args.manager in v["managers"]):
             first = first or time.monotonic()
-            if time.monotonic() - first >= 1.0:        # a second to hear every manager
+            if time.monotonic() - first >= 1.0:  # a second to hear every manager
                 break
     v = model.vehicles.get(vid)
     if not v or not v["managers"] or (args.manager and args.manager not in v["managers"]):
@@ -151,12 +163,17 @@ def _status(lc: lcm.LCM, model: Model, vid: str, args: argparse.Namespace) -> in
         last = m["last"]
         if last["to"]:
             tests = " ".join(f"{k}={'true' if x else 'false'}" for k, x in last["tests"].items())
-            print(f"    last: {last['from'] or '-'} -> {last['to']} at {last['t']:.1f} s"
-                  + (f" when {last['condition']}" if last["condition"] else "") + (f" [{tests}]" if tests else ""))
+            print(
+                f"    last: {last['from'] or '-'} -> {last['to']} at {last['t']:.1f} s"
+                + (f" when {last['condition']}" if last["condition"] else "")
+                + (f" [{tests}]" if tests else "")
+            )
     pos = v["nav"]
     if pos:
-        print(f"  nav: N {pos['n']:.1f} E {pos['e']:.1f} depth {pos['depth']:.1f} m, "
-              f"sigma {pos['sigma']:.1f} m, {' '.join(pos['flags']) or 'no aids'}")
+        print(
+            f"  nav: N {pos['n']:.1f} E {pos['e']:.1f} depth {pos['depth']:.1f} m, "
+            f"sigma {pos['sigma']:.1f} m, {' '.join(pos['flags']) or 'no aids'}"
+        )
     if v["modem"]:
         print("  modem: " + ", ".join(f"{k} {x}" for k, x in v["modem"].items() if k != "last_refusal"))
     return 0

@@ -64,6 +64,7 @@ def main(argv: list[str] | None = None) -> int:
 
     def stop(signum, frame):  # noqa: ARG001
         raise KeyboardInterrupt
+
     signal.signal(signal.SIGTERM, stop)
     source.start()
     host, port = server.server_address[:2]

@@ -24,8 +24,8 @@ class Grid:
     north0: float
     east0: float
     cell: float
-    looks: np.ndarray           # (n_north, n_east) looks per cell
-    inside: np.ndarray          # cells whose centre is inside the survey polygon
+    looks: np.ndarray  # (n_north, n_east) looks per cell
+    inside: np.ndarray  # cells whose centre is inside the survey polygon
 
     def centres(self) -> tuple[np.ndarray, np.ndarray]:
         n = self.north0 + (np.arange(self.looks.shape[0]) + 0.5) * self.cell
@@ -33,7 +33,7 @@ class Grid:
         return n, e
 
     def area_with(self, at_least: int) -> float:
-        return float(np.count_nonzero((self.looks >= at_least) & self.inside)) * self.cell ** 2
+        return float(np.count_nonzero((self.looks >= at_least) & self.inside)) * self.cell**2
 
 
 def point_in_polygon(poly, n: np.ndarray, e: np.ndarray) -> np.ndarray:
@@ -62,7 +62,7 @@ def coverage_grid(run: RunData, polygon, range_m: float, nadir_gap_m: float, cel
     n0, e0 = pn.min() - pad, pe.min() - pad
     shape = (int(np.ceil((pn.max() + pad - n0) / cell)), int(np.ceil((pe.max() + pad - e0) / cell)))
     looks = np.zeros(shape, np.int32)
-    ranges = np.arange(nadir_gap_m + cell / 4, range_m, cell / 2)   # half-cell steps, inside [gap, range]
+    ranges = np.arange(nadir_gap_m + cell / 4, range_m, cell / 2)  # half-cell steps, inside [gap, range]
     ranges = np.concatenate([ranges, -ranges])
     for vid in run.vehicles:
         tr = run.truth(vid)

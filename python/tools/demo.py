@@ -32,13 +32,45 @@ ROOT = Path(__file__).resolve().parents[2]
 PY = sys.executable
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
 # What missions/scenarios/mcm_demo was planned with (its header); --polygon plans with these.
-PLAN_ARGS = ["--heading", "80", "--range", "40", "--nadir-gap", "11.5", "--overlap", "0.1", "--fix-every-min", "30",
-             "--depth-m", "4",
-             "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7",
-             "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--nav", "ekf"]
+PLAN_ARGS = [
+    "--heading",
+    "80",
+    "--range",
+    "40",
+    "--nadir-gap",
+    "11.5",
+    "--overlap",
+    "0.1",
+    "--fix-every-min",
+    "30",
+    "--depth-m",
+    "4",
+    "--world",
+    str(ROOT / "missions/scenarios/mcm_world.yaml"),
+    "--seed",
+    "7",
+    "--sim-config",
+    str(ROOT / "missions/sim/remus100_mcm.yaml"),
+    "--nav",
+    "ekf",
+]
 # What missions/scenarios/mcm_team was planned with (its header); --polygon --team plans with these.
-TEAM_PLAN_ARGS = ["--heading", "0", "--range", "40", "--nadir-gap", "9.5", "--overlap", "0.1", "--depth-m", "5",
-                  "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"), "--seed", "7"]
+TEAM_PLAN_ARGS = [
+    "--heading",
+    "0",
+    "--range",
+    "40",
+    "--nadir-gap",
+    "9.5",
+    "--overlap",
+    "0.1",
+    "--depth-m",
+    "5",
+    "--world",
+    str(ROOT / "missions/scenarios/mcm_world.yaml"),
+    "--seed",
+    "7",
+]
 
 
 def run(cmd: list, what: str) -> int:
@@ -52,45 +84,80 @@ def _pd(p: float | None) -> str:
 
 def summary(rep: dict) -> str:
     """The demo's summary; a scenario without a survey or targets has no coverage or detection line."""
-    lines = [f"outcome   {rep['outcome']}: " + ", ".join(f"{v} {o}" for v, o in rep["vehicle_outcomes"].items()),
-             f"duration  {rep['duration_s'] / 60:.1f} min of sim time"]
+    lines = [
+        f"outcome   {rep['outcome']}: " + ", ".join(f"{v} {o}" for v, o in rep["vehicle_outcomes"].items()),
+        f"duration  {rep['duration_s'] / 60:.1f} min of sim time",
+    ]
     cov, det = rep.get("coverage"), rep.get("detection")
     if cov:
-        lines.append(f"coverage  {cov['survey_area_m2'] / 1e6:.4f} km2: once {_pct(cov['fraction_once'])}, "
-                     f"twice {_pct(cov['fraction_twice'])}")
+        lines.append(
+            f"coverage  {cov['survey_area_m2'] / 1e6:.4f} km2: once {_pct(cov['fraction_once'])}, "
+            f"twice {_pct(cov['fraction_twice'])}"
+        )
     if det:
-        lines.append(f"detection {det['mine_like_detected']} of {det['mine_like_targets']} mine-like targets "
-                     f"(PD {_pd(det['pd'])}" + (f"; in the covered area {det['mine_like_in_covered_area']}, "
-                                                f"PD {_pd(det['pd_in_covered_area'])}" if "pd_in_covered_area" in det
-                                                else "") +
-                     f"); {det['contacts']} contacts, {det['contacts_on_clutter']} on clutter, "
-                     f"{det['false_alarms']} false alarms")
+        lines.append(
+            f"detection {det['mine_like_detected']} of {det['mine_like_targets']} mine-like targets "
+            f"(PD {_pd(det['pd'])}"
+            + (
+                f"; in the covered area {det['mine_like_in_covered_area']}, PD {_pd(det['pd_in_covered_area'])}"
+                if "pd_in_covered_area" in det
+                else ""
+            )
+            + f"); {det['contacts']} contacts, {det['contacts_on_clutter']} on clutter, "
+            f"{det['false_alarms']} false alarms"
+        )
     team = rep.get("team")
     if team:
         lat = team.get("detect_to_identify_s") or {}
-        lines.append(f"team      {team['mine_like_identified']} of {team['mine_like_targets']} mine-like targets "
-                     f"identified ({team['mine_like_identified_as_mine']} as mine), "
-                     f"{len(team.get('false_identifications') or [])} false identifications, "
-                     f"{team['not_found']} not found"
-                     + (f"; detection to identification median {lat['median'] / 60:.1f} min, "
-                        f"max {lat['max'] / 60:.1f} min" if lat.get("n") else ""))
+        lines.append(
+            f"team      {team['mine_like_identified']} of {team['mine_like_targets']} mine-like targets "
+            f"identified ({team['mine_like_identified_as_mine']} as mine), "
+            f"{len(team.get('false_identifications') or [])} false identifications, "
+            f"{team['not_found']} not found"
+            + (
+                f"; detection to identification median {lat['median'] / 60:.1f} min, max {lat['max'] / 60:.1f} min"
+                if lat.get("n")
+                else ""
+            )
+        )
         link = (team.get("link") or {}).get("per_vehicle", {})
-        lines.append("link      " + ", ".join(
-            f"{v} {k['sent']} sent/{k['heard']} heard/{k['lost']} lost/{k['collided']} collided"
-            for v, k in link.items()) or "-")
+        lines.append(
+            "link      "
+            + ", ".join(
+                f"{v} {k['sent']} sent/{k['heard']} heard/{k['lost']} lost/{k['collided']} collided"
+                for v, k in link.items()
+            )
+            or "-"
+        )
         lines.append(f"takeovers {len(team.get('takeovers') or [])}")
-    lines += ["nav error " + (", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})"
-                                        for v, e in rep["navigation_error"].items()) or "-"),
-              "record    " + (", ".join(f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
-                                        for v, r in rep["record"].items()) or "-")]
+    lines += [
+        "nav error "
+        + (
+            ", ".join(f"{v} rms {e['rms_m']:.1f} m (max {e['max_m']:.1f})" for v, e in rep["navigation_error"].items())
+            or "-"
+        ),
+        "record    "
+        + (
+            ", ".join(
+                f"{v} {r['missing']} of {r['samples'] + r['missing']} truth samples lost"
+                for v, r in rep["record"].items()
+            )
+            or "-"
+        ),
+    ]
     return "\n".join(lines)
 
 
 def result_text(rep: dict, out: Path, log: Path, wall_s: float) -> str:
     """What the demo prints at the end: the summary and where the files are."""
-    lines = ["", summary(rep), f"wall time {wall_s:.0f} s", "",
-             f"report    {out / 'report.txt'}  {out / 'report.json'}"]
-    lines += [f"plot      {p}  (and .svg)" for p in rep.get("plots", []) if p.endswith(".png")]   # none with --no-plots
+    lines = [
+        "",
+        summary(rep),
+        f"wall time {wall_s:.0f} s",
+        "",
+        f"report    {out / 'report.txt'}  {out / 'report.json'}",
+    ]
+    lines += [f"plot      {p}  (and .svg)" for p in rep.get("plots", []) if p.endswith(".png")]  # none with --no-plots
     lines.append(f"log       {log}   (replay: lcm-logplayer, watch: make spy)")
     return "\n".join(lines)
 
@@ -110,18 +177,25 @@ def main(argv: list[str] | None = None) -> int:
 def _main(argv: list[str] | None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "demo")
-    ap.add_argument("--polygon", help="plan this survey area instead (\"n,e; n,e; ...\" metres)")
+    ap.add_argument("--polygon", help='plan this survey area instead ("n,e; n,e; ..." metres)')
     ap.add_argument("--vehicles", type=int, help="with --polygon: a plain survey by this many vehicles (default 3)")
     ap.add_argument("--team", type=int, help="with --polygon: a team of this many search vehicles and one RI vehicle")
     ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
-    ap.add_argument("--time", type=clock_modes.argument, metavar="{" + ",".join(clock_modes.MODES) + "}",
-                    help="pace of the world's lockstep clock (default: the scenario's; lockstep: as fast "
-                         "as the slowest process; every mode gives the same result)")
+    ap.add_argument(
+        "--time",
+        type=clock_modes.argument,
+        metavar="{" + ",".join(clock_modes.MODES) + "}",
+        help="pace of the world's lockstep clock (default: the scenario's; lockstep: as fast "
+        "as the slowest process; every mode gives the same result)",
+    )
     ap.add_argument("--warp", type=float, help="with --time scaled: at most this many times real time")
-    ap.add_argument("--plan-only", action="store_true",
-                    help="with --polygon: plan the survey and check its plans with the plugins, then stop")
+    ap.add_argument(
+        "--plan-only",
+        action="store_true",
+        help="with --polygon: plan the survey and check its plans with the plugins, then stop",
+    )
     args = ap.parse_args(argv)
     if args.plan_only and not args.polygon:
         ap.error("--plan-only needs --polygon")
@@ -147,10 +221,16 @@ def _main(argv: list[str] | None) -> int:
     if args.polygon:
         plan_dir = args.out / "plan"
         name = "mcm_team" if args.team else "mcm_demo"
-        how = ["--team", args.team, "--ri", "1", *TEAM_PLAN_ARGS] if args.team else \
-            ["--vehicles", args.vehicles or 3, *PLAN_ARGS]
-        rc = run([PY, "-m", "tools.plan_survey", "--polygon", args.polygon, *how, "--name", name,
-                  "--out", plan_dir] + (["--build", args.build] if args.build else []), "planning the survey")
+        how = (
+            ["--team", args.team, "--ri", "1", *TEAM_PLAN_ARGS]
+            if args.team
+            else ["--vehicles", args.vehicles or 3, *PLAN_ARGS]
+        )
+        rc = run(
+            [PY, "-m", "tools.plan_survey", "--polygon", args.polygon, *how, "--name", name, "--out", plan_dir]
+            + (["--build", args.build] if args.build else []),
+            "planning the survey",
+        )
         if rc or args.plan_only:
             return rc
         scenario = plan_dir / f"{name}.yaml"

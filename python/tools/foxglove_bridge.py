@@ -50,8 +50,10 @@ class Bridge:
         ch = self.channels.get(topic)
         if ch is None:
             ch = self.channels[topic] = foxglove.Channel(
-                topic, message_encoding="json",
-                schema=foxglove.Schema(name=name, encoding="jsonschema", data=json.dumps(schema).encode()))
+                topic,
+                message_encoding="json",
+                schema=foxglove.Schema(name=name, encoding="jsonschema", data=json.dumps(schema).encode()),
+            )
         return ch
 
     def on_raw(self, channel: str, data: bytes) -> None:
@@ -69,21 +71,20 @@ class Bridge:
             fix = location_fix(msg, max(0, msg.utime) * 1000)
             if fix is not None:
                 kind = "nav_position" if name == "nav_solution_t" else "true_position"
-                self.channel(f"{DERIVED}{channel.split('.')[0]}/{kind}", "foxglove.LocationFix",
-                             LOCATION_FIX).log(fix)
+                self.channel(f"{DERIVED}{channel.split('.')[0]}/{kind}", "foxglove.LocationFix", LOCATION_FIX).log(fix)
         elif name == "env_model_t" and self.geo is None:
             from sim.geo import LocalFrame
+
             self.geo = LocalFrame(msg.origin_latitude_deg, msg.origin_longitude_deg)
         elif name == "log_annotation_t" and msg.kind == 0 and msg.name.endswith("survey.json"):
             try:
                 survey = json.loads(msg.text)
             except ValueError:
                 return
-            if survey != self.survey:       # a new survey goes out at once, a repeat waits its turn
+            if survey != self.survey:  # a new survey goes out at once, a repeat waits its turn
                 self.survey, self.geojson_sent = survey, 0.0
         elif name == "target_field_t":
-            self.targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id)
-                            for t in msg.targets]
+            self.targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id) for t in msg.targets]
 
     def tick(self) -> None:
         """Repeat the survey's GeoJSON: Foxglove keeps no latched messages."""
@@ -111,7 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     sub.set_queue_capacity(5000)
     try:
         server = foxglove.start_server(name="chasm-auv", host=args.bind, port=args.port)
-    except Exception as exc:    # noqa: BLE001 - the SDK raises its own error types
+    except Exception as exc:  # noqa: BLE001 - the SDK raises its own error types
         print(f"foxglove_bridge: cannot serve on {args.bind}:{args.port}: {exc}", file=sys.stderr)
         return 2
 
@@ -125,7 +126,7 @@ def main(argv: list[str] | None = None) -> int:
             try:
                 lc.handle_timeout(200)
                 errors = 0
-            except OSError:         # EINTR from the signal that stops us (checked above)
+            except OSError:  # EINTR from the signal that stops us (checked above)
                 errors += 1
                 if errors > 10:
                     print("foxglove_bridge: LCM receive keeps failing", file=sys.stderr)
@@ -133,8 +134,11 @@ def main(argv: list[str] | None = None) -> int:
             bridge.tick()
     finally:
         server.stop()
-        print(f"foxglove_bridge: {bridge.forwarded} messages forwarded on {len(bridge.channels)} topics, "
-              f"{bridge.dropped} undecodable dropped", flush=True)
+        print(
+            f"foxglove_bridge: {bridge.forwarded} messages forwarded on {len(bridge.channels)} topics, "
+            f"{bridge.dropped} undecodable dropped",
+            flush=True,
+        )
     return 0
 
 

@@ -33,33 +33,44 @@ def describe(f: Field) -> str:
 
 
 def header(schema: Schema, src: str) -> str:
-    out = [HEADER.format(src=src),
-           "/* The team-link codec: one struct per message, its encoder, and a decoder",
-           " * that dispatches on the 4-bit id. Encoders refuse (TEAM_ERR_RANGE) a value",
-           " * outside [MIN, MAX] or NaN and (TEAM_ERR_FULL) a message that does not fit,",
-           " * leaving the frame as it was. team_decode_next() stops at a truncated",
-           " * message, an unknown id or a raw value above MAX, with r->pos at the start",
-           " * of the faulty message (team_bits_left(r) bits undecodable). */",
-           "#ifndef TEAM_CODEC_H", "#define TEAM_CODEC_H", "",
-           "#include <stddef.h>", "#include <stdint.h>", "", '#include "teamlink/team_bits.h"', "",
-           f"#define TEAM_ID_BITS {ID_BITS}",
-           f"#define TEAM_N_MESSAGES {len(schema.messages)}", "",
-           "enum team_err {",
-           "    TEAM_OK = 0,",
-           "    TEAM_ERR_RANGE = -1,      /* encode: a value outside [MIN, MAX], or NaN */",
-           "    TEAM_ERR_FULL = -2,       /* encode: the message does not fit the frame */",
-           "    TEAM_ERR_TRUNCATED = -3,  /* decode: the frame ends inside a message */",
-           "    TEAM_ERR_UNKNOWN_ID = -4, /* decode (or encode of a team_msg): no such id */",
-           "    TEAM_ERR_CORRUPT = -5,    /* decode: a raw value above its field's MAX */",
-           "};", ""]
+    out = [
+        HEADER.format(src=src),
+        "/* The team-link codec: one struct per message, its encoder, and a decoder",
+        " * that dispatches on the 4-bit id. Encoders refuse (TEAM_ERR_RANGE) a value",
+        " * outside [MIN, MAX] or NaN and (TEAM_ERR_FULL) a message that does not fit,",
+        " * leaving the frame as it was. team_decode_next() stops at a truncated",
+        " * message, an unknown id or a raw value above MAX, with r->pos at the start",
+        " * of the faulty message (team_bits_left(r) bits undecodable). */",
+        "#ifndef TEAM_CODEC_H",
+        "#define TEAM_CODEC_H",
+        "",
+        "#include <stddef.h>",
+        "#include <stdint.h>",
+        "",
+        '#include "teamlink/team_bits.h"',
+        "",
+        f"#define TEAM_ID_BITS {ID_BITS}",
+        f"#define TEAM_N_MESSAGES {len(schema.messages)}",
+        "",
+        "enum team_err {",
+        "    TEAM_OK = 0,",
+        "    TEAM_ERR_RANGE = -1,      /* encode: a value outside [MIN, MAX], or NaN */",
+        "    TEAM_ERR_FULL = -2,       /* encode: the message does not fit the frame */",
+        "    TEAM_ERR_TRUNCATED = -3,  /* decode: the frame ends inside a message */",
+        "    TEAM_ERR_UNKNOWN_ID = -4, /* decode (or encode of a team_msg): no such id */",
+        "    TEAM_ERR_CORRUPT = -5,    /* decode: a raw value above its field's MAX */",
+        "};",
+        "",
+    ]
     out.append("enum team_msg_id {")
     for m in schema.messages:
         out.append(f"    TEAM_MSG_{m.name.upper()} = {m.id},")
     out += ["};", ""]
     for m in schema.messages:
         u = m.name.upper()
-        out.append(f"/* message {m.name}: id {m.id}, {m.bits} bits with its id "
-                   f"({m.nbytes} of max_bytes {m.max_bytes}) */")
+        out.append(
+            f"/* message {m.name}: id {m.id}, {m.bits} bits with its id ({m.nbytes} of max_bytes {m.max_bytes}) */"
+        )
         out.append(f"#define TEAM_{u}_BITS {m.bits}")
         out.append(f"#define TEAM_{u}_MAX_BYTES {m.max_bytes}")
         out.append(f"typedef struct team_msg_{m.name} {{")
@@ -71,35 +82,57 @@ def header(schema: Schema, src: str) -> str:
         out.append("/* The fields after the id (team_decode_next() reads the id). */")
         out.append(f"int team_{m.name}_decode(team_bits *r, team_msg_{m.name} *m);")
         out.append("")
-    out += ["/* Any message: id says which member of u is meant. */",
-            "typedef struct team_msg {", "    int id;", "    union {"]
+    out += [
+        "/* Any message: id says which member of u is meant. */",
+        "typedef struct team_msg {",
+        "    int id;",
+        "    union {",
+    ]
     out += [f"        team_msg_{m.name} {m.name};" for m in schema.messages]
-    out += ["    } u;", "} team_msg;", "",
-            "int team_msg_encode(const team_msg *m, team_bits *w);",
-            "/* Next message of a frame: its id (> 0), 0 at the frame's end (id 0 or",
-            " * fewer than TEAM_ID_BITS bits left), or a negative team_err. */",
-            "int team_decode_next(team_bits *r, team_msg *m);", "",
-            "/* Field tables, for tools and tests that handle messages generically. */",
-            "typedef struct team_field_info {",
-            "    const char *name;", "    int is_int;", "    double lo, hi, step;",
-            "    uint32_t steps;      /* raw values run 0..steps */",
-            "    unsigned bits;", "    size_t offset;       /* of the int32_t or double in the struct */",
-            "} team_field_info;",
-            "typedef struct team_message_info {",
-            "    const char *name;", "    int id;", "    unsigned bits;", "    unsigned max_bytes;",
-            "    size_t n_fields;", "    const team_field_info *fields;",
-            "} team_message_info;",
-            "extern const team_message_info team_messages[TEAM_N_MESSAGES];",
-            "/* The message of this id, or NULL. */",
-            "const team_message_info *team_message_by_id(int id);",
-            "const team_message_info *team_message_by_name(const char *name);",
-            "const char *team_strerror(int err);", "", "#endif", ""]
+    out += [
+        "    } u;",
+        "} team_msg;",
+        "",
+        "int team_msg_encode(const team_msg *m, team_bits *w);",
+        "/* Next message of a frame: its id (> 0), 0 at the frame's end (id 0 or",
+        " * fewer than TEAM_ID_BITS bits left), or a negative team_err. */",
+        "int team_decode_next(team_bits *r, team_msg *m);",
+        "",
+        "/* Field tables, for tools and tests that handle messages generically. */",
+        "typedef struct team_field_info {",
+        "    const char *name;",
+        "    int is_int;",
+        "    double lo, hi, step;",
+        "    uint32_t steps;      /* raw values run 0..steps */",
+        "    unsigned bits;",
+        "    size_t offset;       /* of the int32_t or double in the struct */",
+        "} team_field_info;",
+        "typedef struct team_message_info {",
+        "    const char *name;",
+        "    int id;",
+        "    unsigned bits;",
+        "    unsigned max_bytes;",
+        "    size_t n_fields;",
+        "    const team_field_info *fields;",
+        "} team_message_info;",
+        "extern const team_message_info team_messages[TEAM_N_MESSAGES];",
+        "/* The message of this id, or NULL. */",
+        "const team_message_info *team_message_by_id(int id);",
+        "const team_message_info *team_message_by_name(const char *name);",
+        "const char *team_strerror(int err);",
+        "",
+        "#endif",
+        "",
+    ]
     return "\n".join(out)
 
 
 def encoder(m: Message) -> list[str]:
-    out = [f"int team_{m.name}_encode(const team_msg_{m.name} *m, team_bits *w)", "{",
-           f"    uint32_t raw[{len(m.fields)}];"]
+    out = [
+        f"int team_{m.name}_encode(const team_msg_{m.name} *m, team_bits *w)",
+        "{",
+        f"    uint32_t raw[{len(m.fields)}];",
+    ]
     for i, f in enumerate(m.fields):
         if f.is_int:
             out.append(f"    if (m->{f.name} < {int(f.lo)} || m->{f.name} > {int(f.hi)})")
@@ -110,9 +143,11 @@ def encoder(m: Message) -> list[str]:
             out.append(f"    if (!(m->{f.name} >= {lo} && m->{f.name} <= {hi})) /* NaN fails too */")
             out.append("        return TEAM_ERR_RANGE;")
             out.append(f"    raw[{i}] = fixed_raw(m->{f.name}, {lo}, {c_double(f.step)}, {f.steps}u);")
-    out += [f"    if (team_bits_left(w) < TEAM_{m.name.upper()}_BITS || !w->out)",
-            "        return TEAM_ERR_FULL;",
-            f"    team_bits_put(w, TEAM_MSG_{m.name.upper()}, TEAM_ID_BITS);"]
+    out += [
+        f"    if (team_bits_left(w) < TEAM_{m.name.upper()}_BITS || !w->out)",
+        "        return TEAM_ERR_FULL;",
+        f"    team_bits_put(w, TEAM_MSG_{m.name.upper()}, TEAM_ID_BITS);",
+    ]
     for i, f in enumerate(m.fields):
         out.append(f"    team_bits_put(w, raw[{i}], {f.bits});")
     out += ["    return TEAM_OK;", "}", ""]
@@ -120,10 +155,14 @@ def encoder(m: Message) -> list[str]:
 
 
 def decoder(m: Message) -> list[str]:
-    out = [f"int team_{m.name}_decode(team_bits *r, team_msg_{m.name} *m)", "{",
-           "    size_t start = r->pos;", "    uint32_t raw;",
-           f"    if (team_bits_left(r) < TEAM_{m.name.upper()}_BITS - TEAM_ID_BITS)",
-           "        return TEAM_ERR_TRUNCATED;"]
+    out = [
+        f"int team_{m.name}_decode(team_bits *r, team_msg_{m.name} *m)",
+        "{",
+        "    size_t start = r->pos;",
+        "    uint32_t raw;",
+        f"    if (team_bits_left(r) < TEAM_{m.name.upper()}_BITS - TEAM_ID_BITS)",
+        "        return TEAM_ERR_TRUNCATED;",
+    ]
     for f in m.fields:
         out.append(f"    team_bits_get(r, {f.bits}, &raw);")
         out.append(f"    if (raw > {f.steps}u) {{")
@@ -134,63 +173,112 @@ def decoder(m: Message) -> list[str]:
             out.append(f"    m->{f.name} = (int32_t)((int64_t)({int(f.lo)}) + raw);")
         else:
             # The last step is MAX itself: lo + steps * step can land a hair above it.
-            out.append(f"    m->{f.name} = raw == {f.steps}u ? {c_double(f.hi)} "
-                       f": {c_double(f.lo)} + (double)raw * {c_double(f.step)};")
+            out.append(
+                f"    m->{f.name} = raw == {f.steps}u ? {c_double(f.hi)} "
+                f": {c_double(f.lo)} + (double)raw * {c_double(f.step)};"
+            )
     out += ["    return TEAM_OK;", "}", ""]
     return out
 
 
 def source(schema: Schema, src: str) -> str:
-    out = [HEADER.format(src=src), '#include "team/team_codec.h"', "",
-           "#include <math.h>", "#include <string.h>", "",
-           "/* The nearest step: the same double operations as auvlcm/team_codec.py,",
-           " * so both write the same raw value. */",
-           "static uint32_t fixed_raw(double v, double lo, double step, uint32_t steps)",
-           "{", "    double r = floor((v - lo) / step + 0.5);",
-           "    return r >= (double)steps ? steps : (r <= 0.0 ? 0u : (uint32_t)r);", "}", ""]
+    out = [
+        HEADER.format(src=src),
+        '#include "team/team_codec.h"',
+        "",
+        "#include <math.h>",
+        "#include <string.h>",
+        "",
+        "/* The nearest step: the same double operations as auvlcm/team_codec.py,",
+        " * so both write the same raw value. */",
+        "static uint32_t fixed_raw(double v, double lo, double step, uint32_t steps)",
+        "{",
+        "    double r = floor((v - lo) / step + 0.5);",
+        "    return r >= (double)steps ? steps : (r <= 0.0 ? 0u : (uint32_t)r);",
+        "}",
+        "",
+    ]
     for m in schema.messages:
         out += encoder(m) + decoder(m)
     out += ["int team_msg_encode(const team_msg *m, team_bits *w)", "{", "    switch (m->id) {"]
     for m in schema.messages:
         out.append(f"    case TEAM_MSG_{m.name.upper()}: return team_{m.name}_encode(&m->u.{m.name}, w);")
-    out += ["    default: return TEAM_ERR_UNKNOWN_ID;", "    }", "}", "",
-            "int team_decode_next(team_bits *r, team_msg *m)", "{",
-            "    size_t start = r->pos;", "    uint32_t id;", "    int rc;",
-            "    if (team_bits_left(r) < TEAM_ID_BITS)", "        return 0;",
-            "    team_bits_get(r, TEAM_ID_BITS, &id);", "    if (id == 0)", "        return 0;",
-            "    switch (id) {"]
+    out += [
+        "    default: return TEAM_ERR_UNKNOWN_ID;",
+        "    }",
+        "}",
+        "",
+        "int team_decode_next(team_bits *r, team_msg *m)",
+        "{",
+        "    size_t start = r->pos;",
+        "    uint32_t id;",
+        "    int rc;",
+        "    if (team_bits_left(r) < TEAM_ID_BITS)",
+        "        return 0;",
+        "    team_bits_get(r, TEAM_ID_BITS, &id);",
+        "    if (id == 0)",
+        "        return 0;",
+        "    switch (id) {",
+    ]
     for m in schema.messages:
         out.append(f"    case TEAM_MSG_{m.name.upper()}: rc = team_{m.name}_decode(r, &m->u.{m.name}); break;")
-    out += ["    default: rc = TEAM_ERR_UNKNOWN_ID; break;", "    }",
-            "    if (rc < 0) {", "        r->pos = start;", "        return rc;", "    }",
-            "    m->id = (int)id;", "    return (int)id;", "}", ""]
+    out += [
+        "    default: rc = TEAM_ERR_UNKNOWN_ID; break;",
+        "    }",
+        "    if (rc < 0) {",
+        "        r->pos = start;",
+        "        return rc;",
+        "    }",
+        "    m->id = (int)id;",
+        "    return (int)id;",
+        "}",
+        "",
+    ]
     for m in schema.messages:
         out.append(f"static const team_field_info fields_{m.name}[] = {{")
         for f in m.fields:
-            out.append(f'    {{"{f.name}", {int(f.is_int)}, {c_double(f.lo)}, {c_double(f.hi)}, '
-                       f"{c_double(f.step)}, {f.steps}u, {f.bits}u, "
-                       f"offsetof(team_msg_{m.name}, {f.name})}},")
+            out.append(
+                f'    {{"{f.name}", {int(f.is_int)}, {c_double(f.lo)}, {c_double(f.hi)}, '
+                f"{c_double(f.step)}, {f.steps}u, {f.bits}u, "
+                f"offsetof(team_msg_{m.name}, {f.name})}},"
+            )
         out.append("};")
     out.append("const team_message_info team_messages[TEAM_N_MESSAGES] = {")
     for m in schema.messages:
         out.append(f'    {{"{m.name}", {m.id}, {m.bits}u, {m.max_bytes}u, {len(m.fields)}, fields_{m.name}}},')
-    out += ["};", "",
-            "const team_message_info *team_message_by_id(int id)", "{",
-            "    for (size_t i = 0; i < TEAM_N_MESSAGES; i++)",
-            "        if (team_messages[i].id == id)", "            return &team_messages[i];",
-            "    return NULL;", "}", "",
-            "const team_message_info *team_message_by_name(const char *name)", "{",
-            "    for (size_t i = 0; i < TEAM_N_MESSAGES; i++)",
-            "        if (strcmp(team_messages[i].name, name) == 0)", "            return &team_messages[i];",
-            "    return NULL;", "}", "",
-            "const char *team_strerror(int err)", "{", "    switch (err) {",
-            '    case TEAM_OK: return "ok";',
-            '    case TEAM_ERR_RANGE: return "value outside its range (or NaN)";',
-            '    case TEAM_ERR_FULL: return "message does not fit the frame";',
-            '    case TEAM_ERR_TRUNCATED: return "frame ends inside a message";',
-            '    case TEAM_ERR_UNKNOWN_ID: return "unknown message id";',
-            '    case TEAM_ERR_CORRUPT: return "raw value above its field\'s MAX";',
-            '    default: return "unknown error";', "    }", "}", ""]
+    out += [
+        "};",
+        "",
+        "const team_message_info *team_message_by_id(int id)",
+        "{",
+        "    for (size_t i = 0; i < TEAM_N_MESSAGES; i++)",
+        "        if (team_messages[i].id == id)",
+        "            return &team_messages[i];",
+        "    return NULL;",
+        "}",
+        "",
+        "const team_message_info *team_message_by_name(const char *name)",
+        "{",
+        "    for (size_t i = 0; i < TEAM_N_MESSAGES; i++)",
+        "        if (strcmp(team_messages[i].name, name) == 0)",
+        "            return &team_messages[i];",
+        "    return NULL;",
+        "}",
+        "",
+        "const char *team_strerror(int err)",
+        "{",
+        "    switch (err) {",
+        '    case TEAM_OK: return "ok";',
+        '    case TEAM_ERR_RANGE: return "value outside its range (or NaN)";',
+        '    case TEAM_ERR_FULL: return "message does not fit the frame";',
+        '    case TEAM_ERR_TRUNCATED: return "frame ends inside a message";',
+        '    case TEAM_ERR_UNKNOWN_ID: return "unknown message id";',
+        '    case TEAM_ERR_CORRUPT: return "raw value above its field\'s MAX";',
+        '    default: return "unknown error";',
+        "    }",
+        "}",
+        "",
+    ]
     return "\n".join(out)
 
 

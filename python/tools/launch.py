@@ -49,12 +49,15 @@ EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "inter
 STARTUP_TIMEOUT_S = 90.0
 
 
-def nav_configs(sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Path) -> tuple[dict[str, Path], list[str]]:
+def nav_configs(
+    sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Path
+) -> tuple[dict[str, Path], list[str]]:
     """The nav config of each vehicle flown on the onboard filter (`nav: ekf`):
     the scenario's file, or one derived from the vehicle's merged simulator
     configuration (python/tools/navconf.py); each checked by auv-nav itself."""
     from sim.config import load
     from tools.navconf import nav_config_text
+
     paths, errors = {}, []
     for v in sc.vehicles:
         if v.nav.source != "ekf" or v.id not in sim_configs:
@@ -63,8 +66,9 @@ def nav_configs(sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Pa
         if path is None:
             path = out / f"{v.id}.nav"
             path.write_text(nav_config_text(load(sim_configs[v.id])))
-        run = subprocess.run([str(build / "bin" / "auv-nav"), "--config", str(path), "--check"],
-                             capture_output=True, text=True)
+        run = subprocess.run(
+            [str(build / "bin" / "auv-nav"), "--config", str(path), "--check"], capture_output=True, text=True
+        )
         if run.returncode != 0:
             errors.append(f"{v.where}: {v.id}.nav: {path} does not load:")
             errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
@@ -106,8 +110,15 @@ def participants(sc: Scenario, recorder: bool) -> set[str]:
 
 
 class Launcher:
-    def __init__(self, sc: Scenario, args, url: str, sim_configs: dict[str, Path],
-                 nav_configs: dict[str, Path] | None = None, agents: bool = False) -> None:
+    def __init__(
+        self,
+        sc: Scenario,
+        args,
+        url: str,
+        sim_configs: dict[str, Path],
+        nav_configs: dict[str, Path] | None = None,
+        agents: bool = False,
+    ) -> None:
         self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
         self.nav_configs = nav_configs or {}
         self.host = args.host
@@ -121,13 +132,21 @@ class Launcher:
         self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
         self.recorder = args.recorder or sc.log_recorder
-        self.clock = WorldClock(self.lc, sc.time.mode, args.warp or sc.time.warp, sc.time.step_s,
-                                participants(sc, self.own_log and self.recorder == "auv-recorder")) \
-            if self.own_clock else None
+        self.clock = (
+            WorldClock(
+                self.lc,
+                sc.time.mode,
+                args.warp or sc.time.warp,
+                sc.time.step_s,
+                participants(sc, self.own_log and self.recorder == "auv-recorder"),
+            )
+            if self.own_clock
+            else None
+        )
         self.logger: Child | None = None
         self.children: list[Child] = []
         self.stop_reason = ""
-        self.faults = list(sc.faults)     # planned, in time order (tools/scenario_faults.py)
+        self.faults = list(sc.faults)  # planned, in time order (tools/scenario_faults.py)
         self.log_path = self.out / sc.log_file
         self.recorder_stats = self.out / "recorder.json"
 
@@ -141,8 +160,7 @@ class Launcher:
     def _start(self, child: Child) -> Child:
         child.start()
         self.children.append(child)
-        self.notes.event("start", f"{child.name} pid {child.pid}: {' '.join(child.cmd)}",
-                         utime=self.watch.sim_time_us)
+        self.notes.event("start", f"{child.name} pid {child.pid}: {' '.join(child.cmd)}", utime=self.watch.sim_time_us)
         return child
 
     def start_logger(self) -> None:
@@ -153,12 +171,25 @@ class Launcher:
         url = with_receive_buffer(self.url)
         if self.recorder == "lcm-logger":
             lcm_bin = Path(lcm.LCM_BIN_DIR).resolve()
-            cmd = [str(lcm_bin / "lcm-logger"), f"--lcm-url={url}", "--quiet", "--flush-interval=100",
-                   "-f", str(self.log_path)]
+            cmd = [
+                str(lcm_bin / "lcm-logger"),
+                f"--lcm-url={url}",
+                "--quiet",
+                "--flush-interval=100",
+                "-f",
+                str(self.log_path),
+            ]
         else:
             self.recorder_stats.unlink(missing_ok=True)
-            cmd = [str(self.build / "bin" / "auv-recorder"), "--url", url, "-f", str(self.log_path),
-                   "--stats", str(self.recorder_stats)]
+            cmd = [
+                str(self.build / "bin" / "auv-recorder"),
+                "--url",
+                url,
+                "-f",
+                str(self.log_path),
+                "--stats",
+                str(self.recorder_stats),
+            ]
         self.logger = Child("logger", cmd, self.out / "logger.out")
         self.logger.start()
         # Listening once its file exists; recording once our probe shows up in it.
@@ -181,6 +212,7 @@ class Launcher:
 
     def annotate(self) -> None:
         from auv import log_annotation_t as A
+
         self.notes.note(A.KIND_SCENARIO, self.sc.path.name, self.sc.text)
         if self.sc.survey is not None:
             self.notes.note(A.KIND_NOTE, self.sc.survey.name, self.sc.survey.read_text())
@@ -202,8 +234,23 @@ class Launcher:
         return cmd + (["--clock", "lockstep"] if self.sc.time.source == "launcher" else [])
 
     def manager_cmd(self, vid: str, m) -> list[str]:
-        cmd = [str(self.build / "bin" / "chasm-manager"), "--plan", str(m.plan), "--bind", str(m.bind),
-               "--vehicle", vid, "--name", m.name, "--rate", f"{m.rate_hz:g}", "--clock", "sim", "--lcm-url", self.child_url]
+        cmd = [
+            str(self.build / "bin" / "chasm-manager"),
+            "--plan",
+            str(m.plan),
+            "--bind",
+            str(m.bind),
+            "--vehicle",
+            vid,
+            "--name",
+            m.name,
+            "--rate",
+            f"{m.rate_hz:g}",
+            "--clock",
+            "sim",
+            "--lcm-url",
+            self.child_url,
+        ]
         for d in m.plugin_path or [self.build / "plugins"]:
             cmd += ["--plugin-path", str(d)]
         for k, val in m.params.items():
@@ -211,8 +258,19 @@ class Launcher:
         return cmd
 
     def nav_cmd(self, v) -> list[str]:
-        return [str(self.build / "bin" / "auv-nav"), "--config", str(self.nav_configs[v.id]), "--vehicle", v.id,
-                "--rate", f"{v.nav.rate_hz:g}", "--clock", "sim", "--lcm-url", self.child_url]
+        return [
+            str(self.build / "bin" / "auv-nav"),
+            "--config",
+            str(self.nav_configs[v.id]),
+            "--vehicle",
+            v.id,
+            "--rate",
+            f"{v.nav.rate_hz:g}",
+            "--clock",
+            "sim",
+            "--lcm-url",
+            self.child_url,
+        ]
 
     def start_all(self) -> None:
         if self.own_log:
@@ -220,7 +278,7 @@ class Launcher:
             self.annotate()
         for v in self.mine:
             self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out"))
-        for v in self.mine:     # the onboard filter, before the managers that read it
+        for v in self.mine:  # the onboard filter, before the managers that read it
             if v.id in self.nav_configs:
                 self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out"))
         for v in self.mine:
@@ -278,9 +336,12 @@ class Launcher:
                 next_progress = now + self.args.progress
                 sim_s = self.watch.sim_time_us / 1e6
                 waits = self.clock.waiting_for() if self.clock else []
-                print(f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
-                      + "  ".join(self.watch.progress())
-                      + (f"  (step waits for {', '.join(waits)})" if waits else ""), flush=True)
+                print(
+                    f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
+                    + "  ".join(self.watch.progress())
+                    + (f"  (step waits for {', '.join(waits)})" if waits else ""),
+                    flush=True,
+                )
 
     def inject_faults(self) -> None:
         """The planned faults whose time has come (docs/scenarios.md, "Faults").
@@ -288,8 +349,10 @@ class Launcher:
         that runs the vehicle kills its processes."""
         while self.faults and self.watch.sim_time_us >= self.faults[0].at_s * 1e6:
             f = self.faults.pop(0)
-            if f.do != "lose":   # the simulator applies it (its configuration has the time)
-                text = f"{f.vehicle} {f.do} at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, {f.where})"
+            if f.do != "lose":  # the simulator applies it (its configuration has the time)
+                text = (
+                    f"{f.vehicle} {f.do} at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, {f.where})"
+                )
                 print(f"launch: fault: {text}", flush=True)
                 self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
                 continue
@@ -300,19 +363,22 @@ class Launcher:
                 c.kill()
             if self.clock:
                 self.clock.lose(names)
-            for n in sorted(names):   # a world stepped by the simulators stops waiting for them too
+            for n in sorted(names):  # a world stepped by the simulators stops waiting for them too
                 self.lc.publish("SIM.LOCKSTEP", lockstep_msg(n, lockstep_t.KIND_LEAVE, 0, 0).encode())
             self.watch.lose(f.vehicle, self.watch.sim_time_us / 1e6)
-            text = (f"{f.vehicle} lost at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, "
-                    f"{f.where}): killed {', '.join(c.name for c in killed) or 'nothing on this host'}")
+            text = (
+                f"{f.vehicle} lost at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, "
+                f"{f.where}): killed {', '.join(c.name for c in killed) or 'nothing on this host'}"
+            )
             print(f"launch: fault: {text}", flush=True)
             self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
 
     def stop_all(self, result: str) -> None:
         dead = self._dead()
         if dead is not None:
-            self.stop_reason = (f"{dead.name} (pid {dead.pid}) exited with status {dead.poll()}; "
-                                f"last output:\n{dead.tail()}")
+            self.stop_reason = (
+                f"{dead.name} (pid {dead.pid}) exited with status {dead.poll()}; last output:\n{dead.tail()}"
+            )
         for c in reversed(self.children):
             rc = c.stop()
             if c is not dead:
@@ -329,10 +395,17 @@ class Launcher:
         vehicles = self.watch.vehicle_summary()
         # an aborted or failed mission names what fired: "AUV1 nav_stale; AUV3 leak"
         causes = "; ".join(f"{vid} {v['cause']}" for vid, v in vehicles.items() if v["cause"])
-        return {"scenario": self.sc.name, "host": self.host, "outcome": result, "exit_code": EXIT[result],
-                "reason": self.stop_reason or causes, "sim_time_s": self.watch.sim_time_us / 1e6,
-                "vehicles": vehicles, "log": str(self.log_path) if self.own_log else None,
-                "dropped": self.watch.dropped()}
+        return {
+            "scenario": self.sc.name,
+            "host": self.host,
+            "outcome": result,
+            "exit_code": EXIT[result],
+            "reason": self.stop_reason or causes,
+            "sim_time_s": self.watch.sim_time_us / 1e6,
+            "vehicles": vehicles,
+            "log": str(self.log_path) if self.own_log else None,
+            "dropped": self.watch.dropped(),
+        }
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -343,17 +416,28 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--url", help="LCM URL (default: the scenario's, else $LCM_DEFAULT_URL or the project's)")
     ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--warp", type=float, help="override time.warp")
-    ap.add_argument("--time", type=clock_modes.argument, metavar="{" + ",".join(TIME_MODES) + "}",
-                    help="override time.mode: the pace of the lockstep clock (lockstep: as fast as the "
-                    "slowest process; scaled: at most warp x; realtime)")
+    ap.add_argument(
+        "--time",
+        type=clock_modes.argument,
+        metavar="{" + ",".join(TIME_MODES) + "}",
+        help="override time.mode: the pace of the lockstep clock (lockstep: as fast as the "
+        "slowest process; scaled: at most warp x; realtime)",
+    )
     ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
-    ap.add_argument("--recorder", choices=RECORDERS,
-                    help="what records the log (default: the scenario's logging.recorder, auv-recorder)")
-    ap.add_argument("--netns", action="store_true", help="running in a network namespace made for this run: "
-                    "allows ttl=1 URLs")
-    ap.add_argument("--agents", action="store_true", help="run every host's part through its host agent "
-                    "(docs/hosts.md); this process keeps the clock and the watch")
+    ap.add_argument(
+        "--recorder",
+        choices=RECORDERS,
+        help="what records the log (default: the scenario's logging.recorder, auv-recorder)",
+    )
+    ap.add_argument(
+        "--netns", action="store_true", help="running in a network namespace made for this run: allows ttl=1 URLs"
+    )
+    ap.add_argument(
+        "--agents",
+        action="store_true",
+        help="run every host's part through its host agent (docs/hosts.md); this process keeps the clock and the watch",
+    )
     ap.add_argument("--restart", action="append", default=[], metavar="RULE", help="with --agents: restart rule")
     ap.add_argument("--deadman", type=float, default=10.0, help="with --agents: the agents' dead-man time [s]")
     ap.add_argument("--agent-timeout", type=float, default=30.0, help="with --agents: seconds to wait for answers")
@@ -368,6 +452,7 @@ def main(argv: list[str] | None = None) -> int:
             raise ConfigError([f"{sc.path}: hosts: --host {args.host} is not one of: {', '.join(sc.hosts)}"])
         if args.agents:
             from tools.agentctl import parse_rule
+
             if args.host is not None:
                 raise ValueError("--agents runs every host's part: leave out --host")
             [parse_rule(r) for r in args.restart]
@@ -375,8 +460,10 @@ def main(argv: list[str] | None = None) -> int:
                 raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
             if sc.faults:
                 # the agents run the processes: a lost vehicle's would fly on
-                raise ValueError(f"{sc.faults[0].where}: faults: not applied by host agents yet; "
-                                 "run this scenario without --agents (or per host with --host)")
+                raise ValueError(
+                    f"{sc.faults[0].where}: faults: not applied by host agents yet; "
+                    "run this scenario without --agents (or per host with --host)"
+                )
         url = check_local(args.url or sc.lcm_url or default_url(), inside_netns=args.netns)
     except ConfigError as exc:
         print("\n".join(exc.errors), file=sys.stderr)
@@ -406,13 +493,17 @@ def main(argv: list[str] | None = None) -> int:
         signal.signal(sig, lambda *_: flag.update(stop=True))
     if args.agents:
         from tools.agent_launch import run_on_agents
+
         args.stop_flag = flag
         result, run = run_on_agents(sc, args, url, sim_configs, navs)
         return _finish(run, args, result)
     run = Launcher(sc, args, url, sim_configs, navs)
-    print(f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
-          f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
-          f"over {url}; run folder {args.out}", flush=True)
+    print(
+        f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
+        f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
+        f"over {url}; run folder {args.out}",
+        flush=True,
+    )
     result = "died"
     try:
         run.start_all()
@@ -437,13 +528,14 @@ def _finish(run: Launcher, args, result: str) -> int:
         print(f"  {vid}: {v['outcome'] or 'unfinished'}{why}  last state {v['path'] or '-'}  ({v['condition']})")
     drop = s["dropped"]
     if drop["decode_errors"] or drop["time"]:
-        print(f"launch: dropped {drop['decode_errors']} undecodable message(s), "
-              f"{run.watch.time_drops.summary()}")
+        print(f"launch: dropped {drop['decode_errors']} undecodable message(s), {run.watch.time_drops.summary()}")
     if run.own_log:
         print(f"log: {run.log_path}")
         if counts is not None:
-            print(f"record: {counts['written']} of {counts['received']} messages received written, "
-                  f"{counts['dropped']} dropped, {counts['missed']} missed (kernel socket drops)")
+            print(
+                f"record: {counts['written']} of {counts['received']} messages received written, "
+                f"{counts['dropped']} dropped, {counts['missed']} missed (kernel socket drops)"
+            )
     return EXIT[result]
 
 

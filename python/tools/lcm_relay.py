@@ -43,7 +43,7 @@ import lcm
 from auvlcm.url import check_local
 
 ECHO_MEMORY_S = 5.0
-OCCURRENCE_MEMORY = 100_000   # identical messages remembered, to vary their fate
+OCCURRENCE_MEMORY = 100_000  # identical messages remembered, to vary their fate
 QUEUE_CAPACITY = 100_000
 
 
@@ -74,7 +74,7 @@ class Echoes:
         self.log.append((now, k))
 
     def is_echo(self, channel: str, data: bytes, now: float) -> bool:
-        while self.log and now - self.log[0][0] > ECHO_MEMORY_S:   # never heard back
+        while self.log and now - self.log[0][0] > ECHO_MEMORY_S:  # never heard back
             _, k = self.log.popleft()
             self._take(k)
         k = self.key(channel, data)
@@ -102,7 +102,7 @@ def draws(seed: int, direction: str, channel: str, digest: bytes, occurrence: in
     before they reached the relay."""
     key = f"{seed}|{direction}|{channel}|{occurrence}|".encode() + digest
     h = hashlib.blake2b(key, digest_size=40).digest()
-    return [int.from_bytes(h[8 * i:8 * i + 8], "big") / 2.0 ** 64 for i in range(5)]
+    return [int.from_bytes(h[8 * i : 8 * i + 8], "big") / 2.0**64 for i in range(5)]
 
 
 class Direction:
@@ -112,7 +112,7 @@ class Direction:
         self.name = name
         self.imp = imp
         self.seed = seed
-        self.occurrences: OrderedDict[bytes, int] = OrderedDict()   # of identical messages
+        self.occurrences: OrderedDict[bytes, int] = OrderedDict()  # of identical messages
         self.arrivals = 0
         self.max_sent_index = -1
         self.received = self.forwarded = self.dropped = self.duplicated = 0
@@ -135,14 +135,13 @@ class Direction:
         copies = 2 if u_dup < imp.duplicate else 1
         self.duplicated += copies - 1
         extra = imp.reorder_delay_ms if u_reorder < imp.reorder else 0.0
-        return [max(0.0, imp.delay_ms + imp.jitter_ms * jitters[i]) + (extra if i == 0 else 0.0)
-                for i in range(copies)]
+        return [max(0.0, imp.delay_ms + imp.jitter_ms * jitters[i]) + (extra if i == 0 else 0.0) for i in range(copies)]
 
     def sent(self, index: int, delay_ms: float) -> None:
         self.forwarded += 1
         self.delay_sum_ms += delay_ms
         if index < self.max_sent_index:
-            self.reordered += 1        # something that arrived after it went out before it
+            self.reordered += 1  # something that arrived after it went out before it
         self.max_sent_index = max(self.max_sent_index, index)
 
     def stats(self, relay: str):
@@ -152,7 +151,11 @@ class Direction:
         m.utime = int(time.time() * 1e6)
         m.relay = f"{relay}.{self.name}"
         m.forwarded, m.dropped, m.duplicated, m.reordered = (
-            self.forwarded, self.dropped, self.duplicated, self.reordered)
+            self.forwarded,
+            self.dropped,
+            self.duplicated,
+            self.reordered,
+        )
         m.mean_delay_ms = self.delay_sum_ms / self.forwarded if self.forwarded else 0.0
         return m
 
@@ -162,8 +165,7 @@ class Relay:
         self.name = args.name
         self.lcm = {"A": lcm.LCM(args.url_in), "B": lcm.LCM(args.url_out)}
         self.echoes = {"A": Echoes(), "B": Echoes()}
-        imp = Impairment(args.delay_ms, args.jitter_ms, args.loss, args.duplicate, args.reorder,
-                         args.reorder_delay_ms)
+        imp = Impairment(args.delay_ms, args.jitter_ms, args.loss, args.duplicate, args.reorder, args.reorder_delay_ms)
         self.dirs = {"AB": Direction("AB", imp, args.seed)}
         if args.both:
             self.dirs["BA"] = Direction("BA", imp, args.seed)
@@ -173,14 +175,13 @@ class Relay:
         self.order = 0
         self.stop = False
         for d in self.dirs:
-            sub = self.lcm[d[0]].subscribe(args.channel,
-                                           lambda ch, data, d=d: self.on_message(d, ch, data))
-            sub.set_queue_capacity(QUEUE_CAPACITY)   # liblcm's default of 30 drops bursts
+            sub = self.lcm[d[0]].subscribe(args.channel, lambda ch, data, d=d: self.on_message(d, ch, data))
+            sub.set_queue_capacity(QUEUE_CAPACITY)  # liblcm's default of 30 drops bursts
 
     def on_message(self, d: str, channel: str, data: bytes) -> None:
         now = time.monotonic()
         if channel.startswith(self.stats_prefix) or channel == "LCM_SELF_TEST":
-            return                      # our own statistics, liblcm's start-up probe
+            return  # our own statistics, liblcm's start-up probe
         direction = self.dirs[d]
         if self.echoes[d[0]].is_echo(channel, data, now):
             direction.echoes += 1
@@ -190,15 +191,14 @@ class Relay:
         direction.arrivals += 1
         for delay_ms in direction.decide(channel, data):
             self.order += 1
-            heapq.heappush(self.queue, (now + delay_ms / 1e3, self.order, d, channel, data, index,
-                                        delay_ms))
+            heapq.heappush(self.queue, (now + delay_ms / 1e3, self.order, d, channel, data, index, delay_ms))
 
     def _send_due(self, now: float) -> None:
         while self.queue and self.queue[0][0] <= now:
             _, _, d, channel, data, index, delay_ms = heapq.heappop(self.queue)
             dst = d[1]
             if f"{dst}{d[0]}" in self.dirs and self.pattern.fullmatch(channel):
-                self.echoes[dst].published(channel, data, now)   # we will hear it there
+                self.echoes[dst].published(channel, data, now)  # we will hear it there
             self.lcm[dst].publish(channel, data)
             self.dirs[d].sent(index, delay_ms)
 
@@ -220,7 +220,7 @@ class Relay:
                 ready, _, _ = select.select(list(fds), [], [], max(0.0, min(due - now, 0.2)))
             except InterruptedError:
                 continue
-            while ready:                   # everything that is waiting, then send
+            while ready:  # everything that is waiting, then send
                 for fd in ready:
                     fds[fd].handle()
                 ready, _, _ = select.select(list(fds), [], [], 0.0)
@@ -231,10 +231,13 @@ class Relay:
                 self.publish_stats()
         self.publish_stats()
         for d in self.dirs.values():
-            print(f"relay {self.name}.{d.name}: {d.received} received, {d.forwarded} forwarded, "
-                  f"{d.dropped} dropped, {d.duplicated} duplicated, {d.reordered} reordered, "
-                  f"{d.echoes} echoes ignored, mean delay "
-                  f"{d.delay_sum_ms / d.forwarded if d.forwarded else 0.0:.3f} ms", flush=True)
+            print(
+                f"relay {self.name}.{d.name}: {d.received} received, {d.forwarded} forwarded, "
+                f"{d.dropped} dropped, {d.duplicated} duplicated, {d.reordered} reordered, "
+                f"{d.echoes} echoes ignored, mean delay "
+                f"{d.delay_sum_ms / d.forwarded if d.forwarded else 0.0:.3f} ms",
+                flush=True,
+            )
         print(f"relay {self.name}: stopped with {len(self.queue)} messages in flight", flush=True)
         return 0
 
@@ -249,15 +252,17 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     ap.add_argument("--jitter-ms", type=float, default=0.0, help="uniform +- around the delay")
     ap.add_argument("--loss", type=float, default=0.0, help="probability a message is dropped")
     ap.add_argument("--duplicate", type=float, default=0.0, help="probability of a second copy")
-    ap.add_argument("--reorder", type=float, default=0.0,
-                    help="probability a message is held back by --reorder-delay-ms")
+    ap.add_argument(
+        "--reorder", type=float, default=0.0, help="probability a message is held back by --reorder-delay-ms"
+    )
     ap.add_argument("--reorder-delay-ms", type=float, default=10.0)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--name", default="RELAY", help="relay name in statistics channels")
     ap.add_argument("--stats-period", type=float, default=1.0, help="seconds")
     ap.add_argument("--duration", type=float, default=0.0, help="stop after seconds (0: never)")
-    ap.add_argument("--inside-netns", action="store_true",
-                    help="allow ttl=1 URLs (only in a network namespace made for the run)")
+    ap.add_argument(
+        "--inside-netns", action="store_true", help="allow ttl=1 URLs (only in a network namespace made for the run)"
+    )
     args = ap.parse_args(argv)
     for name in ("loss", "duplicate", "reorder"):
         if not 0.0 <= getattr(args, name) <= 1.0:

@@ -68,8 +68,10 @@ def _report_bad(log: LogArrays) -> int:
 def summary(path: Path) -> int:
     log = load_log(path)
     s = log.stats
-    print(f"{path}: {s.events} events, {s.decoded} decoded, {s.undecodable} undecodable"
-          + (f", {s.internal} liblcm self-test skipped" if s.internal else ""))
+    print(
+        f"{path}: {s.events} events, {s.decoded} decoded, {s.undecodable} undecodable"
+        + (f", {s.internal} liblcm self-test skipped" if s.internal else "")
+    )
     print(f"{'channel':32} {'type':24} {'count':>7} {'sim time span [s]':>18}")
     for ch in sorted(s.per_channel):
         arr = log.channels.get(ch)
@@ -83,8 +85,7 @@ def csv_rows(arr: ChannelArrays) -> tuple[list[str], list[list]]:
     ragged = [r for r, v in arr.ragged.items() if not any(x and hasattr(x[0], "__slots__") for x in v)]
     skipped = [r for r in arr.ragged if r not in ragged]
     if skipped:
-        print(f"{arr.channel}: not in CSV (variable-length arrays of structs): {', '.join(skipped)}",
-              file=sys.stderr)
+        print(f"{arr.channel}: not in CSV (variable-length arrays of structs): {', '.join(skipped)}", file=sys.stderr)
     header = ["log_time_us"] + list(arr.columns) + ragged
     cols = [arr.log_time_us] + list(arr.columns.values())
     rows = []
@@ -148,8 +149,10 @@ def annotations(path: Path, extract: Path | None) -> int:
         n += 1
         kind = KIND_NAMES.get(a.kind, str(a.kind))
         first = a.text.splitlines()[0] if a.text else ""
-        print(f"{a.utime / 1e6:9.2f} s {ev.channel:16} {kind:9} {a.vehicle or '-':6} {a.name}"
-              + (f"  {first[:60]}" if a.kind in (0, 4) else f"  ({len(a.text)} chars)"))
+        print(
+            f"{a.utime / 1e6:9.2f} s {ev.channel:16} {kind:9} {a.vehicle or '-':6} {a.name}"
+            + (f"  {first[:60]}" if a.kind in (0, 4) else f"  ({len(a.text)} chars)")
+        )
         if extract is not None and is_file_annotation(a):
             dest = extract / (a.vehicle or "") / a.name.lstrip("/")
             dest.parent.mkdir(parents=True, exist_ok=True)
@@ -206,6 +209,7 @@ def main(argv: list[str] | None = None) -> int:
 def not_a_log(path: Path) -> str:
     """Why path cannot be read as an LCM log ("" if it can be tried)."""
     from auvlcm.eventlog import SYNC_BYTES
+
     if not path.is_file():
         return "no such log file"
     try:

@@ -49,7 +49,8 @@ class _Out:
         if topic not in self.channels:
             if schema_name not in self.schemas:
                 self.schemas[schema_name] = self.w.register_schema(
-                    schema_name, "jsonschema", json.dumps(schema).encode())
+                    schema_name, "jsonschema", json.dumps(schema).encode()
+                )
             self.channels[topic] = self.w.register_channel(topic, "json", self.schemas[schema_name])
         return self.channels[topic]
 
@@ -91,6 +92,7 @@ def export(log_path: Path, out_path: Path) -> ExportStats:
                 name = cls.__name__
                 if name == "env_model_t" and geo is None:
                     from sim.geo import LocalFrame
+
                     geo = LocalFrame(msg.origin_latitude_deg, msg.origin_longitude_deg)
                 elif name == "log_annotation_t" and msg.kind == 0 and msg.name.endswith("survey.json"):
                     try:
@@ -98,8 +100,9 @@ def export(log_path: Path, out_path: Path) -> ExportStats:
                     except ValueError:
                         pass
                 elif name == "target_field_t":
-                    targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id)
-                               for t in msg.targets]
+                    targets = [
+                        (t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id) for t in msg.targets
+                    ]
                 elif name in ("nav_solution_t", "ground_truth_t"):
                     kind = "nav_position" if name == "nav_solution_t" else "true_position"
                     topic = f"{DERIVED}{ev.channel.split('.')[0]}/{kind}"
@@ -111,8 +114,14 @@ def export(log_path: Path, out_path: Path) -> ExportStats:
             log.close()
         if geo is not None and (survey or targets):
             topic = f"{DERIVED}survey_geojson"
-            out.write(topic, "foxglove.GeoJSON", GEOJSON,
-                      {"geojson": json.dumps(geojson(geo, survey or {}, targets))}, last_ns, last_ns)
+            out.write(
+                topic,
+                "foxglove.GeoJSON",
+                GEOJSON,
+                {"geojson": json.dumps(geojson(geo, survey or {}, targets))},
+                last_ns,
+                last_ns,
+            )
             stats.derived[topic] = 1
         writer.finish()
     return stats
@@ -132,8 +141,10 @@ def run(args: argparse.Namespace) -> int:
         print(f"lcmlog: {exc}", file=sys.stderr)
         return 2
     n = sum(stats.per_channel.values())
-    print(f"{args.out}: {n} messages on {len(stats.per_channel)} channels, "
-          f"{sum(stats.derived.values())} derived on {len(stats.derived)} topics")
+    print(
+        f"{args.out}: {n} messages on {len(stats.per_channel)} channels, "
+        f"{sum(stats.derived.values())} derived on {len(stats.derived)} topics"
+    )
     if stats.undecodable:
         print(f"{args.log}: {stats.undecodable} undecodable event(s) left out", file=sys.stderr)
         return 1

@@ -15,9 +15,14 @@ from pathlib import Path
 
 from auv import mission_command_t, plugin_upload_t
 
-COMMANDS = {"start": mission_command_t.CMD_START, "pause": mission_command_t.CMD_PAUSE,
-            "resume": mission_command_t.CMD_RESUME, "abort": mission_command_t.CMD_ABORT,
-            "load": mission_command_t.CMD_LOAD_PLAN, "stop": mission_command_t.CMD_STOP}
+COMMANDS = {
+    "start": mission_command_t.CMD_START,
+    "pause": mission_command_t.CMD_PAUSE,
+    "resume": mission_command_t.CMD_RESUME,
+    "abort": mission_command_t.CMD_ABORT,
+    "load": mission_command_t.CMD_LOAD_PLAN,
+    "stop": mission_command_t.CMD_STOP,
+}
 RESULTS = ("ok", "rejected", "failed")
 # The managers' documented maximum (MGR_MAX_PLAN_BYTES, docs/channels.md): a larger
 # plan may be lost in the kernel without an answer, so it is refused before sending.
@@ -33,8 +38,16 @@ def who() -> str:
     return f"{os.environ.get('USER', 'operator')}@{os.uname().nodename}"
 
 
-def command(vehicle: str, manager: str, name: str, seq: int, utime: int = 0,
-            plan_name: str = "", plan_text: str = "", reason: str = "") -> mission_command_t:
+def command(
+    vehicle: str,
+    manager: str,
+    name: str,
+    seq: int,
+    utime: int = 0,
+    plan_name: str = "",
+    plan_text: str = "",
+    reason: str = "",
+) -> mission_command_t:
     if name not in COMMANDS:
         raise ValueError(f"unknown command {name!r}: one of {', '.join(COMMANDS)}")
     if name == "load" and not plan_text:
@@ -48,8 +61,9 @@ def command(vehicle: str, manager: str, name: str, seq: int, utime: int = 0,
     return msg
 
 
-def upload(vehicle: str, manager: str, path: Path, seq: int, version: str = "1",
-           name: str = "", utime: int = 0) -> plugin_upload_t:
+def upload(
+    vehicle: str, manager: str, path: Path, seq: int, version: str = "1", name: str = "", utime: int = 0
+) -> plugin_upload_t:
     data = path.read_bytes()
     msg = plugin_upload_t()
     msg.utime = utime or int(time.time() * 1e6)
@@ -64,4 +78,4 @@ def upload(vehicle: str, manager: str, path: Path, seq: int, version: str = "1",
 def _plugin_name(path: Path) -> str:
     """chasm_survey.so (the managers' own file naming) or survey.so -> survey."""
     stem = path.name.split(".so")[0]
-    return stem[len("chasm_"):] if stem.startswith("chasm_") else stem
+    return stem[len("chasm_") :] if stem.startswith("chasm_") else stem

@@ -36,8 +36,7 @@ from tools.annotate import plan_files
 from tools.scenario import Scenario
 
 _ABORT = re.compile(r"^\s*abort\s+when\b.*->\s*(?:resume\s+(?:deep\s+)?)?([A-Za-z_][\w/]*)", re.M)
-FINAL = {chasm_status_t.RUN_DONE: "done", chasm_status_t.RUN_ABORTED: "aborted",
-         chasm_status_t.RUN_FAILED: "failed"}
+FINAL = {chasm_status_t.RUN_DONE: "done", chasm_status_t.RUN_ABORTED: "aborted", chasm_status_t.RUN_FAILED: "failed"}
 
 
 def abort_targets(plan) -> set[str]:
@@ -81,9 +80,9 @@ class VehicleState:
     run_state: int = -1
     entered_abort: bool = False
     sim_us: int | None = None
-    params: dict = field(default_factory=dict)     # the end manager's plan parameters
-    cause: str = ""                 # why the mission ended early: the tests that fired
-    abort_condition: str = ""       # the whole condition of that transition
+    params: dict = field(default_factory=dict)  # the end manager's plan parameters
+    cause: str = ""  # why the mission ended early: the tests that fired
+    abort_condition: str = ""  # the whole condition of that transition
     abort_at_s: float | None = None
     lost_at_s: float | None = None  # lost by a planned fault (tools/scenario_faults.py)
 
@@ -107,12 +106,13 @@ class MissionWatch:
         self.expected: set[str] = set()
         self.sim_time_us = 0
         self.manager_us: dict[str, int | None] = {}
-        self.nav_solution_us: dict[str, int | None] = {}   # each onboard filter's newest solution
-        self.nav_status_us: dict[str, int | None] = {}     # ... and status
+        self.nav_solution_us: dict[str, int | None] = {}  # each onboard filter's newest solution
+        self.nav_status_us: dict[str, int | None] = {}  # ... and status
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
-            self.vehicles[v.id] = VehicleState(v.end_manager, abort_targets(end.plan),
-                                               params=plan_params(end.plan, end.params))
+            self.vehicles[v.id] = VehicleState(
+                v.end_manager, abort_targets(end.plan), params=plan_params(end.plan, end.params)
+            )
             self.expected.add(f"{v.id}.sim")
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             if v.nav.source == "ekf":
@@ -149,7 +149,7 @@ class MissionWatch:
             self.nav_status_us[m.vehicle] = max(self.nav_status_us[m.vehicle] or 0, m.utime)
 
     def _on_nav(self, ch: str, m) -> None:
-        if not self._fresh(f"{ch} (source {m.source})", m.utime):   # the INS may share it
+        if not self._fresh(f"{ch} (source {m.source})", m.utime):  # the INS may share it
             return
         if m.vehicle in self.nav_solution_us and m.source == nav_solution_t.SOURCE_EKF:
             self.nav_solution_us[m.vehicle] = max(self.nav_solution_us[m.vehicle] or 0, m.utime)
@@ -183,8 +183,7 @@ class MissionWatch:
 
     def dropped(self) -> dict:
         """What the watch counted and dropped: undecodable messages, stamps per reason."""
-        return {"decode_errors": self.rx.decode_errors,
-                "time": {r: n for r, n in self.time_drops.counts.items() if n}}
+        return {"decode_errors": self.rx.decode_errors, "time": {r: n for r, n in self.time_drops.counts.items() if n}}
 
     def handle(self, timeout_s: float) -> None:
         """Handle every message that is waiting, waiting up to timeout_s for the first."""
@@ -221,13 +220,22 @@ class MissionWatch:
         return "done"
 
     def progress(self) -> list[str]:
-        return [f"{vid} {v.path.split('/', 1)[-1] if v.path else '(loading)'}"
-                + (f" [{v.outcome}]" if v.outcome else "") for vid, v in self.vehicles.items()]
+        return [
+            f"{vid} {v.path.split('/', 1)[-1] if v.path else '(loading)'}" + (f" [{v.outcome}]" if v.outcome else "")
+            for vid, v in self.vehicles.items()
+        ]
 
     def vehicle_summary(self) -> dict:
-        return {vid: {"outcome": v.outcome, "path": v.path, "condition": v.condition,
-                      "cause": v.cause if v.outcome in ("aborted", "failed", "lost") else "",
-                      "lost_at_s": v.lost_at_s,
-                      "abort_condition": v.abort_condition, "abort_at_s": v.abort_at_s,
-                      "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6}
-                for vid, v in self.vehicles.items()}
+        return {
+            vid: {
+                "outcome": v.outcome,
+                "path": v.path,
+                "condition": v.condition,
+                "cause": v.cause if v.outcome in ("aborted", "failed", "lost") else "",
+                "lost_at_s": v.lost_at_s,
+                "abort_condition": v.abort_condition,
+                "abort_at_s": v.abort_at_s,
+                "sim_time_s": None if v.sim_us is None else v.sim_us / 1e6,
+            }
+            for vid, v in self.vehicles.items()
+        }

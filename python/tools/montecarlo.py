@@ -36,34 +36,58 @@ from tools.montecarlo_summary import plot, summarize, summary_text
 
 ROOT = Path(__file__).resolve().parents[2]
 
-BASE_PORT = 7900        # without namespaces, run k listens on BASE_PORT + k
+BASE_PORT = 7900  # without namespaces, run k listens on BASE_PORT + k
 
 
 def run_one(spec: dict) -> dict:
     """One seed: launch, report, figures. Runs on whichever machine executes it."""
     root, out, seed = Path(spec["root"]), Path(spec["out"]), spec["seed"]
     from tools.montecarlo_summary import metrics_of
+
     out.mkdir(parents=True, exist_ok=True)
     env = dict(os.environ)
-    env.pop("AUV_IN_ISOLATED_NET", None)     # a namespace of its own even inside an isolated parent
-    env["PYTHONPATH"] = str(Path(spec["build"]) / "gen" / "python")    # that build's message types
+    env.pop("AUV_IN_ISOLATED_NET", None)  # a namespace of its own even inside an isolated parent
+    env["PYTHONPATH"] = str(Path(spec["build"]) / "gen" / "python")  # that build's message types
     py = spec["python"] if spec.get("python") and Path(spec["python"]).exists() else sys.executable
     url = f"udpm://239.255.76.67:{BASE_PORT + spec['index']}?ttl=0"
-    launch = [py, "-m", "tools.launch", spec["scenario"], "--seed", str(seed), "--out",
-              str(out / "run"), "--url", url, "--build", spec["build"], "--progress", "0"]
+    launch = [
+        py,
+        "-m",
+        "tools.launch",
+        spec["scenario"],
+        "--seed",
+        str(seed),
+        "--out",
+        str(out / "run"),
+        "--url",
+        url,
+        "--build",
+        spec["build"],
+        "--progress",
+        "0",
+    ]
     result = {"seed": seed, "host": socket.gethostname(), "out": str(out)}
     wall0 = time.monotonic()
     with open(out / "launch.out", "w") as f:
-        rc = subprocess.call([str(root / "tests/isolated_net.sh"), *launch], stdout=f, stderr=subprocess.STDOUT,
-                             env=env, timeout=spec.get("timeout"))
+        rc = subprocess.call(
+            [str(root / "tests/isolated_net.sh"), *launch],
+            stdout=f,
+            stderr=subprocess.STDOUT,
+            env=env,
+            timeout=spec.get("timeout"),
+        )
     result["launch_exit"] = rc
     log = out / "run" / "run.lcmlog"
     if not log.exists():
         result["error"] = f"launcher exit {rc}, no log (see {out / 'launch.out'})"
         return result
     with open(out / "report.out", "w") as f:
-        rrc = subprocess.call([py, "-m", "tools.report", str(log), "--out", str(out), "--no-plots"],
-                              stdout=f, stderr=subprocess.STDOUT, env=env)
+        rrc = subprocess.call(
+            [py, "-m", "tools.report", str(log), "--out", str(out), "--no-plots"],
+            stdout=f,
+            stderr=subprocess.STDOUT,
+            env=env,
+        )
     result["wall_s"] = time.monotonic() - wall0
     if rrc != 0:
         result["error"] = f"report exit {rrc} (see {out / 'report.out'})"
@@ -78,9 +102,9 @@ def _executor(args) -> tuple[Executor, object]:
     if not (args.dask or args.dask_local):
         return ThreadPoolExecutor(max_workers=args.jobs), None
     from distributed import Client, LocalCluster
+
     if args.dask_local:
-        cluster = LocalCluster(n_workers=args.dask_local, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+        cluster = LocalCluster(n_workers=args.dask_local, threads_per_worker=1, processes=True, dashboard_address=None)
         client = Client(cluster)
         return client.get_executor(pure=False), (client, cluster)
     client = Client(args.dask)
@@ -92,8 +116,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("scenario", type=Path)
     ap.add_argument("--seeds", type=int, default=10, help="number of runs (default 10)")
     ap.add_argument("--first-seed", type=int, default=1)
-    ap.add_argument("--jobs", type=int, default=max(1, (os.cpu_count() or 2) // 2),
-                    help="local runs at once (default: half the cores; each run is several processes)")
+    ap.add_argument(
+        "--jobs",
+        type=int,
+        default=max(1, (os.cpu_count() or 2) // 2),
+        help="local runs at once (default: half the cores; each run is several processes)",
+    )
     ap.add_argument("--dask", metavar="ADDRESS", help="a Dask distributed scheduler to run the seeds on")
     ap.add_argument("--dask-local", type=int, metavar="N", help="a local Dask cluster of N worker processes")
     ap.add_argument("--out", type=Path, help="default build/montecarlo/<scenario name>")
@@ -115,11 +143,26 @@ def main(argv: list[str] | None = None) -> int:
         print(f"montecarlo: --out {out}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     build = args.build if args.build.is_absolute() else ROOT / args.build
-    specs = [{"root": str(ROOT), "build": str(build), "scenario": str(args.scenario.resolve()), "seed": s,
-              "index": i, "out": str(out / f"seed_{s}"), "timeout": args.timeout, "python": sys.executable}
-             for i, s in enumerate(range(args.first_seed, args.first_seed + args.seeds))]
-    where = (f"Dask scheduler {args.dask}" if args.dask else f"a local Dask cluster of {args.dask_local}"
-             if args.dask_local else f"{args.jobs} local job(s)")
+    specs = [
+        {
+            "root": str(ROOT),
+            "build": str(build),
+            "scenario": str(args.scenario.resolve()),
+            "seed": s,
+            "index": i,
+            "out": str(out / f"seed_{s}"),
+            "timeout": args.timeout,
+            "python": sys.executable,
+        }
+        for i, s in enumerate(range(args.first_seed, args.first_seed + args.seeds))
+    ]
+    where = (
+        f"Dask scheduler {args.dask}"
+        if args.dask
+        else f"a local Dask cluster of {args.dask_local}"
+        if args.dask_local
+        else f"{args.jobs} local job(s)"
+    )
     print(f"montecarlo: {args.scenario.name}: {len(specs)} seeds on {where}; out {out}", flush=True)
     try:
         executor, held = _executor(args)
@@ -133,12 +176,15 @@ def main(argv: list[str] | None = None) -> int:
             for sp, fut in zip(specs, futures):
                 try:
                     r = fut.result()
-                except Exception as exc:             # a run that broke is a failed run, not a failed study
+                except Exception as exc:  # a run that broke is a failed run, not a failed study
                     r = {"seed": sp["seed"], "error": f"{type(exc).__name__}: {exc}"}
                 runs.append(r)
                 m = r.get("metrics")
-                print(f"  seed {r['seed']}: " + (f"{m['outcome']}, {r['wall_s']:.0f} s wall" if m
-                                                  else f"failed: {r.get('error')}"), flush=True)
+                print(
+                    f"  seed {r['seed']}: "
+                    + (f"{m['outcome']}, {r['wall_s']:.0f} s wall" if m else f"failed: {r.get('error')}"),
+                    flush=True,
+                )
     except KeyboardInterrupt:
         print("montecarlo: interrupted", file=sys.stderr)
         return 130

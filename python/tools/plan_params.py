@@ -13,7 +13,7 @@ from pathlib import Path
 
 _PARAM = re.compile(r"^\s*param\s+([A-Za-z_][A-Za-z0-9_]*)\s*=", re.M)
 _INCLUDE = re.compile(r'^\s*include\s+"([^"\n]+)"', re.M)
-MAX_INCLUDE_DEPTH = 16      # the Loader's limit (docs/chasm.md)
+MAX_INCLUDE_DEPTH = 16  # the Loader's limit (docs/chasm.md)
 
 
 def declared_params(plan: Path) -> set[str] | None:
@@ -30,7 +30,7 @@ def declared_params(plan: Path) -> set[str] | None:
             text = path.read_text(encoding="utf-8", errors="replace")
         except OSError:
             return False
-        text = re.sub(r"#[^\n]*", "", text)     # comments (a '#' inside a string is rare in these lines)
+        text = re.sub(r"#[^\n]*", "", text)  # comments (a '#' inside a string is rare in these lines)
         names.update(_PARAM.findall(text))
         return all(scan(path.parent / inc, depth + 1) for inc in _INCLUDE.findall(text))
 

@@ -46,16 +46,25 @@ DEFAULTS = {
 
 def survey_json(sv: Survey, ids: list[str], starts, lim: Limits) -> dict:
     return {
-        "polygon": sv.polygon, "area_m2": sv.area_m2, "heading_deg": math.degrees(sv.heading_rad),
+        "polygon": sv.polygon,
+        "area_m2": sv.area_m2,
+        "heading_deg": math.degrees(sv.heading_rad),
         "sonar": {"range_m": sv.sonar.range_m, "nadir_gap_m": sv.sonar.nadir_gap_m},
-        "overlap": sv.overlap, "spacing_m": sv.spacing_m, "margin_m": sv.margin_m,
+        "overlap": sv.overlap,
+        "spacing_m": sv.spacing_m,
+        "margin_m": sv.margin_m,
         "operating_area": sv.operating_area,
-        "vehicles": {vid: {"area_m2": v.area_m2, "polygon": v.polygon, "start": list(st),
-                           "estimated_duration_s": estimated_duration_s(v, st, lim),
-                           "length_m": v.length_m(),
-                           "legs": [{"kind": leg.kind, "line": leg.line, "start": leg.start, "end": leg.end}
-                                    for leg in v.legs]}
-                     for vid, v, st in zip(ids, sv.vehicles, starts)},
+        "vehicles": {
+            vid: {
+                "area_m2": v.area_m2,
+                "polygon": v.polygon,
+                "start": list(st),
+                "estimated_duration_s": estimated_duration_s(v, st, lim),
+                "length_m": v.length_m(),
+                "legs": [{"kind": leg.kind, "line": leg.line, "start": leg.start, "end": leg.end} for leg in v.legs],
+            }
+            for vid, v, st in zip(ids, sv.vehicles, starts)
+        },
     }
 
 
@@ -65,8 +74,12 @@ def auto_starts(sv: Survey, back_m: float = 30.0) -> list[tuple[float, float]]:
     for v in sv.vehicles:
         leg = v.legs[0]
         d = math.dist(leg.start, leg.end) or 1.0
-        out.append((leg.start[0] - back_m * (leg.end[0] - leg.start[0]) / d,
-                    leg.start[1] - back_m * (leg.end[1] - leg.start[1]) / d))
+        out.append(
+            (
+                leg.start[0] - back_m * (leg.end[0] - leg.start[0]) / d,
+                leg.start[1] - back_m * (leg.end[1] - leg.start[1]) / d,
+            )
+        )
     return out
 
 
@@ -80,25 +93,43 @@ def scenario_dict(name: str, out: Path, ids, sv: Survey, starts, args, lim: Limi
     for vid, v, st in zip(ids, sv.vehicles, starts):
         leg = v.legs[0]
         heading = math.atan2(leg.start[1] - st[1], leg.start[0] - st[0]) % (2 * math.pi)
-        vehicles.append({
-            "id": vid,
-            "sim": {"config": _rel(args.sim_config, out),
-                    "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1),
-                                "heading_rad": round(heading, 4)}},
-            **({"nav": args.nav} if args.nav != "ins" else {}),
-            "managers": [
-                {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out),
-                 "rate": 20},
-                {"name": "NAVIGATOR", "plan": f"{vid}.chasm", "bind": _rel(args.nav_bind, out), "rate": 10},
-            ]})
+        vehicles.append(
+            {
+                "id": vid,
+                "sim": {
+                    "config": _rel(args.sim_config, out),
+                    "initial": {
+                        "north_m": round(st[0], 1),
+                        "east_m": round(st[1], 1),
+                        "heading_rad": round(heading, 4),
+                    },
+                },
+                **({"nav": args.nav} if args.nav != "ins" else {}),
+                "managers": [
+                    {
+                        "name": "PILOT",
+                        "plan": _rel(args.pilot_plan, out),
+                        "bind": _rel(args.pilot_bind, out),
+                        "rate": 20,
+                    },
+                    {"name": "NAVIGATOR", "plan": f"{vid}.chasm", "bind": _rel(args.nav_bind, out), "rate": 10},
+                ],
+            }
+        )
     world = read_world(args.world) if args.world else {}
-    return {"name": name, "seed": args.seed, "world": world or {},
-            "time": {"mode": clock_modes.LOCKSTEP, "limit": round(1.5 * longest + 900)}, "vehicles": vehicles}
+    return {
+        "name": name,
+        "seed": args.seed,
+        "world": world or {},
+        "time": {"mode": clock_modes.LOCKSTEP, "limit": round(1.5 * longest + 900)},
+        "vehicles": vehicles,
+    }
 
 
 def read_world(path: Path) -> dict:
     """The --world file, read and checked like every configuration (confcheck)."""
     from confcheck import Checker
+
     c = Checker.from_file(path)
     world = c.plain(c.root)
     c.raise_errors()
@@ -121,10 +152,18 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--ids", help="vehicle ids, comma-separated (default AUV1, AUV2, ...)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--world", type=Path, help="YAML file: the scenario's world section")
-    ap.add_argument("--nav", choices=("ins", "ekf"), default="ins",
-                    help="what each vehicle steers by: the simulator's INS, or the onboard filter auv-nav")
-    ap.add_argument("--build", type=Path, default=build_dir(),
-                    help="build folder whose plugins set the limits and check the plans (default: the repository's)")
+    ap.add_argument(
+        "--nav",
+        choices=("ins", "ekf"),
+        default="ins",
+        help="what each vehicle steers by: the simulator's INS, or the onboard filter auv-nav",
+    )
+    ap.add_argument(
+        "--build",
+        type=Path,
+        default=build_dir(),
+        help="build folder whose plugins set the limits and check the plans (default: the repository's)",
+    )
     add_team_options(ap)
     lim = Limits()
     for key, default in vars(lim).items():
@@ -135,15 +174,24 @@ def main(argv: list[str] | None = None) -> int:
     lim = Limits(**{k: getattr(args, k) for k in vars(lim)})
     if args.team is not None:
         if not 1 <= args.team <= 15 - args.ri:
-            print(f"plan_survey: --team {args.team}: 1 to {15 - args.ri} search vehicles "
-                  "(the team link numbers 16 vehicles, 0..15)", file=sys.stderr)
+            print(
+                f"plan_survey: --team {args.team}: 1 to {15 - args.ri} search vehicles "
+                "(the team link numbers 16 vehicles, 0..15)",
+                file=sys.stderr,
+            )
             return 2
-        bad = [f"--{k.replace('_', '-')} {getattr(args, k):g}" for k, ok in
-               (("slot_guard", args.slot_guard >= 0), ("silent", args.silent > 0), ("linger", args.linger >= 0),
-                ("ri_back", math.isfinite(args.ri_back))) if not (ok and math.isfinite(getattr(args, k)))]
+        bad = [
+            f"--{k.replace('_', '-')} {getattr(args, k):g}"
+            for k, ok in (
+                ("slot_guard", args.slot_guard >= 0),
+                ("silent", args.silent > 0),
+                ("linger", args.linger >= 0),
+                ("ri_back", math.isfinite(args.ri_back)),
+            )
+            if not (ok and math.isfinite(getattr(args, k)))
+        ]
         if bad:
-            print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)",
-                  file=sys.stderr)
+            print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)", file=sys.stderr)
             return 2
         args.vehicles = args.team
     try:
@@ -154,17 +202,27 @@ def main(argv: list[str] | None = None) -> int:
             raise GeometryError(f"--ids names {len(ids)} vehicles, --vehicles says {args.vehicles}")
         starts = parse_polygon_points(args.starts, args.vehicles) if args.starts else None
         if args.world:
-            read_world(args.world)      # refused here, before anything is written
+            read_world(args.world)  # refused here, before anything is written
         area_limits = polygon_limits(args.build)
-        sv = plan_survey(polygon, args.vehicles, math.radians(args.heading), Sonar(args.range, args.nadir_gap),
-                         args.overlap, args.run_in, args.margin, starts, area_limits.max_vertices)
+        sv = plan_survey(
+            polygon,
+            args.vehicles,
+            math.radians(args.heading),
+            Sonar(args.range, args.nadir_gap),
+            args.overlap,
+            args.run_in,
+            args.margin,
+            starts,
+            area_limits.max_vertices,
+        )
         if len(format_polygon(sv.operating_area)) > area_limits.max_chars:
-            raise GeometryError(f"the operating area's text is longer than the {area_limits.max_chars} "
-                                "characters outside_area accepts")
+            raise GeometryError(
+                f"the operating area's text is longer than the {area_limits.max_chars} characters outside_area accepts"
+            )
         for k, v in enumerate(sv.vehicles):
             if not v.legs:
                 raise GeometryError(f"vehicle {k + 1} got no lines")
-    except (GeometryError, LimitsError, OSError, ValueError) as exc:     # ValueError: ConfigError of --world
+    except (GeometryError, LimitsError, OSError, ValueError) as exc:  # ValueError: ConfigError of --world
         print(f"plan_survey: {exc}", file=sys.stderr)
         return 2
     starts = starts or auto_starts(sv)
@@ -176,7 +234,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.team is not None:
         try:
             team, paths = write_team(sv, ids, starts, args, lim, out)
-        except (GeometryError, OSError, ValueError) as exc:    # ValueError: a sim config's ConfigError
+        except (GeometryError, OSError, ValueError) as exc:  # ValueError: a sim config's ConfigError
             print(f"plan_survey: {exc}", file=sys.stderr)
             return 2
         if (args.build / "plugins" / "chasm_team.so").is_file():
@@ -185,19 +243,24 @@ def main(argv: list[str] | None = None) -> int:
                 refused += bool(problems)
                 errors += problems
         else:
-            print(f"plan_survey: no team plugin in {args.build}/plugins: the team plans are not "
-                  "checked (they load once the team plugin is built)", file=sys.stderr)
+            print(
+                f"plan_survey: no team plugin in {args.build}/plugins: the team plans are not "
+                "checked (they load once the team plugin is built)",
+                file=sys.stderr,
+            )
     else:
         for vid, v, st in zip(ids, sv.vehicles, starts):
             path = out / f"{vid}.chasm"
             path.write_text(plan_text(sv, v, vid, st, lim, path))
-            problems = check_plan(path, args.build)     # what the launcher would refuse, refused now
+            problems = check_plan(path, args.build)  # what the launcher would refuse, refused now
             refused += bool(problems)
             errors += problems
     if errors:
         print("\n".join(errors), file=sys.stderr)
-        print(f"plan_survey: {refused} plan(s) do not load with the plugins of {args.build}; "
-              "no scenario written", file=sys.stderr)
+        print(
+            f"plan_survey: {refused} plan(s) do not load with the plugins of {args.build}; no scenario written",
+            file=sys.stderr,
+        )
         return 2
     geometry = survey_json(sv, ids, starts, lim)
     sc = scenario_dict(name, out, ids, sv, starts, args, lim)
@@ -207,20 +270,30 @@ def main(argv: list[str] | None = None) -> int:
         ids = team["team"]["roster"]
     (out / "survey.json").write_text(json.dumps(geometry, indent=1))
     sc["survey"] = "survey.json"
-    command = " ".join(shlex.quote(_rel(Path(a).resolve(), ROOT) if "/" in a and Path(a).exists() else a)
-                       for a in (argv if argv is not None else sys.argv[1:]))
-    (out / f"{name}.yaml").write_text(f"# Written by auv-plan-survey (python/tools/plan_survey.py); polygon {format_polygon(polygon)}\n"
-                                      f"# Regenerate (from the repository root): .venv/bin/auv-plan-survey {command}\n"
-                                      + yaml.safe_dump(sc, sort_keys=False))
-    print(f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(sv.vehicles)} shares, lines {sv.spacing_m:.1f} m apart "
-          f"(tolerates {sv.margin_m:.1f} m off track)")
+    command = " ".join(
+        shlex.quote(_rel(Path(a).resolve(), ROOT) if "/" in a and Path(a).exists() else a)
+        for a in (argv if argv is not None else sys.argv[1:])
+    )
+    (out / f"{name}.yaml").write_text(
+        f"# Written by auv-plan-survey (python/tools/plan_survey.py); polygon {format_polygon(polygon)}\n"
+        f"# Regenerate (from the repository root): .venv/bin/auv-plan-survey {command}\n"
+        + yaml.safe_dump(sc, sort_keys=False)
+    )
+    print(
+        f"plan_survey: {sv.area_m2 / 1e6:.3f} km2 in {len(sv.vehicles)} shares, lines {sv.spacing_m:.1f} m apart "
+        f"(tolerates {sv.margin_m:.1f} m off track)"
+    )
     if team is not None:
         t = team["team"]
-        print(f"  team {','.join(t['roster'])}: TDMA {t['slots']} slots of {t['slot_s']:g} s "
-              f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), lockstep clock from the {args.time_source}")
+        print(
+            f"  team {','.join(t['roster'])}: TDMA {t['slots']} slots of {t['slot_s']:g} s "
+            f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), lockstep clock from the {args.time_source}"
+        )
     for vid, v, st in zip(ids, sv.vehicles, starts):
-        print(f"  {vid}: {v.area_m2 / 1e6:.4f} km2, {len(v.lines)} line legs, {v.length_m() / 1000:.2f} km, "
-              f"about {estimated_duration_s(v, st, lim) / 60:.0f} min")
+        print(
+            f"  {vid}: {v.area_m2 / 1e6:.4f} km2, {len(v.lines)} line legs, {v.length_m() / 1000:.2f} km, "
+            f"about {estimated_duration_s(v, st, lim) / 60:.0f} min"
+        )
     print(f"wrote {out}/: {', '.join(f'{i}.chasm' for i in ids)}, {name}.yaml, survey.json")
     return 0
 

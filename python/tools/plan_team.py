@@ -29,8 +29,8 @@ from tools.survey_plan import Survey
 from tools.team_plan_text import TeamLink, lines_string, ri_plan, search_plan
 
 ROOT = Path(__file__).resolve().parents[2]
-SLOWEST_SOUND_MPS = 1400.0     # below any sea water's: the delay bound stays a bound
-MAX_PARAM_STRING = 1023        # the plan language's longest string (docs/chasm.md, "Limits")
+SLOWEST_SOUND_MPS = 1400.0  # below any sea water's: the delay bound stays a bound
+MAX_PARAM_STRING = 1023  # the plan language's longest string (docs/chasm.md, "Limits")
 
 TEAM_DEFAULTS = {
     "search_config": ROOT / "missions" / "sim" / "remus100_team_search.yaml",
@@ -41,18 +41,32 @@ TEAM_DEFAULTS = {
 
 
 def add_team_options(ap) -> None:
-    g = ap.add_argument_group("team scenario (docs/missions.md, \"Team mission\")")
-    g.add_argument("--team", type=int, metavar="N_SEARCH",
-                   help="write a cooperative MCM team scenario with N search vehicles (ignores --vehicles)")
+    g = ap.add_argument_group('team scenario (docs/missions.md, "Team mission")')
+    g.add_argument(
+        "--team",
+        type=int,
+        metavar="N_SEARCH",
+        help="write a cooperative MCM team scenario with N search vehicles (ignores --vehicles)",
+    )
     g.add_argument("--ri", type=int, default=1, choices=(0, 1), help="reacquire-identify vehicles (0 or 1)")
-    g.add_argument("--ri-start", help='the RI vehicle\'s launch point "n,e" (default: behind the middle search vehicles)')
-    g.add_argument("--ri-back", type=float, default=20.0,
-                   help="default RI start: this far behind the middle search vehicles' launch points [m]")
+    g.add_argument(
+        "--ri-start", help='the RI vehicle\'s launch point "n,e" (default: behind the middle search vehicles)'
+    )
+    g.add_argument(
+        "--ri-back",
+        type=float,
+        default=20.0,
+        help="default RI start: this far behind the middle search vehicles' launch points [m]",
+    )
     g.add_argument("--slot-guard", type=float, default=0.3, help="TDMA guard time added to each slot [s]")
     g.add_argument("--silent", type=float, default=120.0, help="a teammate unheard this long is lost [s]")
     g.add_argument("--linger", type=float, default=120.0, help="search: on the link after the lines [s]")
-    g.add_argument("--time-source", choices=CLOCK_SOURCES, default="simulators",
-                   help="whose lockstep clock: the simulators' multi-HIL nodes (default) or the launcher's")
+    g.add_argument(
+        "--time-source",
+        choices=CLOCK_SOURCES,
+        default="simulators",
+        help="whose lockstep clock: the simulators' multi-HIL nodes (default) or the launcher's",
+    )
     for key, default in TEAM_DEFAULTS.items():
         g.add_argument("--" + key.replace("_", "-"), type=Path, default=default)
 
@@ -66,6 +80,7 @@ class Modem:
 def modem_of(config: Path) -> Modem:
     """The modem of a simulator configuration (errors as file:line:col: ConfigError)."""
     from sim.config import load
+
     cfg = load(config)
     if cfg.modem is None:
         raise GeometryError(f"{config}: no modem: section (a team needs the acoustic modem)")
@@ -110,51 +125,97 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
     if ri_ids:
         ri_modem = modem_of(args.ri_config)
         if (ri_modem.frame_bytes, round(ri_modem.frame_s, 6)) != (modem.frame_bytes, round(modem.frame_s, 6)):
-            raise GeometryError(f"{args.ri_config}: its modem's frames ({ri_modem.frame_bytes} B, "
-                                f"{ri_modem.frame_s:g} s) differ from the search vehicles' "
-                                f"({modem.frame_bytes} B, {modem.frame_s:g} s): one team, one modem profile")
+            raise GeometryError(
+                f"{args.ri_config}: its modem's frames ({ri_modem.frame_bytes} B, "
+                f"{ri_modem.frame_s:g} s) differ from the search vehicles' "
+                f"({modem.frame_bytes} B, {modem.frame_s:g} s): one team, one modem profile"
+            )
     shares = [[(leg.start, leg.end) for leg in v.lines] for v in sv.vehicles]
     lines = lines_string(shares)
     if len(lines) > MAX_PARAM_STRING:
-        raise GeometryError(f"the team's lines string is {len(lines)} characters, over the plan language's "
-                            f"{MAX_PARAM_STRING}: fewer lines (wider --range or a smaller area)")
-    link = TeamLink(roster, lines, slot_length(modem, sv.operating_area, args.slot_guard), modem.frame_bytes,
-                    silent_s=args.silent)
+        raise GeometryError(
+            f"the team's lines string is {len(lines)} characters, over the plan language's "
+            f"{MAX_PARAM_STRING}: fewer lines (wider --range or a smaller area)"
+        )
+    link = TeamLink(
+        roster, lines, slot_length(modem, sv.operating_area, args.slot_guard), modem.frame_bytes, silent_s=args.silent
+    )
     longest = max(estimated_duration_s(v, st, lim) for v, st in zip(sv.vehicles, starts))
     # after its own lines a search vehicle may take over a lost teammate's: time for both
     timeout = lim.timeout_s or 2.5 * longest + args.linger + 600
     paths = []
     for vid, v, st in zip(ids, sv.vehicles, starts):
         path = out / f"{vid}.chasm"
-        summary = (f"Share {v.index + 1} of {len(ids)}: {len(v.lines)} lines, {v.length_m() / 1000:.2f} km, "
-                   f"about {estimated_duration_s(v, st, lim) / 60:.0f} min before any takeover.")
-        path.write_text(search_plan(vid, link, lim, timeout, sv.operating_area, path, v.legs[0].start,
-                                    v.legs[-1].end, summary, args.linger))
+        summary = (
+            f"Share {v.index + 1} of {len(ids)}: {len(v.lines)} lines, {v.length_m() / 1000:.2f} km, "
+            f"about {estimated_duration_s(v, st, lim) / 60:.0f} min before any takeover."
+        )
+        path.write_text(
+            search_plan(
+                vid, link, lim, timeout, sv.operating_area, path, v.legs[0].start, v.legs[-1].end, summary, args.linger
+            )
+        )
         paths.append(path)
     ri_st = ri_start_of(sv, starts, args)
     for vid in ri_ids:
         path = out / f"{vid}.chasm"
-        path.write_text(ri_plan(vid, link, lim, timeout, sv.operating_area, path,
-                                f"Starts at {ri_st[0]:.1f}, {ri_st[1]:.1f}; identifies what the search reports."))
+        path.write_text(
+            ri_plan(
+                vid,
+                link,
+                lim,
+                timeout,
+                sv.operating_area,
+                path,
+                f"Starts at {ri_st[0]:.1f}, {ri_st[1]:.1f}; identifies what the search reports.",
+            )
+        )
         paths.append(path)
     vehicles = []
-    participants = 3 * len(roster)          # lockstep: every simulator, pilot and navigator
-    for vid, st, first in [(i, s, v.legs[0].start) for i, s, v in zip(ids, starts, sv.vehicles)] + \
-            [(i, ri_st, (ri_st[0] + 1.0, ri_st[1])) for i in ri_ids]:
+    participants = 3 * len(roster)  # lockstep: every simulator, pilot and navigator
+    for vid, st, first in [(i, s, v.legs[0].start) for i, s, v in zip(ids, starts, sv.vehicles)] + [
+        (i, ri_st, (ri_st[0] + 1.0, ri_st[1])) for i in ri_ids
+    ]:
         heading = math.atan2(first[1] - st[1], first[0] - st[0]) % (2 * math.pi)
-        sim = {"config": _rel(args.ri_config if vid in ri_ids else args.search_config, out),
-               "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1), "heading_rad": round(heading, 4)}}
+        sim = {
+            "config": _rel(args.ri_config if vid in ri_ids else args.search_config, out),
+            "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1), "heading_rad": round(heading, 4)},
+        }
         if args.time_source == "simulators":
             sim["simulation"] = {"clock": "lockstep"}
             sim["multihil"] = {"enabled": True, "lockstep_participants": participants}
-        vehicles.append({"id": vid, "sim": sim, "managers": [
-            {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20},
-            {"name": "NAVIGATOR", "plan": f"{vid}.chasm",
-             "bind": _rel(args.ri_bind if vid in ri_ids else args.team_bind, out), "rate": 10}]})
+        vehicles.append(
+            {
+                "id": vid,
+                "sim": sim,
+                "managers": [
+                    {
+                        "name": "PILOT",
+                        "plan": _rel(args.pilot_plan, out),
+                        "bind": _rel(args.pilot_bind, out),
+                        "rate": 20,
+                    },
+                    {
+                        "name": "NAVIGATOR",
+                        "plan": f"{vid}.chasm",
+                        "bind": _rel(args.ri_bind if vid in ri_ids else args.team_bind, out),
+                        "rate": 10,
+                    },
+                ],
+            }
+        )
     limit = round(timeout + 120)
     time = {"mode": clock_modes.LOCKSTEP, "source": args.time_source, "limit": limit}
-    team = {"roster": roster, "search": ids, "ri": ri_ids, "slot_s": link.slot_s, "slots": len(roster),
-            "frame_bytes": modem.frame_bytes, "frame_s": round(modem.frame_s, 3), "lines": lines}
+    team = {
+        "roster": roster,
+        "search": ids,
+        "ri": ri_ids,
+        "slot_s": link.slot_s,
+        "slots": len(roster),
+        "frame_bytes": modem.frame_bytes,
+        "frame_s": round(modem.frame_s, 3),
+        "lines": lines,
+    }
     return {"time": time, "vehicles": vehicles, "team": team}, paths
 
 

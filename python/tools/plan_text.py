@@ -21,21 +21,21 @@ from tools.survey_plan import Survey, VehicleSurvey
 
 ROOT = Path(__file__).resolve().parents[2]
 NAVIGATOR_IO = ROOT / "missions" / "common" / "navigator_io.chasm"
-SAFETY = ROOT / "missions" / "common" / "safety.chasm"     # the shared `abort when` rules
-TEAM_SAFETY = ROOT / "missions" / "common" / "team_safety.chasm"   # ... whose emergency tells the team
+SAFETY = ROOT / "missions" / "common" / "safety.chasm"  # the shared `abort when` rules
+TEAM_SAFETY = ROOT / "missions" / "common" / "team_safety.chasm"  # ... whose emergency tells the team
 
 
 @dataclass
 class Limits:
     speed_mps: float = 1.5
     altitude_m: float = 8.0
-    depth_m: float = 0.0            # > 0: fly the survey at this depth (hold_depth), not at altitude_m
+    depth_m: float = 0.0  # > 0: fly the survey at this depth (hold_depth), not at altitude_m
     fix_every_min: float = 20.0
-    fix_timeout_s: float = 300.0    # floating up from survey altitude takes minutes
+    fix_timeout_s: float = 300.0  # floating up from survey altitude takes minutes
     max_depth_m: float = 60.0
     min_altitude_m: float = 2.0
     nav_timeout_s: float = 5.0
-    timeout_s: float = 0.0          # 0: from the estimated duration
+    timeout_s: float = 0.0  # 0: from the estimated duration
 
 
 def estimated_duration_s(v: VehicleSurvey, start, lim: Limits) -> float:
@@ -71,8 +71,11 @@ def plan_text(survey: Survey, v: VehicleSurvey, vid: str, start, lim: Limits, pl
         "use guidance",
         "",
         f"param speed        = {lim.speed_mps:g} m/s",
-        (f"param depth        = {lim.depth_m:g} m" if lim.depth_m > 0 else
-         f"param altitude     = {lim.altitude_m:g} m"),
+        (
+            f"param depth        = {lim.depth_m:g} m"
+            if lim.depth_m > 0
+            else f"param altitude     = {lim.altitude_m:g} m"
+        ),
         f"param fix_every    = {lim.fix_every_min:g} min",
         f"param fix_timeout  = {lim.fix_timeout_s:g} s",
         "",

@@ -49,8 +49,11 @@ def resolve(log, spec: str) -> tuple[str, str]:
             arr = log[channel]
             if fieldname not in arr.columns:
                 close = difflib.get_close_matches(fieldname, list(arr.columns), n=3)
-                hint = f" (did you mean {', '.join(close)}?)" if close else \
-                    f"; its fields: {', '.join(list(arr.columns)[:20])}"
+                hint = (
+                    f" (did you mean {', '.join(close)}?)"
+                    if close
+                    else f"; its fields: {', '.join(list(arr.columns)[:20])}"
+                )
                 raise FieldError(f"{spec}: {channel} ({arr.type_name}) has no field {fieldname!r}{hint}")
             if arr.columns[fieldname].dtype == object:
                 raise FieldError(f"{spec}: {fieldname} is text, not a number")
@@ -83,8 +86,13 @@ def main(argv: list[str] | None = None) -> int:
         arr = log[channel]
         y = arr.columns[fieldname].astype(float)
         colour = PALETTE[zlib.crc32(channel.encode()) % len(PALETTE)]
-        ax.plot(arr.t, y, color=colour, lw=1.2, drawstyle="steps-post" if arr.columns[fieldname].dtype != float
-                else "default")
+        ax.plot(
+            arr.t,
+            y,
+            color=colour,
+            lw=1.2,
+            drawstyle="steps-post" if arr.columns[fieldname].dtype != float else "default",
+        )
         ax.set_ylabel(fieldname)
         ax.set_title(f"{channel} ({arr.type_name})", fontsize=9, loc="left")
         ax.grid(alpha=0.3)

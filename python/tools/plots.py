@@ -56,8 +56,7 @@ def _area(ax, run: RunData) -> None:
     ax.add_patch(MplPolygon(poly[:, ::-1], closed=True, fill=False, ec="k", lw=1.5, label="survey area"))
     op = np.array(run.survey.get("operating_area") or [])
     if len(op):
-        ax.add_patch(MplPolygon(op[:, ::-1], closed=True, fill=False, ec="r", lw=0.8, ls=":",
-                                label="operating area"))
+        ax.add_patch(MplPolygon(op[:, ::-1], closed=True, fill=False, ec="r", lw=0.8, ls=":", label="operating area"))
 
 
 def _extent(run: RunData, pad: float = 30.0):
@@ -76,7 +75,7 @@ def tracks(run: RunData, out: Path) -> list[Path]:
         ee, nn = np.meshgrid(np.linspace(e0, e1, 120), np.linspace(n0, n1, 120))
         zz = np.vectorize(depth)(nn, ee)
         lo, hi = float(zz.min()), float(zz.max())
-        flat = hi - lo < 0.05     # a flat seabed: one band and one tick, not 14 levels of noise
+        flat = hi - lo < 0.05  # a flat seabed: one band and one tick, not 14 levels of noise
         levels = [lo - 0.5, hi + 0.5] if flat else 14
         cs = ax.contourf(ee, nn, zz, levels=levels, cmap="Blues", vmin=lo - 5 if flat else None)
         cs.set_rasterized(True)
@@ -84,7 +83,7 @@ def tracks(run: RunData, out: Path) -> list[Path]:
     _area(ax, run)
     for vid in run.vehicles:
         tr = run.truth(vid)
-        line, = ax.plot(tr["eta[1]"], tr["eta[0]"], lw=1.2, label=f"{vid} true", color=vehicle_colour(run, vid))
+        (line,) = ax.plot(tr["eta[1]"], tr["eta[0]"], lw=1.2, label=f"{vid} true", color=vehicle_colour(run, vid))
         nav = run.nav(vid)
         if nav is not None and len(nav):
             ax.plot(nav["east_m"], nav["north_m"], lw=0.7, ls="--", color=line.get_color(), label=f"{vid} NAV")
@@ -98,14 +97,25 @@ def coverage(run: RunData, grid, out: Path) -> list[Path]:
     fig, ax = plt.subplots(figsize=(8, 7))
     n, e = grid.centres()
     top = max(3, int(grid.looks.max()))
-    im = ax.pcolormesh(e, n, np.ma.masked_equal(grid.looks, 0), cmap=plt.get_cmap("viridis", top),
-                       vmin=0.5, vmax=top + 0.5, shading="nearest",
-                       rasterized=True)   # an image inside the SVG, not one path per cell
+    im = ax.pcolormesh(
+        e,
+        n,
+        np.ma.masked_equal(grid.looks, 0),
+        cmap=plt.get_cmap("viridis", top),
+        vmin=0.5,
+        vmax=top + 0.5,
+        shading="nearest",
+        rasterized=True,
+    )  # an image inside the SVG, not one path per cell
     fig.colorbar(im, ax=ax, label="looks per cell", ticks=range(1, top + 1))
     _area(ax, run)
-    once = grid.area_with(1) / max(1.0, float(np.count_nonzero(grid.inside)) * grid.cell ** 2)
-    ax.set(xlabel="east [m]", ylabel="north [m]", aspect="equal",
-           title=f"Sidescan coverage: {100 * once:.1f} % of the area seen at least once")
+    once = grid.area_with(1) / max(1.0, float(np.count_nonzero(grid.inside)) * grid.cell**2)
+    ax.set(
+        xlabel="east [m]",
+        ylabel="north [m]",
+        aspect="equal",
+        title=f"Sidescan coverage: {100 * once:.1f} % of the area seen at least once",
+    )
     return _save(fig, out, "coverage")
 
 
@@ -113,8 +123,10 @@ def contacts(run: RunData, out: Path, radius: float = 5.0) -> list[Path]:
     fig, ax = plt.subplots(figsize=(8, 7))
     _area(ax, run)
     targets = run.targets()
-    for kind, style, label in ((0, dict(marker="^", color="red", ms=8), "mine-like target"),
-                               (1, dict(marker="s", color="grey", ms=6), "clutter")):
+    for kind, style, label in (
+        (0, dict(marker="^", color="red", ms=8), "mine-like target"),
+        (1, dict(marker="s", color="grey", ms=6), "clutter"),
+    ):
         pts = np.array([(t.east_m, t.north_m) for t in targets if t.kind == kind]).reshape(-1, 2)
         if len(pts):
             ax.plot(pts[:, 0], pts[:, 1], ls="none", mfc="none", label=label, **style)
@@ -127,22 +139,34 @@ def contacts(run: RunData, out: Path, radius: float = 5.0) -> list[Path]:
     a = associate(targets, [(vid, c) for vid in run.vehicles for c in run.contacts(vid)], radius)
     missed = np.array([(t.east_m, t.north_m) for t, m in zip(targets, a.missed) if m]).reshape(-1, 2)
     if len(missed):
-        ax.plot(missed[:, 0], missed[:, 1], "o", ms=16, mfc="none", mec="red", mew=2,
-                label=f"missed mine-like ({len(missed)})")
+        ax.plot(
+            missed[:, 0],
+            missed[:, 1],
+            "o",
+            ms=16,
+            mfc="none",
+            mec="red",
+            mew=2,
+            label=f"missed mine-like ({len(missed)})",
+        )
     fa = np.array([(c.east_m, c.north_m) for (_v, c), f in zip(a.contacts, a.false_alarm) if f]).reshape(-1, 2)
     if len(fa):
-        ax.plot(fa[:, 0], fa[:, 1], "o", ms=11, mfc="none", mec="darkorange", mew=1.5,
-                label=f"false alarm ({len(fa)})")
+        ax.plot(fa[:, 0], fa[:, 1], "o", ms=11, mfc="none", mec="darkorange", mew=1.5, label=f"false alarm ({len(fa)})")
     e0, e1, n0, n1 = _extent(run)
-    ax.set(xlabel="east [m]", ylabel="north [m]", title="Contacts and true targets", aspect="equal",
-           xlim=(e0, e1), ylim=(n0, n1))
+    ax.set(
+        xlabel="east [m]",
+        ylabel="north [m]",
+        title="Contacts and true targets",
+        aspect="equal",
+        xlim=(e0, e1),
+        ylim=(n0, n1),
+    )
     ax.legend(fontsize=7, loc="upper right")
     return _save(fig, out, "contacts")
 
 
 def depth(run: RunData, out: Path) -> list[Path]:
-    fig, axes = plt.subplots(len(run.vehicles), 1, figsize=(9, 2.4 * len(run.vehicles)), sharex=True,
-                             squeeze=False)
+    fig, axes = plt.subplots(len(run.vehicles), 1, figsize=(9, 2.4 * len(run.vehicles)), sharex=True, squeeze=False)
     for ax, vid in zip(axes[:, 0], run.vehicles):
         tr = run.truth(vid)
         t = tr.t / 60
@@ -175,17 +199,21 @@ def states(run: RunData, out: Path) -> list[Path]:
         v = causes.get(vid, {})
         if v.get("cause") and v.get("abort_at_s") is not None and mgr == "NAVIGATOR":
             _mark_abort(ax, v["abort_at_s"], y, v["cause"])
-        elif not v.get("cause"):    # no launcher outcome: the aborted or failed segments say why
+        elif not v.get("cause"):  # no launcher outcome: the aborted or failed segments say why
             for s in segs:
                 if s.run in ("aborted", "failed") and s.condition:
                     _mark_abort(ax, s.start, y, s.condition)
                     break
         for i, s in enumerate(segs):
             name = _leaf(s)
-            end = segs[i + 1].start if i + 1 < len(segs) else s.end   # a state lasts until the next one
+            end = segs[i + 1].start if i + 1 < len(segs) else s.end  # a state lasts until the next one
             width = max(end - s.start, 0.1) / 60
-            ax.broken_barh([(s.start / 60, width)], (y - 0.35, 0.7), color=colors[name],
-                           hatch="//" if s.run in ("aborted", "failed") else None)
+            ax.broken_barh(
+                [(s.start / 60, width)],
+                (y - 0.35, 0.7),
+                color=colors[name],
+                hatch="//" if s.run in ("aborted", "failed") else None,
+            )
     ax.set_yticks(range(len(keys)), keys)
     ax.set_xlabel("sim time [min]")
     ax.set_title("CHASM state timelines (colour: leaf state; red: abort and its cause)")
@@ -200,8 +228,9 @@ def _leaf(seg) -> str:
 
 def _mark_abort(ax, t_s: float, y: int, cause: str) -> None:
     ax.plot([t_s / 60] * 2, [y - 0.45, y + 0.45], color="red", lw=2)
-    ax.annotate(cause, (t_s / 60, y + 0.4), fontsize=7, color="red", xytext=(3, 0),
-                textcoords="offset points", va="bottom")
+    ax.annotate(
+        cause, (t_s / 60, y + 0.4), fontsize=7, color="red", xytext=(3, 0), textcoords="offset points", va="bottom"
+    )
 
 
 def make_plots(run: RunData, grid, out: Path) -> list[Path]:

@@ -24,18 +24,19 @@ _libc = ctypes.CDLL(None, use_errno=True)
 def _die_with(parent_pid: int):
     def setup() -> None:  # runs in the child between fork and exec
         _libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
-        if os.getppid() != parent_pid:   # the parent died before prctl took effect
+        if os.getppid() != parent_pid:  # the parent died before prctl took effect
             os._exit(1)
+
     return setup
 
 
 @dataclass
 class Child:
-    name: str                   # "logger", "AUV1.sim", "AUV1.NAVIGATOR"
+    name: str  # "logger", "AUV1.sim", "AUV1.NAVIGATOR"
     cmd: list[str]
-    out: Path                   # stdout + stderr
+    out: Path  # stdout + stderr
     proc: subprocess.Popen | None = None
-    stopping: bool = False      # we asked it to stop: its exit is not a death
+    stopping: bool = False  # we asked it to stop: its exit is not a death
     started_wall: float = field(default_factory=time.monotonic)
 
     @property
@@ -44,8 +45,15 @@ class Child:
 
     def start(self, env: dict[str, str] | None = None) -> "Child":
         with open(self.out, "w") as f:
-            self.proc = subprocess.Popen(self.cmd, stdout=f, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                         start_new_session=True, preexec_fn=_die_with(os.getpid()), env=env)
+            self.proc = subprocess.Popen(
+                self.cmd,
+                stdout=f,
+                stderr=subprocess.STDOUT,
+                stdin=subprocess.DEVNULL,
+                start_new_session=True,
+                preexec_fn=_die_with(os.getpid()),
+                env=env,
+            )
         self.started_wall = time.monotonic()
         return self
 
@@ -71,9 +79,8 @@ class Child:
                 _signal_group(self.proc.pid, signal.SIGKILL)
                 self.proc.wait()
         else:
-            _signal_group(self.proc.pid, signal.SIGKILL)   # anything it left in its group
+            _signal_group(self.proc.pid, signal.SIGKILL)  # anything it left in its group
         return self.proc.returncode
-
 
     def kill(self) -> int | None:
         """SIGKILL to the whole group at once (a planned fault: no goodbye)."""

@@ -50,10 +50,17 @@ def detection_stats(run: RunData, radius: float, covered=None) -> dict | None:
     for (vid, _c), k in zip(contacts, a.nearest):
         per_vehicle[vid]["contacts"] += 1
         per_vehicle[vid]["false_alarms"] += int(k < 0)
-    out = {"association_radius_m": radius, "mine_like_targets": int(mine.sum()), "clutter_objects": int((~mine).sum()),
-           "contacts": len(contacts), "mine_like_detected": int((hit & mine).sum()),
-           "pd": float((hit & mine).sum() / mine.sum()) if mine.any() else None,
-           "contacts_on_clutter": on_clutter, "false_alarms": false_alarms, "per_vehicle": per_vehicle}
+    out = {
+        "association_radius_m": radius,
+        "mine_like_targets": int(mine.sum()),
+        "clutter_objects": int((~mine).sum()),
+        "contacts": len(contacts),
+        "mine_like_detected": int((hit & mine).sum()),
+        "pd": float((hit & mine).sum() / mine.sum()) if mine.any() else None,
+        "contacts_on_clutter": on_clutter,
+        "false_alarms": false_alarms,
+        "per_vehicle": per_vehicle,
+    }
     if covered is not None and len(tpos):
         inside = covered(tpos[:, 0], tpos[:, 1])
         m_in = mine & inside
@@ -70,8 +77,13 @@ def nav_error(run: RunData) -> dict:
             continue
         tn, te = interp_truth(run, vid, nav.t)
         err = np.hypot(nav["north_m"] - tn, nav["east_m"] - te)
-        out[vid] = {"mean_m": float(err.mean()), "rms_m": float(np.sqrt(np.mean(err ** 2))),
-                    "max_m": float(err.max()), "final_m": float(err[-1]), "samples": int(len(err))}
+        out[vid] = {
+            "mean_m": float(err.mean()),
+            "rms_m": float(np.sqrt(np.mean(err**2))),
+            "max_m": float(err.max()),
+            "final_m": float(err[-1]),
+            "samples": int(len(err)),
+        }
     return out
 
 
@@ -89,17 +101,24 @@ def record_completeness(run: RunData) -> dict:
         step = float(np.median(dt))
         gaps = dt[dt > 1.5 * step]
         missing = int(np.round(gaps / step).sum() - len(gaps)) if step > 0 else 0
-        out[vid] = {"samples": int(len(t)), "missing": missing, "interval_s": step,
-                    "fraction_missing": missing / (len(t) + missing)}
+        out[vid] = {
+            "samples": int(len(t)),
+            "missing": missing,
+            "interval_s": step,
+            "fraction_missing": missing / (len(t) + missing),
+        }
     return out
 
 
 def outcome_of(run: RunData) -> dict:
     if run.outcome is not None:
         vehicles = run.outcome.get("vehicles", {})
-        return {"outcome": run.outcome.get("outcome"), "reason": run.outcome.get("reason", ""),
-                "vehicle_outcomes": {k: v.get("outcome") for k, v in vehicles.items()},
-                "vehicle_causes": {k: v.get("cause", "") for k, v in vehicles.items() if v.get("cause")}}
+        return {
+            "outcome": run.outcome.get("outcome"),
+            "reason": run.outcome.get("reason", ""),
+            "vehicle_outcomes": {k: v.get("outcome") for k, v in vehicles.items()},
+            "vehicle_causes": {k: v.get("cause", "") for k, v in vehicles.items() if v.get("cause")},
+        }
     per = {}
     for key, segs in run.timelines.items():
         vid, mgr = key.split(".", 1)
@@ -109,21 +128,33 @@ def outcome_of(run: RunData) -> dict:
 
 
 def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[dict, object]:
-    rep: dict = {"log": str(run.log.path), "vehicles": run.vehicles, **outcome_of(run),
-                 "duration_s": run.duration_s(),
-                 "log_events": run.log.stats.events, "undecodable_events": run.log.stats.undecodable,
-                 "log_damage": {"skipped_bytes": run.log.stats.damage.skipped_bytes,
-                                "lost_events": run.log.stats.damage.lost_events,
-                                "bad_channel_names": run.log.stats.damage.bad_channel_names}}
+    rep: dict = {
+        "log": str(run.log.path),
+        "vehicles": run.vehicles,
+        **outcome_of(run),
+        "duration_s": run.duration_s(),
+        "log_events": run.log.stats.events,
+        "undecodable_events": run.log.stats.undecodable,
+        "log_damage": {
+            "skipped_bytes": run.log.stats.damage.skipped_bytes,
+            "lost_events": run.log.stats.damage.lost_events,
+            "bad_channel_names": run.log.stats.damage.bad_channel_names,
+        },
+    }
     grid = None
     if run.survey:
         sv = run.survey
         grid = coverage_grid(run, sv["polygon"], sv["sonar"]["range_m"], sv["sonar"]["nadir_gap_m"], cell)
-        total = float(np.count_nonzero(grid.inside)) * cell ** 2
-        rep["coverage"] = {"survey_area_m2": sv["area_m2"], "raster_area_m2": total, "cell_m": cell,
-                           "covered_once_m2": grid.area_with(1), "covered_twice_m2": grid.area_with(2),
-                           "fraction_once": grid.area_with(1) / total if total else None,
-                           "fraction_twice": grid.area_with(2) / total if total else None}
+        total = float(np.count_nonzero(grid.inside)) * cell**2
+        rep["coverage"] = {
+            "survey_area_m2": sv["area_m2"],
+            "raster_area_m2": total,
+            "cell_m": cell,
+            "covered_once_m2": grid.area_with(1),
+            "covered_twice_m2": grid.area_with(2),
+            "fraction_once": grid.area_with(1) / total if total else None,
+            "fraction_twice": grid.area_with(2) / total if total else None,
+        }
 
         def covered(n, e):
             i = ((n - grid.north0) / cell).astype(int)
@@ -132,10 +163,12 @@ def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[
             res = np.zeros(len(n), bool)
             res[ok] = grid.looks[i[ok], j[ok]] >= 1
             return res & point_in_polygon([tuple(p) for p in sv["polygon"]], n, e)
+
     rep["detection"] = detection_stats(run, radius, covered if grid is not None else None)
     rep["navigation_error"] = nav_error(run)
     rep["record"] = record_completeness(run)
     from tools.team_report import team_section
+
     team = team_section(run, radius)
     if team is not None:
         rep["team"] = team
@@ -147,43 +180,60 @@ def _fmt(x, unit="", scale=1.0, digits=1) -> str:
 
 
 def report_text(rep: dict) -> str:
-    lines = [f"Mission report: {rep['log']}",
-             f"outcome   {rep['outcome'] or '-'}" + (f" ({rep['reason']})" if rep.get("reason") else ""),
-             f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
-             f"{rep['undecodable_events']} undecodable"
-             + (f"; DAMAGED LOG: {rep['log_damage']['lost_events']} event(s) lost, "
-                f"{rep['log_damage']['skipped_bytes']} byte(s) skipped" if rep["log_damage"]["skipped_bytes"] else "")]
+    lines = [
+        f"Mission report: {rep['log']}",
+        f"outcome   {rep['outcome'] or '-'}" + (f" ({rep['reason']})" if rep.get("reason") else ""),
+        f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
+        f"{rep['undecodable_events']} undecodable"
+        + (
+            f"; DAMAGED LOG: {rep['log_damage']['lost_events']} event(s) lost, "
+            f"{rep['log_damage']['skipped_bytes']} byte(s) skipped"
+            if rep["log_damage"]["skipped_bytes"]
+            else ""
+        ),
+    ]
     for vid, o in rep["vehicle_outcomes"].items():
         cause = rep.get("vehicle_causes", {}).get(vid)
         lines.append(f"  {vid}: {o or 'unfinished'}" + (f" (cause: {cause})" if cause else ""))
     c = rep.get("coverage")
     if c:
-        lines += [f"coverage  survey area {c['survey_area_m2'] / 1e6:.4f} km2 (raster {c['cell_m']:g} m cells)",
-                  f"  covered once  {c['covered_once_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_once'], ' %', 100)})",
-                  f"  covered twice {c['covered_twice_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_twice'], ' %', 100)})"]
+        lines += [
+            f"coverage  survey area {c['survey_area_m2'] / 1e6:.4f} km2 (raster {c['cell_m']:g} m cells)",
+            f"  covered once  {c['covered_once_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_once'], ' %', 100)})",
+            f"  covered twice {c['covered_twice_m2'] / 1e6:.4f} km2 ({_fmt(c['fraction_twice'], ' %', 100)})",
+        ]
     else:
         lines.append("coverage  - (no survey geometry in the log or given)")
     d = rep.get("detection")
     if d:
-        lines += [f"detection association radius {d['association_radius_m']:g} m",
-                  f"  mine-like targets {d['mine_like_targets']}, detected {d['mine_like_detected']}, "
-                  f"PD {_fmt(d['pd'], '', 1, 3)}"
-                  + (f"; in the covered area {d['mine_like_in_covered_area']}, PD {_fmt(d['pd_in_covered_area'], '', 1, 3)}"
-                     if "pd_in_covered_area" in d else ""),
-                  f"  contacts {d['contacts']}: on clutter {d['contacts_on_clutter']}, "
-                  f"false alarms {d['false_alarms']}"]
+        lines += [
+            f"detection association radius {d['association_radius_m']:g} m",
+            f"  mine-like targets {d['mine_like_targets']}, detected {d['mine_like_detected']}, "
+            f"PD {_fmt(d['pd'], '', 1, 3)}"
+            + (
+                f"; in the covered area {d['mine_like_in_covered_area']}, PD {_fmt(d['pd_in_covered_area'], '', 1, 3)}"
+                if "pd_in_covered_area" in d
+                else ""
+            ),
+            f"  contacts {d['contacts']}: on clutter {d['contacts_on_clutter']}, false alarms {d['false_alarms']}",
+        ]
     else:
         lines.append("detection - (no targets or contacts in the log)")
     lines.append("navigation error (NAV against TRUTH, horizontal)")
     for vid, e in rep["navigation_error"].items():
-        lines.append(f"  {vid}: mean {e['mean_m']:.2f} m, rms {e['rms_m']:.2f} m, max {e['max_m']:.2f} m, "
-                     f"final {e['final_m']:.2f} m")
+        lines.append(
+            f"  {vid}: mean {e['mean_m']:.2f} m, rms {e['rms_m']:.2f} m, max {e['max_m']:.2f} m, "
+            f"final {e['final_m']:.2f} m"
+        )
     lines.append("record (TRUTH samples in the log; missing = lost by the logger or a stalled simulator)")
     for vid, r in rep.get("record", {}).items():
-        lines.append(f"  {vid}: {r['samples']} samples every {r['interval_s']:g} s, {r['missing']} missing "
-                     f"({100 * r['fraction_missing']:.2f} %)")
+        lines.append(
+            f"  {vid}: {r['samples']} samples every {r['interval_s']:g} s, {r['missing']} missing "
+            f"({100 * r['fraction_missing']:.2f} %)"
+        )
     if rep.get("team"):
         from tools.team_report import team_text
+
         lines += team_text(rep["team"])
     return "\n".join(lines) + "\n"
 
@@ -209,6 +259,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-plots", action="store_true")
     args = ap.parse_args(argv)
     from tools.lcmlog import not_a_log
+
     problem = not_a_log(args.log)
     if problem:
         print(f"report: {args.log}: {problem}", file=sys.stderr)
@@ -226,7 +277,7 @@ def main(argv: list[str] | None = None) -> int:
             return 2
     try:
         run = load_run(args.log, args.survey)
-    except (OSError, ValueError) as exc:     # an unreadable log, a --survey that is not JSON
+    except (OSError, ValueError) as exc:  # an unreadable log, a --survey that is not JSON
         print(f"report: {exc}", file=sys.stderr)
         return 2
     damage = damage_lines(args.log, run.log.stats)
@@ -236,8 +287,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"report: {args.log}: no vehicle ground truth (<V>.TRUTH) in the log", file=sys.stderr)
         return 2
     if run.survey is not None and (problem := survey_problem(run.survey)):
-        print(f"report: {args.log}: the survey annotated in the log is unusable ({problem}): "
-              "no coverage figures", file=sys.stderr)
+        print(
+            f"report: {args.log}: the survey annotated in the log is unusable ({problem}): no coverage figures",
+            file=sys.stderr,
+        )
         run.survey = None
     out = args.out or args.log.parent
     try:
@@ -248,17 +301,21 @@ def main(argv: list[str] | None = None) -> int:
     rep, grid = build_report(run, args.radius, args.cell)
     if not args.no_plots:
         from tools.plots import make_plots
+
         plots = make_plots(run, grid, out)
         if rep.get("team"):
             from tools.team_plots import team_plots
+
             plots += team_plots(run, rep["team"], out)
         rep["plots"] = [str(p) for p in plots]
     (out / "report.json").write_text(json.dumps(rep, indent=2))
     text = report_text(rep)
     (out / "report.txt").write_text(text)
     print(text, end="")
-    print(f"report: {out / 'report.txt'}, {out / 'report.json'}"
-          + (f", {len(rep['plots'])} plot files" if "plots" in rep else ""))
+    print(
+        f"report: {out / 'report.txt'}, {out / 'report.json'}"
+        + (f", {len(rep['plots'])} plot files" if "plots" in rep else "")
+    )
     return EXIT_EVENTS_LOST if run.log.stats.events_lost else 0
 
 

@@ -18,18 +18,20 @@ import numpy as np
 from auvlcm.arrays import ChannelArrays, LogArrays, load_log
 from tools.timeline import Segment, state_timeline
 
-KEEP = (r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
-        r"|.*\.TEAM_EVENT|.*\.MODEM_RX|.*\.MODEM_TX|.*\.MODEM_STATUS|.*\.LOOKS")   # the team section
+KEEP = (
+    r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
+    r"|.*\.TEAM_EVENT|.*\.MODEM_RX|.*\.MODEM_TX|.*\.MODEM_STATUS|.*\.LOOKS"
+)  # the team section
 
 
 @dataclass
 class RunData:
     log: LogArrays
-    vehicles: list[str]                         # ids with ground truth in the log
-    survey: dict | None = None                  # the planner's survey.json
-    outcome: dict | None = None                 # the launcher's end event
-    sim_configs: dict[str, str] = field(default_factory=dict)   # vehicle -> merged YAML text
-    timelines: dict[str, list[Segment]] = field(default_factory=dict)   # "AUV1.NAVIGATOR" -> segments
+    vehicles: list[str]  # ids with ground truth in the log
+    survey: dict | None = None  # the planner's survey.json
+    outcome: dict | None = None  # the launcher's end event
+    sim_configs: dict[str, str] = field(default_factory=dict)  # vehicle -> merged YAML text
+    timelines: dict[str, list[Segment]] = field(default_factory=dict)  # "AUV1.NAVIGATOR" -> segments
 
     def truth(self, vid: str) -> ChannelArrays:
         return self.log[f"{vid}.TRUTH"]
@@ -57,9 +59,10 @@ class RunData:
         try:
             from sim.bathymetry import Bathymetry
             from sim.config import loads
+
             cfg = loads(next(iter(self.sim_configs.values())))
             return Bathymetry(cfg.env.bathymetry_ref, Path.cwd()).depth
-        except Exception:   # noqa: BLE001 - a plot without a seabed beats no plot
+        except Exception:  # noqa: BLE001 - a plot without a seabed beats no plot
             return None
 
 

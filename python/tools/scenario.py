@@ -30,21 +30,22 @@ HOST_NAME = r"[A-Za-z0-9][A-Za-z0-9_.-]{0,62}"
 # the launcher's clock is lockstep in every mode (tools/worldclock.py): the mode is its pace
 # (sim.clock_modes: lockstep = as fast as the slowest participant; `fast`, its old name, is read so).
 TIME_MODES = clock_modes.MODES
-RECORDERS = ("auv-recorder", "lcm-logger")   # what records the run's log (docs/tools.md, "Recorder")
+RECORDERS = ("auv-recorder", "lcm-logger")  # what records the run's log (docs/tools.md, "Recorder")
 CLOCK_SOURCES = ("launcher", "simulators")
 NAV_SOURCES = ("ins", "ekf")
 DEFAULT_HOST = "local"
-MAX_PARAM_CHARS = 1000       # a -D value on a command line
+MAX_PARAM_CHARS = 1000  # a -D value on a command line
 
 
 @dataclass
 class Manager:
-    name: str = setting("", pattern=MANAGER_NAME, pattern_hint="upper-case letters, digits and _, "
-                        "starting with a letter")
+    name: str = setting(
+        "", pattern=MANAGER_NAME, pattern_hint="upper-case letters, digits and _, starting with a letter"
+    )
     plan: Path = Path()
     bind: Path = Path()
     rate_hz: float = setting(10.0, gt=0.0, key="rate")
-    params: dict[str, str] = field(default_factory=dict)    # -D name=value
+    params: dict[str, str] = field(default_factory=dict)  # -D name=value
     plugin_path: list[Path] = field(default_factory=list)
     where: str = ""
 
@@ -52,8 +53,9 @@ class Manager:
 @dataclass
 class NavChoice:
     """What publishes the vehicle's <ID>.NAV (docs/navigation.md)."""
-    source: str = setting("ins", one_of=NAV_SOURCES)   # "ins": the simulator's INS; "ekf": auv-nav
-    config: Path | None = None            # auv-nav's nav config; None: derived from the sim config
+
+    source: str = setting("ins", one_of=NAV_SOURCES)  # "ins": the simulator's INS; "ekf": auv-nav
+    config: Path | None = None  # auv-nav's nav config; None: derived from the sim config
     rate_hz: float = setting(20.0, gt=0.0, key="rate")
 
 
@@ -61,24 +63,24 @@ class NavChoice:
 class Vehicle:
     id: str
     host: str
-    sim_config: Path                      # base simulator configuration
-    sim_overrides: dict                   # merged over it (same sections as the sim's YAML)
+    sim_config: Path  # base simulator configuration
+    sim_overrides: dict  # merged over it (same sections as the sim's YAML)
     managers: list[Manager]
-    end_manager: str = "NAVIGATOR"        # whose status ends this vehicle's mission
+    end_manager: str = "NAVIGATOR"  # whose status ends this vehicle's mission
     where: str = ""
     nav: NavChoice = field(default_factory=NavChoice)
-    sim_node: Any = None                  # the `sim:` mapping node, for error positions
+    sim_node: Any = None  # the `sim:` mapping node, for error positions
 
 
 @dataclass
 class TimeSettings:
     mode: str = setting("scaled", one_of=TIME_MODES, old_names=clock_modes.OLD_NAMES)
     warp: float = setting(10.0, gt=0.0)
-    step_s: float = setting(0.05, gt=0.0, key="step")          # SIM.CLOCK tick [sim s]
-    limit_s: float = setting(3600.0, gt=0.0, key="limit")      # mission time limit [sim s]
-    wall_limit_s: float = setting(0.0, ge=0.0, key="wall_limit")   # 0 = none [wall s]
-    host: str = DEFAULT_HOST              # the host that runs the clock
-    source: str = setting("launcher", one_of=CLOCK_SOURCES)   # or "simulators": their multi-HIL nodes
+    step_s: float = setting(0.05, gt=0.0, key="step")  # SIM.CLOCK tick [sim s]
+    limit_s: float = setting(3600.0, gt=0.0, key="limit")  # mission time limit [sim s]
+    wall_limit_s: float = setting(0.0, ge=0.0, key="wall_limit")  # 0 = none [wall s]
+    host: str = DEFAULT_HOST  # the host that runs the clock
+    source: str = setting("launcher", one_of=CLOCK_SOURCES)  # or "simulators": their multi-HIL nodes
 
 
 @dataclass
@@ -87,7 +89,7 @@ class Scenario:
     name: str
     seed: int
     lcm_url: str
-    world: dict                           # merged into every simulator's `environment`
+    world: dict  # merged into every simulator's `environment`
     time: TimeSettings
     log_enabled: bool
     log_file: str
@@ -96,9 +98,9 @@ class Scenario:
     hosts: list[str]
     vehicles: list[Vehicle]
     text: str = ""
-    survey: Path | None = None            # the planner's survey.json, for reports and plots
-    world_node: Any = None                # the `world:` mapping node, for error positions
-    faults: list[PlannedFault] = field(default_factory=list)   # tools/scenario_faults.py
+    survey: Path | None = None  # the planner's survey.json, for reports and plots
+    world_node: Any = None  # the `world:` mapping node, for error positions
+    faults: list[PlannedFault] = field(default_factory=list)  # tools/scenario_faults.py
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -152,9 +154,16 @@ class _Scenario:
                 continue
             if declared is not None and pk not in declared:
                 hint = difflib.get_close_matches(pk, sorted(declared), n=1)
-                c.err(knode, pkey, f"the plan {plan.name} declares no parameter '{pk}'"
-                      + (f"; did you mean '{hint[0]}'?" if hint else
-                         f"; it declares: {', '.join(sorted(declared)) or 'none'}"))
+                c.err(
+                    knode,
+                    pkey,
+                    f"the plan {plan.name} declares no parameter '{pk}'"
+                    + (
+                        f"; did you mean '{hint[0]}'?"
+                        if hint
+                        else f"; it declares: {', '.join(sorted(declared)) or 'none'}"
+                    ),
+                )
                 continue
             if not isinstance(vnode, yaml.ScalarNode) or c.is_empty(vnode):
                 c.err(vnode, pkey, "expected a value such as 12 or '12 m'")
@@ -182,8 +191,9 @@ class _Scenario:
 
     def manager(self, node, key: str) -> Manager | None:
         c = self.c
-        items = self.section(node, key, ("name", "plan", "bind", "rate", "params", "plugin_path"),
-                             ("name", "plan", "bind"))
+        items = self.section(
+            node, key, ("name", "plan", "bind", "rate", "params", "plugin_path"), ("name", "plan", "bind")
+        )
         if items is None:
             return None
         m = Manager(where=c.where(node))
@@ -217,14 +227,15 @@ class _Scenario:
             return nav
         n = self.c.mapping(node, join(key, "nav"))
         self.c.required(n, ("source",), node, join(key, "nav"))
-        self.c.fill(node, join(key, "nav"), nav, skip=("config",))     # config: a file, below
+        self.c.fill(node, join(key, "nav"), nav, skip=("config",))  # config: a file, below
         nav.config = self.file(n, "config", join(key, "nav")) if "config" in n else None
         return nav
 
     def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
         c = self.c
-        items = self.section(node, key, ("id", "host", "sim", "managers", "end_manager", "nav"),
-                             ("id", "sim", "managers"))
+        items = self.section(
+            node, key, ("id", "host", "sim", "managers", "end_manager", "nav"), ("id", "sim", "managers")
+        )
         if items is None:
             return None
         vid = self.get(items, "id", key, "")
@@ -254,8 +265,11 @@ class _Scenario:
             c.err(items["managers"][1], join(key, "managers"), f"manager name '{dup}' used twice")
         end = self.get(items, "end_manager", key, "NAVIGATOR")
         if managers and end not in names:
-            c.err((items.get("end_manager") or items["managers"])[1], join(key, "end_manager"),
-                  f"no manager named '{end}' (its status ends the mission)")
+            c.err(
+                (items.get("end_manager") or items["managers"])[1],
+                join(key, "end_manager"),
+                f"no manager named '{end}' (its status ends the mission)",
+            )
         nav = self.nav(items, key)
         if not vid or cfg is None or not managers:
             return None
@@ -272,8 +286,9 @@ class _Scenario:
     def hosts(self, items: dict) -> list[str]:
         if "hosts" not in items:
             return [DEFAULT_HOST]
-        got = self.c.value(items["hosts"][1], "hosts", [""], Rule(pattern=HOST_NAME,
-                           pattern_hint="a host name (letters, digits, _.-)"))
+        got = self.c.value(
+            items["hosts"][1], "hosts", [""], Rule(pattern=HOST_NAME, pattern_hint="a host name (letters, digits, _.-)")
+        )
         if got is dataclasses.MISSING or not got:
             if got == []:
                 self.c.err(items["hosts"][1], "hosts", "expected a non-empty list of host names")
@@ -322,18 +337,36 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
             c.err(vnode, "vehicles", f"vehicle id '{dup}' used twice")
     sc = Scenario(
         path=path,
-        name=s.get(top, "name", "", path.stem, Rule(pattern=r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}",
-                   pattern_hint="letters, digits, _.- (it names the run folder)")),
-        seed=s.get(top, "seed", "", 1, Rule(ge=0, le=2 ** 31 - 1)),
+        name=s.get(
+            top,
+            "name",
+            "",
+            path.stem,
+            Rule(
+                pattern=r"[A-Za-z0-9][A-Za-z0-9_.-]{0,63}",
+                pattern_hint="letters, digits, _.- (it names the run folder)",
+            ),
+        ),
+        seed=s.get(top, "seed", "", 1, Rule(ge=0, le=2**31 - 1)),
         lcm_url=s.get(top, "lcm_url", "", ""),
-        world=world, time=time,
+        world=world,
+        time=time,
         log_enabled=s.get(lg_items, "enabled", "logging", True),
-        log_file=s.get(lg_items, "file", "logging", "run.lcmlog", Rule(pattern=r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,127}",
-                       pattern_hint="a file name in the run folder")),
+        log_file=s.get(
+            lg_items,
+            "file",
+            "logging",
+            "run.lcmlog",
+            Rule(pattern=r"[A-Za-z0-9_][A-Za-z0-9_.-]{0,127}", pattern_hint="a file name in the run folder"),
+        ),
         log_host=s.host(lg_items, "host", "logging", hosts),
         log_recorder=s.get(lg_items, "recorder", "logging", RECORDERS[0], Rule(one_of=RECORDERS)),
-        hosts=hosts, vehicles=vehicles, text=c.text, survey=s.file(top, "survey", ""),
+        hosts=hosts,
+        vehicles=vehicles,
+        text=c.text,
+        survey=s.file(top, "survey", ""),
         world_node=world_node,
-        faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s))
+        faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s),
+    )
     c.raise_errors()
     return sc

@@ -33,7 +33,7 @@ FAULT_KINDS = ("lose", "leak")
 
 @dataclass
 class Fault:
-    at_s: float = setting(0.0, ge=0.0, key="at")        # sim time [s]
+    at_s: float = setting(0.0, ge=0.0, key="at")  # sim time [s]
     vehicle: str = ""
     do: str = setting("lose", one_of=FAULT_KINDS)
 
@@ -43,7 +43,7 @@ class PlannedFault:
     at_s: float
     vehicle: str
     do: str
-    where: str                                          # file:line:col of the entry
+    where: str  # file:line:col of the entry
 
 
 def check_faults(c: Checker, node, vehicle_ids: list[str], limit_s: float) -> list[PlannedFault]:
@@ -66,18 +66,23 @@ def check_faults(c: Checker, node, vehicle_ids: list[str], limit_s: float) -> li
             continue
         vnode = items["vehicle"][1]
         if f.vehicle not in vehicle_ids:
-            c.err(vnode, join(key, "vehicle"),
-                  f"no vehicle '{f.vehicle}' in this scenario; vehicles are: {', '.join(vehicle_ids)}")
+            c.err(
+                vnode,
+                join(key, "vehicle"),
+                f"no vehicle '{f.vehicle}' in this scenario; vehicles are: {', '.join(vehicle_ids)}",
+            )
             continue
         if f.do == "lose" and f.vehicle in lost:
             c.err(vnode, join(key, "vehicle"), f"{f.vehicle} is already lost by the fault at {lost[f.vehicle]}")
             continue
         if f.at_s >= limit_s:
-            c.err(items["at"][1], join(key, "at"),
-                  f"at {f.at_s:g} s is not before the mission time limit ({limit_s:g} s): it would never happen")
+            c.err(
+                items["at"][1],
+                join(key, "at"),
+                f"at {f.at_s:g} s is not before the mission time limit ({limit_s:g} s): it would never happen",
+            )
             continue
         if f.do == "lose":
             lost[f.vehicle] = c.where(n)
         out.append(PlannedFault(f.at_s, f.vehicle, f.do, c.where(n)))
     return sorted(out, key=lambda f: f.at_s)
-

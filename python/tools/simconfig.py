@@ -63,10 +63,11 @@ def _ins_out_of_the_way(v: Vehicle, cfg: dict) -> dict:
     if v.nav.source != "ekf":
         return cfg
     from sim.sensors import REGISTRY
+
     sensors = cfg.get("sensors") or {name: {} for name in REGISTRY}
     ins = sensors.get("ins", False)
     if ins is False or (isinstance(ins, dict) and ins.get("channel", "NAV") != "NAV"):
-        return dict(cfg, sensors=sensors)     # no INS, or already elsewhere
+        return dict(cfg, sensors=sensors)  # no INS, or already elsewhere
     return dict(cfg, sensors=merge(sensors, {"ins": merge(ins or {}, {"channel": "NAV_INS"})}))
 
 
@@ -86,10 +87,11 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     cfg = merge(cfg, {"simulation": {"seed": sc.seed * 100 + index + 1}})
     cfg = merge(cfg, v.sim_overrides)
     cfg = merge(cfg, {"vehicle": {"id": v.id}})
-    for f in sc.faults:     # a planned leak: the probes sense water from its time on
+    for f in sc.faults:  # a planned leak: the probes sense water from its time on
         if f.vehicle == v.id and f.do == "leak":
             from sim.sensors import REGISTRY
-            listed = cfg.get("sensors") or {name: {} for name in REGISTRY}   # none listed: all of them
+
+            listed = cfg.get("sensors") or {name: {} for name in REGISTRY}  # none listed: all of them
             cfg["sensors"] = merge(listed, {"leak": {"at_s": f.at_s}})
     return cfg
 
@@ -116,17 +118,19 @@ def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:
 def write_configs(sc: Scenario, vehicles: list[Vehicle], out_dir: Path) -> tuple[dict[str, Path], list[str]]:
     """Write <ID>.sim.yaml per vehicle; return their paths and the scenario errors."""
     from sim.config import load
+
     paths, errors = {}, []
     for v in vehicles:
         index = sc.vehicles.index(v)
         path = out_dir / f"{v.id}.sim.yaml"
         try:
             merged = vehicle_config(sc, v, index)
-        except ConfigError as exc:      # the base file itself was refused (its own positions)
+        except ConfigError as exc:  # the base file itself was refused (its own positions)
             errors += [f"{line} (the sim config of vehicles[{index}])" for line in exc.errors]
             continue
-        path.write_text(f"# {v.id}: {v.sim_config} merged with the scenario {sc.path.name} by the launcher\n"
-                        + dump_yaml(merged))
+        path.write_text(
+            f"# {v.id}: {v.sim_config} merged with the scenario {sc.path.name} by the launcher\n" + dump_yaml(merged)
+        )
         try:
             load(path)
         except ConfigError as exc:  # point each error at the line it came from

@@ -53,6 +53,7 @@ def _segments_cross(a: Point, b: Point, c: Point, d: Point) -> bool:
     def orient(p, q, r):
         v = (q[0] - p[0]) * (r[1] - p[1]) - (q[1] - p[1]) * (r[0] - p[0])
         return (v > 1e-9) - (v < -1e-9)
+
     return orient(a, b, c) * orient(a, b, d) < 0 and orient(c, d, a) * orient(c, d, b) < 0
 
 
@@ -91,6 +92,7 @@ def clip_v(poly: list[Point], lo: float, hi: float) -> list[Point]:
     """Sutherland-Hodgman clip of a (u, v) polygon to lo <= v <= hi. The area of
     the result is exact for concave polygons too (any extra edges lie on the
     clip lines and enclose nothing)."""
+
     def clip(pts, inside, cross):
         out = []
         for i, cur in enumerate(pts):
@@ -105,6 +107,7 @@ def clip_v(poly: list[Point], lo: float, hi: float) -> list[Point]:
 
     def at(v0):
         return lambda p, q: (p[0] + (q[0] - p[0]) * (v0 - p[1]) / (q[1] - p[1]), v0)
+
     pts = clip(poly, lambda p: p[1] >= lo, at(lo))
     return clip(pts, lambda p: p[1] <= hi, at(hi)) if pts else []
 
@@ -127,8 +130,12 @@ def band_extent(poly: list[Point], lo: float, hi: float) -> list[tuple[float, fl
     the union of these chords is the band's extent, and a gap that is open at
     every sample stays open across the band."""
     eps = 1e-6 * max(1.0, hi - lo)
-    vs = sorted({lo + eps, hi - eps, (lo + hi) / 2} | {v for _, v in poly if lo < v < hi}
-                | {v + eps for _, v in poly if lo < v + eps < hi} | {v - eps for _, v in poly if lo < v - eps < hi})
+    vs = sorted(
+        {lo + eps, hi - eps, (lo + hi) / 2}
+        | {v for _, v in poly if lo < v < hi}
+        | {v + eps for _, v in poly if lo < v + eps < hi}
+        | {v - eps for _, v in poly if lo < v - eps < hi}
+    )
     ivs = sorted(iv for v in vs for iv in chord(poly, v))
     merged: list[list[float]] = []
     for a, b in ivs:
@@ -166,11 +173,15 @@ def convex_hull(pts: list[Point]) -> list[Point]:
     def half(seq):
         out: list[Point] = []
         for q in seq:
-            while len(out) >= 2 and ((out[-1][0] - out[-2][0]) * (q[1] - out[-2][1])
-                                     - (out[-1][1] - out[-2][1]) * (q[0] - out[-2][0])) <= 0:
+            while (
+                len(out) >= 2
+                and ((out[-1][0] - out[-2][0]) * (q[1] - out[-2][1]) - (out[-1][1] - out[-2][1]) * (q[0] - out[-2][0]))
+                <= 0
+            ):
                 out.pop()
             out.append(q)
         return out
+
     lower, upper = half(p), half(reversed(p))
     return lower[:-1] + upper[:-1]
 
@@ -179,8 +190,11 @@ def buffer_convex(hull: list[Point], margin: float, segments: int = 3) -> list[P
     """A convex polygon grown by `margin` (corners rounded with a few vertices)."""
     out: list[Point] = []
     n = len(hull)
-    sign = 1.0 if sum(hull[i][0] * hull[(i + 1) % n][1] - hull[(i + 1) % n][0] * hull[i][1]
-                      for i in range(n)) > 0 else -1.0
+    sign = (
+        1.0
+        if sum(hull[i][0] * hull[(i + 1) % n][1] - hull[(i + 1) % n][0] * hull[i][1] for i in range(n)) > 0
+        else -1.0
+    )
     for i in range(n):
         prev, cur, nxt = hull[i - 1], hull[i], hull[(i + 1) % n]
         a0 = math.atan2(cur[1] - prev[1], cur[0] - prev[0]) - sign * math.pi / 2
@@ -189,7 +203,7 @@ def buffer_convex(hull: list[Point], margin: float, segments: int = 3) -> list[P
         for k in range(segments + 1):
             a = a0 + d * k / segments
             q = (cur[0] + margin * math.cos(a), cur[1] + margin * math.sin(a))
-            if not out or math.dist(out[-1], q) > 0.5:   # a straight corner adds one point, not several
+            if not out or math.dist(out[-1], q) > 0.5:  # a straight corner adds one point, not several
                 out.append(q)
     return out if math.dist(out[0], out[-1]) > 0.5 else out[:-1]
 
@@ -203,7 +217,7 @@ def simplify_convex_outer(poly: list[Point], max_vertices: int) -> list[Point]:
         raise GeometryError(f"a polygon limit of {max_vertices} vertices is below 3")
     pts = list(poly)
     if sum(a[0] * b[1] - b[0] * a[1] for a, b in zip(pts, pts[1:] + pts[:1])) < 0:
-        pts.reverse()                                   # counter-clockwise in (north, east)
+        pts.reverse()  # counter-clockwise in (north, east)
     while len(pts) > max_vertices:
         n, best = len(pts), None
         for i in range(n):
@@ -226,7 +240,7 @@ def simplify_convex_outer(poly: list[Point], max_vertices: int) -> list[Point]:
             raise GeometryError(f"cannot bound the operating area by {max_vertices} vertices")
         _, i, x = best
         if i + 1 < n:
-            pts[i:i + 2] = [x]
-        else:                                           # the edge from the last vertex to the first
+            pts[i : i + 2] = [x]
+        else:  # the edge from the last vertex to the first
             pts = [x] + pts[1:-1]
     return pts

@@ -52,6 +52,7 @@ def apply_overrides(text: str, sets: list[str], path: Path = Path("<config>")) -
     characters); ConfigError (a ValueError to callers' except) on a bad one."""
     from confcheck import Checker
     from confcheck.reader import dump_yaml
+
     c = Checker.from_text(text, path)
     doc = c.plain(c.root)
     c.raise_errors()
@@ -60,6 +61,7 @@ def apply_overrides(text: str, sets: list[str], path: Path = Path("<config>")) -
         # an absent section means "every sensor at its defaults"; a listed one
         # means "only these": list them all before changing one
         from sim.sensors import REGISTRY
+
         doc["sensors"] = {name: {} for name in REGISTRY}
     for item in sets:
         key, sep, value = item.partition("=")
@@ -88,7 +90,7 @@ class Stepper:
         self.have_nav = False
         self.sim_utime = -1
         self.seq = 0
-        self.clock_utime: int | None = None      # the last SIM.CLOCK this script published
+        self.clock_utime: int | None = None  # the last SIM.CLOCK this script published
         self.time_drops = TimeDrops("survey_log")
         self._state_gate = InputGate(self.time_drops, f"{vehicle}.ACTUATOR_STATE")
         self.rx.subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=200)
@@ -99,12 +101,18 @@ class Stepper:
         self.have_nav = True
 
     def _on_state(self, _ch: str, m) -> None:
-        if self._state_gate.offer(m.utime, self.clock_utime):   # 10^18 must not end a step
+        if self._state_gate.offer(m.utime, self.clock_utime):  # 10^18 must not end a step
             self.sim_utime = m.utime
 
     def clock(self, utime: int) -> None:
         c = sim_clock_t()
-        c.utime, c.server_id, c.mode, c.warp, c.step_us = utime, "survey_log", sim_clock_t.MODE_LOCKSTEP, 0.0, int(STEP_S * 1e6)
+        c.utime, c.server_id, c.mode, c.warp, c.step_us = (
+            utime,
+            "survey_log",
+            sim_clock_t.MODE_LOCKSTEP,
+            0.0,
+            int(STEP_S * 1e6),
+        )
         self.lc.publish("SIM.CLOCK", c.encode())
         self.clock_utime = utime
 
@@ -116,7 +124,7 @@ class Stepper:
             now = time.monotonic()
             if now > deadline:
                 raise TimeoutError(f"simulator did not reach t={utime / 1e6:.1f}s")
-            if now >= resend:           # the first ticks may come before it subscribed
+            if now >= resend:  # the first ticks may come before it subscribed
                 self.clock(utime)
                 resend = now + 0.5
             self.lc.handle_timeout(50)
@@ -149,6 +157,7 @@ class Recorder:
 
 def count_truth(log: Path, vehicle: str) -> int:
     from auvlcm.log import read_events
+
     return sum(1 for ev in read_events(log) if ev.channel == f"{vehicle}.TRUTH")
 
 
@@ -166,27 +175,44 @@ def run(args: argparse.Namespace) -> int:
     cfg_path = out.with_suffix(".sim.yaml")
     cfg_path.write_text(cfg_text)
     from sim.config import load
-    vehicle = load(cfg_path).vehicle_id     # checked before anything starts (ConfigError: exit 2)
-    survey = Survey(length_m=args.length, spacing_m=args.spacing, lines=args.lines, depth_m=args.depth,
-                    surface_s=args.surface_s, final_surface=args.final_surface,
-                    surface_crossovers=args.surface_crossovers)
+
+    vehicle = load(cfg_path).vehicle_id  # checked before anything starts (ConfigError: exit 2)
+    survey = Survey(
+        length_m=args.length,
+        spacing_m=args.spacing,
+        lines=args.lines,
+        depth_m=args.depth,
+        surface_s=args.surface_s,
+        final_surface=args.final_surface,
+        surface_crossovers=args.surface_crossovers,
+    )
     lc = lcm.LCM(url)
     stepper = Stepper(lc, vehicle, SurveyPilot(survey))
     logger, recorder = None, None
     if args.logger == "lcm-logger":
-        logger = Child("logger", [str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"),
-                                  f"--lcm-url={with_receive_buffer(url)}", "-f", str(out)],
-                       out.with_suffix(".logger.out")).start()
+        logger = Child(
+            "logger",
+            [
+                str(Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"),
+                f"--lcm-url={with_receive_buffer(url)}",
+                "-f",
+                str(out),
+            ],
+            out.with_suffix(".logger.out"),
+        ).start()
     else:
         recorder = Recorder(lc, out)
     sim = None
     try:
         if logger is not None:
-            time.sleep(0.5)             # the logger is listening before anything is said
+            time.sleep(0.5)  # the logger is listening before anything is said
         annotate(lc, cfg_path.name, cfg_text, log_annotation_t.KIND_SCENARIO)
         annotate(lc, "survey", repr(survey), log_annotation_t.KIND_NOTE)
-        sim = Child("sim", [sys.executable, "-m", "sim", str(cfg_path), "--clock", "lockstep",
-                            "--lcm-url", url], out.with_suffix(".sim.out")).start()
+        sim = Child(
+            "sim",
+            [sys.executable, "-m", "sim", str(cfg_path), "--clock", "lockstep", "--lcm-url", url],
+            out.with_suffix(".sim.out"),
+        ).start()
         t_us, end_us = 0, None
         limit_us = int(min(args.max_s, 1e7) * 1e6)
         stepper.step_to(0, timeout_s=30.0)
@@ -201,18 +227,19 @@ def run(args: argparse.Namespace) -> int:
     finally:
         if sim is not None:
             sim.stop()
-        deadline = time.monotonic() + 0.5   # the last messages reach the log
+        deadline = time.monotonic() + 0.5  # the last messages reach the log
         while time.monotonic() < deadline:
             lc.handle_timeout(50)
         if logger is not None:
             logger.stop()
         if recorder is not None:
             recorder.close()
-    print(f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
-          f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}"
-          + ("" if not stepper.time_drops.total else f", {stepper.time_drops.summary()}")
-          + ("" if not stepper.rx.decode_errors else f", {stepper.rx.decode_errors} undecodable "
-             "message(s) dropped"))
+    print(
+        f"survey_log: {out}: {t_us / 1e6:.1f} sim s, {survey.lines} lines of {survey.length_m:g} m "
+        f"({survey.path_length_m():.0f} m of track), pilot {'done' if stepper.pilot.done else 'NOT done'}"
+        + ("" if not stepper.time_drops.total else f", {stepper.time_drops.summary()}")
+        + ("" if not stepper.rx.decode_errors else f", {stepper.rx.decode_errors} undecodable message(s) dropped")
+    )
     # One truth message per 0.1 s step: fewer in the log means the recording
     # lost messages (a starved logger), and the log is not the run.
     logged, steps = count_truth(out, vehicle), t_us // int(STEP_S * 1e6) + 1
@@ -228,8 +255,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--config", default=str(DEFAULT_CONFIG))
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE")
     ap.add_argument("--url", default=default_url())
-    ap.add_argument("--logger", choices=("self", "lcm-logger"), default="self",
-                    help="who records the log (default: this script, in step with the simulation)")
+    ap.add_argument(
+        "--logger",
+        choices=("self", "lcm-logger"),
+        default="self",
+        help="who records the log (default: this script, in step with the simulation)",
+    )
     ap.add_argument("--lines", type=int, default=4)
     ap.add_argument("--length", type=float, default=460.0)
     ap.add_argument("--spacing", type=float, default=50.0)

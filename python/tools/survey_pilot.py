@@ -18,6 +18,7 @@ from sim.autopilot import Autopilot
 @dataclass
 class Survey:
     """A lawnmower: lines parallel to `heading_deg` from the corner (north, east)."""
+
     north_m: float = 0.0
     east_m: float = 0.0
     length_m: float = 460.0
@@ -26,22 +27,21 @@ class Survey:
     heading_deg: float = 0.0
     depth_m: float = 12.0
     speed_rpm: float = 1500.0
-    surface_s: float = 60.0         # first part of line 1 on the surface (GPS)
-    final_surface: bool = False     # come up after the last line (GPS again)
+    surface_s: float = 60.0  # first part of line 1 on the surface (GPS)
+    final_surface: bool = False  # come up after the last line (GPS again)
     surface_crossovers: bool = False  # come up between lines for GPS fixes ...
-    fix_s: float = 30.0               # ... and stay this long on the surface
+    fix_s: float = 30.0  # ... and stay this long on the surface
 
     def waypoints(self) -> list[tuple[float, float]]:
         h = math.radians(self.heading_deg)
         along = (math.cos(h), math.sin(h))
-        across = (-math.sin(h), math.cos(h))   # lines step to starboard of the heading
+        across = (-math.sin(h), math.cos(h))  # lines step to starboard of the heading
         pts = []
         for i in range(self.lines):
             ends = (0.0, self.length_m) if i % 2 == 0 else (self.length_m, 0.0)
             for a in ends:
                 c = i * self.spacing_m
-                pts.append((self.north_m + a * along[0] + c * across[0],
-                            self.east_m + a * along[1] + c * across[1]))
+                pts.append((self.north_m + a * along[0] + c * across[0], self.east_m + a * along[1] + c * across[1]))
         return pts
 
     def path_length_m(self) -> float:
@@ -60,7 +60,7 @@ class Nav:
     r: float = 0.0
 
 
-SURFACE_RPM_FRACTION = 0.55   # of speed_rpm while running awash
+SURFACE_RPM_FRACTION = 0.55  # of speed_rpm while running awash
 
 
 @dataclass
@@ -68,10 +68,10 @@ class SurveyPilot:
     survey: Survey
     lookahead_m: float = 15.0
     ap: Autopilot = field(default_factory=Autopilot)
-    leg: int = 0                 # index of the waypoint the vehicle is heading to
+    leg: int = 0  # index of the waypoint the vehicle is heading to
     done: bool = False
-    fixing: bool = False         # surfacing or on the surface for fixes between lines
-    fix_time: float = 0.0        # time spent on the surface so far in this stop
+    fixing: bool = False  # surfacing or on the surface for fixes between lines
+    fix_time: float = 0.0  # time spent on the surface so far in this stop
     last_t: float = 0.0
 
     def __post_init__(self) -> None:
@@ -90,7 +90,7 @@ class SurveyPilot:
         length = math.hypot(dn, de)
         ux, uy = dn / length, de / length
         along = (nav.north - n0) * ux + (nav.east - e0) * uy
-        cross = -(nav.north - n0) * uy + (nav.east - e0) * ux   # + to starboard of the line
+        cross = -(nav.north - n0) * uy + (nav.east - e0) * ux  # + to starboard of the line
         if along >= length and not self.done:
             if self.leg + 1 < len(self.wps):
                 self.leg += 1

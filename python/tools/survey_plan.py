@@ -35,8 +35,8 @@ from tools.survey_geometry import (
 
 @dataclass
 class Sonar:
-    range_m: float              # largest useful ground range per side
-    nadir_gap_m: float = 0.0    # blind half-width under the track
+    range_m: float  # largest useful ground range per side
+    nadir_gap_m: float = 0.0  # blind half-width under the track
 
     def full_spacing(self) -> float:
         return 2 * self.range_m if self.nadir_gap_m == 0 else self.range_m
@@ -44,10 +44,10 @@ class Sonar:
 
 @dataclass
 class Leg:
-    kind: str                   # "line" or "turn"
-    start: Point                # (north, east)
+    kind: str  # "line" or "turn"
+    start: Point  # (north, east)
     end: Point
-    line: int = 0               # 1-based line number of the vehicle ("turn": the next line)
+    line: int = 0  # 1-based line number of the vehicle ("turn": the next line)
 
     @property
     def length(self) -> float:
@@ -59,8 +59,8 @@ class VehicleSurvey:
     index: int
     strip: tuple[float, float]  # across-track limits of its share [m]
     area_m2: float
-    polygon: list[Point]        # its share of the area (north, east)
-    offsets: list[float]        # across-track position of each line [m]
+    polygon: list[Point]  # its share of the area (north, east)
+    offsets: list[float]  # across-track position of each line [m]
     legs: list[Leg] = field(default_factory=list)
 
     @property
@@ -78,7 +78,7 @@ class Survey:
     sonar: Sonar
     overlap: float
     spacing_m: float
-    margin_m: float             # tolerated cross-track error per line [m]
+    margin_m: float  # tolerated cross-track error per line [m]
     run_in_m: float
     vehicles: list[VehicleSurvey]
     operating_area: list[Point]
@@ -95,14 +95,21 @@ def line_offsets(lo: float, hi: float, sonar: Sonar, spacing: float, margin: flo
         first, last = lo + r - margin, hi - (r - margin)
         if last <= first:
             return [(lo + hi) / 2]
-    else:   # an edge line's own nadir gap cannot be filled from outside: put it beyond the edge
+    else:  # an edge line's own nadir gap cannot be filled from outside: put it beyond the edge
         first, last = lo - g - margin, hi + g + margin
     n = math.ceil((last - first) / spacing - 1e-9) + 1
     return [first + (last - first) * i / (n - 1) for i in range(n)]
 
 
-def _legs(poly_uv: list[Point], frame: Frame, strip: tuple[float, float], offsets: list[float],
-          sonar: Sonar, run_in: float, start_uv: Point | None) -> list[Leg]:
+def _legs(
+    poly_uv: list[Point],
+    frame: Frame,
+    strip: tuple[float, float],
+    offsets: list[float],
+    sonar: Sonar,
+    run_in: float,
+    start_uv: Point | None,
+) -> list[Leg]:
     """Boustrophedon legs: each line spans what its swath sees of the strip."""
     lo, hi = strip
     per_line = []
@@ -118,10 +125,15 @@ def _legs(poly_uv: list[Point], frame: Frame, strip: tuple[float, float], offset
         if segs:
             per_line.append((v, segs))
     forward = True
-    if start_uv is not None and per_line:   # begin at the line end nearest the vehicle
-        ends = {(rev, fwd): (per_line[-1 if rev else 0][1][0 if fwd else -1][0 if fwd else 1],
-                             per_line[-1 if rev else 0][0])
-                for rev in (False, True) for fwd in (True, False)}
+    if start_uv is not None and per_line:  # begin at the line end nearest the vehicle
+        ends = {
+            (rev, fwd): (
+                per_line[-1 if rev else 0][1][0 if fwd else -1][0 if fwd else 1],
+                per_line[-1 if rev else 0][0],
+            )
+            for rev in (False, True)
+            for fwd in (True, False)
+        }
         rev, forward = min(ends, key=lambda k: math.dist(ends[k], start_uv))
         if rev:
             per_line.reverse()
@@ -137,9 +149,17 @@ def _legs(poly_uv: list[Point], frame: Frame, strip: tuple[float, float], offset
     return legs
 
 
-def plan_survey(polygon: list[Point], vehicles: int, heading_rad: float, sonar: Sonar, overlap: float,
-                run_in_m: float = 20.0, area_margin_m: float | None = None,
-                starts: list[Point] | None = None, area_max_vertices: int | None = None) -> Survey:
+def plan_survey(
+    polygon: list[Point],
+    vehicles: int,
+    heading_rad: float,
+    sonar: Sonar,
+    overlap: float,
+    run_in_m: float = 20.0,
+    area_margin_m: float | None = None,
+    starts: list[Point] | None = None,
+    area_max_vertices: int | None = None,
+) -> Survey:
     """Split the polygon among `vehicles` (equal areas, cuts along the lines) and lay each one's lines.
     The operating area (every leg, grown by area_margin_m) is bounded by
     area_max_vertices: the most the plugin that tests it accepts."""
@@ -151,8 +171,10 @@ def plan_survey(polygon: list[Point], vehicles: int, heading_rad: float, sonar: 
     if sonar.range_m <= 0 or sonar.nadir_gap_m < 0:
         raise GeometryError("the sonar range must be > 0 and its nadir gap >= 0")
     if sonar.nadir_gap_m >= sonar.range_m / 2:
-        raise GeometryError(f"a nadir gap of {sonar.nadir_gap_m:g} m cannot be filled by neighbouring lines "
-                            f"with a range of {sonar.range_m:g} m (it must be under half the range)")
+        raise GeometryError(
+            f"a nadir gap of {sonar.nadir_gap_m:g} m cannot be filled by neighbouring lines "
+            f"with a range of {sonar.range_m:g} m (it must be under half the range)"
+        )
     if run_in_m < 0:
         raise GeometryError("the run-in must be >= 0")
     full = sonar.full_spacing()

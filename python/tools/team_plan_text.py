@@ -24,17 +24,18 @@ from tools.survey_geometry import format_polygon
 
 @dataclass
 class TeamLink:
-    roster: list[str]           # team index = position in this list
-    lines: str                  # TEAM_SPEC section 4 format
-    slot_s: float               # TDMA slot length
+    roster: list[str]  # team index = position in this list
+    lines: str  # TEAM_SPEC section 4 format
+    slot_s: float  # TDMA slot length
     frame_bytes: int
-    silent_s: float = 120.0     # a teammate unheard this long is lost
-    repeat: int = 3             # unacked contact reports: sent at most this many times per cycle round
+    silent_s: float = 120.0  # a teammate unheard this long is lost
+    repeat: int = 3  # unacked contact reports: sent at most this many times per cycle round
     status_every_s: float = 20.0
 
 
 # Every team plan ends its mission state the same way: up to the surface.
 _RECOVER = ["    state recover {", "        do surface()", "    }", "}"]
+
 
 def lines_string(shares: list[list[tuple[tuple[float, float], tuple[float, float]]]]) -> str:
     """`"0: n,e n,e; 0: ...; 1: ..."`: each vehicle's lines in flying order, owner index first."""
@@ -45,8 +46,9 @@ def lines_string(shares: list[list[tuple[tuple[float, float], tuple[float, float
     return "; ".join(parts)
 
 
-def _header(vid: str, role: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path,
-            extra: list[str]) -> list[str]:
+def _header(
+    vid: str, role: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path, extra: list[str]
+) -> list[str]:
     me = link.roster.index(vid)
     return [
         f"# {vid}: {role} of the team {','.join(link.roster)}, written by",
@@ -100,8 +102,18 @@ def _footer(plan_path: Path) -> list[str]:
     return ["", f'include "{os.path.relpath(TEAM_SAFETY, plan_path.parent)}"', ""]
 
 
-def search_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path,
-                start, end, summary: str, linger_s: float = 120.0) -> str:
+def search_plan(
+    vid: str,
+    link: TeamLink,
+    lim: Limits,
+    timeout_s: float,
+    area,
+    plan_path: Path,
+    start,
+    end,
+    summary: str,
+    linger_s: float = 120.0,
+) -> str:
     out = _header(vid, "search", link, lim, timeout_s, area, plan_path, [f"# {summary}"])
     out += [
         "input  contacts    : messages(256)",
@@ -136,8 +148,7 @@ def search_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, p
     return "\n".join(out + _footer(plan_path))
 
 
-def ri_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path,
-            summary: str) -> str:
+def ri_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path, summary: str) -> str:
     out = _header(vid, "reacquire-identify", link, lim, timeout_s, area, plan_path, [f"# {summary}"])
     out += [
         "input  looks       : messages(256)",

@@ -48,8 +48,15 @@ def ri_route(run: RunData, out: Path, team: dict, t0: float) -> list[Path]:
             ax.scatter(*zip(*pts), marker="x", color=colour, s=40, label=label, zorder=3)
     new = [e for e in evs if e.kind == tr.CONTACT_NEW]
     if new:
-        ax.scatter([e.east_m for e in new], [e.north_m for e in new], facecolors="none", edgecolors="b",
-                   s=70, label="reported contacts", zorder=3)
+        ax.scatter(
+            [e.east_m for e in new],
+            [e.north_m for e in new],
+            facecolors="none",
+            edgecolors="b",
+            s=70,
+            label="reported contacts",
+            zorder=3,
+        )
     for vid in team["ri_vehicles"]:
         if f"{vid}.TRUTH" in run.log:
             truth = run.truth(vid)
@@ -60,8 +67,11 @@ def ri_route(run: RunData, out: Path, team: dict, t0: float) -> list[Path]:
         if order:
             ax.plot(*zip(*order), "k--", lw=1, label="last planned route")
     for result, marker, label in (("mine", "s", "identified: mine"), ("not_mine", "D", "identified: not mine")):
-        pts = [(e.east_m, e.north_m) for e in evs if e.kind == tr.TARGET_IDENTIFIED
-               and {1: "mine", 2: "not_mine"}.get(int(e.result)) == result]
+        pts = [
+            (e.east_m, e.north_m)
+            for e in evs
+            if e.kind == tr.TARGET_IDENTIFIED and {1: "mine", 2: "not_mine"}.get(int(e.result)) == result
+        ]
         if pts:
             ax.scatter(*zip(*pts), marker=marker, facecolors="none", edgecolors="k", s=110, label=label, zorder=4)
     ax.set_aspect("equal")

@@ -35,9 +35,16 @@ from tools.run_data import RunData
 ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = ROOT / "c" / "plugins" / "team" / "team_link.schema"
 # TEAM_SPEC section 2's contact message, used while the schema file is not in this tree
-SPEC_CONTACT = [("int", 0, 15, 1), ("int", 0, 1023, 1), ("fixed", -2000, 2000, 0.25),
-                ("fixed", -2000, 2000, 0.25), ("fixed", 0, 12.7, 0.1), ("fixed", 0, 1, 0.01),
-                ("int", 0, 15, 1), ("int", 0, 16383, 1)]
+SPEC_CONTACT = [
+    ("int", 0, 15, 1),
+    ("int", 0, 1023, 1),
+    ("fixed", -2000, 2000, 0.25),
+    ("fixed", -2000, 2000, 0.25),
+    ("fixed", 0, 12.7, 0.1),
+    ("fixed", 0, 1, 0.01),
+    ("int", 0, 15, 1),
+    ("int", 0, 16383, 1),
+]
 ID_BITS = 4
 
 # team_event_t kinds
@@ -82,9 +89,20 @@ def target_table(run: RunData, evs: list, radius: float, t0: float) -> tuple[lis
     """Per true target its detection and identification; and the false identifications."""
     targets = run.targets()
     by_contact: dict[tuple[str, int], int] = {}
-    rows = [{"id": int(t.id), "kind": "mine_like" if t.kind == 0 else "clutter",
-             "north_m": float(t.north_m), "east_m": float(t.east_m), "detected_s": None, "detected_by": None,
-             "identified_s": None, "result": None, "latency_s": None} for t in targets]
+    rows = [
+        {
+            "id": int(t.id),
+            "kind": "mine_like" if t.kind == 0 else "clutter",
+            "north_m": float(t.north_m),
+            "east_m": float(t.east_m),
+            "detected_s": None,
+            "detected_by": None,
+            "identified_s": None,
+            "result": None,
+            "latency_s": None,
+        }
+        for t in targets
+    ]
     for e in evs:
         if e.kind == CONTACT_NEW:
             k = _nearest(targets, e.north_m, e.east_m, radius)
@@ -102,9 +120,16 @@ def target_table(run: RunData, evs: list, radius: float, t0: float) -> tuple[lis
         t = e.utime / 1e6 - t0
         truth = rows[k]["kind"] if k >= 0 else "nothing"
         if (result == "mine" and truth != "mine_like") or (result == "not_mine" and truth == "mine_like"):
-            false_ids.append({"time_s": t, "vehicle": e.vehicle, "target": f"{e.origin}:{e.number}",
-                              "result": result, "truth": truth,
-                              "true_id": rows[k]["id"] if k >= 0 else None})
+            false_ids.append(
+                {
+                    "time_s": t,
+                    "vehicle": e.vehicle,
+                    "target": f"{e.origin}:{e.number}",
+                    "result": result,
+                    "truth": truth,
+                    "true_id": rows[k]["id"] if k >= 0 else None,
+                }
+            )
         if k >= 0 and rows[k]["identified_s"] is None:
             rows[k]["identified_s"], rows[k]["result"] = t, result
             if rows[k]["detected_s"] is not None:
@@ -125,17 +150,24 @@ def link_stats(run: RunData, evs: list) -> dict:
         sent_events = sum(1 for e in evs if e.vehicle == vid and e.kind == CONTACT_SENT)
         contacts = len({(e.origin or vid, e.number) for e in evs if e.vehicle == vid and e.kind == CONTACT_SENT})
         out[vid] = {
-            "sent": int(s.sent), "heard": int(s.received), "lost": int(s.lost),
+            "sent": int(s.sent),
+            "heard": int(s.received),
+            "lost": int(s.lost),
             "out_of_range": int(s.out_of_range),
             "collided": int(getattr(s, "collided", -1)) if hasattr(s, "collided") else None,
             "deaf": int(getattr(s, "deaf", -1)) if hasattr(s, "deaf") else None,
             "refused": int(s.refused_size + s.refused_rate + s.refused_invalid),
-            "team_frames_queued": len(tx), "team_bytes_queued": int(sum(m.n_bytes for m in tx)),
-            "contact_reports_sent": sent_events, "contacts_reported": contacts,
+            "team_frames_queued": len(tx),
+            "team_bytes_queued": int(sum(m.n_bytes for m in tx)),
+            "contact_reports_sent": sent_events,
+            "contacts_reported": contacts,
             "bytes_per_contact": (sent_events * bits / 8 / contacts) if contacts else None,
         }
-    return {"per_vehicle": out, "contact_message_bits": bits,
-            "bytes_per_contact_method": f"CONTACT_SENT events x {bits} bits ({source}) / contacts reported"}
+    return {
+        "per_vehicle": out,
+        "contact_message_bits": bits,
+        "bytes_per_contact_method": f"CONTACT_SENT events x {bits} bits ({source}) / contacts reported",
+    }
 
 
 def who_heard_whom(run: RunData, t0: float) -> dict[str, list[float]]:
@@ -181,15 +213,27 @@ def team_section(run: RunData, radius: float) -> dict | None:
     t0 = float(run.log["SIM.CLOCK"].t[0]) if "SIM.CLOCK" in run.log and len(run.log["SIM.CLOCK"].t) else 0.0
     rows, false_ids = target_table(run, evs, radius, t0)
     mines = [r for r in rows if r["kind"] == "mine_like"]
-    lat = [r["latency_s"] for r in mines if r["latency_s"] is not None]     # the MCM figure: mines
+    lat = [r["latency_s"] for r in mines if r["latency_s"] is not None]  # the MCM figure: mines
     ri = ri_vehicles(run, evs)
-    routes = [{"time_s": e.utime / 1e6 - t0, "vehicle": e.vehicle, "order": route_order(e.text)}
-              for e in evs if e.kind == ROUTE]
-    takeovers = [{"time_s": e.utime / 1e6 - t0, "vehicle": e.vehicle,
-                  "event": "PEER_LOST" if e.kind == PEER_LOST else "LINES_TAKEN", "peer": e.origin,
-                  "text": e.text} for e in evs if e.kind in (PEER_LOST, LINES_TAKEN)]
+    routes = [
+        {"time_s": e.utime / 1e6 - t0, "vehicle": e.vehicle, "order": route_order(e.text)}
+        for e in evs
+        if e.kind == ROUTE
+    ]
+    takeovers = [
+        {
+            "time_s": e.utime / 1e6 - t0,
+            "vehicle": e.vehicle,
+            "event": "PEER_LOST" if e.kind == PEER_LOST else "LINES_TAKEN",
+            "peer": e.origin,
+            "text": e.text,
+        }
+        for e in evs
+        if e.kind in (PEER_LOST, LINES_TAKEN)
+    ]
     return {
-        "targets": rows, "association_radius_m": radius,
+        "targets": rows,
+        "association_radius_m": radius,
         "mine_like_targets": len(mines),
         "mine_like_detected": sum(r["detected_s"] is not None for r in mines),
         "mine_like_identified": sum(r["identified_s"] is not None for r in mines),
@@ -197,9 +241,14 @@ def team_section(run: RunData, radius: float) -> dict | None:
         "identifications": sum(e.kind == TARGET_IDENTIFIED for e in evs),
         "not_found": sum(e.kind == TARGET_NOT_FOUND for e in evs),
         "false_identifications": false_ids,
-        "detect_to_identify_s": ({"mean": float(np.mean(lat)), "median": float(np.median(lat)),
-                                  "max": float(np.max(lat)), "n": len(lat)} if lat else None),
-        "ri_vehicles": ri, "routes": routes, "takeovers": takeovers,
+        "detect_to_identify_s": (
+            {"mean": float(np.mean(lat)), "median": float(np.median(lat)), "max": float(np.max(lat)), "n": len(lat)}
+            if lat
+            else None
+        ),
+        "ri_vehicles": ri,
+        "routes": routes,
+        "takeovers": takeovers,
         "link": link_stats(run, evs),
         "looks": looks_stats(run, radius),
         "heard": {k: len(v) for k, v in who_heard_whom(run, t0).items()},
@@ -211,43 +260,56 @@ def _f(x, digits=0) -> str:
 
 
 def team_text(t: dict) -> list[str]:
-    lines = ["team (TEAM_EVENT, MODEM_*; a target's detection = its first CONTACT_NEW within "
-             f"{t['association_radius_m']:g} m)",
-             f"  mine-like targets {t['mine_like_targets']}: detected {t['mine_like_detected']}, identified by the end "
-             f"{t['mine_like_identified']} ({t['mine_like_identified_as_mine']} as mine); identifications "
-             f"{t['identifications']}, not found {t['not_found']}, false {len(t['false_identifications'])}"]
+    lines = [
+        "team (TEAM_EVENT, MODEM_*; a target's detection = its first CONTACT_NEW within "
+        f"{t['association_radius_m']:g} m)",
+        f"  mine-like targets {t['mine_like_targets']}: detected {t['mine_like_detected']}, identified by the end "
+        f"{t['mine_like_identified']} ({t['mine_like_identified_as_mine']} as mine); identifications "
+        f"{t['identifications']}, not found {t['not_found']}, false {len(t['false_identifications'])}",
+    ]
     d = t["detect_to_identify_s"]
     if d:
-        lines.append(f"  mine-like, detection to identification: mean {d['mean'] / 60:.1f} min, median {d['median'] / 60:.1f} min, "
-                     f"max {d['max'] / 60:.1f} min over {d['n']} targets")
+        lines.append(
+            f"  mine-like, detection to identification: mean {d['mean'] / 60:.1f} min, median {d['median'] / 60:.1f} min, "
+            f"max {d['max'] / 60:.1f} min over {d['n']} targets"
+        )
     lines.append("  target  kind       detected [s] by      identified [s] result    latency [s]")
     for r in t["targets"]:
         if r["detected_s"] is None and r["identified_s"] is None and r["kind"] != "mine_like":
             continue
-        lines.append(f"  {r['id']:>6}  {r['kind']:<10} {_f(r['detected_s']):>12} {r['detected_by'] or '-':<6} "
-                     f"{_f(r['identified_s']):>14} {r['result'] or '-':<9} {_f(r['latency_s']):>11}")
+        lines.append(
+            f"  {r['id']:>6}  {r['kind']:<10} {_f(r['detected_s']):>12} {r['detected_by'] or '-':<6} "
+            f"{_f(r['identified_s']):>14} {r['result'] or '-':<9} {_f(r['latency_s']):>11}"
+        )
     for f in t["false_identifications"]:
-        lines.append(f"  FALSE identification at {f['time_s']:.0f} s by {f['vehicle']}: {f['target']} called "
-                     f"{f['result']}, truth {f['truth']}")
+        lines.append(
+            f"  FALSE identification at {f['time_s']:.0f} s by {f['vehicle']}: {f['target']} called "
+            f"{f['result']}, truth {f['truth']}"
+        )
     if t["routes"]:
         last = t["routes"][-1]
-        lines.append(f"  RI route ({', '.join(t['ri_vehicles']) or '-'}): {len(t['routes'])} replans; last at "
-                     f"{last['time_s']:.0f} s: {' '.join(last['order']) or '(empty)'}")
+        lines.append(
+            f"  RI route ({', '.join(t['ri_vehicles']) or '-'}): {len(t['routes'])} replans; last at "
+            f"{last['time_s']:.0f} s: {' '.join(last['order']) or '(empty)'}"
+        )
     for vid, lk in t.get("looks", {}).items():
-        lines.append(f"  {vid} looks (LOOKS): {lk['looks']}, on an object {lk['on_objects']}, "
-                     f"right kind {lk['right']}")
+        lines.append(f"  {vid} looks (LOOKS): {lk['looks']}, on an object {lk['on_objects']}, right kind {lk['right']}")
     link = t["link"]
     lines.append(f"  link per vehicle (bytes per contact: {link['bytes_per_contact_method']})")
     for vid, s in link["per_vehicle"].items():
-        lines.append(f"    {vid}: sent {s['sent']}, heard {s['heard']}, lost {s['lost']}, out of range "
-                     f"{s['out_of_range']}, collided {_f(s['collided'])}, deaf {_f(s['deaf'])}, refused "
-                     f"{s['refused']}; contacts reported {s['contacts_reported']}, bytes per contact "
-                     f"{_f(s['bytes_per_contact'], 1)}")
+        lines.append(
+            f"    {vid}: sent {s['sent']}, heard {s['heard']}, lost {s['lost']}, out of range "
+            f"{s['out_of_range']}, collided {_f(s['collided'])}, deaf {_f(s['deaf'])}, refused "
+            f"{s['refused']}; contacts reported {s['contacts_reported']}, bytes per contact "
+            f"{_f(s['bytes_per_contact'], 1)}"
+        )
     if t["heard"]:
         lines.append("  heard (frames): " + ", ".join(f"{k} {v}" for k, v in t["heard"].items()))
     for x in t["takeovers"]:
-        lines.append(f"  {x['event']} at {x['time_s']:.0f} s by {x['vehicle']}: peer {x['peer']}"
-                     + (f", lines {x['text']}" if x["text"] else ""))
+        lines.append(
+            f"  {x['event']} at {x['time_s']:.0f} s by {x['vehicle']}: peer {x['peer']}"
+            + (f", lines {x['text']}" if x["text"] else "")
+        )
     if not t["takeovers"]:
         lines.append("  takeovers: none")
     return lines

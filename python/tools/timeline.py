@@ -15,11 +15,11 @@ def run_name(code: int) -> str:
 
 @dataclass
 class Segment:
-    start: float        # sim time the segment began [s]
-    end: float          # sim time of the last status in it [s]
-    path: str           # active path "mission/survey/line3"
-    run: str            # run state name
-    condition: str      # the condition that led into it ("" for the first)
+    start: float  # sim time the segment began [s]
+    end: float  # sim time of the last status in it [s]
+    path: str  # active path "mission/survey/line3"
+    run: str  # run state name
+    condition: str  # the condition that led into it ("" for the first)
 
 
 def state_timeline(status: ChannelArrays) -> list[Segment]:

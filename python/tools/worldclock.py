@@ -36,22 +36,24 @@ PACE = {clock_modes.REALTIME: 1.0, clock_modes.SCALED: None, clock_modes.LOCKSTE
 
 
 class WorldClock:
-    def __init__(self, lc: lcm.LCM, mode: str, warp: float, step_s: float,
-                 participants: set[str] | None = None, log=print) -> None:
+    def __init__(
+        self, lc: lcm.LCM, mode: str, warp: float, step_s: float, participants: set[str] | None = None, log=print
+    ) -> None:
         self.lc = lc
         self.mode = mode
         self.warp = PACE[mode] if PACE[mode] is not None else warp
         self.step_us = max(1, round(step_s * 1e6))
         self.tracker = LockstepTracker(timeout_s=None, log=log)
-        self.server = LockstepServer(self.tracker, self.step_us, len(participants or ()), log,
-                                     expect_names=participants)
+        self.server = LockstepServer(
+            self.tracker, self.step_us, len(participants or ()), log, expect_names=participants
+        )
         self.now_us = 0
         self.running = False
         self._wall0 = 0.0
         self._sim0_us = 0
         self.ticks = 0
-        self.future_reports = 0          # STEP_DONE for a step never published: counted, dropped
-        self.gone: set[str] = set()      # participants lost by a planned fault: never waited for again
+        self.future_reports = 0  # STEP_DONE for a step never published: counted, dropped
+        self.gone: set[str] = set()  # participants lost by a planned fault: never waited for again
         lc.subscribe("SIM.LOCKSTEP", self._on_lockstep).set_queue_capacity(1000)
 
     def _on_lockstep(self, _ch: str, data: bytes) -> None:
@@ -60,9 +62,9 @@ class WorldClock:
         except ValueError:
             return
         if m.participant in self.gone:
-            return                          # a report still in flight from a killed process
+            return  # a report still in flight from a killed process
         if m.kind == lockstep_t.KIND_STEP_DONE and not 0 <= m.step <= self.server.step + 1:
-            self.future_reports += 1        # a participant cannot be done with a step not yet sent
+            self.future_reports += 1  # a participant cannot be done with a step not yet sent
             return
         self.tracker.on_message(m)
 
@@ -103,8 +105,12 @@ class WorldClock:
         (or the current step again, if a participant missed it)."""
         if not self.running:
             return
-        if self.server.started and not self.tracker.waiting_for(self.server.step) \
-                and not math.isinf(self.warp) and time.monotonic() < self._due(self.server.step + 1):
+        if (
+            self.server.started
+            and not self.tracker.waiting_for(self.server.step)
+            and not math.isinf(self.warp)
+            and time.monotonic() < self._due(self.server.step + 1)
+        ):
             return
         step = self.server.poll()
         if step is None:
@@ -124,7 +130,6 @@ class WorldClock:
         until something could need repeating; a message wakes it earlier."""
         if not self.running:
             return 0.05
-        if self.server.started and not self.tracker.waiting_for(self.server.step) \
-                and not math.isinf(self.warp):
+        if self.server.started and not self.tracker.waiting_for(self.server.step) and not math.isinf(self.warp):
             return max(0.0, min(RESEND_S, self._due(self.server.step + 1) - time.monotonic()))
         return RESEND_S

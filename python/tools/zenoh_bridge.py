@@ -52,9 +52,10 @@ def zenoh_config(mode: str, listen: list[str], connect: list[str]):
     import json
 
     import zenoh
+
     c = zenoh.Config()
     c.insert_json5("mode", json.dumps(mode))
-    c.insert_json5("scouting/multicast/enabled", "false")   # peers only where told: never beyond the site's links
+    c.insert_json5("scouting/multicast/enabled", "false")  # peers only where told: never beyond the site's links
     if listen:
         c.insert_json5("listen/endpoints", json.dumps(listen))
     if connect:
@@ -66,11 +67,12 @@ def open_session(config, timeout_s: float):
     """zenoh.open, retried while the endpoints it must connect to are not up
     yet (a router that starts after the bridge), for up to timeout_s."""
     import zenoh
+
     deadline, said = time.monotonic() + timeout_s, False
     while True:
         try:
             return zenoh.open(config)
-        except Exception as exc:    # zenoh.ZError: no endpoint answered
+        except Exception as exc:  # zenoh.ZError: no endpoint answered
             if time.monotonic() >= deadline:
                 raise
             if not said:
@@ -82,7 +84,7 @@ def open_session(config, timeout_s: float):
 class Rules:
     def __init__(self, allow: list[str], deny: list[str]) -> None:
         self.allow = [re.compile(r) for r in allow or [".*"]]
-        self.deny = [re.compile(r) for r in deny] + [re.compile(r"LCM_SELF_TEST")]   # liblcm's own probe
+        self.deny = [re.compile(r) for r in deny] + [re.compile(r"LCM_SELF_TEST")]  # liblcm's own probe
 
     def passes(self, channel: str) -> bool:
         return any(r.fullmatch(channel) for r in self.allow) and not any(r.fullmatch(channel) for r in self.deny)
@@ -105,7 +107,7 @@ class Bridge:
     def on_zenoh(self, sample) -> None:
         parts = str(sample.key_expr).split("/", 3)
         if len(parts) != 4 or parts[2] != "lcm" or parts[1] == self.site:
-            return                              # our own puts come back to our own subscriber
+            return  # our own puts come back to our own subscriber
         try:
             self.inbox.put_nowait((parts[3], sample.payload.to_bytes()))
         except queue.Full:
@@ -114,7 +116,7 @@ class Bridge:
     # LCM thread
     def on_lcm(self, channel: str, data: bytes) -> None:
         if self.echoes.is_echo(channel, data, time.monotonic()):
-            self.n["echoes"] += 1               # what we published from Zenoh: never back
+            self.n["echoes"] += 1  # what we published from Zenoh: never back
             return
         if channel == self.stats_channel:
             return
@@ -145,6 +147,7 @@ class Bridge:
 
     def stats(self) -> None:
         from auv import link_stats_t
+
         print(f"zenoh_bridge {self.site}: " + ", ".join(f"{k} {v}" for k, v in self.n.items()), flush=True)
         m = link_stats_t()
         m.utime, m.relay = int(time.time() * 1e6), f"zenoh-{self.site}"
@@ -181,8 +184,12 @@ def main(argv: list[str] | None = None) -> int:
         ap.add_argument("--stats-period", type=float, default=5.0)
         ap.add_argument("--netns", action="store_true", help="allow ttl=1 (a network namespace made for this run)")
         ap.add_argument("--connect", action="append", default=[], help="Zenoh endpoint, e.g. tcp/10.0.0.1:7447")
-        ap.add_argument("--connect-timeout", type=float, default=30.0,
-                        help="seconds to keep trying the --connect endpoints at start (default 30)")
+        ap.add_argument(
+            "--connect-timeout",
+            type=float,
+            default=30.0,
+            help="seconds to keep trying the --connect endpoints at start (default 30)",
+        )
     ap.add_argument("--listen", action="append", default=[], help="Zenoh endpoint to listen on")
     args = ap.parse_args(argv[1:] if router else argv)
     flag = {"stop": False}
@@ -220,7 +227,7 @@ def main(argv: list[str] | None = None) -> int:
     args.url = url
     try:
         bridge = Bridge(args)
-    except Exception as exc:    # zenoh: a bad endpoint, a port in use
+    except Exception as exc:  # zenoh: a bad endpoint, a port in use
         print(f"zenoh_bridge: cannot open the Zenoh session: {exc}", file=sys.stderr)
         return 2
     bridge.loop(lambda: flag["stop"], args.stats_period)

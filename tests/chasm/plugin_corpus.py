@@ -25,8 +25,8 @@ DT_NULL, DT_STRTAB, DT_RELA = 0, 5, 7
 @dataclass
 class Case:
     name: str
-    data: bytes | None      # None: a special file made by make_special()
-    reason: str             # a piece of the error text the loader must give
+    data: bytes | None  # None: a special file made by make_special()
+    reason: str  # a piece of the error text the loader must give
 
 
 def _phdrs(elf: bytes) -> list[tuple[int, tuple]]:
@@ -67,7 +67,7 @@ def byte_cases(good: bytes) -> list[Case]:
         if 0 < end - 8 < len(good):
             cuts.add(end - 8)
     for cut in sorted(cuts):
-        reason = ("empty" if cut == 0 else "not an ELF file" if cut < 4 else "truncated")
+        reason = "empty" if cut == 0 else "not an ELF file" if cut < 4 else "truncated"
         cases.append(Case(f"truncated_at_{cut}", good[:cut], reason))
     cases += [
         Case("text_file", b"this is not a plugin, it is a text file\n" * 20, "not an ELF file"),
@@ -88,7 +88,9 @@ def byte_cases(good: bytes) -> list[Case]:
     first_load = next(off for off, p in ph if p[0] == PT_LOAD)
     last_load = [off for off, p in ph if p[0] == PT_LOAD][-1]
     off = PHDR.unpack_from(good, last_load)[2]
-    beyond = _set(_set(good, last_load + 32, "<Q", len(good) - off + 4096), last_load + 40, "<Q", len(good) - off + 8192)
+    beyond = _set(
+        _set(good, last_load + 32, "<Q", len(good) - off + 4096), last_load + 40, "<Q", len(good) - off + 8192
+    )
     cases += [
         Case("segment_beyond_eof", beyond, "truncated"),
         Case("segment_offset_huge", _set(good, last_load + 8, "<Q", 2**63), "truncated"),

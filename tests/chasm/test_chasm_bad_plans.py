@@ -17,7 +17,7 @@ def test_there_are_at_least_30_bad_plans():
 def test_bad_plan(plan, variant_dir, child_env, tmp_path):
     plugins = variant_dir / "plugins"
     expected = [
-        f"{plan.name}:{line[len('# expect: '):]}".replace("{plugins}", str(plugins))
+        f"{plan.name}:{line[len('# expect: ') :]}".replace("{plugins}", str(plugins))
         for line in plan.read_text().splitlines()
         if line.startswith("# expect: ")
     ]

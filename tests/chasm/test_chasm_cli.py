@@ -43,7 +43,9 @@ def test_check_good_plans(chasm):
 
 
 def test_check_reports_every_plan_and_fails(chasm):
-    p = chasm("check", PLANS / "survey.chasm", BAD_PLANS / "43_many_errors.chasm", BAD_PLANS / "01_statement_typo.chasm")
+    p = chasm(
+        "check", PLANS / "survey.chasm", BAD_PLANS / "43_many_errors.chasm", BAD_PLANS / "01_statement_typo.chasm"
+    )
     assert p.returncode == 1
     assert "survey.chasm: ok" in p.stdout
     assert len([l for l in p.stderr.splitlines() if ": error: " in l]) == 4
@@ -81,7 +83,7 @@ def test_dot(chasm):
     assert p.returncode == 0, p.stderr
     out = p.stdout
     assert out.startswith("digraph chasm {") and out.rstrip().endswith("}")
-    assert 'subgraph cluster_0 {' in out and 'label="mission"' in out
+    assert "subgraph cluster_0 {" in out and 'label="mission"' in out
     assert '[label="descend"]' in out
     assert 'label="resume deep: got_fix"' in out
     assert 'label="leak or nav_stale"' in out
@@ -89,8 +91,16 @@ def test_dot(chasm):
 
 
 def test_run_scripted_inputs(chasm):
-    p = chasm("run", PLANS / "survey.chasm", "--inputs", PLANS / "survey.inputs", "--until", "120",
-              "--watch", "setpoint.speed_mps")
+    p = chasm(
+        "run",
+        PLANS / "survey.chasm",
+        "--inputs",
+        PLANS / "survey.inputs",
+        "--until",
+        "120",
+        "--watch",
+        "setpoint.speed_mps",
+    )
     assert p.returncode == 0, p.stderr
     assert transitions(p.stdout) == [(0.0, "mission/descend"), (22.0, "mission/survey/leg1")]
     assert "setpoint.speed_mps=1.5" in p.stdout.splitlines()[1]
@@ -123,9 +133,21 @@ def test_run_vehicle_parameters(chasm, tmp_path):
 def test_run_hot_plug(chasm, tmp_path):
     broken = tmp_path / "chasm_test_basic.so"
     broken.write_bytes(b"\x7fELF garbage")
-    p = chasm("run", "-P", chasm.plugins, PLANS / "plugin_demo.chasm", "--inputs", PLANS / "plugin_demo.inputs",
-              "--watch", "test.out", "-v",
-              "--hotplug", f"1:{chasm.plugins / 'chasm_test_basic_v2.so'}", "--hotplug", f"1.5:{broken}")
+    p = chasm(
+        "run",
+        "-P",
+        chasm.plugins,
+        PLANS / "plugin_demo.chasm",
+        "--inputs",
+        PLANS / "plugin_demo.inputs",
+        "--watch",
+        "test.out",
+        "-v",
+        "--hotplug",
+        f"1:{chasm.plugins / 'chasm_test_basic_v2.so'}",
+        "--hotplug",
+        f"1.5:{broken}",
+    )
     assert p.returncode == 0, p.stderr
     out = p.stdout
     assert "hot plug of" in out and "done" in out
@@ -158,7 +180,7 @@ def test_describe_plugin(chasm):
     assert "  behavior hold: hold a value" in p.stdout
     assert "value          double m      required, range [-100, 100]  # depth to hold" in p.stdout
     assert "  test handler above: x > limit" in p.stdout
-    p = chasm("describe", "-P", chasm.plugins, "guidance")      # a real plugin: parameters of two forms
+    p = chasm("describe", "-P", chasm.plugins, "guidance")  # a real plugin: parameters of two forms
     assert p.returncode == 0, p.stderr
     assert "optional, no default, range [-1e+06, 1e+06]  # box corner, north (box form)" in p.stdout, p.stdout
     assert "e+15" not in p.stdout

@@ -30,8 +30,10 @@ def check(variant_dir, child_env, tmp_path):
 def runs_to(variant_dir, env, tmp_path, plan: str, inputs: str) -> str:
     (tmp_path / "p.chasm").write_text(plan)
     (tmp_path / "in.txt").write_text(inputs)
-    p = run([variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / "in.txt",
-             "--until", "1"], env)
+    p = run(
+        [variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / "in.txt", "--until", "1"],
+        env,
+    )
     assert p.returncode == 0, p.stderr
     return p.stdout
 
@@ -40,14 +42,14 @@ def runs_to(variant_dir, env, tmp_path, plan: str, inputs: str) -> str:
 def test_numbers_of_any_length_are_read_whole(variant_dir, child_env, tmp_path, digits):
     """`1.000...e3 m` is 1000 m however many zeros (the lexer cut at 63)."""
     number = "1." + "0" * digits + "e3"
-    plan = (f"input x : double m\ntest big : x > {number} m\nstate a {{\n when big -> b\n}}\nstate b {{\n}}\n")
+    plan = f"input x : double m\ntest big : x > {number} m\nstate a {{\n when big -> b\n}}\nstate b {{\n}}\n"
     out = runs_to(variant_dir, child_env, tmp_path, plan, "0.2 x = 999 m\n0.5 x = 1001 m\n")
     lines = [l for l in out.splitlines() if " b " in f" {l} "]
     assert lines and lines[0].lstrip().startswith("0.5"), out
 
 
 def string_plan(n: int) -> str:
-    return (f'input txt : string\ntest same : txt == "{"a" * n}"\nstate a {{\n when same -> b\n}}\nstate b {{\n}}\n')
+    return f'input txt : string\ntest same : txt == "{"a" * n}"\nstate a {{\n when same -> b\n}}\nstate b {{\n}}\n'
 
 
 def test_a_string_at_the_limit_loads_and_compares(variant_dir, child_env, tmp_path):
@@ -91,8 +93,10 @@ def test_long_names_and_paths_are_never_cut(check):
     """A state path longer than any buffer (512, 1024) still resolves exactly:
     two paths that agree in their first 2000 characters stay distinct."""
     long = "n" * 1500
-    plan = (f"state {long} {{\n  state {long}_x {{\n  }}\n  state {long}_y {{\n  }}\n"
-            f"  when elapsed > 1 s -> {long}/{long}_y\n}}\n")
+    plan = (
+        f"state {long} {{\n  state {long}_x {{\n  }}\n  state {long}_y {{\n  }}\n"
+        f"  when elapsed > 1 s -> {long}/{long}_y\n}}\n"
+    )
     p = check(plan)
     assert p.returncode == 0, p.stderr
     p = check(plan.replace(f"-> {long}/{long}_y", f"-> {long}/{long}_z"))
@@ -121,14 +125,17 @@ def test_command_line_lists_past_their_limit_are_usage_errors(check, what, n):
     assert p.returncode == 2 and "at most 64" in p.stderr, p.stderr
 
 
-@pytest.mark.parametrize("name,text,code,error", [
-    ("i.txt", "1e300 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between 0 s and 1e+09 s"),
-    ("i.txt", "-1 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between"),
-    ("i.txt", "1 n = 1e300\n", 1, "i.txt:1:7: error: 'n' is an int: 1e+300 is out of its range"),
-    ("i.csv", "time,n\n1,1e300\n", 1, "i.csv:2:1: error: 'n' is an int"),
-    ("i.csv", "time,x\nnan,1\n", 1, "i.csv:2:1: error: an input's time must be between"),
-    ("i.csv", "time," + ",".join(["x"] * 257) + "\n", 1, "i.csv:1:1: error: more than 256 columns"),
-])
+@pytest.mark.parametrize(
+    "name,text,code,error",
+    [
+        ("i.txt", "1e300 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between 0 s and 1e+09 s"),
+        ("i.txt", "-1 x = 1 m\n", 1, "i.txt:1:1: error: an input's time must be between"),
+        ("i.txt", "1 n = 1e300\n", 1, "i.txt:1:7: error: 'n' is an int: 1e+300 is out of its range"),
+        ("i.csv", "time,n\n1,1e300\n", 1, "i.csv:2:1: error: 'n' is an int"),
+        ("i.csv", "time,x\nnan,1\n", 1, "i.csv:2:1: error: an input's time must be between"),
+        ("i.csv", "time," + ",".join(["x"] * 257) + "\n", 1, "i.csv:1:1: error: more than 256 columns"),
+    ],
+)
 def test_chasm_run_inputs_at_the_extremes(variant_dir, child_env, tmp_path, name, text, code, error):
     """Times and integers out of range are file:line:col errors, never an
     overflowing conversion (UBSan in the sanitized build)."""
@@ -143,6 +150,8 @@ def test_chasm_run_inputs_at_the_extremes(variant_dir, child_env, tmp_path, name
 def test_chasm_run_durations_out_of_range_are_usage_errors(variant_dir, child_env, tmp_path, flag, value):
     (tmp_path / "p.chasm").write_text("state a {\n}\n")
     (tmp_path / "i.txt").write_text("")
-    p = run([variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / "i.txt", flag, value],
-            child_env)
+    p = run(
+        [variant_dir / "bin" / "chasm", "run", tmp_path / "p.chasm", "--inputs", tmp_path / "i.txt", flag, value],
+        child_env,
+    )
     assert p.returncode == 2 and "is not a duration" in p.stderr, p.stderr

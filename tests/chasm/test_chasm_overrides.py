@@ -86,8 +86,10 @@ def test_a_bad_name_is_a_usage_error(chasm, define):
     assert "-D" in p.stderr
 
 
-@pytest.mark.parametrize("define", ["depth=12 m", "depth=12.5m", "depth=-3 ft", "depth=1.0e1 m", 'label="a # b }"',
-                                    "fast=true", 'label="line"'])
+@pytest.mark.parametrize(
+    "define",
+    ["depth=12 m", "depth=12.5m", "depth=-3 ft", "depth=1.0e1 m", 'label="a # b }"', "fast=true", 'label="line"'],
+)
 def test_good_overrides_load(chasm, define):
     p = chasm(define)
     assert p.returncode == 0, p.stderr
@@ -104,4 +106,4 @@ def test_the_override_wins(variant_dir, child_env, tmp_path):
     assert p.returncode == 0, p.stderr
     assert "hold" not in p.stdout  # 11 m is not deeper than the overridden 12 m
     p = run([exe, "run", plan, "--inputs", inputs, "--until", "1"], child_env)
-    assert "hold" in p.stdout      # but deeper than the plan's 10 m
+    assert "hold" in p.stdout  # but deeper than the plan's 10 m

@@ -80,8 +80,9 @@ def test_plugin_path_from_environment_refuses_too(variant_dir, env, tmp_path):
     p = run([variant_dir / "bin" / "chasm", "check", PLANS / "plugin_demo.chasm"], env)
     _no_signal(p)
     assert p.returncode == 1
-    assert re.search(r"plugin_demo.chasm:2:5: error: plugin 'test_basic': cannot load plugin file '.*': .*truncated",
-                     p.stderr), p.stderr
+    assert re.search(
+        r"plugin_demo.chasm:2:5: error: plugin 'test_basic': cannot load plugin file '.*': .*truncated", p.stderr
+    ), p.stderr
 
 
 def test_a_bad_file_not_used_by_the_plan_is_never_opened(variant_dir, env, tmp_path):
@@ -89,15 +90,33 @@ def test_a_bad_file_not_used_by_the_plan_is_never_opened(variant_dir, env, tmp_p
     pdir.mkdir()
     (pdir / "chasm_unused.so").write_bytes(b"\x7fELF truncated")
     make_special("fifo", pdir / "chasm_fifo.so")
-    p = run([variant_dir / "bin" / "chasm", "check", "-P", pdir, "-P", variant_dir / "plugins",
-             PLANS / "plugin_demo.chasm"], env)
+    p = run(
+        [
+            variant_dir / "bin" / "chasm",
+            "check",
+            "-P",
+            pdir,
+            "-P",
+            variant_dir / "plugins",
+            PLANS / "plugin_demo.chasm",
+        ],
+        env,
+    )
     assert p.returncode == 0, p.stderr
 
 
 def test_hot_plug_of_every_hostile_file_leaves_the_mission_running(variant_dir, env, tmp_path):
     plugins = variant_dir / "plugins"
-    args = ["run", "-P", plugins, PLANS / "plugin_demo.chasm", "--inputs", PLANS / "plugin_demo.inputs",
-            "--watch", "test.out"]
+    args = [
+        "run",
+        "-P",
+        plugins,
+        PLANS / "plugin_demo.chasm",
+        "--inputs",
+        PLANS / "plugin_demo.inputs",
+        "--watch",
+        "test.out",
+    ]
     exe = variant_dir / "bin" / "chasm"
     base = run([exe, *args], env)
     assert base.returncode == 0, base.stderr
@@ -161,4 +180,6 @@ def test_a_plugin_limit_is_a_load_error_and_values_within_it_load(variant_dir, e
     plan.write_text(plan.read_text().replace('"1; 2; 3; 4"', '""'))
     p = run([exe, "check", "-P", variant_dir / "plugins", plan], env)
     assert p.returncode == 1
-    assert f"{plan}:4:23: error: parameter 'points' of 'route': 0 points, this plugin takes 1 to 4" in p.stderr, p.stderr
+    assert f"{plan}:4:23: error: parameter 'points' of 'route': 0 points, this plugin takes 1 to 4" in p.stderr, (
+        p.stderr
+    )

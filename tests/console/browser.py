@@ -19,9 +19,20 @@ import time
 from pathlib import Path
 from typing import Any
 
-FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-         "--disable-background-networking", "--disable-component-update", "--disable-sync",
-         "--disable-default-apps", "--disable-extensions", "--mute-audio", "--remote-debugging-pipe"]
+FLAGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--disable-default-apps",
+    "--disable-extensions",
+    "--mute-audio",
+    "--remote-debugging-pipe",
+]
 
 
 class CdpError(RuntimeError):
@@ -35,9 +46,22 @@ class Browser:
         self._from_child, from_child_w = os.pipe()
         # the child gets the pipes as stdin/stdout and moves them to fds 3 and 4
         self.proc = subprocess.Popen(
-            ["sh", "-c", 'exec "$@" 3<&0 4>&1 </dev/null >/dev/null', "sh", exe, *FLAGS,
-             f"--user-data-dir={self.profile}", f"--window-size={width},{height}", "about:blank"],
-            stdin=to_child_r, stdout=from_child_w, stderr=subprocess.DEVNULL, start_new_session=True)
+            [
+                "sh",
+                "-c",
+                'exec "$@" 3<&0 4>&1 </dev/null >/dev/null',
+                "sh",
+                exe,
+                *FLAGS,
+                f"--user-data-dir={self.profile}",
+                f"--window-size={width},{height}",
+                "about:blank",
+            ],
+            stdin=to_child_r,
+            stdout=from_child_w,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+        )
         os.close(to_child_r)
         os.close(from_child_w)
         self._next = 0
@@ -69,8 +93,9 @@ class Browser:
                         self._replies[msg["id"]] = msg
                         self._cond.notify_all()
 
-    def send(self, method: str, params: dict | None = None, session: str | None = None,
-             timeout: float = 30.0) -> dict[str, Any]:
+    def send(
+        self, method: str, params: dict | None = None, session: str | None = None, timeout: float = 30.0
+    ) -> dict[str, Any]:
         with self._cond:
             self._next += 1
             mid = self._next
@@ -92,10 +117,13 @@ class Browser:
     # ------------------------------------------------------------- a page
     def open(self, url: str) -> None:
         target = self.send("Target.createTarget", {"url": "about:blank"}, session="")["targetId"]
-        self.session = self.send("Target.attachToTarget", {"targetId": target, "flatten": True},
-                                 session="")["sessionId"]
-        self.send("Emulation.setDeviceMetricsOverride",
-                  {"width": self.width, "height": self.height, "deviceScaleFactor": 1, "mobile": False})
+        self.session = self.send("Target.attachToTarget", {"targetId": target, "flatten": True}, session="")[
+            "sessionId"
+        ]
+        self.send(
+            "Emulation.setDeviceMetricsOverride",
+            {"width": self.width, "height": self.height, "deviceScaleFactor": 1, "mobile": False},
+        )
         self.send("Page.enable")
         # a created tab starts in the background, where the compositor makes no new
         # frames: screenshots would show a stale picture of the canvas
@@ -103,11 +131,12 @@ class Browser:
         self.send("Page.navigate", {"url": url})
 
     def eval(self, expression: str) -> Any:
-        res = self.send("Runtime.evaluate", {"expression": expression, "returnByValue": True,
-                                             "awaitPromise": True})
+        res = self.send("Runtime.evaluate", {"expression": expression, "returnByValue": True, "awaitPromise": True})
         if "exceptionDetails" in res:
-            raise CdpError(f"{expression}: {res['exceptionDetails'].get('text')} "
-                           f"{res['exceptionDetails'].get('exception', {}).get('description', '')}")
+            raise CdpError(
+                f"{expression}: {res['exceptionDetails'].get('text')} "
+                f"{res['exceptionDetails'].get('exception', {}).get('description', '')}"
+            )
         return res["result"].get("value")
 
     def wait_for(self, expression: str, timeout: float = 30.0, what: str = "") -> Any:
@@ -117,7 +146,7 @@ class Browser:
         while time.monotonic() < deadline:
             try:
                 value = self.eval(expression)
-            except CdpError as exc:   # the page is still loading: its elements are not there yet
+            except CdpError as exc:  # the page is still loading: its elements are not there yet
                 value = exc
             if value and not isinstance(value, CdpError):
                 return value

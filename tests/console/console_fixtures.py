@@ -28,9 +28,11 @@ def _install_chromium() -> str:
     if os.geteuid() != 0:
         return "chromium is not installed and this is not root (apt-get install chromium)"
     env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-    for cmd in (["apt-get", "install", "-y", "--no-install-recommends", "chromium"],
-                ["apt-get", "update"],
-                ["apt-get", "install", "-y", "--no-install-recommends", "chromium"]):
+    for cmd in (
+        ["apt-get", "install", "-y", "--no-install-recommends", "chromium"],
+        ["apt-get", "update"],
+        ["apt-get", "install", "-y", "--no-install-recommends", "chromium"],
+    ):
         print(f"console tests: {' '.join(cmd)}", file=sys.stderr)
         run = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=900)
         if cmd[1] == "install" and run.returncode == 0 and shutil.which("chromium"):
@@ -51,17 +53,30 @@ def chromium() -> str:
 
 
 def vehicle(vid: str, east: float = 0.0, cycles: int = 1_000_000) -> dict:
-    nav = {"name": "NAVIGATOR", "plan": str(SCENARIOS / "mission.chasm"), "bind": str(BIND), "rate": 10,
-           "params": {"cycles": cycles}}
-    watch = {"name": "WATCHER", "plan": str(SCENARIOS / "watcher.chasm"),
-             "bind": str(SCENARIOS / "watcher.bind"), "rate": 5}
+    nav = {
+        "name": "NAVIGATOR",
+        "plan": str(SCENARIOS / "mission.chasm"),
+        "bind": str(BIND),
+        "rate": 10,
+        "params": {"cycles": cycles},
+    }
+    watch = {
+        "name": "WATCHER",
+        "plan": str(SCENARIOS / "watcher.chasm"),
+        "bind": str(SCENARIOS / "watcher.bind"),
+        "rate": 5,
+    }
     return {"id": vid, "sim": {"config": str(SIM), "initial": {"east_m": east}}, "managers": [nav, watch]}
 
 
 def write_scenario(tmp_path: Path, vehicles: list[dict], time: dict) -> Path:
-    sc = {"name": "console_test", "seed": 5,
-          "world": {"world": "console_bay", "bathymetry": "slope:depth=30,dn=0.05,de=0.02"},
-          "time": time, "vehicles": vehicles}
+    sc = {
+        "name": "console_test",
+        "seed": 5,
+        "world": {"world": "console_bay", "bathymetry": "slope:depth=30,dn=0.05,de=0.02"},
+        "time": time,
+        "vehicles": vehicles,
+    }
     path = tmp_path / "console_test.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     return path
@@ -79,8 +94,9 @@ def read_until(proc: subprocess.Popen, text: str) -> str:
 
 class Console:
     def __init__(self, args: list[str], env: dict) -> None:
-        self.proc = subprocess.Popen(CONSOLE + ["--port", "0", *args], env=env, text=True,
-                                     stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        self.proc = subprocess.Popen(
+            CONSOLE + ["--port", "0", *args], env=env, text=True, stdout=subprocess.PIPE, stderr=subprocess.PIPE
+        )
         line = read_until(self.proc, "console: serving ")
         self.url = line.split("serving ", 1)[1].split()[0]
 

@@ -23,9 +23,28 @@ class ManagerWorld:
         self.utime = 0
         self._stop = threading.Event()
         self.mgr = subprocess.Popen(
-            [c_program("bin/chasm-manager", sanitized), "--plan", HERE / "dive.chasm",
-             "--bind", HERE / "vehicle.bind", "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10",
-             "--clock", "sim", "--url", url, *extra], env=env, stderr=subprocess.PIPE, text=True)
+            [
+                c_program("bin/chasm-manager", sanitized),
+                "--plan",
+                HERE / "dive.chasm",
+                "--bind",
+                HERE / "vehicle.bind",
+                "--vehicle",
+                "AUV1",
+                "--name",
+                "NAVIGATOR",
+                "--rate",
+                "10",
+                "--clock",
+                "sim",
+                "--url",
+                url,
+                *extra,
+            ],
+            env=env,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
         self.thread = threading.Thread(target=self._tick, daemon=True)
         self.thread.start()
 

@@ -15,8 +15,9 @@ AUVCTL = [sys.executable, "-m", "tools.auvctl"]
 
 
 def ctl(url: str, env: dict, *args: str, timeout: float = 5.0) -> subprocess.CompletedProcess:
-    return subprocess.run(AUVCTL + ["--url", url, "--timeout", str(timeout), *args], env=env,
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        AUVCTL + ["--url", url, "--timeout", str(timeout), *args], env=env, capture_output=True, text=True, timeout=60
+    )
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
@@ -24,8 +25,9 @@ def test_commands_and_status_against_a_real_manager(tmp_path, lcm_url, child_env
     allow = tmp_path / "allowlist"
     allow.write_text("0" * 64 + " other\n")
     (tmp_path / "plugins").mkdir()
-    world = ManagerWorld(lcm_url, child_env, sanitized,
-                         extra=("--plugin-dir", str(tmp_path / "plugins"), "--allowlist", str(allow)))
+    world = ManagerWorld(
+        lcm_url, child_env, sanitized, extra=("--plugin-dir", str(tmp_path / "plugins"), "--allowlist", str(allow))
+    )
     try:
         st = ctl(lcm_url, child_env, "status", "AUV1", timeout=20)
         assert st.returncode == 0, st.stdout + st.stderr
@@ -35,7 +37,7 @@ def test_commands_and_status_against_a_real_manager(tmp_path, lcm_url, child_env
         assert (run.returncode, run.stdout) == (0, "AUV1 NAVIGATOR ok: paused\n"), run.stderr
         js = ctl(lcm_url, child_env, "status", "AUV1", "--json")
         assert js.returncode == 0 and json.loads(js.stdout)["managers"]["NAVIGATOR"]["run"] == "paused"
-        run = ctl(lcm_url, child_env, "resume", "AUV1")           # every manager: the one heard answers
+        run = ctl(lcm_url, child_env, "resume", "AUV1")  # every manager: the one heard answers
         assert (run.returncode, run.stdout) == (0, "AUV1 NAVIGATOR ok: resumed\n"), run.stderr
 
         bad = tmp_path / "bad.chasm"
@@ -57,10 +59,19 @@ def test_commands_and_status_against_a_real_manager(tmp_path, lcm_url, child_env
 
 
 def test_usage_and_file_errors_exit_2(tmp_path, lcm_url, child_env):
-    for args in (["load", "AUV1", str(tmp_path / "missing.chasm")], ["upload", "AUV1", str(tmp_path / "none.so")],
-                 ["explode", "AUV1"], ["pause"]):
+    for args in (
+        ["load", "AUV1", str(tmp_path / "missing.chasm")],
+        ["upload", "AUV1", str(tmp_path / "none.so")],
+        ["explode", "AUV1"],
+        ["pause"],
+    ):
         run = ctl(lcm_url, child_env, *args)
         assert run.returncode == 2 and "Traceback" not in run.stderr, (args, run.stderr)
-    run = subprocess.run(AUVCTL + ["--url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"], env=child_env,
-                         capture_output=True, text=True, timeout=30)
+    run = subprocess.run(
+        AUVCTL + ["--url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
     assert run.returncode == 2 and "ttl=3" in run.stderr

@@ -16,22 +16,36 @@ from console_fixtures import ARTIFACTS, LAUNCH, Console, chromium, read_until, s
 
 
 def _panel(vid: str, manager: str, part: str) -> str:
-    return (f"(document.querySelector('.vehicle[data-id=\"{vid}\"] .mgr[data-manager=\"{manager}\"] .{part}')"
-            f" || {{}}).textContent")
+    return (
+        f'(document.querySelector(\'.vehicle[data-id="{vid}"] .mgr[data-manager="{manager}"] .{part}\')'
+        f" || {{}}).textContent"
+    )
 
 
 def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child_env, chromium):
     # Scaled time, not fast: the page is watched while the mission runs, so sim
     # time must pass at a bounded pace; the launcher is stopped at the end.
-    path = write_scenario(tmp_path, [vehicle("AUV1"), vehicle("AUV2", east=40.0)],
-                          {"mode": "scaled", "warp": 2, "limit": 600, "wall_limit": 300})
+    path = write_scenario(
+        tmp_path,
+        [vehicle("AUV1"), vehicle("AUV2", east=40.0)],
+        {"mode": "scaled", "warp": 2, "limit": 600, "wall_limit": 300},
+    )
     out = tmp_path / "run"
-    launcher = subprocess.Popen(LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "1"],
-                                env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                start_new_session=True)
+    launcher = subprocess.Popen(
+        LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "1"],
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
     # a host agent beside it: the page lists its process table
-    agent = subprocess.Popen([sys.executable, "-m", "tools.agent", "--host", "alpha",
-                              "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    agent = subprocess.Popen(
+        [sys.executable, "-m", "tools.agent", "--host", "alpha", "--url", lcm_url],
+        env=child_env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+    )
     console = browser = None
     try:
         console = Console(["--url", lcm_url, "--scenario", str(path)], child_env)
@@ -42,25 +56,35 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         assert browser.eval("[...document.querySelectorAll('.vehicle')].map(e => e.dataset.id)") == ["AUV1", "AUV2"]
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'running'", what="AUV1 NAVIGATOR running")
         browser.wait_for(f"{_panel('AUV2', 'NAVIGATOR', 'path')} === 'run'", what="AUV2 NAVIGATOR in run")
-        browser.wait_for(f"['running', 'done'].includes({_panel('AUV1', 'WATCHER', 'run')})",
-                         what="AUV1 WATCHER running or done")
-        browser.wait_for("S.world && S.world.seabed && S.world.seabed.depth.length === 40"
-                         " && S.world.bathymetry_ref.startsWith('slope:')",
-                         what="the seabed from the scenario")
-        browser.wait_for("((document.querySelector('.agent[data-host=\"alpha\"]') || {}).textContent || '')"
-                         ".includes('alpha idle')", what="host alpha's agent table")
+        browser.wait_for(
+            f"['running', 'done'].includes({_panel('AUV1', 'WATCHER', 'run')})", what="AUV1 WATCHER running or done"
+        )
+        browser.wait_for(
+            "S.world && S.world.seabed && S.world.seabed.depth.length === 40"
+            " && S.world.bathymetry_ref.startsWith('slope:')",
+            what="the seabed from the scenario",
+        )
+        browser.wait_for(
+            "((document.querySelector('.agent[data-host=\"alpha\"]') || {}).textContent || '').includes('alpha idle')",
+            what="host alpha's agent table",
+        )
         browser.screenshot(ARTIFACTS / "live.png")
 
         # Pause AUV1's navigator: a confirmation first, then the ack and the state.
-        browser.eval("(() => { const s = document.querySelector('.vehicle[data-id=\"AUV1\"] .mgr-select');"
-                     " s.value = 'NAVIGATOR'; })()")
-        browser.eval("document.querySelector('.vehicle[data-id=\"AUV1\"] button[data-cmd=\"pause\"]').click()")
+        browser.eval(
+            "(() => { const s = document.querySelector('.vehicle[data-id=\"AUV1\"] .mgr-select');"
+            " s.value = 'NAVIGATOR'; })()"
+        )
+        browser.eval('document.querySelector(\'.vehicle[data-id="AUV1"] button[data-cmd="pause"]\').click()')
         assert browser.eval("!document.querySelector('#confirm').hidden")
         assert "Pause AUV1 NAVIGATOR?" in browser.eval("document.querySelector('#confirm-text').textContent")
         browser.screenshot(ARTIFACTS / "confirm.png")
         browser.eval("document.querySelector('#confirm-yes').click()")
-        ack = browser.wait_for("(t => t.includes('NAVIGATOR ok') && t)(document.querySelector("
-                               "'.vehicle[data-id=\"AUV1\"] .ack').textContent)", what="the pause ack")
+        ack = browser.wait_for(
+            "(t => t.includes('NAVIGATOR ok') && t)(document.querySelector("
+            "'.vehicle[data-id=\"AUV1\"] .ack').textContent)",
+            what="the pause ack",
+        )
         assert "paused" in ack, ack
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'paused'", what="AUV1 NAVIGATOR paused")
         assert browser.eval(_panel("AUV2", "NAVIGATOR", "run")) == "running"
@@ -85,9 +109,11 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         browser.wait_for("document.querySelectorAll('.vehicle').length === 2", what="two vehicles in the log")
         # at the end of the log AUV1's navigator was paused; at 1 s of sim time it ran
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'paused'", what="paused at the end")
-        assert browser.eval("document.querySelector('.vehicle button') === null")   # no commands on a log
-        browser.eval("(() => { const s = document.querySelector('#slider'); s.value = Number(s.min) + 1;"
-                     " s.dispatchEvent(new Event('input')); })()")
+        assert browser.eval("document.querySelector('.vehicle button') === null")  # no commands on a log
+        browser.eval(
+            "(() => { const s = document.querySelector('#slider'); s.value = Number(s.min) + 1;"
+            " s.dispatchEvent(new Event('input')); })()"
+        )
         browser.wait_for(f"{_panel('AUV1', 'NAVIGATOR', 'run')} === 'running'", what="running at t = 1 s")
         t = float(browser.eval("Number(document.querySelector('#slider-time').textContent.split(' ')[0])"))
         assert 0.5 < t < 2.0, t

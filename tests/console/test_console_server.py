@@ -56,8 +56,12 @@ class Page:
 
     def post(self, path: str, body, headers: dict | None = None) -> tuple[int, dict]:
         conn = http.client.HTTPConnection(self.host, self.port, timeout=10)
-        conn.request("POST", path, body=body if isinstance(body, bytes) else json.dumps(body).encode(),
-                     headers=headers or {"Content-Type": "application/json"})
+        conn.request(
+            "POST",
+            path,
+            body=body if isinstance(body, bytes) else json.dumps(body).encode(),
+            headers=headers or {"Content-Type": "application/json"},
+        )
         r = conn.getresponse()
         return r.status, json.loads(r.read())
 
@@ -76,7 +80,7 @@ def test_series_give_each_reader_what_is_new_and_reset_a_reader_left_behind():
     assert s.since(10) == (False, [10, 11, 12, 13, 14])
     for i in range(15, 30):
         s.append(i)
-    reset, items = s.since(3)                  # 3 was dropped: the reader starts over
+    reset, items = s.since(3)  # 3 was dropped: the reader starts over
     assert reset and items == s.items and items[-1] == 29 and len(items) <= 20
     assert s.since(s.end) == (False, [])
     t = Trail(min_step_m=1.0)
@@ -96,9 +100,9 @@ def test_layers_come_from_the_scenario_with_its_survey_and_seabed():
     assert [t["id"] for t in w["transponders"]] == [1, 2, 3]
     sb = w["seabed"]
     n, e = sb["north0"] + 0.5 * sb["dn"], sb["east0"] + 0.5 * sb["de"]
-    spec = yaml.safe_load(scenario.read_text())["world"]["bathymetry"]       # slope:depth=D,dn=A,de=B
+    spec = yaml.safe_load(scenario.read_text())["world"]["bathymetry"]  # slope:depth=D,dn=A,de=B
     assert spec.startswith("slope:")
-    k = {key: float(v) for key, v in (kv.split("=") for kv in spec[len("slope:"):].split(","))}
+    k = {key: float(v) for key, v in (kv.split("=") for kv in spec[len("slope:") :].split(","))}
     assert sb["depth"][0][0] == pytest.approx(k["depth"] + k["dn"] * n + k["de"] * e, abs=0.01)
 
 
@@ -109,8 +113,14 @@ def test_a_bad_scenario_is_a_clear_error(tmp_path, child_env):
         WorldBuilder(Model()).load_scenario(bad)
     import subprocess
     import sys
-    run = subprocess.run([sys.executable, "-m", "tools.console", "--scenario", str(bad),
-                          "--port", "0"], env=child_env, capture_output=True, text=True, timeout=30)
+
+    run = subprocess.run(
+        [sys.executable, "-m", "tools.console", "--scenario", str(bad), "--port", "0"],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
     assert run.returncode == 2 and "missing.json" in run.stderr and "Traceback" not in run.stderr
 
 
@@ -119,8 +129,9 @@ def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env
     console = Console(["--url", lcm_url], child_env)
     try:
         page = Page(console.url)
-        now = page.until(lambda n: n["vehicles"].get("AUV1", {}).get("managers", {}).get("NAVIGATOR"),
-                         what="AUV1 NAVIGATOR")
+        now = page.until(
+            lambda n: n["vehicles"].get("AUV1", {}).get("managers", {}).get("NAVIGATOR"), what="AUV1 NAVIGATOR"
+        )
         nav = now["vehicles"]["AUV1"]["managers"]["NAVIGATOR"]
         assert nav["run"] == "running" and nav["path"] == "dive" and nav["plan"].endswith("dive.chasm")
         page.until(lambda n: n["vehicles"]["AUV1"]["nav"], what="AUV1 nav")
@@ -136,27 +147,42 @@ def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env
 
         # load a plan: its text travels in the command, the manager answers
         from manager_world import HERE
-        status, body = page.post("/api/command", {"vehicle": "AUV1", "manager": "NAVIGATOR", "command": "load",
-                                                  "plan_name": "again.chasm",
-                                                  "plan_text": (HERE / "dive.chasm").read_text()})
+
+        status, body = page.post(
+            "/api/command",
+            {
+                "vehicle": "AUV1",
+                "manager": "NAVIGATOR",
+                "command": "load",
+                "plan_name": "again.chasm",
+                "plan_text": (HERE / "dive.chasm").read_text(),
+            },
+        )
         assert status == 200, body
-        now = page.until(lambda n: any(a["seq"] == body["seq"] for a in n["vehicles"]["AUV1"]["acks"]),
-                         what="the load ack")
+        now = page.until(
+            lambda n: any(a["seq"] == body["seq"] for a in n["vehicles"]["AUV1"]["acks"]), what="the load ack"
+        )
         ack = next(a for a in now["vehicles"]["AUV1"]["acks"] if a["seq"] == body["seq"])
         assert (ack["result"], ack["message"]) == ("ok", "plan loaded")
 
         # refusals: a clear error each, nothing published
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "explode"})[0] == 400
-        assert page.post("/api/command", {"vehicle": "AUV1", "command": "load"})[0] == 400   # no plan text
+        assert page.post("/api/command", {"vehicle": "AUV1", "command": "load"})[0] == 400  # no plan text
         assert page.post("/api/command", b"not json")[0] == 400
         assert page.post("/api/seek", {"t": 3})[0] == 409
         # another web site open in the operator's browser cannot command the vehicles
         pause = {"vehicle": "AUV1", "command": "abort"}
         assert page.post("/api/command", pause, {"Content-Type": "text/plain"})[0] == 415
-        assert page.post("/api/command", pause, {"Content-Type": "application/json",
-                                                 "Origin": "http://evil.example"})[0] == 403
-        assert page.post("/api/command", pause, {"Content-Type": "application/json",
-                                                 "Origin": f"http://{page.host}:{page.port}"})[0] == 200
+        assert (
+            page.post("/api/command", pause, {"Content-Type": "application/json", "Origin": "http://evil.example"})[0]
+            == 403
+        )
+        assert (
+            page.post(
+                "/api/command", pause, {"Content-Type": "application/json", "Origin": f"http://{page.host}:{page.port}"}
+            )[0]
+            == 200
+        )
         assert page.get("/static/../server.py")[0] == 404
         assert page.get("/nothing")[0] == 404
         status, html = page.get("/")
@@ -172,6 +198,7 @@ def _write_run_log(path) -> None:
     import lcm as _lcm
 
     from auv import chasm_status_t, ground_truth_t, modem_rx_t, nav_solution_t, sidescan_contact_t
+
     log = _lcm.EventLog(str(path), "w", overwrite=True)
     for i in range(60):
         utime = i * 100_000
@@ -201,15 +228,22 @@ def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
     import subprocess
 
     from lcm_proc import lcm_tool
+
     _write_run_log(tmp_path / "r.lcmlog")
     console = Console(["--url", lcm_url], child_env)
     player = None
     try:
         page = Page(console.url)
-        player = subprocess.Popen([lcm_tool("lcm-logplayer"), f"--lcm-url={lcm_url}", "--speed=1",
-                                   str(tmp_path / "r.lcmlog")], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        now = page.until(lambda n: n["vehicles"].get("AUV2", {}).get("managers", {}).get("NAVIGATOR", {})
-                         .get("run") == "aborted", timeout=30, what="AUV2 aborted in the replay")
+        player = subprocess.Popen(
+            [lcm_tool("lcm-logplayer"), f"--lcm-url={lcm_url}", "--speed=1", str(tmp_path / "r.lcmlog")],
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        now = page.until(
+            lambda n: n["vehicles"].get("AUV2", {}).get("managers", {}).get("NAVIGATOR", {}).get("run") == "aborted",
+            timeout=30,
+            what="AUV2 aborted in the replay",
+        )
         assert sorted(now["vehicles"]) == ["AUV1", "AUV2"]
         assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["path"] == "emergency"
         assert len(page.series["AUV1.true"]) > 10 and page.series["contacts"][0]["class"] == "mine_like"
@@ -230,12 +264,12 @@ def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
         now = page.until(lambda n: n["t"] == info["end"], what="the end of the log")
         assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["run"] == "aborted"
         assert len(page.series["AUV1.true"]) == 60 and len(page.series["contacts"]) == 1
-        assert page.post("/api/seek", {"t": 2.0}) == (200, {"t": 2.0})      # back: the model starts over
+        assert page.post("/api/seek", {"t": 2.0}) == (200, {"t": 2.0})  # back: the model starts over
         now = page.until(lambda n: n["t"] == 2.0, what="t = 2 s")
         assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["run"] == "running"
         assert len(page.series["AUV1.true"]) == 21 and page.series.get("contacts", []) == []
         assert now["vehicles"]["AUV1"]["truth"]["n"] == 20.0
-        assert page.post("/api/seek", {"t": 3.05})[1] == {"t": 3.05}        # forward: only what is new
+        assert page.post("/api/seek", {"t": 3.05})[1] == {"t": 3.05}  # forward: only what is new
         now = page.until(lambda n: n["t"] == 3.05, what="t = 3.05 s")
         assert len(page.series["AUV1.true"]) == 31 and len(page.series["contacts"]) == 1
         assert [ln["src"] for ln in now["links"]] == ["AUV1"]
@@ -248,37 +282,61 @@ def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
 
 def test_the_model_keeps_each_agents_process_table_and_its_wall_stamp_moves_no_time():
     from auv import agent_process_t, agent_table_t, sim_clock_t
+
     m = Model()
     c = sim_clock_t()
     c.utime, c.server_id, c.mode = 12_000_000, "launcher", sim_clock_t.MODE_LOCKSTEP
     m.apply("SIM.CLOCK", c)
     t = agent_table_t()
-    t.utime, t.host, t.agent_pid, t.run, t.status, t.launcher_silent_s = 1_790_000_000_000_000, "alpha", 41, \
-        "mcm", "running", 0.7
+    t.utime, t.host, t.agent_pid, t.run, t.status, t.launcher_silent_s = (
+        1_790_000_000_000_000,
+        "alpha",
+        41,
+        "mcm",
+        "running",
+        0.7,
+    )
     procs = []
-    for name, state, code in (("AUV1.sim", agent_process_t.STATE_RUNNING, 0),
-                              ("AUV1.PILOT", agent_process_t.STATE_BACKOFF, -9)):
+    for name, state, code in (
+        ("AUV1.sim", agent_process_t.STATE_RUNNING, 0),
+        ("AUV1.PILOT", agent_process_t.STATE_BACKOFF, -9),
+    ):
         p = agent_process_t()
-        p.name, p.pid, p.state, p.exit_code, p.restarts, p.cpu_load, p.rss_bytes, p.uptime_s = \
-            name, 100 + len(procs), state, code, len(procs), 0.25, 50_000_000, 30.0
+        p.name, p.pid, p.state, p.exit_code, p.restarts, p.cpu_load, p.rss_bytes, p.uptime_s = (
+            name,
+            100 + len(procs),
+            state,
+            code,
+            len(procs),
+            0.25,
+            50_000_000,
+            30.0,
+        )
         procs.append(p)
     t.procs, t.n_procs = procs, len(procs)
     assert m.apply("AGENT.alpha.PROCS", t)
     with m.lock:
         now = json.loads(m.now_json())
-    assert now["t"] == 12.0                      # the host's wall clock is not the world's time
+    assert now["t"] == 12.0  # the host's wall clock is not the world's time
     a = now["agents"]["alpha"]
     assert (a["status"], a["run"], a["pid"]) == ("running", "mcm", 41)
-    assert [(p["name"], p["state"], p["exit_code"], p["restarts"]) for p in a["procs"]] == \
-        [("AUV1.sim", "running", 0, 0), ("AUV1.PILOT", "back-off", -9, 1)]
+    assert [(p["name"], p["state"], p["exit_code"], p["restarts"]) for p in a["procs"]] == [
+        ("AUV1.sim", "running", 0, 0),
+        ("AUV1.PILOT", "back-off", -9, 1),
+    ]
     assert a["procs"][0]["rss_mb"] == 50.0 and a["procs"][0]["cpu"] == 0.25
 
 
 def test_the_page_shows_a_live_agents_table(lcm_url, child_env):
     import subprocess
     import sys
-    agent = subprocess.Popen([sys.executable, "-m", "tools.agent", "--host", "alpha",
-                              "--url", lcm_url], env=child_env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+
+    agent = subprocess.Popen(
+        [sys.executable, "-m", "tools.agent", "--host", "alpha", "--url", lcm_url],
+        env=child_env,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
     console = Console(["--url", lcm_url], child_env)
     try:
         page = Page(console.url)

@@ -33,9 +33,13 @@ class Ws:
     def __init__(self, port: int) -> None:
         self.sock = socket.create_connection(("127.0.0.1", port), timeout=20)
         key = base64.b64encode(os.urandom(16)).decode()
-        self.sock.sendall((f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n"
-                           f"Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\nSec-WebSocket-Version: 13\r\n"
-                           "Sec-WebSocket-Protocol: foxglove.sdk.v1, foxglove.websocket.v1\r\n\r\n").encode())
+        self.sock.sendall(
+            (
+                f"GET / HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\nUpgrade: websocket\r\n"
+                f"Connection: Upgrade\r\nSec-WebSocket-Key: {key}\r\nSec-WebSocket-Version: 13\r\n"
+                "Sec-WebSocket-Protocol: foxglove.sdk.v1, foxglove.websocket.v1\r\n\r\n"
+            ).encode()
+        )
         self.f = self.sock.makefile("rb")
         status = self.f.readline()
         assert b" 101 " in status, status
@@ -58,7 +62,7 @@ class Ws:
             elif n == 127:
                 n = struct.unpack(">Q", self.f.read(8))[0]
             part = self.f.read(n)
-            if b0 & 0x0F in (0x9, 0xA):         # ping / pong: not data
+            if b0 & 0x0F in (0x9, 0xA):  # ping / pong: not data
                 continue
             opcode = opcode if (b0 & 0x0F) == 0 else b0 & 0x0F
             payload += part
@@ -67,8 +71,13 @@ class Ws:
 
 
 def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
-    proc = subprocess.Popen(BRIDGE + ["--url", lcm_url, "--port", "0"], env=child_env, text=True,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+    proc = subprocess.Popen(
+        BRIDGE + ["--url", lcm_url, "--port", "0"],
+        env=child_env,
+        text=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
     stop = threading.Event()
     try:
         port = int(read_until(proc, "serving ws://").split("ws://", 1)[1].split()[0].rsplit(":", 1)[1])
@@ -88,6 +97,7 @@ def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
                 lc.publish("SIM.ENV", env.encode())
                 lc.publish("SIM.ANNOTATION", note.encode())
                 lc.publish("AUV1.JUNK", b"\x02" * 30)
+
         threading.Thread(target=publish, daemon=True).start()
 
         ws = Ws(port)
@@ -108,19 +118,25 @@ def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
         assert channels["derived/AUV1/nav_position"]["schemaName"] == "foxglove.LocationFix"
 
         subs = {1: "AUV1.NAV", 2: "derived/AUV1/nav_position", 3: "derived/survey_geojson"}
-        ws.send_text(json.dumps({"op": "subscribe", "subscriptions": [
-            {"id": sid, "channelId": channels[t]["id"]} for sid, t in subs.items()]}))
+        ws.send_text(
+            json.dumps(
+                {
+                    "op": "subscribe",
+                    "subscriptions": [{"id": sid, "channelId": channels[t]["id"]} for sid, t in subs.items()],
+                }
+            )
+        )
         got: dict[str, dict] = {}
         frames: list[tuple[int, int]] = []
         deadline = time.monotonic() + 30
         while len(got) < len(subs) and time.monotonic() < deadline:
             op, data = ws.recv()
             frames.append((op, data[0] if data else -1))
-            if op == 2 and data[0] == 0x01:               # messageData: op, subscription, time, payload
+            if op == 2 and data[0] == 0x01:  # messageData: op, subscription, time, payload
                 sid = struct.unpack("<I", data[1:5])[0]
                 topic = subs[sid]
-                if topic in got:    # checked once: a slow reader on a loaded machine makes
-                    continue        # the server drop frames (the large GeoJSON first)
+                if topic in got:  # checked once: a slow reader on a loaded machine makes
+                    continue  # the server drop frames (the large GeoJSON first)
                 obj = json.loads(data[13:])
                 jsonschema.validate(obj, json.loads(channels[topic]["schema"]))
                 got[topic] = obj

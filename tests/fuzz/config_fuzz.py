@@ -23,20 +23,65 @@ from confcheck import ConfigError
 
 ROOT = Path(__file__).resolve().parents[2]
 
-TOKENS = [b"[", b"]", b"{", b"}", b": ", b"\n", b"- ", b"&a ", b"*a", b"<<: *a", b"!!python/object:os.system ",
-          b"!!binary ", b"\xff", b"\xc3", b"\x00", b"\t", b"1e400", b"-1", b".nan", b".inf", b"SIM", b"MODEM",
-          b"'", b'"', b"#", b"?", b"%YAML 1.1\n", b"---\n", b"~", b"yes", b"0x7fffffff", b"99999999999999999999",
-          b"[" * 40, b"{a: " * 40, b"\n  " * 3, b"\xe2\x80\xa8", b"|\n  a\n  b\n"]
+TOKENS = [
+    b"[",
+    b"]",
+    b"{",
+    b"}",
+    b": ",
+    b"\n",
+    b"- ",
+    b"&a ",
+    b"*a",
+    b"<<: *a",
+    b"!!python/object:os.system ",
+    b"!!binary ",
+    b"\xff",
+    b"\xc3",
+    b"\x00",
+    b"\t",
+    b"1e400",
+    b"-1",
+    b".nan",
+    b".inf",
+    b"SIM",
+    b"MODEM",
+    b"'",
+    b'"',
+    b"#",
+    b"?",
+    b"%YAML 1.1\n",
+    b"---\n",
+    b"~",
+    b"yes",
+    b"0x7fffffff",
+    b"99999999999999999999",
+    b"[" * 40,
+    b"{a: " * 40,
+    b"\n  " * 3,
+    b"\xe2\x80\xa8",
+    b"|\n  a\n  b\n",
+]
 
 
 def seeds() -> list[tuple[str, bytes]]:
     out = [("sim", p.read_bytes()) for p in sorted((ROOT / "missions" / "sim").glob("*.yaml"))]
-    out += [("scenario", p.read_bytes()) for p in sorted((ROOT / "missions" / "scenarios").rglob("*.yaml"))
-            if b"vehicles:" in p.read_bytes()]
+    out += [
+        ("scenario", p.read_bytes())
+        for p in sorted((ROOT / "missions" / "scenarios").rglob("*.yaml"))
+        if b"vehicles:" in p.read_bytes()
+    ]
     out += [("scenario", (ROOT / "tests" / "tools" / "scenarios" / "two_vehicles.yaml").read_bytes())]
-    out += [("set", s) for s in (b"sensors.gps.noise=2.5", b"vehicle.id=AUV7", b"initial={depth_m: 3, north_m: 1}",
-                                 b"simulation.clock=lockstep", b"environment.current=[{depth_m: 0, north_mps: 0.1, "
-                                 b"east_mps: 0, down_mps: 0}]")]
+    out += [
+        ("set", s)
+        for s in (
+            b"sensors.gps.noise=2.5",
+            b"vehicle.id=AUV7",
+            b"initial={depth_m: 3, north_m: 1}",
+            b"simulation.clock=lockstep",
+            b"environment.current=[{depth_m: 0, north_mps: 0.1, east_mps: 0, down_mps: 0}]",
+        )
+    ]
     return out
 
 
@@ -50,7 +95,7 @@ def mutate(data: bytes, rng: random.Random) -> bytes:
         elif op == 1:
             b[at:at] = rng.choice(TOKENS)
         elif op == 2:
-            del b[at:at + rng.randint(1, 40)]
+            del b[at : at + rng.randint(1, 40)]
         elif op == 3:
             lines = bytes(b).split(b"\n")
             i, j = rng.randrange(len(lines)), rng.randrange(len(lines))
@@ -71,24 +116,27 @@ def check_one(kind: str, data: bytes, folder: Path) -> None:
     path = folder / f"input_{kind}.yaml"
     path.write_bytes(data)
     try:
-        if kind == "set":       # a survey_log.py --set override: an argv string (undecodable bytes escaped)
+        if kind == "set":  # a survey_log.py --set override: an argv string (undecodable bytes escaped)
             from sim.config import loads
             from tools.survey_log import DEFAULT_CONFIG, apply_overrides
+
             item = data.decode("utf-8", errors="surrogateescape")
             path = Path(f"--set {item.partition('=')[0]}")
             text = apply_overrides(DEFAULT_CONFIG.read_text(), [item], DEFAULT_CONFIG)
             loads(text, path := folder / "merged.yaml")
         elif kind == "sim":
             from sim.config import load
+
             load(path)
         else:
             from tools.scenario import load_scenario
+
             load_scenario(path)
     except ConfigError as exc:
         assert exc.errors, "ConfigError without errors"
         for line in exc.errors:
             assert line.startswith(str(path)) or kind == "set", f"error without the file name: {line!r}"
-    except ValueError as exc:     # survey_log's own "--set ...: expected key.path=value"
+    except ValueError as exc:  # survey_log's own "--set ...: expected key.path=value"
         assert kind == "set" and str(exc).startswith("--set "), repr(exc)
 
 
@@ -115,7 +163,7 @@ def main(argv: list[str] | None = None) -> int:
                 slow = time.monotonic() - t0 > args.max_input_s
                 if slow:
                     raise AssertionError(f"took {time.monotonic() - t0:.1f} s")
-            except BaseException as exc:     # noqa: BLE001 - anything else is the finding
+            except BaseException as exc:  # noqa: BLE001 - anything else is the finding
                 if isinstance(exc, KeyboardInterrupt):
                     raise
                 crashes += 1
@@ -124,8 +172,7 @@ def main(argv: list[str] | None = None) -> int:
                 print(f"config_fuzz: {kind} input {n}: {type(exc).__name__}: {exc} (saved {out})")
                 traceback.print_exc(limit=4)
             n += 1
-    print(f"config_fuzz: {n} inputs (seed {args.seed}), "
-          + ("no crash" if not crashes else f"{crashes} failure(s)"))
+    print(f"config_fuzz: {n} inputs (seed {args.seed}), " + ("no crash" if not crashes else f"{crashes} failure(s)"))
     return 1 if crashes else 0
 
 

@@ -20,27 +20,43 @@ BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 
 def vehicle(vid: str, host: str, east: float = 0.0, cycles: int = 60) -> dict:
-    nav = {"name": "NAVIGATOR", "plan": str(SCEN / "mission.chasm"), "bind": BIND, "rate": 10,
-           "params": {"cycles": cycles}}
+    nav = {
+        "name": "NAVIGATOR",
+        "plan": str(SCEN / "mission.chasm"),
+        "bind": BIND,
+        "rate": 10,
+        "params": {"cycles": cycles},
+    }
     watch = {"name": "WATCHER", "plan": str(SCEN / "watcher.chasm"), "bind": str(SCEN / "watcher.bind"), "rate": 5}
     return {"id": vid, "host": host, "sim": {"config": SIM, "initial": {"east_m": east}}, "managers": [nav, watch]}
 
 
 def write_scenario(path: Path, vehicles: list, hosts: list, **extra) -> Path:
-    sc = {"name": path.stem, "seed": 5, "time": {"mode": "lockstep", "limit": 60, "wall_limit": 120},
-          "hosts": hosts, "vehicles": vehicles, **extra}
+    sc = {
+        "name": path.stem,
+        "seed": 5,
+        "time": {"mode": "lockstep", "limit": 60, "wall_limit": 120},
+        "hosts": hosts,
+        "vehicles": vehicles,
+        **extra,
+    }
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     return path
 
 
 class AgentProc:
-    def __init__(self, host: str, url: str, out: Path, env: dict, prefix: list | None = None,
-                 extra: tuple = ()) -> None:
+    def __init__(
+        self, host: str, url: str, out: Path, env: dict, prefix: list | None = None, extra: tuple = ()
+    ) -> None:
         self.host, self.log = host, out / f"agent.{host}.out"
         out.mkdir(parents=True, exist_ok=True)
-        self.p = subprocess.Popen([*(prefix or []), *AGENT, "--host", host, "--url", url, "--out", str(out / host),
-                                   *extra], stdout=open(self.log, "w"), stderr=subprocess.STDOUT, env=env,
-                                  start_new_session=True)
+        self.p = subprocess.Popen(
+            [*(prefix or []), *AGENT, "--host", host, "--url", url, "--out", str(out / host), *extra],
+            stdout=open(self.log, "w"),
+            stderr=subprocess.STDOUT,
+            env=env,
+            start_new_session=True,
+        )
 
     def text(self) -> str:
         return self.log.read_text()
@@ -57,8 +73,9 @@ class AgentProc:
 
 
 def ctl(url: str, env: dict, *args: str, prefix: list | None = None, timeout: float = 90.0):
-    return subprocess.run([*(prefix or []), *AGENTCTL, *args, "--url", url], env=env, capture_output=True,
-                          text=True, timeout=timeout)
+    return subprocess.run(
+        [*(prefix or []), *AGENTCTL, *args, "--url", url], env=env, capture_output=True, text=True, timeout=timeout
+    )
 
 
 def alive(pid: int) -> bool:
@@ -89,8 +106,9 @@ class Tables:
         import lcm
 
         from auv import agent_ack_t, agent_table_t
+
         self.lc = lcm.LCM(url)
-        self.history: dict[str, list] = {h: [] for h in hosts}   # (monotonic, table)
+        self.history: dict[str, list] = {h: [] for h in hosts}  # (monotonic, table)
         self.acks: list = []
         self.lock = threading.Lock()
         for h in hosts:

@@ -56,7 +56,7 @@ next_print = 0.0
 while True:
     try:
         lc.handle_timeout(50)
-    except OSError:         # interrupted by a signal: the handler exits
+    except OSError:  # interrupted by a signal: the handler exits
         continue
     if time.monotonic() >= next_print:
         next_print = time.monotonic() + 0.3

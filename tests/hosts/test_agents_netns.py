@@ -24,8 +24,11 @@ URL = "udpm://239.255.76.67:7667?ttl=1"
 
 @pytest.fixture
 def hosts():
-    why = unavailable() if os.environ.get("AUV_IN_ISOLATED_NET") == "1" else (
-        "run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    why = (
+        unavailable()
+        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
+        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    )
     if why:
         pytest.skip(f"host agents across namespaces need network namespaces: {why}")
     h = Hosts(3, subnet=78)
@@ -34,35 +37,64 @@ def hosts():
 
 
 def ctl(hosts, env, *args, timeout=90):
-    return subprocess.run([*hosts.prefix(3), *AGENTCTL, *args, "--url", URL, "--netns"], env=env,
-                          capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(
+        [*hosts.prefix(3), *AGENTCTL, *args, "--url", URL, "--netns"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
 
 
 def test_agents_on_two_machines_fly_a_mission_without_a_launcher(hosts, tmp_path, child_env):
     env = Hosts.env(child_env)
-    agents = [AgentProc(h, URL, tmp_path / "agents", env, prefix=hosts.prefix(i), extra=("--netns",))
-              for i, h in ((1, "alpha"), (2, "beta"))]
+    agents = [
+        AgentProc(h, URL, tmp_path / "agents", env, prefix=hosts.prefix(i), extra=("--netns",))
+        for i, h in ((1, "alpha"), (2, "beta"))
+    ]
     try:
+
         def mh(priority):
             return {"simulation": {"clock": "scaled", "warp": 2.0}, "multihil": {"enabled": True, "priority": priority}}
+
         v1, v2 = vehicle("AUV1", "alpha", cycles=30), vehicle("AUV2", "beta", east=40, cycles=40)
         v1["sim"].update(mh(20))
         v2["sim"].update(mh(10))
-        sc = write_scenario(tmp_path / "hil.yaml", [v1, v2], ["alpha", "beta"],
-                            time={"source": "simulators", "limit": 60})
-        wait_until(lambda: ctl(hosts, env, "status", "--host", "alpha", "--host", "beta", "--timeout", "3")
-                   .returncode == 0, 60, "both agents heard from the third machine", step=0.5)
-        watch = subprocess.Popen([*hosts.prefix(3), sys.executable, str(ROOT / "tests" / "hosts" / "watch_done.py"),
-                                  URL, "60", "AUV1", "AUV2"], env=env, stdout=subprocess.PIPE, text=True)
+        sc = write_scenario(
+            tmp_path / "hil.yaml", [v1, v2], ["alpha", "beta"], time={"source": "simulators", "limit": 60}
+        )
+        wait_until(
+            lambda: ctl(hosts, env, "status", "--host", "alpha", "--host", "beta", "--timeout", "3").returncode == 0,
+            60,
+            "both agents heard from the third machine",
+            step=0.5,
+        )
+        watch = subprocess.Popen(
+            [
+                *hosts.prefix(3),
+                sys.executable,
+                str(ROOT / "tests" / "hosts" / "watch_done.py"),
+                URL,
+                "60",
+                "AUV1",
+                "AUV2",
+            ],
+            env=env,
+            stdout=subprocess.PIPE,
+            text=True,
+        )
         run = ctl(hosts, env, "start", str(sc), "--restart", "*=never")
         assert run.returncode == 0, run.stdout + run.stderr
         out = watch.communicate(timeout=90)[0]
         assert watch.returncode == 0, out + "".join(a.text() for a in agents)
-        assert out.strip().endswith("clock from AUV1-sim")      # one world clock, the best priority's
+        assert out.strip().endswith("clock from AUV1-sim")  # one world clock, the best priority's
         status = ctl(hosts, env, "status", "--host", "alpha", "--host", "beta", "--json")
         tables = {t["host"]: t for t in json.loads(status.stdout)}
         assert {p["name"]: p["state"] for p in tables["beta"]["procs"]} == {
-            "AUV2.sim": "running", "AUV2.NAVIGATOR": "running", "AUV2.WATCHER": "running"}
+            "AUV2.sim": "running",
+            "AUV2.NAVIGATOR": "running",
+            "AUV2.WATCHER": "running",
+        }
         pids = [p["pid"] for t in tables.values() for p in t["procs"]]
         assert all(p["rss_bytes"] > 0 for t in tables.values() for p in t["procs"])
         stop = ctl(hosts, env, "stop", str(sc))

@@ -37,8 +37,8 @@ from tools.agent_part import host_part
 URL = "udpm://239.255.76.67:7667?ttl=1"
 MCM = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
 WARP = 4.0
-VC = {"AUV1": 1, "AUV2": 2, "AUV3": 3, "AUV4": 4}              # vehicle computers
-SIM_PC = {"AUV1": 5, "AUV2": 6, "AUV3": 6, "AUV4": 6}          # simulator PCs: 5 serves the world (best priority)
+VC = {"AUV1": 1, "AUV2": 2, "AUV3": 3, "AUV4": 4}  # vehicle computers
+SIM_PC = {"AUV1": 5, "AUV2": 6, "AUV3": 6, "AUV4": 6}  # simulator PCs: 5 serves the world (best priority)
 OPERATOR = 7
 PRIORITY = {"AUV1": 30, "AUV2": 20, "AUV3": 10, "AUV4": 5}
 # A silent teammate is lost after this (the plans' default is 120 s): longer
@@ -48,8 +48,11 @@ SILENT_S = 45.0
 
 @pytest.fixture
 def hosts():
-    why = unavailable() if os.environ.get("AUV_IN_ISOLATED_NET") == "1" else (
-        "run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    why = (
+        unavailable()
+        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
+        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    )
     if why:
         pytest.skip(f"the HIL topology needs network namespaces: {why}")
     h = Hosts(7, subnet=79)
@@ -77,8 +80,16 @@ class Procs:
         self.hosts, self.env, self.procs = hosts, env, {}
 
     def start(self, name: str, cmd: list, out, host: int) -> None:
-        self.procs[name] = (subprocess.Popen([*self.hosts.prefix(host), *map(str, cmd)], stdout=open(out, "w"),
-                                             stderr=subprocess.STDOUT, env=self.env, start_new_session=True), host)
+        self.procs[name] = (
+            subprocess.Popen(
+                [*self.hosts.prefix(host), *map(str, cmd)],
+                stdout=open(out, "w"),
+                stderr=subprocess.STDOUT,
+                env=self.env,
+                start_new_session=True,
+            ),
+            host,
+        )
 
     def kill_host(self, host: int) -> list[str]:
         """Everything on one machine dies at once (power cut)."""
@@ -108,17 +119,18 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
     procs = Procs(hosts, env)
     observer = tmp_path / "operator.jsonl"
     try:
-        parts = {vid: host_part(text, str(MCM), f"vc{i}", tmp_path / f"vc{i}", URL, build_dir, True)[1]
-                 for vid, i in VC.items()}
-        procs.start("observer", [sys.executable, ROOT / "tests" / "hosts" / "observe.py", URL, *VC], observer,
-                    OPERATOR)
+        parts = {
+            vid: host_part(text, str(MCM), f"vc{i}", tmp_path / f"vc{i}", URL, build_dir, True)[1]
+            for vid, i in VC.items()
+        }
+        procs.start("observer", [sys.executable, ROOT / "tests" / "hosts" / "observe.py", URL, *VC], observer, OPERATOR)
         for vid, specs in parts.items():
             for s in specs:
                 if s.name == "logger":
                     procs.start(s.name, s.cmd, s.out, OPERATOR)
                 elif not s.name.endswith(".sim"):
                     procs.start(s.name, s.cmd, s.out, VC[vid])
-        for vid, specs in parts.items():      # AUV1's first: it serves the world
+        for vid, specs in parts.items():  # AUV1's first: it serves the world
             sim = next(s for s in specs if s.name.endswith(".sim"))
             procs.start(sim.name, sim.cmd, sim.out, SIM_PC[vid])
             if vid == "AUV1":
@@ -128,7 +140,7 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
             for line in reversed(observer.read_text().splitlines()[-2:]):
                 try:
                     return json.loads(line)
-                except ValueError:      # the line being written
+                except ValueError:  # the line being written
                     continue
             return {"servers": [], "clock_s": 0, "nav": {}, "truth": {}, "lost": [], "taken": []}
 
@@ -137,21 +149,22 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
 
         v0 = wait_until(lambda: (v := view()) and flying(v, VC) and v["clock_s"] > 6 and v, 60, "all three flying")
         assert v0["servers"] == ["AUV1-sim"], v0
-        procs.kill_host(SIM_PC["AUV1"])                # the simulator PC that serves the world
+        procs.kill_host(SIM_PC["AUV1"])  # the simulator PC that serves the world
         t_pc = view()["clock_s"]
         v1 = wait_until(lambda: (v := view())["clock_s"] > t_pc + 8 and v, 60, "the world goes on")
         assert v1["servers"] == ["AUV1-sim", "AUV2-sim"], v1
-        procs.kill_host(VC["AUV3"])                    # a vehicle computer
+        procs.kill_host(VC["AUV3"])  # a vehicle computer
         t_vc = view()["clock_s"]
 
         def carried_on(v) -> bool:
             # every teammate that declares AUV3 lost must have done so (each `silent`
             # after it last heard AUV3: AUV4 may have heard it a TDMA round later)
             declared = {x[1] for x in v["lost"] if x[2] == "AUV3"}
-            return (v["clock_s"] > t_vc + 8 and declared >= {"AUV2", "AUV4"}
-                    and any(x[2] == "AUV3" for x in v["taken"]))
-        end = wait_until(lambda: (v := view()) and carried_on(v) and v, 120,
-                         "AUV3 lost by AUV2 and AUV4 and its lines taken")
+            return v["clock_s"] > t_vc + 8 and declared >= {"AUV2", "AUV4"} and any(x[2] == "AUV3" for x in v["taken"])
+
+        end = wait_until(
+            lambda: (v := view()) and carried_on(v) and v, 120, "AUV3 lost by AUV2 and AUV4 and its lines taken"
+        )
     finally:
         procs.stop()
     # the world failed over once, to the next priority, and kept one clock
@@ -160,7 +173,7 @@ def test_hil_topology_survives_a_simulator_pc_and_a_vehicle_computer(hosts, tmp_
     run, path, t_status = end["nav"]["AUV2"]
     assert run == 1 and t_status > t_vc + 6, end
     moved = math.dist(v1["truth"]["AUV2"][1:], end["truth"]["AUV2"][1:])
-    assert moved > 0.5 * (end["clock_s"] - v1["clock_s"]), (v1, end)      # > 0.5 m/s
+    assert moved > 0.5 * (end["clock_s"] - v1["clock_s"]), (v1, end)  # > 0.5 m/s
     # AUV3's teammates carry on: each declared it lost, `silent` after they last heard it,
     # and the search vehicles still flying took its lines by the shared rule
     lost = [x for x in end["lost"] if x[2] == "AUV3"]

@@ -24,14 +24,17 @@ from netns import Hosts, unavailable
 from sim.multihil.world import VehicleSpec, World
 
 BRIDGE = [sys.executable, "-m", "tools.zenoh_bridge"]
-SITE_URL = "udpm://239.255.76.67:7667?ttl=0"      # never leaves its site's machine
+SITE_URL = "udpm://239.255.76.67:7667?ttl=0"  # never leaves its site's machine
 WARP = 2.0
 
 
 @pytest.fixture
 def hosts():
-    why = unavailable() if os.environ.get("AUV_IN_ISOLATED_NET") == "1" else (
-        "run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    why = (
+        unavailable()
+        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
+        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
+    )
     if why:
         pytest.skip(f"Zenoh sites need network namespaces: {why}")
     pytest.importorskip("zenoh", reason="the eclipse-zenoh package is not installed (requirements.txt)")
@@ -49,15 +52,32 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
     router_ep = f"tcp/{addr(hosts, 3)}:7447"
     world_a = World(tmp_path / "siteA", SITE_URL, build_dir, env)
     world_b = World(tmp_path / "siteB", SITE_URL, build_dir, env)
-    side = World(tmp_path / "net", SITE_URL, build_dir, env)       # the router and the bridges
+    side = World(tmp_path / "net", SITE_URL, build_dir, env)  # the router and the bridges
     try:
         side._start("router", [*BRIDGE, "router", "--listen", router_ep], hosts.prefix(3))
         wait_until(lambda: "router on" in side.output("router"), 60, "the router listens", step=0.1)
         for i, site in ((1, "shipA"), (2, "labB")):
-            side._start(f"bridge.{site}", [*BRIDGE, "--site", site, "--realm", "test", "--url", SITE_URL,
-                                           "--connect", router_ep, "--mode", "client", "--deny", r".*\.TRUTH",
-                                           "--stats-period", "1"],
-                        hosts.prefix(i))
+            side._start(
+                f"bridge.{site}",
+                [
+                    *BRIDGE,
+                    "--site",
+                    site,
+                    "--realm",
+                    "test",
+                    "--url",
+                    SITE_URL,
+                    "--connect",
+                    router_ep,
+                    "--mode",
+                    "client",
+                    "--deny",
+                    r".*\.TRUTH",
+                    "--stats-period",
+                    "1",
+                ],
+                hosts.prefix(i),
+            )
         log_b = tmp_path / "siteB.lcmlog"
         world_b.logger(log_b, hosts.prefix(2))
         a, b = VehicleSpec("AUV1", priority=20), VehicleSpec("AUV2", priority=10, east_m=30.0)
@@ -66,18 +86,23 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
         world_a.simulator(a, "scaled", {}, warp=WARP, prefix=hosts.prefix(1))
         wait_until(lambda: "server for term 1" in world_a.output("AUV1.sim"), 60, "site A serves", step=0.2)
         world_b.simulator(b, "scaled", {}, warp=WARP, prefix=hosts.prefix(2))
-        wait_until(lambda: "client of AUV1-sim (term 1)" in world_b.output("AUV2.sim"), 60,
-                   "site B's simulator joins site A's world", step=0.2)
-        time.sleep(8.0 / WARP)      # some flight on the shared clock
+        wait_until(
+            lambda: "client of AUV1-sim (term 1)" in world_b.output("AUV2.sim"),
+            60,
+            "site B's simulator joins site A's world",
+            step=0.2,
+        )
+        time.sleep(8.0 / WARP)  # some flight on the shared clock
         stopping = time.time() * 1e6
     finally:
         world_a.stop()
         world_b.stop()
         side.stop()
     out_b = world_b.output("AUV2.sim")
-    assert "server for term" not in out_b, out_b           # one server for both sites: one clock
-    assert re.search(r"0 mismatches", out_b), out_b         # one environment: the samples agree with its own
+    assert "server for term" not in out_b, out_b  # one server for both sites: one clock
+    assert re.search(r"0 mismatches", out_b), out_b  # one environment: the samples agree with its own
     from auvlcm.log import read_events
+
     clock, status_b, truth_a, seen = [], 0, 0, {}
     dups = 0
     for ev in read_events(log_b):
@@ -90,10 +115,10 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
             clock.append((ev.msg.server_id, ev.msg.utime))
         status_b += ev.channel == "AUV2.CHASM.NAVIGATOR"
         truth_a += ev.channel == "AUV1.TRUTH"
-    assert clock and {s for s, _ in clock} == {"AUV1-sim"}      # site B runs on site A's clock
+    assert clock and {s for s, _ in clock} == {"AUV1-sim"}  # site B runs on site A's clock
     assert all(y >= x for (_, x), (_, y) in zip(clock, clock[1:]))
-    assert status_b > 20 and truth_a == 0                        # the deny rule held
-    assert dups == 0                                             # no loop, no echo
+    assert status_b > 20 and truth_a == 0  # the deny rule held
+    assert dups == 0  # no loop, no echo
     stats = side.output("bridge.labB")
     assert re.search(r"received [1-9]", stats) and re.search(r"sent [1-9]", stats), stats
-    assert re.search(r"echoes [1-9]", stats), stats              # its own injections heard back, not resent
+    assert re.search(r"echoes [1-9]", stats), stats  # its own injections heard back, not resent

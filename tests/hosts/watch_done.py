@@ -16,10 +16,16 @@ state: dict[str, int] = {}
 servers: list[str] = []
 lc = lcm.LCM(url)
 for v in vehicles:
-    lc.subscribe(f"{v}.CHASM.NAVIGATOR", lambda _c, d: state.__setitem__(*(lambda m: (m.vehicle, m.run_state))(
-        chasm_status_t.decode(d))))
-lc.subscribe("SIM.CLOCK", lambda _c, d: (lambda m: servers.append(m.server_id)
-                                          if not servers or servers[-1] != m.server_id else None)(sim_clock_t.decode(d)))
+    lc.subscribe(
+        f"{v}.CHASM.NAVIGATOR",
+        lambda _c, d: state.__setitem__(*(lambda m: (m.vehicle, m.run_state))(chasm_status_t.decode(d))),
+    )
+lc.subscribe(
+    "SIM.CLOCK",
+    lambda _c, d: (lambda m: servers.append(m.server_id) if not servers or servers[-1] != m.server_id else None)(
+        sim_clock_t.decode(d)
+    ),
+)
 deadline = time.monotonic() + timeout
 while time.monotonic() < deadline:
     lc.handle_timeout(100)

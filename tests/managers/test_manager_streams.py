@@ -23,10 +23,29 @@ N = 150
 def start_echo(url: str, env: dict, sanitized: bool) -> subprocess.Popen:
     plugins = c_program("plugins/chasm_test_msgs_lcm.so", sanitized).parent
     return subprocess.Popen(
-        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / "echo.chasm", "--bind", HERE / "echo.bind",
-         "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim", "--url", url,
-         "--plugin-path", plugins],
-        env=env, stderr=subprocess.PIPE, text=True)
+        [
+            c_program("bin/chasm-manager", sanitized),
+            "--plan",
+            HERE / "echo.chasm",
+            "--bind",
+            HERE / "echo.bind",
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "NAVIGATOR",
+            "--rate",
+            "10",
+            "--clock",
+            "sim",
+            "--url",
+            url,
+            "--plugin-path",
+            plugins,
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 def frame(utime: int, seq: int) -> bytes:
@@ -51,8 +70,7 @@ def test_a_burst_of_messages_is_echoed_in_order_and_bad_posts_are_refused(lcm_ur
         w.tick(0.1)
         assert pump(w.lc, lambda: len(out) >= N, timeout=30), f"{len(out)} of {N} echoed"
         assert [m.seq for m in out] == list(range(N))
-        assert all(m.vehicle == "ECHO" and m.payload == bytes([s & 0xFF, s >> 8, 7]) for s, m in
-                   zip(range(N), out))
+        assert all(m.vehicle == "ECHO" and m.payload == bytes([s & 0xFF, s >> 8, 7]) for s, m in zip(range(N), out))
         s = w.status[-1]
         assert (s.messages_in, s.messages_out, s.messages_missed, s.posts_refused) == (N, N, 0, 0)
         # hostile: a post that is garbage (seq -1), one over 64 KiB (seq -2),

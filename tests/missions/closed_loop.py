@@ -30,7 +30,7 @@ from auvlcm.rx import Receiver
 
 MISSIONS = ROOT / "missions"
 SIM_CONFIG = MISSIONS / "sim" / "remus100.yaml"
-TICK_US = 50_000                                   # the PILOT's 20 Hz
+TICK_US = 50_000  # the PILOT's 20 Hz
 PERIODS_US = {"PILOT": 50_000, "NAVIGATOR": 100_000}  # --rate 20 and 10
 
 
@@ -47,7 +47,7 @@ class Pose:
 @dataclass
 class Record:
     truth: list[Pose] = field(default_factory=list)
-    nav: list[Pose] = field(default_factory=list)      # what the vehicle believes (AUV1.NAV)
+    nav: list[Pose] = field(default_factory=list)  # what the vehicle believes (AUV1.NAV)
     # (sim time, active path "a/b", condition of the transition into it), one per change
     states: list[tuple[float, str, str]] = field(default_factory=list)
     run_state: int = -1
@@ -94,8 +94,16 @@ def sim_config(tmp: Path, **overrides) -> Path:
 class Mission:
     """One vehicle flying one navigator plan. Use as a context manager."""
 
-    def __init__(self, tmp: Path, url: str, env: dict, plan: Path, params: dict[str, str] | None = None,
-                 nav_cut_s: float | None = None, sim: dict | None = None) -> None:
+    def __init__(
+        self,
+        tmp: Path,
+        url: str,
+        env: dict,
+        plan: Path,
+        params: dict[str, str] | None = None,
+        nav_cut_s: float | None = None,
+        sim: dict | None = None,
+    ) -> None:
         self.tmp, self.url, self.env = tmp, url, env
         self.plan, self.params, self.nav_cut_s = plan, params or {}, nav_cut_s
         self.sim_cfg = sim_config(tmp, **(sim or {}))
@@ -107,15 +115,18 @@ class Mission:
         self.rx.subscribe("AUV1.NAV", nav_solution_t, self._on_nav, 1000)
         self.rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, self._on_status, 1000)
         self.rx.subscribe("AUV1.CHASM.PILOT", chasm_status_t, self._on_pilot, 1000)
-        self.cycled = {n: -10**12 for n in PERIODS_US}   # utime of each manager's latest cycle
+        self.cycled = {n: -(10**12) for n in PERIODS_US}  # utime of each manager's latest cycle
         self.utime = 0
         bind = MISSIONS / "bindings" / "navigator.bind"
         if nav_cut_s is not None:
             # The navigator's navigation comes through this process, which stops
             # forwarding it at nav_cut_s; the pilot keeps its own feed.
             bind = tmp / "navigator_relay.bind"
-            bind.write_text((MISSIONS / "bindings" / "navigator.bind").read_text()
-                            .replace("${VEHICLE}.NAV ", "${VEHICLE}.NAV_RELAY "))
+            bind.write_text(
+                (MISSIONS / "bindings" / "navigator.bind")
+                .read_text()
+                .replace("${VEHICLE}.NAV ", "${VEHICLE}.NAV_RELAY ")
+            )
         self.bind = bind
 
     def _on_truth(self, channel: str, m: ground_truth_t) -> None:
@@ -139,8 +150,9 @@ class Mission:
     def _start(self, name: str, cmd: list, ready: str) -> None:
         """Starts a process (output to a file) and waits for its `ready` line."""
         path = self.tmp / f"{name}.out"
-        self.procs[name] = subprocess.Popen([str(c) for c in cmd], stdout=open(path, "w"),
-                                            stderr=subprocess.STDOUT, env=self.env)
+        self.procs[name] = subprocess.Popen(
+            [str(c) for c in cmd], stdout=open(path, "w"), stderr=subprocess.STDOUT, env=self.env
+        )
         deadline = time.monotonic() + 30
         while ready not in path.read_text():
             assert self.procs[name].poll() is None, f"{name} exited:\n{self.output(name)}"
@@ -150,14 +162,41 @@ class Mission:
     def __enter__(self) -> "Mission":
         manager = BUILD / "bin" / "chasm-manager"
         common = ["--vehicle", "AUV1", "--clock", "sim", "--url", self.url, "--plugin-path", BUILD / "plugins"]
-        self._start("pilot", [manager, "--plan", MISSIONS / "pilot" / "pilot.chasm", "--bind",
-                              MISSIONS / "bindings" / "pilot.bind", "--name", "PILOT", "--rate", "20", *common],
-                    "PILOT: running")
+        self._start(
+            "pilot",
+            [
+                manager,
+                "--plan",
+                MISSIONS / "pilot" / "pilot.chasm",
+                "--bind",
+                MISSIONS / "bindings" / "pilot.bind",
+                "--name",
+                "PILOT",
+                "--rate",
+                "20",
+                *common,
+            ],
+            "PILOT: running",
+        )
         defines = [a for k, v in self.params.items() for a in ("-D", f"{k}={v}")]
-        self._start("navigator", [manager, "--plan", self.plan, "--bind", self.bind, "--name", "NAVIGATOR",
-                                  "--rate", "10", *common, *defines], "NAVIGATOR: running")
-        self._start("sim", [sys.executable, "-m", "sim", self.sim_cfg, "--lcm-url", self.url],
-                    "running")
+        self._start(
+            "navigator",
+            [
+                manager,
+                "--plan",
+                self.plan,
+                "--bind",
+                self.bind,
+                "--name",
+                "NAVIGATOR",
+                "--rate",
+                "10",
+                *common,
+                *defines,
+            ],
+            "NAVIGATOR: running",
+        )
+        self._start("sim", [sys.executable, "-m", "sim", self.sim_cfg, "--lcm-url", self.url], "running")
         return self
 
     def fly(self, until: Callable[[Record], bool], max_sim_s: float) -> Record:
@@ -172,7 +211,9 @@ class Mission:
                 for name, proc in self.procs.items():
                     assert proc.poll() is None, f"{name} died:\n{self.output(name)}"
                 sim_t = self.rec.truth[-1].t if self.rec.truth else None
-                raise AssertionError(f"at t={self.utime / 1e6:.2f} s: managers' last cycles {self.cycled}, sim at {sim_t}, nav at {[p.t for p in self.rec.nav[-3:]]}")
+                raise AssertionError(
+                    f"at t={self.utime / 1e6:.2f} s: managers' last cycles {self.cycled}, sim at {sim_t}, nav at {[p.t for p in self.rec.nav[-3:]]}"
+                )
         return self.rec
 
     def _cycled(self) -> bool:
@@ -183,8 +224,9 @@ class Mission:
         due; its status for this tick may still be on its way, which is why
         this is evaluated afresh as messages arrive."""
         sim_there = bool(self.rec.truth) and self.rec.truth[-1].t * 1e6 >= self.utime - 11_000
-        return sim_there and all(self.cycled[n] >= self.utime or self.cycled[n] + period > self.utime
-                                 for n, period in PERIODS_US.items())
+        return sim_there and all(
+            self.cycled[n] >= self.utime or self.cycled[n] + period > self.utime for n, period in PERIODS_US.items()
+        )
 
     def output(self, name: str) -> str:
         path = self.tmp / f"{name}.out"

@@ -52,7 +52,7 @@ def at(samples: list[Pose], t: float) -> Pose:
     return min(samples, key=lambda p: abs(p.t - t))
 
 
-NAVIGATOR_PERIOD_S = 0.1   # closed_loop.PERIODS_US
+NAVIGATOR_PERIOD_S = 0.1  # closed_loop.PERIODS_US
 
 
 def fired_on(samples: list[Pose], t: float, pred, hold_s: float = 0.0) -> bool:
@@ -63,6 +63,7 @@ def fired_on(samples: list[Pose], t: float, pred, hold_s: float = 0.0) -> bool:
     it could have read hold_s earlier. Sensor noise makes pred flicker at the
     crossing, and the manager only sees one sample in two, so "on time" is:
     the first sample where pred holds is at most hold_s + 1 s before t."""
+
     def readable_at(when: float) -> bool:
         return any(pred(p) for p in samples if when - NAVIGATOR_PERIOD_S - 0.02 <= p.t <= when + 0.001)
 
@@ -72,7 +73,7 @@ def fired_on(samples: list[Pose], t: float, pred, hold_s: float = 0.0) -> bool:
 
 # ---------------------------------------------------------------- box survey
 
-BOX = dict(north=40.0, east=-15.0, length=200.0, width=60.0, spacing=30.0)   # box_survey.chasm, heading north
+BOX = dict(north=40.0, east=-15.0, length=200.0, width=60.0, spacing=30.0)  # box_survey.chasm, heading north
 
 
 def planned_lines() -> list[tuple[float, int]]:
@@ -101,6 +102,7 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
 
     lines = planned_lines()
     entered_lines = [t for t, path, _ in rec.states if path == "survey/lines"]
+
     # on a line: in the box's along-track span, heading along the line (not
     # turning), more than 30 s after the lines were (re-)entered (the dive and
     # the re-acquisition after a fix, from where the vehicle drifted: about
@@ -108,14 +110,20 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
     def on_line(p: Pose, k: int) -> bool:
         east, direction = lines[k]
         course = 0.0 if direction > 0 else math.pi
-        return (rec.state_at(p.t) == "survey/lines" and BOX["north"] <= p.n <= BOX["north"] + BOX["length"]
-                and abs(p.e - east) < BOX["spacing"] / 2
-                and abs(math.remainder(p.heading - course, 2 * math.pi)) < math.radians(30)
-                and min(p.t - t for t in entered_lines if t <= p.t) > 30.0)
+        return (
+            rec.state_at(p.t) == "survey/lines"
+            and BOX["north"] <= p.n <= BOX["north"] + BOX["length"]
+            and abs(p.e - east) < BOX["spacing"] / 2
+            and abs(math.remainder(p.heading - course, 2 * math.pi)) < math.radians(30)
+            and min(p.t - t for t in entered_lines if t <= p.t) > 30.0
+        )
 
-    for k, (east, _) in enumerate(lines):   # every 10 m of each line was flown (within 5 m of it)
-        bins = {int((p.n - BOX["north"]) // 10) for p in rec.truth
-                if abs(p.e - east) < 5 and BOX["north"] <= p.n < BOX["north"] + BOX["length"]}
+    for k, (east, _) in enumerate(lines):  # every 10 m of each line was flown (within 5 m of it)
+        bins = {
+            int((p.n - BOX["north"]) // 10)
+            for p in rec.truth
+            if abs(p.e - east) < 5 and BOX["north"] <= p.n < BOX["north"] + BOX["length"]
+        }
         assert bins == set(range(int(BOX["length"] // 10))), f"line {k}: gaps at {sorted(set(range(20)) - bins)}"
     order = []
     for source, name in ((rec.truth, "truth"), (rec.nav, "nav")):
@@ -143,8 +151,9 @@ def test_box_survey_flies_every_line_and_resumes_it_after_each_gps_fix(tmp_path,
 
 # ---------------------------------------------------------------- yo-yo transect
 
+
 def test_yoyo_transect_stays_in_its_depth_band(tmp_path, lcm_url, child_env):
-    top, bottom = 3.0, 10.0   # yoyo_transect.chasm
+    top, bottom = 3.0, 10.0  # yoyo_transect.chasm
     with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "yoyo_transect.chasm", sim=SEA) as m:
         rec = m.fly(done_and_surfaced, max_sim_s=400)
     assert [s[1] for s in rec.states] == ["transect", "recover"] and rec.states[1][2] == "done", rec.states
@@ -154,8 +163,10 @@ def test_yoyo_transect_stays_in_its_depth_band(tmp_path, lcm_url, child_env):
     lo, hi = min(p.depth for p in band), max(p.depth for p in band)
     crossings = sum(1 for a, b in zip(band, band[1:]) if (a.depth - 6.5) * (b.depth - 6.5) < 0)
     end = at(rec.truth, t_end)
-    print(f"\nyo-yo {top:g}-{bottom:g} m: true depth {lo:.2f}..{hi:.2f} m over {t_end - first_in:.0f} s, "
-          f"{crossings} mid-band crossings; transect ended at north {end.n:.1f} m")
+    print(
+        f"\nyo-yo {top:g}-{bottom:g} m: true depth {lo:.2f}..{hi:.2f} m over {t_end - first_in:.0f} s, "
+        f"{crossings} mid-band crossings; transect ended at north {end.n:.1f} m"
+    )
     assert top - 0.5 <= lo and hi <= bottom + 0.5, (lo, hi)
     assert lo < top + 0.5 and hi > bottom - 0.5, "every profile spans the band"
     assert crossings >= 4
@@ -167,21 +178,34 @@ def test_yoyo_transect_stays_in_its_depth_band(tmp_path, lcm_url, child_env):
 
 ABORTS = {
     # name: (plan, cut navigation at, condition of the abort, check of the cause at the abort time)
-    "max_depth": ("max_depth.chasm", None, "too_deep",
-                  lambda rec, t: fired_on(rec.nav, t, lambda p: p.depth > 7.0)),
-    "min_altitude": ("min_altitude.chasm", None, "too_low and altitude_known",
-                     lambda rec, t: fired_on(rec.nav, t, lambda p: 0.0 <= p.altitude < 26.0, hold_s=2.0)
-                     and at(rec.truth, t).altitude < 26.5),
-    "mission_timeout": ("mission_timeout.chasm", None, "elapsed > $mission_timeout",
-                        lambda rec, t: 60.0 <= t - rec.states[0][0] <= 60.2),
+    "max_depth": ("max_depth.chasm", None, "too_deep", lambda rec, t: fired_on(rec.nav, t, lambda p: p.depth > 7.0)),
+    "min_altitude": (
+        "min_altitude.chasm",
+        None,
+        "too_low and altitude_known",
+        lambda rec, t: (
+            fired_on(rec.nav, t, lambda p: 0.0 <= p.altitude < 26.0, hold_s=2.0) and at(rec.truth, t).altitude < 26.5
+        ),
+    ),
+    "mission_timeout": (
+        "mission_timeout.chasm",
+        None,
+        "elapsed > $mission_timeout",
+        lambda rec, t: 60.0 <= t - rec.states[0][0] <= 60.2,
+    ),
     "stale_nav": ("stale_nav.chasm", 40.0, "nav_stale", lambda rec, t: 43.0 <= t <= 43.3),
     # the navigator believed it was past 120 m north (its nav, read within the
     # last cycles), and it was (the truth, within the INS's error)
     # the probes (1 Hz) read wet from 50 s on (LEAK_SEA): `leak.detected for 2 s`
     "leak": ("leak.chasm", None, "leak", lambda rec, t: 52.0 <= t <= 52.3),
-    "operating_area": ("operating_area.chasm", None, "outside",
-                       lambda rec, t: any(120.0 < p.n < 126.0 for p in rec.nav if t - 0.3 <= p.t <= t)
-                       and 118.0 < at(rec.truth, t).n < 126.0),
+    "operating_area": (
+        "operating_area.chasm",
+        None,
+        "outside",
+        lambda rec, t: (
+            any(120.0 < p.n < 126.0 for p in rec.nav if t - 0.3 <= p.t <= t) and 118.0 < at(rec.truth, t).n < 126.0
+        ),
+    ),
 }
 
 
@@ -200,8 +224,10 @@ def test_each_safety_rule_aborts_for_its_cause_and_surfaces(name, tmp_path, lcm_
     assert abort is not None, f"no abort: {rec.states}"
     t, _, why = abort
     up = surfaced_since(rec, t)
-    print(f"\n{name}: abort at {t:.2f} s on '{why}' at true depth {at(rec.truth, t).depth:.1f} m, "
-          f"north {at(rec.truth, t).n:.0f} m; at the surface {up - t if up else float('nan'):.0f} s later")
+    print(
+        f"\n{name}: abort at {t:.2f} s on '{why}' at true depth {at(rec.truth, t).depth:.1f} m, "
+        f"north {at(rec.truth, t).n:.0f} m; at the surface {up - t if up else float('nan'):.0f} s later"
+    )
     assert [s[1] for s in rec.states] == ["transect", "emergency"], rec.states
     assert why == condition
     near = [f"{p.t:.2f}:{p.depth:.2f}/{p.altitude:.2f}" for p in rec.nav if t - 3 <= p.t <= t + 0.3]

@@ -12,14 +12,26 @@ PLANS = sorted((ROOT / "missions" / "examples").rglob("*.chasm"))
 
 
 def check(*args) -> subprocess.CompletedProcess:
-    return subprocess.run([str(c_program("bin/chasm")), "check", "-P", str(BUILD / "plugins"), *map(str, args)],
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [str(c_program("bin/chasm")), "check", "-P", str(BUILD / "plugins"), *map(str, args)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def test_there_is_a_plan_per_safety_rule():
     names = {p.stem for p in PLANS}
-    assert {"box_survey", "yoyo_transect", "max_depth", "min_altitude", "mission_timeout", "stale_nav",
-            "operating_area", "leak"} <= names
+    assert {
+        "box_survey",
+        "yoyo_transect",
+        "max_depth",
+        "min_altitude",
+        "mission_timeout",
+        "stale_nav",
+        "operating_area",
+        "leak",
+    } <= names
 
 
 @pytest.mark.parametrize("plan", PLANS, ids=[str(p.relative_to(ROOT / "missions")) for p in PLANS])

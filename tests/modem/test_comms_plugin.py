@@ -37,9 +37,21 @@ LINE = re.compile(r"^\s*([\d.]+) s\s+(\S+)\s.*?((?:report\.\w+=\S+\s*)+)$")
 def chasm(variant_dir, tmp_path, plan: str, inputs: str, *args):
     (tmp_path / "p.chasm").write_text(plan)
     (tmp_path / "in.txt").write_text(inputs)
-    return subprocess.run([variant_dir / "bin" / "chasm", "run", "-P", variant_dir / "plugins",
-                           tmp_path / "p.chasm", "--inputs", tmp_path / "in.txt", *args],
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        [
+            variant_dir / "bin" / "chasm",
+            "run",
+            "-P",
+            variant_dir / "plugins",
+            tmp_path / "p.chasm",
+            "--inputs",
+            tmp_path / "in.txt",
+            *args,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def trace(res) -> list[tuple[float, str, dict]]:
@@ -53,7 +65,10 @@ def trace(res) -> list[tuple[float, str, dict]]:
 
 
 def test_reports_are_numbered_frozen_between_runs_and_count_across_reentry(variant_dir, tmp_path):
-    plan = NAV + REPORT + """
+    plan = (
+        NAV
+        + REPORT
+        + """
 state a {
     do peer_report(out_label = report.active_state) every 2 s
     when elapsed > 5 s -> b
@@ -62,8 +77,10 @@ state b {
     when elapsed > 1 s -> a
 }
 """
-    watch = [a for v in ("seq", "north_m", "heading_rad", "speed_mps", "active_state")
-             for a in ("--watch", f"report.{v}")]
+    )
+    watch = [
+        a for v in ("seq", "north_m", "heading_rad", "speed_mps", "active_state") for a in ("--watch", f"report.{v}")
+    ]
     res = chasm(variant_dir, tmp_path, plan, INPUTS, "--until", "9", "--dt", "0.5", "--trace", *watch)
     assert res.returncode == 0, res.stderr
     rows = {t: (leaf, v) for t, leaf, v in trace(res)}
@@ -71,13 +88,16 @@ state b {
     # runs at the first cycle after entry, then every 2 s from entry; b pauses it
     assert [seq[t] for t in (0.0, 0.5, 1.5, 2.0, 3.5, 4.0, 6.5, 7.5, 9.0)] == [0, 1, 1, 2, 2, 3, 3, 4, 5]
     north = {t: float(v["report.north_m"]) for t, (_, v) in rows.items()}
-    assert north[3.5] == 1.0 and north[4.0] == 7.0      # nav changed at 3 s; report at 4 s
+    assert north[3.5] == 1.0 and north[4.0] == 7.0  # nav changed at 3 s; report at 4 s
     assert rows[2.0][1]["report.heading_rad"] == "1.5708" and rows[2.0][1]["report.speed_mps"] == "1.5"
     assert rows[2.0][1]["report.active_state"] == '"a"'  # default label: the behavior's state
 
 
 def test_label_comes_from_a_plan_variable(variant_dir, tmp_path):
-    plan = NAV + REPORT + """var phase : string = "idle"
+    plan = (
+        NAV
+        + REPORT
+        + """var phase : string = "idle"
 state mission {
     do peer_report(label = phase, out_label = report.active_state) every 1 s
     state one {
@@ -85,8 +105,8 @@ state mission {
     }
 }
 """
-    res = chasm(variant_dir, tmp_path, plan, INPUTS, "--until", "3", "--trace",
-                "--watch", "report.active_state")
+    )
+    res = chasm(variant_dir, tmp_path, plan, INPUTS, "--until", "3", "--trace", "--watch", "report.active_state")
     assert res.returncode == 0, res.stderr
     assert trace(res)[-1][2]["report.active_state"] == '"survey"'
 
@@ -106,10 +126,11 @@ state waiting {
 state met { }
 state apart { }
 """
-    inputs = (f"0 s nav.north_m = 200 m\n0 s nav.east_m = 0 m\n"
-              f"1 s peer.north_m = {peer_north} m\n1 s peer.east_m = 40 m\n")
+    inputs = (
+        f"0 s nav.north_m = 200 m\n0 s nav.east_m = 0 m\n1 s peer.north_m = {peer_north} m\n1 s peer.east_m = 40 m\n"
+    )
     res = chasm(variant_dir, tmp_path, plan, inputs, "--until", "8", "--expect", expected)
-    assert res.returncode == 0, res.stdout + res.stderr   # 230 m: 50 m away; 270 m: 80.6 m
+    assert res.returncode == 0, res.stdout + res.stderr  # 230 m: 50 m away; 270 m: 80.6 m
 
 
 def test_schema_errors_are_load_errors(variant_dir, tmp_path):

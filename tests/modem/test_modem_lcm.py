@@ -12,7 +12,7 @@ from world import STEP_US, World
 from sim.modem.acoustics import loss_probability
 from sim.modem.config import ModemConfig
 
-C0, GRADIENT = 1490.0, 0.02          # as in world.SIM_CONFIG
+C0, GRADIENT = 1490.0, 0.02  # as in world.SIM_CONFIG
 LOSSLESS = {"loss_at_zero": 0.0, "loss_at_max_range": 0.0, "max_range_m": 2000}
 
 
@@ -28,15 +28,15 @@ def world(lcm_url, tmp_path, child_env):
 
 def test_delay_is_distance_over_sound_speed_and_range_is_a_hard_limit(world):
     world.add_sim("AUV1", 0.0, 0.0, 10.0, LOSSLESS)
-    world.add_sim("AUV2", 600.0, 800.0, 30.0, LOSSLESS)     # ~1000 m from AUV1
-    world.add_sim("AUV3", 2100.0, 0.0, 10.0, LOSSLESS)      # 2100 m from AUV1
+    world.add_sim("AUV2", 600.0, 800.0, 30.0, LOSSLESS)  # ~1000 m from AUV1
+    world.add_sim("AUV3", 2100.0, 0.0, 10.0, LOSSLESS)  # 2100 m from AUV1
     world.tick(2)
     t0 = world.utime
     world.send("AUV1", 20)
-    world.tick()                                            # the sender takes it at t0
-    world.run_for(1.8)                                      # beyond 2000 m / c
+    world.tick()  # the sender takes it at t0
+    world.run_for(1.8)  # beyond 2000 m / c
     sent_from = world.truth["AUV1"][t0]
-    (arrival_tick, rx), = world.arrived_at["AUV2.MODEM_RX"]
+    ((arrival_tick, rx),) = world.arrived_at["AUV2.MODEM_RX"]
     assert rx.tx_utime == t0 and rx.src_vehicle == "AUV1" and rx.vehicle == "AUV2"
     assert rx.payload == bytes(range(20))
     # the step that delivered it is the first one the wavefront reached
@@ -75,8 +75,7 @@ def test_unicast_reaches_only_its_addressee(world):
 
 def test_size_and_rate_limits_refuse_with_a_reason_and_count(world):
     # 400 bps and 0.5 s overhead: a 50-byte frame keeps the modem busy 1.5 s
-    world.add_sim("AUV1", 0.0, 0.0, 10.0, {"max_frame_bytes": 64, "bitrate_bps": 400,
-                                           "frame_overhead_s": 0.5})
+    world.add_sim("AUV1", 0.0, 0.0, 10.0, {"max_frame_bytes": 64, "bitrate_bps": 400, "frame_overhead_s": 0.5})
     world.tick(2)
     world.send("AUV1", 65, seq=1)
     world.tick()
@@ -85,13 +84,13 @@ def test_size_and_rate_limits_refuse_with_a_reason_and_count(world):
     t_start = world.utime
     world.send("AUV1", 50, seq=2)
     world.tick()
-    world.send("AUV1", 10, seq=3)                     # 20 ms later: still on the air
+    world.send("AUV1", 10, seq=3)  # 20 ms later: still on the air
     world.tick()
     st = world.status("AUV1")
     assert (st.sent, st.refused_rate, st.last_refused_seq) == (1, 1, 3)
     assert st.last_refusal.startswith("busy: frame 2 is on the air until t = ")
     assert st.busy_until_utime == t_start + 1_500_000
-    world.run_for(1.5)                                # now it is free again
+    world.run_for(1.5)  # now it is free again
     world.send("AUV1", 10, seq=4)
     world.tick()
     st = world.status("AUV1")
@@ -103,14 +102,19 @@ def test_size_and_rate_limits_refuse_with_a_reason_and_count(world):
 def test_loss_rate_against_range_over_lcm(world):
     """Frames to receivers at 300 m and 1500 m: lost at the curve's rates
     (binomial tolerance), and exactly the frames the seeded draw says."""
-    cfg = {"loss_at_zero": 0.1, "loss_at_max_range": 0.7, "max_range_m": 2000,
-           "bitrate_bps": 100000, "frame_overhead_s": 0.0}
+    cfg = {
+        "loss_at_zero": 0.1,
+        "loss_at_max_range": 0.7,
+        "max_range_m": 2000,
+        "bitrate_bps": 100000,
+        "frame_overhead_s": 0.0,
+    }
     world.add_sim("AUV1", 0.0, 0.0, 10.0, cfg)
     world.add_sim("AUV2", 300.0, 0.0, 10.0, cfg)
     world.add_sim("AUV3", 0.0, 1500.0, 10.0, cfg)
     world.tick(2)
     n = 200
-    for _ in range(n):                                # one frame per step
+    for _ in range(n):  # one frame per step
         world.send("AUV1", 4)
         world.tick()
     world.run_for(1.2)
@@ -128,8 +132,7 @@ def test_loss_rate_against_range_over_lcm(world):
 
 def lossy_run(url, tmp_path, env) -> list[tuple]:
     w = World(url, tmp_path, env)
-    cfg = {"loss_at_zero": 0.3, "loss_at_max_range": 0.6, "bitrate_bps": 100000,
-           "frame_overhead_s": 0.0}
+    cfg = {"loss_at_zero": 0.3, "loss_at_max_range": 0.6, "bitrate_bps": 100000, "frame_overhead_s": 0.0}
     try:
         w.add_sim("AUV1", 0.0, 0.0, 10.0, cfg)
         w.add_sim("AUV2", 400.0, 300.0, 20.0, cfg)
@@ -143,16 +146,19 @@ def lossy_run(url, tmp_path, env) -> list[tuple]:
         for proc in w.procs.values():
             if proc.poll() is None:
                 proc.kill()
-    return [(ch, m.seq, m.utime, m.tx_utime, m.range_m, m.snr_db, bytes(m.payload))
-            for ch in ("AUV1.MODEM_RX", "AUV2.MODEM_RX") for m in w.msgs[ch]]
+    return [
+        (ch, m.seq, m.utime, m.tx_utime, m.range_m, m.snr_db, bytes(m.payload))
+        for ch in ("AUV1.MODEM_RX", "AUV2.MODEM_RX")
+        for m in w.msgs[ch]
+    ]
 
 
 def test_a_stepped_rerun_delivers_the_same_frames_at_the_same_times(tmp_path, child_env):
     from conftest import _ports
+
     runs = []
     for i in range(2):
         (tmp_path / str(i)).mkdir()
-        runs.append(lossy_run(f"udpm://239.255.76.67:{next(_ports)}?ttl=0", tmp_path / str(i),
-                              child_env))
+        runs.append(lossy_run(f"udpm://239.255.76.67:{next(_ports)}?ttl=0", tmp_path / str(i), child_env))
     assert runs[0] == runs[1]
-    assert 15 < len(runs[0]) < 38           # 40 frames, 32 % lost at 500 m
+    assert 15 < len(runs[0]) < 38  # 40 frames, 32 % lost at 500 m

@@ -64,8 +64,7 @@ def test_fsk80_refuses_a_33_byte_frame_and_times_32_bytes_at_80_bps():
 
 def test_team_frames_are_accepted():
     st = modem_status_t()
-    f = Transmitter(with_profile("fsk80"), "AUV1", st).send(
-        0.0, (0, 0, 0), tx_msg(20, kind=modem_tx_t.KIND_TEAM))
+    f = Transmitter(with_profile("fsk80"), "AUV1", st).send(0.0, (0, 0, 0), tx_msg(20, kind=modem_tx_t.KIND_TEAM))
     assert isinstance(f, acoustic_frame_t) and f.kind == modem_tx_t.KIND_TEAM and st.sent == 1
 
 
@@ -73,18 +72,25 @@ def test_profile_in_config_and_explicit_keys_override_it():
     cfg = loads("modem: {profile: fsk80}\n").modem
     assert (cfg.profile, cfg.max_frame_bytes, cfg.bitrate_bps) == ("fsk80", 32, 80.0)
     cfg = loads("modem:\n  bitrate_bps: 100\n  profile: psk1300\n").modem
-    assert (cfg.max_frame_bytes, cfg.bitrate_bps) == (256, 100.0)   # the key wins, wherever it is
+    assert (cfg.max_frame_bytes, cfg.bitrate_bps) == (256, 100.0)  # the key wins, wherever it is
     assert loads("modem: {}\n").modem.profile == ""
 
 
-@pytest.mark.parametrize("text,error", [
-    ("modem:\n  profile: fsk8\n",
-     "m.yaml:2:12: modem.profile: unknown profile 'fsk8'; did you mean 'fsk80'? "
-     "(known: fsk80, psk250, psk1300, psk5300)"),
-    ("modem:\n  profile: zzz\n",
-     "m.yaml:2:12: modem.profile: unknown profile 'zzz'; (known: fsk80, psk250, psk1300, psk5300)"),
-    ("modem:\n  profile: 3\n", "m.yaml:2:12: modem.profile: expected a string, got '3'"),
-])
+@pytest.mark.parametrize(
+    "text,error",
+    [
+        (
+            "modem:\n  profile: fsk8\n",
+            "m.yaml:2:12: modem.profile: unknown profile 'fsk8'; did you mean 'fsk80'? "
+            "(known: fsk80, psk250, psk1300, psk5300)",
+        ),
+        (
+            "modem:\n  profile: zzz\n",
+            "m.yaml:2:12: modem.profile: unknown profile 'zzz'; (known: fsk80, psk250, psk1300, psk5300)",
+        ),
+        ("modem:\n  profile: 3\n", "m.yaml:2:12: modem.profile: expected a string, got '3'"),
+    ],
+)
 def test_unknown_profile_is_a_config_error_with_position(text, error):
     with pytest.raises(ConfigError) as exc:
         loads(text, Path("m.yaml"))
@@ -97,7 +103,7 @@ def test_two_senders_in_one_slot_collide_at_a_receiver_both_lost():
     rx = receiver(cfg)
     rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0), seq=1))
     rx.hear(sent(cfg, "AUV2", 10.0, (0.0, 900.0, 10.0), seq=1))
-    got = listen(rx, (0.0, 300.0, 10.0), 20.0, t=10.0)   # 300 m and 600 m: 0.2 s apart, 4.2 s long
+    got = listen(rx, (0.0, 300.0, 10.0), 20.0, t=10.0)  # 300 m and 600 m: 0.2 s apart, 4.2 s long
     assert got == []
     assert (rx.status.collided, rx.status.received, rx.status.lost) == (2, 0, 0)
 
@@ -119,8 +125,8 @@ def test_a_later_frame_that_arrives_first_still_collides():
     still in the water; both are lost, whichever arrives first."""
     cfg = with_profile("fsk80", **LOSSLESS)
     rx = receiver(cfg)
-    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))        # 1500 m: arrives at 11.0
-    rx.hear(sent(cfg, "AUV2", 10.5, (0.0, 1550.0, 10.0)))     # 50 m: arrives at 10.53
+    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))  # 1500 m: arrives at 11.0
+    rx.hear(sent(cfg, "AUV2", 10.5, (0.0, 1550.0, 10.0)))  # 50 m: arrives at 10.53
     got = listen(rx, (0.0, 1500.0, 10.0), 20.0, t=10.0)
     assert got == [] and rx.status.collided == 2
 
@@ -131,14 +137,14 @@ def test_a_frame_for_another_vehicle_still_jams_the_channel():
     rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))
     rx.hear(sent(cfg, "AUV2", 10.0, (0.0, 900.0, 10.0), dst="AUV4"))
     assert listen(rx, (0.0, 300.0, 10.0), 20.0, t=10.0) == []
-    assert (rx.status.collided, rx.status.received) == (1, 0)   # only our frames are counted
+    assert (rx.status.collided, rx.status.received) == (1, 0)  # only our frames are counted
 
 
 def test_frames_beyond_range_jam_nothing():
     cfg = with_profile("fsk80", max_range_m=1000.0, **LOSSLESS)
     rx = receiver(cfg)
     rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))
-    rx.hear(sent(cfg, "AUV2", 10.0, (0.0, 1500.0, 10.0)))     # 1200 m from the receiver
+    rx.hear(sent(cfg, "AUV2", 10.0, (0.0, 1500.0, 10.0)))  # 1200 m from the receiver
     got = listen(rx, (0.0, 300.0, 10.0), 20.0, t=10.0)
     assert [m.src_vehicle for m in got] == ["AUV1"]
     assert (rx.status.collided, rx.status.out_of_range) == (0, 1)
@@ -148,8 +154,8 @@ def test_frames_beyond_range_jam_nothing():
 def test_a_modem_does_not_hear_while_it_sends():
     cfg = with_profile("fsk80", **LOSSLESS)
     rx = receiver(cfg)
-    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))        # arrives 10.2 .. 14.4
-    rx.transmit(9.0, 9.0 + frame_duration_s(20, cfg))         # we send 9.0 .. 12.6
+    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))  # arrives 10.2 .. 14.4
+    rx.transmit(9.0, 9.0 + frame_duration_s(20, cfg))  # we send 9.0 .. 12.6
     assert listen(rx, (0.0, 300.0, 10.0), 20.0, t=10.0) == []
     assert (rx.status.deaf, rx.status.collided, rx.status.received) == (1, 0, 0)
 
@@ -157,9 +163,9 @@ def test_a_modem_does_not_hear_while_it_sends():
 def test_sending_while_a_frame_is_on_its_way_loses_it():
     cfg = with_profile("fsk80", **LOSSLESS)
     rx = receiver(cfg)
-    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))        # arrives at 11.0
+    rx.hear(sent(cfg, "AUV1", 10.0, (0.0, 0.0, 10.0)))  # arrives at 11.0
     rx.step(10.02, (0.0, 1500.0, 10.0))
-    rx.transmit(10.04, 11.5)                                  # on the air when it arrives
+    rx.transmit(10.04, 11.5)  # on the air when it arrives
     assert listen(rx, (0.0, 1500.0, 10.0), 20.0, t=10.04) == []
     rx.hear(sent(cfg, "AUV1", 20.0, (0.0, 0.0, 10.0), seq=2))  # after we stopped: heard
     assert [m.seq for m in listen(rx, (0.0, 1500.0, 10.0), 30.0, t=20.0)] == [2]
@@ -171,10 +177,13 @@ def test_collisions_repeat_exactly():
         cfg = with_profile("fsk80", loss_at_zero=0.2, loss_at_max_range=0.2)
         rx = receiver(cfg)
         for k in range(30):
-            rx.hear(sent(cfg, f"AUV{1 + k % 2}", 10.0 + 2.0 * k + (k * 7 % 5) * 0.9, (0.0, 900.0 * (k % 2), 10.0), seq=k))
+            rx.hear(
+                sent(cfg, f"AUV{1 + k % 2}", 10.0 + 2.0 * k + (k * 7 % 5) * 0.9, (0.0, 900.0 * (k % 2), 10.0), seq=k)
+            )
         got = listen(rx, (0.0, 300.0, 10.0), 100.0, t=10.0)
         st = rx.status
         return [(m.src_vehicle, m.seq, m.utime) for m in got], (st.collided, st.lost, st.received)
+
     first = run()
     assert first == run()
     assert first[1][0] > 0 and first[1][2] > 0

@@ -22,24 +22,31 @@ def modem():
     lc = OfflineLcm()
     rx = LcmReceiver(lc)
     lines: list[str] = []
-    node = ModemNode(ModemConfig(peer_reports=True), "AUV2", 7,
-                     Environment(EnvParams(sound_speed_mps=1500.0)), rx, lc.publish,
-                     TimeDrops("sim: AUV2", lines.append))
+    node = ModemNode(
+        ModemConfig(peer_reports=True),
+        "AUV2",
+        7,
+        Environment(EnvParams(sound_speed_mps=1500.0)),
+        rx,
+        lc.publish,
+        TimeDrops("sim: AUV2", lines.append),
+    )
 
     def feed(channel: str, msg) -> None:
         sub = next(s for s in rx.subscriptions if s.channel == channel)
         sub.on_raw(channel, msg.encode())
+
     return node, feed, lc, lines
 
 
 def test_hostile_frames_never_wait_in_the_water_and_good_ones_arrive():
     node, feed, lc, lines = modem()
-    node.step(10.0, (0.0, 0.0, 10.0))                        # the simulator's clock: 10 s
+    node.step(10.0, (0.0, 0.0, 10.0))  # the simulator's clock: 10 s
     for bad in HOSTILE:
         feed("SIM.ACOUSTIC", _at(bad, 1))
-    feed("SIM.ACOUSTIC", _at(10_000_000 + 5_000_000, 2))      # 5 s from the future
-    feed("SIM.ACOUSTIC", _at(9_900_000, 3))                   # good: 100 m away, heard soon
-    feed("SIM.ACOUSTIC", _at(9_800_000, 4))                   # older than the last from AUV1
+    feed("SIM.ACOUSTIC", _at(10_000_000 + 5_000_000, 2))  # 5 s from the future
+    feed("SIM.ACOUSTIC", _at(9_900_000, 3))  # good: 100 m away, heard soon
+    feed("SIM.ACOUSTIC", _at(9_800_000, 4))  # older than the last from AUV1
     assert [f.seq for f in node.rx.pending] == [3]
     for k in range(1, 20):
         node.step(10.0 + k * 0.02, (0.0, 0.0, 10.0))

@@ -78,7 +78,7 @@ def test_draws_are_uniform_deterministic_and_independent_per_receiver():
 
 def test_snr_falls_with_range():
     cfg = ModemConfig()
-    assert snr_db(1.0, 185.0, cfg) == pytest.approx(135.0 - 0.001)   # 1 dB/km
+    assert snr_db(1.0, 185.0, cfg) == pytest.approx(135.0 - 0.001)  # 1 dB/km
     assert snr_db(1000.0, 185.0, cfg) == pytest.approx(185 - 60 - 1 - 50)
     assert snr_db(2000.0, 185.0, cfg) < snr_db(1000.0, 185.0, cfg)
 
@@ -113,12 +113,15 @@ def test_rate_limit_is_the_frame_duration_then_min_interval():
     assert isinstance(tx2.send(10.0, (0, 0, 0), tx_msg(5, seq=3)), acoustic_frame_t)
 
 
-@pytest.mark.parametrize("msg, reason", [
-    (tx_msg(5, vehicle="AUV9"), "vehicle 'AUV9' is not this modem's vehicle 'AUV1'"),
-    (tx_msg(5, kind=7), "unknown kind 7"),
-    (tx_msg(5, dst="AUV1"), "addressed to itself"),
-    (tx_msg(0), "empty frame"),
-])
+@pytest.mark.parametrize(
+    "msg, reason",
+    [
+        (tx_msg(5, vehicle="AUV9"), "vehicle 'AUV9' is not this modem's vehicle 'AUV1'"),
+        (tx_msg(5, kind=7), "unknown kind 7"),
+        (tx_msg(5, dst="AUV1"), "addressed to itself"),
+        (tx_msg(0), "empty frame"),
+    ],
+)
 def test_invalid_frames_are_refused(msg, reason):
     st = modem_status_t()
     assert Transmitter(ModemConfig(), "AUV1", st).send(0.0, (0, 0, 0), msg) == reason
@@ -138,7 +141,7 @@ def test_arrival_is_distance_over_sound_speed_within_one_step(gradient):
     env = Environment(EnvParams(sound_speed_mps=1490.0, sound_speed_gradient_per_m=gradient))
     cfg = ModemConfig(loss_at_zero=0.0, loss_at_max_range=0.0)
     rx = receiver(cfg, env)
-    pos = (600.0, 800.0, 30.0)                       # 1000.2 m from (0, 0, 10)
+    pos = (600.0, 800.0, 30.0)  # 1000.2 m from (0, 0, 10)
     rx.hear(frame(t0=0.0))
     t, got = run_until_arrival(rx, pos)
     d = math.dist((0.0, 0.0, 10.0), pos)
@@ -161,7 +164,7 @@ def test_moving_receiver_meets_the_wavefront():
         got = rx.step(t, pos)
         if got:
             break
-    exact = 1500.0 / 1503.0                           # 1500 t = 1500 - 3 t
+    exact = 1500.0 / 1503.0  # 1500 t = 1500 - 3 t
     assert t - DT < exact <= t
     assert abs(got[0].utime / 1e6 - exact) < 3.0 * DT / 1500.0 + 1e-6
 
@@ -210,6 +213,7 @@ def test_losses_repeat_exactly_with_the_same_seed():
         for seq in range(300):
             rx.hear(frame(seq=seq))
         return {m.seq for m in rx.step(10.0, (500.0, 0.0, 10.0))}
+
     assert lost_seqs(5) == lost_seqs(5)
     assert lost_seqs(5) != lost_seqs(6)
 
@@ -232,6 +236,7 @@ def test_report_round_trip_through_a_frame():
 
 def test_a_report_that_lies_about_its_sender_is_refused():
     from auvlcm.decode import DecodeError
+
     r = peer_report_t()
     r.vehicle = "AUV3"
     f = frame(src="AUV1")
@@ -256,19 +261,20 @@ def test_no_section_no_modem_and_defaults_take_the_world_seed():
 
 
 def test_config_errors_name_line_column_and_key():
-    text = ("modem:\n"
-            "  max_frame_bytes: 0\n"
-            "  loss_at_zero: 1.5\n"
-            "  bitrate_bps: -3\n"
-            "  max_range: 100\n"
-            "  peer_reports: maybe\n")
+    text = (
+        "modem:\n"
+        "  max_frame_bytes: 0\n"
+        "  loss_at_zero: 1.5\n"
+        "  bitrate_bps: -3\n"
+        "  max_range: 100\n"
+        "  peer_reports: maybe\n"
+    )
     with pytest.raises(ConfigError) as exc:
         loads(text, Path("m.yaml"))
     errs = exc.value.errors
     assert "m.yaml:2:20: modem.max_frame_bytes: must be in [1, 32767]" in errs
     assert "m.yaml:3:17: modem.loss_at_zero: must be in [0, 1]" in errs
     assert "m.yaml:4:16: modem.bitrate_bps: must be > 0" in errs
-    assert any(e.startswith("m.yaml:5:3: modem.max_range: unknown key; did you mean 'max_range_m'")
-               for e in errs)
+    assert any(e.startswith("m.yaml:5:3: modem.max_range: unknown key; did you mean 'max_range_m'") for e in errs)
     assert any(e.startswith("m.yaml:6:17: modem.peer_reports: expected true/false") for e in errs)
     assert len(errs) == 5

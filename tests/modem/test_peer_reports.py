@@ -19,19 +19,44 @@ PLANS = ROOT / "tests" / "modem" / "plans"
 
 def manager(world, vehicle: str, plan: str, name: str, sanitized: bool) -> None:
     proc = subprocess.Popen(
-        [c_program("bin/chasm-manager", sanitized), "--plan", PLANS / f"{plan}.chasm",
-         "--bind", PLANS / f"{plan}.bind", "--vehicle", vehicle, "--name", name, "--rate", "10",
-         "--clock", "sim", "--url", world.url,
-         "--plugin-path", c_program("plugins/chasm_comms.so", sanitized).parent],
-        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=world.env)
+        [
+            c_program("bin/chasm-manager", sanitized),
+            "--plan",
+            PLANS / f"{plan}.chasm",
+            "--bind",
+            PLANS / f"{plan}.bind",
+            "--vehicle",
+            vehicle,
+            "--name",
+            name,
+            "--rate",
+            "10",
+            "--clock",
+            "sim",
+            "--url",
+            world.url,
+            "--plugin-path",
+            c_program("plugins/chasm_comms.so", sanitized).parent,
+        ],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=world.env,
+    )
     world.add_manager(vehicle, name, proc)
 
 
-@pytest.mark.parametrize("sanitized, auv2_north, expected", [
-    (False, 300.0, "north_near"), (False, 180.0, "north_close"), (True, -250.0, "south")],
-    ids=["normal-300m", "normal-180m", "sanitized-south"])
-def test_a_plan_reacts_to_another_vehicles_reported_position(world, sanitized, auv2_north,  # noqa: F811
-                                                             expected):
+@pytest.mark.parametrize(
+    "sanitized, auv2_north, expected",
+    [(False, 300.0, "north_near"), (False, 180.0, "north_close"), (True, -250.0, "south")],
+    ids=["normal-300m", "normal-180m", "sanitized-south"],
+)
+def test_a_plan_reacts_to_another_vehicles_reported_position(
+    world,
+    sanitized,
+    auv2_north,  # noqa: F811
+    expected,
+):
     world.add_sim("AUV1", 0.0, 0.0, 10.0, LOSSLESS)
     world.add_sim("AUV2", auv2_north, 0.0, 10.0, LOSSLESS)
     manager(world, "AUV2", "reporter", "COMMS", sanitized)
@@ -42,14 +67,15 @@ def test_a_plan_reacts_to_another_vehicles_reported_position(world, sanitized, a
     world.run_for(7.0)
     heard = world.msgs["AUV1.PEER.AUV2"]
     # every report published 0.5 s before the end was heard (300 m take 0.2 s)
-    published = sorted({r.seq for tick, r in world.arrived_at["AUV2.PEER_REPORT"]
-                        if r.seq > 0 and tick <= world.utime - 500_000})
-    assert len(published) >= 3                               # every 2 s for 7 s
-    assert [r.seq for r in heard][:len(published)] == published == list(range(1, len(published) + 1))
+    published = sorted(
+        {r.seq for tick, r in world.arrived_at["AUV2.PEER_REPORT"] if r.seq > 0 and tick <= world.utime - 500_000}
+    )
+    assert len(published) >= 3  # every 2 s for 7 s
+    assert [r.seq for r in heard][: len(published)] == published == list(range(1, len(published) + 1))
     for r in heard:
         assert (r.vehicle, r.heard_by, r.active_state) == ("AUV2", "AUV1", "loitering")
         truth_north = world.truth["AUV2"][r.utime - r.utime % 20_000][0]
-        assert abs(r.north_m - truth_north) < 5.0           # the INS's view of the truth
+        assert abs(r.north_m - truth_north) < 5.0  # the INS's view of the truth
     # each was heard range / c (0.12 to 0.2 s) after the manager's cycle made it; the
     # modem took it at its next step, which may be one step before that cycle's time
     for tick, r in world.arrived_at["AUV1.PEER.AUV2"]:

@@ -37,11 +37,10 @@ class Side:
 
     def __init__(self, url: str, pattern: str = ".*") -> None:
         self.lc = lcm.LCM(url)
-        self.got: list[tuple[str, int, float, float]] = []   # channel, seq, sent, received
+        self.got: list[tuple[str, int, float, float]] = []  # channel, seq, sent, received
         self.lc.subscribe(pattern, self._on).set_queue_capacity(100_000)
         self.stats: dict[str, link_stats_t] = {}
-        Receiver(self.lc).subscribe("SIM.LINK_STATS.*", link_stats_t,
-                                    lambda ch, m: self.stats.__setitem__(ch, m), 100)
+        Receiver(self.lc).subscribe("SIM.LINK_STATS.*", link_stats_t, lambda ch, m: self.stats.__setitem__(ch, m), 100)
 
     def _on(self, channel: str, data: bytes) -> None:
         if channel.startswith("SIM.LINK_STATS") or channel == "LCM_SELF_TEST":
@@ -72,9 +71,13 @@ def relay_received(out: str, direction: str = "AB") -> int:
 
 
 def start_relay(env, a, b, *args):
-    proc = subprocess.Popen([sys.executable, *RELAY, "--in", a, "--out", b, "--name", "LINK",
-                             *args], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env=env)
+    proc = subprocess.Popen(
+        [sys.executable, *RELAY, "--in", a, "--out", b, "--name", "LINK", *args],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=env,
+    )
     wait_for_line(proc, "running", timeout=30)
     return proc
 
@@ -105,25 +108,39 @@ def test_delay_and_jitter(child_env, urls):
     a, b, out = run_traffic(child_env, urls, 300, "--delay-ms", "20", "--jitter-ms", "5")
     seqs = [s for _, s, _, _ in b.got]
     received = relay_received(out)
-    assert received >= 270                                     # the rest: kernel drops
-    assert len(seqs) == len(set(seqs)) == received             # nothing lost or added
+    assert received >= 270  # the rest: kernel drops
+    assert len(seqs) == len(set(seqs)) == received  # nothing lost or added
     delays_ms = [(rx - tx) * 1e3 for _, _, tx, rx in b.got]
-    assert min(delays_ms) >= 15.0 - 0.5                        # never earlier than asked
-    assert statistics.median(delays_ms) < 25.0 + 200.0         # a loaded machine adds, only
+    assert min(delays_ms) >= 15.0 - 0.5  # never earlier than asked
+    assert statistics.median(delays_ms) < 25.0 + 200.0  # a loaded machine adds, only
     st = a.stats["SIM.LINK_STATS.LINK.AB"]
     assert st.forwarded == received and st.dropped == st.duplicated == 0
     # the scheduled delays: uniform on [15, 25] ms, mean 20 +- 4 sigma of the mean
-    assert abs(st.mean_delay_ms - 20.0) < 4 * (10 / 12 ** 0.5) / received ** 0.5
+    assert abs(st.mean_delay_ms - 20.0) < 4 * (10 / 12**0.5) / received**0.5
     assert f"{received} forwarded" in out
 
 
 def test_loss_duplication_reordering_statistics_and_repeatability(child_env, urls):
     n, loss, dup, reorder = 600, 0.2, 0.1, 0.1
-    args = ("--delay-ms", "2", "--jitter-ms", "1", "--loss", str(loss), "--duplicate", str(dup),
-            "--reorder", str(reorder), "--reorder-delay-ms", "15", "--seed", "7")
+    args = (
+        "--delay-ms",
+        "2",
+        "--jitter-ms",
+        "1",
+        "--loss",
+        str(loss),
+        "--duplicate",
+        str(dup),
+        "--reorder",
+        str(reorder),
+        "--reorder-delay-ms",
+        "15",
+        "--seed",
+        "7",
+    )
     a, b, out = run_traffic(child_env, urls, n, *args)
     st = a.stats["SIM.LINK_STATS.LINK.AB"]
-    sigma = lambda p, m: 4 * (m * p * (1 - p)) ** 0.5        # noqa: E731
+    sigma = lambda p, m: 4 * (m * p * (1 - p)) ** 0.5  # noqa: E731
     received = relay_received(out)
     assert received >= 0.9 * n
     assert abs(st.dropped - received * loss) < sigma(loss, received)
@@ -144,17 +161,17 @@ def test_a_message_meets_the_same_fate_on_every_run(child_env, urls):
     from tools.lcm_relay import draws, message_digest
 
     def send(a, b, seq):
-        a.send("AUV1.DATA", seq, stamp=False)           # the same bytes on every run
-    _, b, out = run_traffic(child_env, urls, 300, "--loss", "0.3", "--duplicate", "0.1",
-                            "--seed", "11", send=send)
+        a.send("AUV1.DATA", seq, stamp=False)  # the same bytes on every run
+
+    _, b, out = run_traffic(child_env, urls, 300, "--loss", "0.3", "--duplicate", "0.1", "--seed", "11", send=send)
     fate = {}
     for seq in range(300):
         u = draws(11, "AB", "AUV1.DATA", message_digest("AUV1.DATA", message(seq, 0.0)), 0)
-        fate[seq] = 0 if u[0] < 0.3 else (2 if u[1] < 0.1 else 1)   # copies delivered
+        fate[seq] = 0 if u[0] < 0.3 else (2 if u[1] < 0.1 else 1)  # copies delivered
     got = [s for _, s, _, _ in b.got]
     assert all(got.count(s) == fate[s] for s in set(got))
-    assert 180 < sum(1 for c in fate.values() if c) < 240           # about 70 % kept
-    if relay_received(out) == 300:                                  # nothing lost before it
+    assert 180 < sum(1 for c in fate.values() if c) < 240  # about 70 % kept
+    if relay_received(out) == 300:  # nothing lost before it
         assert sorted(got) == sorted(s for s, c in fate.items() for _ in range(c))
 
 
@@ -162,6 +179,7 @@ def test_channel_filter(child_env, urls):
     def send(a, b, seq):
         for channel in ("AUV1.NAV", "AUV2.NAV", "XAUV1.NAV"):
             a.send(channel, seq)
+
     _, b, _ = run_traffic(child_env, urls, 20, "--channel", r"AUV1\..*", send=send)
     assert {ch for ch, *_ in b.got} == {"AUV1.NAV"} and len(b.got) == 20
 
@@ -170,8 +188,9 @@ def test_both_directions_without_loops(child_env, urls):
     def send(a, b, seq):
         a.send("AUV1.DATA", seq)
         b.send("AUV2.DATA", 1000 + seq)
+
     a, b, out = run_traffic(child_env, urls, 50, "--both", "--delay-ms", "1", send=send)
-    by = lambda side, ch: sorted(s for c, s, _, _ in side.got if c == ch)   # noqa: E731
+    by = lambda side, ch: sorted(s for c, s, _, _ in side.got if c == ch)  # noqa: E731
     # each side hears its own 50 once (no echo back) and the other side's 50 once
     assert by(a, "AUV1.DATA") == list(range(50)) and by(b, "AUV1.DATA") == list(range(50))
     assert by(b, "AUV2.DATA") == list(range(1000, 1050)) and by(a, "AUV2.DATA") == by(b, "AUV2.DATA")
@@ -179,23 +198,41 @@ def test_both_directions_without_loops(child_env, urls):
     assert "50 echoes ignored" in out
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--loss", "1.5"], "--loss must be a probability in [0, 1]"),
-    (["--channel", "AUV1.("], "--channel 'AUV1.(':"),
-    (["--delay-ms", "-1"], "--delay-ms must be >= 0"),
-    (["--name", "x y"], "--name: upper-case"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--loss", "1.5"], "--loss must be a probability in [0, 1]"),
+        (["--channel", "AUV1.("], "--channel 'AUV1.(':"),
+        (["--delay-ms", "-1"], "--delay-ms must be >= 0"),
+        (["--name", "x y"], "--name: upper-case"),
+    ],
+)
 def test_bad_arguments_exit_non_zero_with_the_reason(child_env, urls, args, message):
-    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", urls[1], *args],
-                         capture_output=True, text=True, env=child_env, timeout=60)
+    res = subprocess.run(
+        [sys.executable, *RELAY, "--in", urls[0], "--out", urls[1], *args],
+        capture_output=True,
+        text=True,
+        env=child_env,
+        timeout=60,
+    )
     assert res.returncode == 2 and message in res.stderr, res.stderr
 
 
 def test_urls_must_stay_on_this_host(child_env, urls):
     far = "udpm://239.255.76.67:7667?ttl=5"
-    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", far],
-                         capture_output=True, text=True, env=child_env, timeout=60)
+    res = subprocess.run(
+        [sys.executable, *RELAY, "--in", urls[0], "--out", far],
+        capture_output=True,
+        text=True,
+        env=child_env,
+        timeout=60,
+    )
     assert res.returncode == 2 and "ttl=5 would send beyond this host" in res.stderr
-    res = subprocess.run([sys.executable, *RELAY, "--in", urls[0], "--out", urls[0]],
-                         capture_output=True, text=True, env=child_env, timeout=60)
+    res = subprocess.run(
+        [sys.executable, *RELAY, "--in", urls[0], "--out", urls[0]],
+        capture_output=True,
+        text=True,
+        env=child_env,
+        timeout=60,
+    )
     assert res.returncode == 2 and "same URL" in res.stderr

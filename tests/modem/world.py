@@ -19,8 +19,8 @@ from lcm_proc import pump, stop, wait_for_line
 from auv import chasm_status_t, ground_truth_t, modem_rx_t, modem_status_t, modem_tx_t, peer_report_t, sim_clock_t
 from auvlcm.rx import Receiver
 
-STEP_US = 20_000          # one physics step at 50 Hz
-T0_US = 100_000_000       # the world starts at 100 s
+STEP_US = 20_000  # one physics step at 50 Hz
+T0_US = 100_000_000  # the world starts at 100 s
 
 SIM_CONFIG = """
 vehicle: {{id: {vid}}}
@@ -50,7 +50,7 @@ class World:
         self.rx = Receiver(self.lc)
         self.procs: dict[str, subprocess.Popen] = {}
         self.sims: list[str] = []
-        self.managers: dict[str, int] = {}       # status channel -> last status utime
+        self.managers: dict[str, int] = {}  # status channel -> last status utime
         self.truth: dict[str, dict[int, tuple]] = defaultdict(dict)
         self.msgs: dict[str, list] = defaultdict(list)
         self.arrived_at: dict[str, list[tuple[int, object]]] = defaultdict(list)
@@ -58,18 +58,20 @@ class World:
         self.tx_seq = 0
 
     # ------------------------------------------------------------ processes
-    def add_sim(self, vid: str, north: float, east: float, depth: float,
-                modem: dict | None = None) -> None:
+    def add_sim(self, vid: str, north: float, east: float, depth: float, modem: dict | None = None) -> None:
         lines = "\n".join(f"  {k}: {v}" for k, v in (modem or {}).items()) or "  enabled: true"
         cfg = self.tmp / f"{vid}.yaml"
-        cfg.write_text(SIM_CONFIG.format(vid=vid, url=self.url, north=north, east=east,
-                                         depth=depth, modem=lines))
+        cfg.write_text(SIM_CONFIG.format(vid=vid, url=self.url, north=north, east=east, depth=depth, modem=lines))
         self.rx.subscribe(f"{vid}.TRUTH", ground_truth_t, self._on_truth, queue_capacity=10000)
         self.watch(f"{vid}.MODEM_RX", modem_rx_t)
         self.watch(f"{vid}.MODEM_STATUS", modem_status_t)
-        proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
-                                stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                env=self.env)
+        proc = subprocess.Popen(
+            [sys.executable, "-m", "sim", str(cfg)],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+            env=self.env,
+        )
         self.procs[vid] = proc
         self.sims.append(vid)
         wait_for_line(proc, "running", timeout=60)
@@ -77,8 +79,7 @@ class World:
     def add_process(self, name: str, proc: subprocess.Popen) -> None:
         self.procs[name] = proc
 
-    def add_manager(self, vehicle: str, name: str, proc: subprocess.Popen,
-                    period_us: int = 100_000) -> None:
+    def add_manager(self, vehicle: str, name: str, proc: subprocess.Popen, period_us: int = 100_000) -> None:
         """A manager taking part in the lockstep: ticks wait for each of its
         cycles (its status), so it never falls behind on a loaded machine."""
         self.procs[f"{vehicle}.{name}"] = proc
@@ -101,6 +102,7 @@ class World:
         def on_msg(ch, m):
             self.msgs[ch].append(m)
             self.arrived_at[ch].append((self.utime, m))
+
         self.rx.subscribe(channel, typ, on_msg, queue_capacity=10000)
 
     def close(self) -> dict[str, str]:

@@ -26,8 +26,9 @@ class Proc:
 
     def __init__(self, cmd: list, out: Path, env: dict) -> None:
         self.out = out
-        self.p = subprocess.Popen([str(c) for c in cmd], stdout=open(out, "w"),
-                                  stderr=subprocess.STDOUT, env=env, start_new_session=True)
+        self.p = subprocess.Popen(
+            [str(c) for c in cmd], stdout=open(out, "w"), stderr=subprocess.STDOUT, env=env, start_new_session=True
+        )
 
     def text(self) -> str:
         return self.out.read_text() if self.out.exists() else ""
@@ -59,16 +60,26 @@ class Proc:
 
 
 def node_cmd(node_id: str, url: str, priority: int = 0, *extra) -> list:
-    return [sys.executable, "-m", "sim.multihil", "node", "--id", node_id, "--url", url,
-            "--priority", str(priority), *extra]
+    return [
+        sys.executable,
+        "-m",
+        "sim.multihil",
+        "node",
+        "--id",
+        node_id,
+        "--url",
+        url,
+        "--priority",
+        str(priority),
+        *extra,
+    ]
 
 
 def sim_cmd(config: Path, url: str, *extra) -> list:
     return [sys.executable, "-m", "sim", config, "--lcm-url", url, "--multihil", *extra]
 
 
-def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_multihil.yaml",
-                   **initial) -> Path:
+def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_multihil.yaml", **initial) -> Path:
     """A simulator configuration for another vehicle id, from a shipped one."""
     text = (ROOT / "missions" / "sim" / base).read_text().replace("id: AUV1", f"id: {vehicle}")
     init = ", ".join(f"{k}: {v}" for k, v in initial.items())
@@ -92,7 +103,7 @@ class _Background:
             self.lc.handle_timeout(20)
 
     def close(self) -> None:
-        time.sleep(0.3)         # what is in flight
+        time.sleep(0.3)  # what is in flight
         self._stop = True
         self._thread.join(2.0)
 
@@ -101,8 +112,12 @@ class Listener(_Background):
     """Records the world's shared channels with wall receive times, from a
     thread of its own, so that receive times are true while the test waits."""
 
-    CHANNELS = {"SIM.CLOCK": "sim_clock_t", "SIM.ENV_HEARTBEAT": "env_heartbeat_t",
-                "SIM.ENV_ELECTION": "env_election_t", "SIM.ENV": "env_model_t"}
+    CHANNELS = {
+        "SIM.CLOCK": "sim_clock_t",
+        "SIM.ENV_HEARTBEAT": "env_heartbeat_t",
+        "SIM.ENV_ELECTION": "env_election_t",
+        "SIM.ENV": "env_model_t",
+    }
 
     def __init__(self, url: str, extra: dict[str, str] | None = None) -> None:
         super().__init__(url)
@@ -141,8 +156,8 @@ class Recorder(_Background):
     messages when it is descheduled on a loaded machine)."""
 
     def __init__(self, url: str) -> None:
-        super().__init__(with_receive_buffer(url))    # and a deep socket buffer: a burst while
-        self.events: list[tuple[str, bytes]] = []       # the thread waits for a core is kept
+        super().__init__(with_receive_buffer(url))  # and a deep socket buffer: a burst while
+        self.events: list[tuple[str, bytes]] = []  # the thread waits for a core is kept
         sub = self.lc.subscribe(".*", lambda ch, data: self.events.append((ch, data)))
         sub.set_queue_capacity(1_000_000)
         self._thread.start()

@@ -30,11 +30,12 @@ def unavailable() -> str:
             return f"{tool} is not installed"
     probe = subprocess.run(["unshare", "-n", "true"], capture_output=True, text=True)
     if probe.returncode != 0:
-        return ("cannot create network namespaces here (run the test through "
-                f"tests/isolated_net.sh): {probe.stderr.strip()}")
+        return (
+            "cannot create network namespaces here (run the test through "
+            f"tests/isolated_net.sh): {probe.stderr.strip()}"
+        )
     name = f"mhprobe{os.getpid() % 10000}"
-    probe = subprocess.run(["ip", "link", "add", name, "type", "bridge"], capture_output=True,
-                           text=True)
+    probe = subprocess.run(["ip", "link", "add", name, "type", "bridge"], capture_output=True, text=True)
     if probe.returncode != 0:
         return f"cannot create a bridge here: {probe.stderr.strip()}"
     subprocess.run(["ip", "link", "del", name], capture_output=True)
@@ -81,11 +82,13 @@ class Hosts:
                     raise
                 time.sleep(0.05)
         _run("ip", "link", "set", outer, "master", self.bridge, "up")
-        for cmd in (["ip", "link", "set", "lo", "up"],
-                    ["ip", "link", "set", inner, "name", "eth0"],
-                    ["ip", "addr", "add", f"10.{subnet}.{tag % 250}.{i}/24", "dev", "eth0"],
-                    ["ip", "link", "set", "eth0", "up", "multicast", "on"],
-                    ["ip", "route", "add", "224.0.0.0/4", "dev", "eth0"]):
+        for cmd in (
+            ["ip", "link", "set", "lo", "up"],
+            ["ip", "link", "set", inner, "name", "eth0"],
+            ["ip", "addr", "add", f"10.{subnet}.{tag % 250}.{i}/24", "dev", "eth0"],
+            ["ip", "link", "set", "eth0", "up", "multicast", "on"],
+            ["ip", "route", "add", "224.0.0.0/4", "dev", "eth0"],
+        ):
             _run("nsenter", "-t", pid, "-n", *cmd)
 
     def prefix(self, host: int) -> list[str]:

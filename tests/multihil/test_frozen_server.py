@@ -22,15 +22,12 @@ from mh_util import (
 FREEZES = 4
 
 
-
-
 @pytest.mark.parametrize("mode", [("--mode", "scaled", "--warp", "2")])
 def test_a_resumed_server_never_sends_time_backwards(procs, tmp_path, child_env, lcm_url, mode):
     lst = Listener(lcm_url)
     nodes = {}
     for name, prio in (("A-sim", 30), ("B-sim", 20), ("C-sim", 10)):
-        nodes[name] = Proc(node_cmd(name, lcm_url, prio, *mode), tmp_path / f"{name}.out",
-                           child_env)
+        nodes[name] = Proc(node_cmd(name, lcm_url, prio, *mode), tmp_path / f"{name}.out", child_env)
         procs.append(nodes[name])
     nodes["A-sim"].wait_text("server for term 1")
     for name in ("B-sim", "C-sim"):
@@ -52,11 +49,13 @@ def test_a_resumed_server_never_sends_time_backwards(procs, tmp_path, child_env,
         p.stop()
     lst.close()
     clock = [m for _, m in lst.msgs["SIM.CLOCK"]]
-    back = [(a.utime, a.term, a.server_id, b.utime, b.term, b.server_id)
-            for a, b in zip(clock, clock[1:]) if b.utime < a.utime]
+    back = [
+        (a.utime, a.term, a.server_id, b.utime, b.term, b.server_id)
+        for a, b in zip(clock, clock[1:])
+        if b.utime < a.utime
+    ]
     assert not back, f"global time ran backwards: {back}"
-    old = [(a.term, a.server_id, b.term, b.server_id)
-           for a, b in zip(clock, clock[1:]) if b.term < a.term]
+    old = [(a.term, a.server_id, b.term, b.server_id) for a, b in zip(clock, clock[1:]) if b.term < a.term]
     assert not old, f"a message of an old term followed a newer one: {old}"
     hb = [(m.server_id, m.term) for _, m in lst.msgs["SIM.ENV_HEARTBEAT"]]
     hb = [x for i, x in enumerate(hb) if i == 0 or hb[i - 1] != x]

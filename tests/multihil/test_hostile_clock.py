@@ -33,8 +33,7 @@ def clock(utime: int, term: int, server: str = "S-sim") -> bytes:
     return c.encode()
 
 
-def test_a_client_refuses_hostile_clocks_and_takes_over_from_the_last_good_one(
-        procs, tmp_path, child_env, lcm_url):
+def test_a_client_refuses_hostile_clocks_and_takes_over_from_the_last_good_one(procs, tmp_path, child_env, lcm_url):
     lst = Listener(lcm_url)
     s = Proc(node_cmd("S-sim", lcm_url, 9), tmp_path / "S.out", child_env)
     procs.append(s)
@@ -50,20 +49,18 @@ def test_a_client_refuses_hostile_clocks_and_takes_over_from_the_last_good_one(
     last_good = max(m.utime for _, m in lst.msgs["SIM.CLOCK"] if m.utime < 10**12)
     s.kill()
     c.wait_text("server for term 2")
-    assert lst.pump(10.0, until=lambda: sum(m.server_id == "C-sim"
-                                            for _, m in lst.msgs["SIM.CLOCK"]) >= 5)
+    assert lst.pump(10.0, until=lambda: sum(m.server_id == "C-sim" for _, m in lst.msgs["SIM.CLOCK"]) >= 5)
     c.stop()
     lst.close()
     mine = [m.utime for _, m in lst.msgs["SIM.CLOCK"] if m.server_id == "C-sim"]
     assert mine == sorted(mine)
-    assert last_good <= mine[0] < last_good + 5_000_000, (last_good, mine[:3])   # on its line
+    assert last_good <= mine[0] < last_good + 5_000_000, (last_good, mine[:3])  # on its line
     stopped = re.search(r"stopped: .*", c.text()).group(0)
     assert "time drops: invalid 2, jump 1, old_term 1" in stopped, stopped
     assert c.text().count("dropped a message") == 3
 
 
-def test_garbage_on_the_world_channels_is_counted_in_the_simulators_health(
-        procs, tmp_path, child_env, lcm_url):
+def test_garbage_on_the_world_channels_is_counted_in_the_simulators_health(procs, tmp_path, child_env, lcm_url):
     cfg = vehicle_config(tmp_path, "AUV1")
     sim = Proc(sim_cmd(cfg, lcm_url), tmp_path / "sim.out", child_env)
     procs.append(sim)
@@ -71,15 +68,22 @@ def test_garbage_on_the_world_channels_is_counted_in_the_simulators_health(
     lc = lcm.LCM(lcm_url)
     health: list = []
     lc.subscribe("AUV1.HEALTH", lambda _c, d: health.append(process_health_t.decode(d)))
-    world = ("SIM.CLOCK", "SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION", "SIM.CLOCK_SYNC", "SIM.ENV",
-             "SIM.ENV_NEEDS", "SIM.LOCKSTEP", "SIM.ENV_SAMPLE.AUV1-sim")
+    world = (
+        "SIM.CLOCK",
+        "SIM.ENV_HEARTBEAT",
+        "SIM.ENV_ELECTION",
+        "SIM.CLOCK_SYNC",
+        "SIM.ENV",
+        "SIM.ENV_NEEDS",
+        "SIM.LOCKSTEP",
+        "SIM.ENV_SAMPLE.AUV1-sim",
+    )
     for ch in world:
-        lc.publish(ch, b"\x00" * 7)                     # truncated
+        lc.publish(ch, b"\x00" * 7)  # truncated
         lc.publish(ch, clock(1, 1)[:-2] if ch != "SIM.CLOCK" else b"\xff" * 40)
     n = 2 * len(world)
-    assert pump(lc, lambda: any(h.decode_errors >= n for h in health), timeout=20), \
-        [h.decode_errors for h in health]
+    assert pump(lc, lambda: any(h.decode_errors >= n for h in health), timeout=20), [h.decode_errors for h in health]
     k = len(health)
-    assert pump(lc, lambda: len(health) > k + 1, timeout=20)     # and it runs on
+    assert pump(lc, lambda: len(health) > k + 1, timeout=20)  # and it runs on
     assert sim.p.poll() is None
     assert max(h.decode_errors for h in health) == n

@@ -34,7 +34,7 @@ from auvlcm.types import type_of
 from sim.multihil.world import VehicleSpec, World
 
 CONTROL_PLANE = ("SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION", "SIM.CLOCK_SYNC")
-REPEATED = ("SIM.CLOCK", "SIM.LOCKSTEP")    # repeated, byte for byte, when a datagram may be lost
+REPEATED = ("SIM.CLOCK", "SIM.LOCKSTEP")  # repeated, byte for byte, when a datagram may be lost
 CUT_US = 20_000_000
 LOCKSTEP = {"lockstep_participants": 4, "step_s": 0.1, "lockstep_timeout_s": 60}
 
@@ -55,8 +55,7 @@ def run_world(out, url, child_env, build, order=("AUV1", "AUV2")) -> dict[str, l
         world.simulator(specs[first], "lockstep", LOCKSTEP)
         assert lst.pump(60.0, until=lambda: lst.servers() == {f"{first}-sim"}), world.output(f"{first}.sim")
         world.simulator(specs[second], "lockstep", LOCKSTEP)
-        done = lst.pump(120.0, until=lambda: any(
-            m.utime > CUT_US + 1_000_000 for _, m in lst.msgs["SIM.CLOCK"][-3:]))
+        done = lst.pump(120.0, until=lambda: any(m.utime > CUT_US + 1_000_000 for _, m in lst.msgs["SIM.CLOCK"][-3:]))
         assert done, {n: world.output(n)[-500:] for n in world.procs}
         assert {m.server_id for _, m in lst.msgs["SIM.CLOCK"]} == {"AUV1-sim"}
     finally:
@@ -71,17 +70,16 @@ def run_world(out, url, child_env, build, order=("AUV1", "AUV2")) -> dict[str, l
         if getattr(m, "utime", 0) > CUT_US:
             continue
         if isinstance(m, lockstep_t) and m.kind != lockstep_t.KIND_STEP_DONE:
-            continue        # registering (wall-paced) and leaving (the asynchronous end)
+            continue  # registering (wall-paced) and leaving (the asynchronous end)
         if isinstance(m, chasm_status_t):
             m.cycle_cost_us = 0.0
         # shared channels have several writers whose messages interleave in any order
         # within a step: each writer's sequence is what must be the same
-        writer = getattr(m, "participant", "") or (getattr(m, "client_id", "")
-                                                    if channel == "SIM.ENV_NEEDS" else "")
+        writer = getattr(m, "participant", "") or (getattr(m, "client_id", "") if channel == "SIM.ENV_NEEDS" else "")
         key = f"{channel}/{writer}" if writer else channel
         data = m.encode()
         if channel in REPEATED and per_channel[key] and per_channel[key][-1] == data:
-            continue        # a repeat after a suspected loss (wall-paced): the same message
+            continue  # a repeat after a suspected loss (wall-paced): the same message
         per_channel[key].append(data)
     return per_channel
 
@@ -91,8 +89,7 @@ def show(data: bytes) -> dict:
     return {k: getattr(m, k) for k in m.__slots__}
 
 
-def test_two_lockstep_runs_in_either_start_order_give_identical_messages(tmp_path, lcm_url, child_env,
-                                                                         build_dir):
+def test_two_lockstep_runs_in_either_start_order_give_identical_messages(tmp_path, lcm_url, child_env, build_dir):
     a = run_world(tmp_path / "a", lcm_url, child_env, build_dir, ("AUV1", "AUV2"))
     b = run_world(tmp_path / "b", lcm_url, child_env, build_dir, ("AUV2", "AUV1"))
     # the world really ran: 200 steps, both vehicles, the navigators flew their plans
@@ -101,7 +98,7 @@ def test_two_lockstep_runs_in_either_start_order_give_identical_messages(tmp_pat
         assert len(a[f"{v}.TRUTH"]) >= 190 and len(a[f"{v}.ACTUATORS"]) >= 150
         assert len(a[f"{v}.CHASM.NAVIGATOR"]) >= 190
     for p in ("AUV1.sim", "AUV2.sim", "AUV1.NAVIGATOR", "AUV2.NAVIGATOR"):
-        assert len(a[f"SIM.LOCKSTEP/{p}"]) == 201        # STEP_DONE for steps 0..200
+        assert len(a[f"SIM.LOCKSTEP/{p}"]) == 201  # STEP_DONE for steps 0..200
     assert a["SIM.ENV_SAMPLE.AUV2-sim"] and a["SIM.ENV_NEEDS/AUV1-sim"]
     assert sorted(a) == sorted(b)
     for ch in sorted(a):

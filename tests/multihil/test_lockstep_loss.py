@@ -32,17 +32,17 @@ K = lockstep_t
 def test_lost_reports_and_clocks_are_repeated_until_the_world_goes_on():
     tracker = LockstepTracker(timeout_s=None)
     server = LockstepServer(tracker, 100_000, 2, expect_names={"A", "B"})
-    wire: list = []                                   # what the participants sent
+    wire: list = []  # what the participants sent
     parts = {n: Participation(n, wire.append, resend_s=0.0) for n in "AB"}
     for p in parts.values():
-        p.poll()                                      # REGISTER
+        p.poll()  # REGISTER
     for m in wire:
         tracker.on_message(m)
     wire.clear()
     assert server.poll() == 0
     clocks = [0]
-    lose_clock = {("A", 3)}                           # A never gets the clock of step 3 the first time
-    lose_report = {("B", 5)}                          # B's first report of step 5 is lost
+    lose_clock = {("A", 3)}  # A never gets the clock of step 3 the first time
+    lose_report = {("B", 5)}  # B's first report of step 5 is lost
     for _ in range(200):
         step = clocks[-1]
         for name, p in parts.items():
@@ -52,7 +52,7 @@ def test_lost_reports_and_clocks_are_repeated_until_the_world_goes_on():
             p.on_clock(step, step * 100_000)
             p.done()
         for p in parts.values():
-            p.poll()                                  # repeats what no newer clock answered
+            p.poll()  # repeats what no newer clock answered
         for m in wire:
             if (m.participant, m.step) in lose_report and m.kind == K.KIND_STEP_DONE:
                 lose_report.discard((m.participant, m.step))
@@ -65,8 +65,8 @@ def test_lost_reports_and_clocks_are_repeated_until_the_world_goes_on():
         if nxt is not None:
             clocks.append(nxt)
     assert clocks[-1] == 10, clocks
-    assert server.republished >= 1 and clocks.count(3) >= 2      # step 3 went out again
-    assert sorted(set(clocks)) == list(range(11))                  # never skipped, never back
+    assert server.republished >= 1 and clocks.count(3) >= 2  # step 3 went out again
+    assert sorted(set(clocks)) == list(range(11))  # never skipped, never back
     assert all(b >= a for a, b in zip(clocks, clocks[1:]))
     assert parts["A"].last_done == parts["B"].last_done == 10
 
@@ -76,7 +76,7 @@ def test_a_repeated_clock_is_only_acknowledged():
     p = Participation("A", sent.append)
     p.on_clock(4, 400_000)
     p.done()
-    p.on_clock(4, 400_000)                            # the same step again (a repeat)
+    p.on_clock(4, 400_000)  # the same step again (a repeat)
     assert p.pending is None and [m.step for m in sent] == [4, 4]
     tracker = LockstepTracker(timeout_s=None)
     for m in sent:
@@ -134,8 +134,8 @@ def test_the_launchers_clock_does_not_stall_on_lost_datagrams(lcm_url):
         a.turn(), b.turn()
         lc.handle_timeout(int(clock.wait_s() * 1000) // 10 + 1)
     assert clock.now_us >= 1_500_000, (clock.now_us, clock.waiting_for())
-    assert not (a.drop_in or a.drop_out or b.drop_in or b.drop_out)   # every loss happened
-    assert clock.server.republished >= 3                              # steps 3, 8, 17 went out again
+    assert not (a.drop_in or a.drop_out or b.drop_in or b.drop_out)  # every loss happened
+    assert clock.server.republished >= 3  # steps 3, 8, 17 went out again
     assert a.part.resent and b.part.resent
 
 
@@ -147,24 +147,54 @@ def test_the_launchers_clock_blocks_instead_of_spinning(lcm_url):
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
-def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(
-        lcm_url, child_env, tmp_path, sanitized):
+def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(lcm_url, child_env, tmp_path, sanitized):
     build = ROOT / "build" / ("san" if sanitized else "")
-    mgr = [c_program("bin/chasm-manager", sanitized), "--plan", ROOT / "tests/tools/scenarios/mission.chasm",
-           "--bind", ROOT / "missions/bindings/direct_actuators.bind", "-D", "cycles=1000",
-           "--vehicle", "AUV1", "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim",
-           "--lcm-url", lcm_url, "--plugin-path", build / "plugins"]
+    mgr = [
+        c_program("bin/chasm-manager", sanitized),
+        "--plan",
+        ROOT / "tests/tools/scenarios/mission.chasm",
+        "--bind",
+        ROOT / "missions/bindings/direct_actuators.bind",
+        "-D",
+        "cycles=1000",
+        "--vehicle",
+        "AUV1",
+        "--name",
+        "NAVIGATOR",
+        "--rate",
+        "10",
+        "--clock",
+        "sim",
+        "--lcm-url",
+        lcm_url,
+        "--plugin-path",
+        build / "plugins",
+    ]
     nav_conf = tmp_path / "AUV1.nav"
     from sim.config import load
     from tools.navconf import nav_config_text
+
     nav_conf.write_text(nav_config_text(load(ROOT / "missions/sim/remus100.yaml")))
-    nav = [c_program("bin/auv-nav", sanitized), "--config", nav_conf, "--vehicle", "AUV1", "--clock", "sim",
-           "--lcm-url", lcm_url]
+    nav = [
+        c_program("bin/auv-nav", sanitized),
+        "--config",
+        nav_conf,
+        "--vehicle",
+        "AUV1",
+        "--clock",
+        "sim",
+        "--lcm-url",
+        lcm_url,
+    ]
     lc = lcm.LCM(lcm_url)
     reports: list = []
     lc.subscribe("SIM.LOCKSTEP", lambda _c, d: reports.append(lockstep_t.decode(d))).set_queue_capacity(1000)
-    procs = [subprocess.Popen([str(c) for c in cmd], env=child_env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True) for cmd in (mgr, nav)]
+    procs = [
+        subprocess.Popen(
+            [str(c) for c in cmd], env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True
+        )
+        for cmd in (mgr, nav)
+    ]
 
     def pump(seconds: float, until) -> bool:
         end = time.monotonic() + seconds
@@ -173,26 +203,30 @@ def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(
         return until()
 
     def done(name: str, step: int) -> int:
-        return sum(1 for m in reports if m.participant == name and m.kind == K.KIND_STEP_DONE
-                   and m.step == step)
+        return sum(1 for m in reports if m.participant == name and m.kind == K.KIND_STEP_DONE and m.step == step)
 
     def clock(step: int) -> None:
         c = sim_clock_t()
-        c.utime, c.server_id, c.mode, c.step, c.step_us = step * 100_000, "test", \
-            sim_clock_t.MODE_LOCKSTEP, step, 100_000
+        c.utime, c.server_id, c.mode, c.step, c.step_us = (
+            step * 100_000,
+            "test",
+            sim_clock_t.MODE_LOCKSTEP,
+            step,
+            100_000,
+        )
         lc.publish("SIM.CLOCK", c.encode())
 
     try:
-        assert pump(60, lambda: {m.participant for m in reports if m.kind == K.KIND_REGISTER}
-                    >= {"AUV1.NAVIGATOR", "AUV1.NAV"}), [p.poll() for p in procs]
+        assert pump(
+            60, lambda: {m.participant for m in reports if m.kind == K.KIND_REGISTER} >= {"AUV1.NAVIGATOR", "AUV1.NAV"}
+        ), [p.poll() for p in procs]
         for step in range(3):
             clock(step)
             assert pump(30, lambda: done("AUV1.NAVIGATOR", step) >= 1)
             # the filter must not report before its simulator: keep handling
             # messages a while, failing as soon as its report shows up
             assert not pump(0.3, lambda: done("AUV1.NAV", step) > 0), "the filter reported before its simulator"
-            lc.publish("SIM.LOCKSTEP", lockstep_msg("AUV1.sim", K.KIND_STEP_DONE, step,
-                                                    step * 100_000).encode())
+            lc.publish("SIM.LOCKSTEP", lockstep_msg("AUV1.sim", K.KIND_STEP_DONE, step, step * 100_000).encode())
             assert pump(30, lambda: done("AUV1.NAV", step) >= 1)
         # no clock for step 3 (as if lost): both repeat their report of step 2
         assert pump(30, lambda: done("AUV1.NAVIGATOR", 2) >= 3 and done("AUV1.NAV", 2) >= 3)

@@ -22,17 +22,22 @@ from sim.multihil.world import VehicleSpec, World
 # Free-running at 2x: a starved process (a loaded CI machine) lags the global
 # clock by wall time x warp, and the plan aborts on navigation older than 5 s.
 WARP = 2.0
-MISSION_S = 20.0        # the depth-band plan's time in the band before it surfaces
+MISSION_S = 20.0  # the depth-band plan's time in the band before it surfaces
 
 
 @pytest.fixture
 def hosts():
-    why = unavailable() if os.environ.get("AUV_IN_ISOLATED_NET") == "1" else (
-        "run it through tests/isolated_net.sh, so that its hosts and bridge live in a "
-        "private namespace and never on the machine's own network")
+    why = (
+        unavailable()
+        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
+        else (
+            "run it through tests/isolated_net.sh, so that its hosts and bridge live in a "
+            "private namespace and never on the machine's own network"
+        )
+    )
     if why:
         pytest.skip(f"multi-host test needs network namespaces: {why}")
-    h = Hosts(4)            # three vehicles and an observer running lcm-logger
+    h = Hosts(4)  # three vehicles and an observer running lcm-logger
     yield h
     h.close()
 
@@ -66,20 +71,22 @@ def test_three_hosts_survive_the_loss_of_the_server(hosts, tmp_path, child_env, 
     try:
         for i, s in enumerate(specs, 1):
             # a mission of its own: each vehicle keeps to a different depth band
-            world.managers(s, hosts.prefix(i), extra=["-D", f"duration={MISSION_S:g} s",
-                                                      "-D", f"low={1 + 2 * i} m",
-                                                      "-D", f"high={3 + 2 * i} m"])
+            world.managers(
+                s,
+                hosts.prefix(i),
+                extra=["-D", f"duration={MISSION_S:g} s", "-D", f"low={1 + 2 * i} m", "-D", f"high={3 + 2 * i} m"],
+            )
             world.simulator(s, "scaled", {}, warp=WARP, prefix=hosts.prefix(i))
         out1 = tmp_path / "AUV1.sim.out"
         deadline = time.monotonic() + 60
         while "server for term 1" not in out1.read_text() and time.monotonic() < deadline:
             time.sleep(0.1)
         assert "server for term 1" in out1.read_text(), out1.read_text()
-        time.sleep(8.0 / WARP + 1.0)               # well into the mission
+        time.sleep(8.0 / WARP + 1.0)  # well into the mission
         world.kill("AUV1.sim")
-        time.sleep(MISSION_S / WARP + 3.0)         # past the end of the mission
+        time.sleep(MISSION_S / WARP + 3.0)  # past the end of the mission
     finally:
-        stopping = time.time() * 1e6                # lcm-logger stamps with the wall clock
+        stopping = time.time() * 1e6  # lcm-logger stamps with the wall clock
         world.stop()
     states, clock, servers = navigator_states(log, stopping)
     assert clock, world.output("logger")

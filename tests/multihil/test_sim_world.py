@@ -11,10 +11,12 @@ from mh_util import Listener
 from sim.multihil.world import VehicleSpec, World
 
 
-def test_simulators_share_the_world_and_survive_the_servers_death(tmp_path, lcm_url, child_env,
-                                                                  build_dir):
-    extra = {"AUV1.TRUTH": "ground_truth_t", "AUV2.TRUTH": "ground_truth_t",
-             "SIM.CLOCK_OFFSET.AUV2-sim": "clock_offset_t"}
+def test_simulators_share_the_world_and_survive_the_servers_death(tmp_path, lcm_url, child_env, build_dir):
+    extra = {
+        "AUV1.TRUTH": "ground_truth_t",
+        "AUV2.TRUTH": "ground_truth_t",
+        "SIM.CLOCK_OFFSET.AUV2-sim": "clock_offset_t",
+    }
     lst = Listener(lcm_url, extra)
     world = World(tmp_path, lcm_url, build_dir, child_env)
     warp = 4.0
@@ -24,13 +26,19 @@ def test_simulators_share_the_world_and_survive_the_servers_death(tmp_path, lcm_
         lst.pump(1.0)
         # AUV2's own configuration describes another world: it must take the server's
         cfg_extra = {"clock_offset_us": 0}
-        spec2 = VehicleSpec("AUV2", priority=1, east_m=20.0, clock_offset_us=40_000,
-                            clock_drift_ppm=80, edits=[("flat:depth=40", "flat:depth=25")])
+        spec2 = VehicleSpec(
+            "AUV2",
+            priority=1,
+            east_m=20.0,
+            clock_offset_us=40_000,
+            clock_drift_ppm=80,
+            edits=[("flat:depth=40", "flat:depth=25")],
+        )
         world.simulator(spec2, "scaled", cfg_extra, warp=warp)
         assert lst.pump(30.0, until=lambda: len(lst.msgs["AUV2.TRUTH"]) > 40)
         t_first, first2 = lst.msgs["AUV2.TRUTH"][0]
         clock_then = [m.utime for t, m in lst.msgs["SIM.CLOCK"] if t <= t_first][-1]
-        assert first2.utime > 1_000_000 and abs(first2.utime - clock_then) < 300_000   # joined at "now"
+        assert first2.utime > 1_000_000 and abs(first2.utime - clock_then) < 300_000  # joined at "now"
         lst.pump(3.0)
         world.kill("AUV1.sim")
         killed = time.monotonic()
@@ -42,7 +50,7 @@ def test_simulators_share_the_world_and_survive_the_servers_death(tmp_path, lcm_
     out2 = world.output("AUV2.sim")
     assert "client of AUV1-sim" in out2 and "server for term 2" in out2, out2
     assert "adopted world" in out2
-    assert {m.water_depth_m for _, m in lst.msgs["AUV2.TRUTH"][5:]} == {40.0}   # not its own 25 m
+    assert {m.water_depth_m for _, m in lst.msgs["AUV2.TRUTH"][5:]} == {40.0}  # not its own 25 m
     clock = lst.clock_utimes()
     assert all(b[1] >= a[1] for a, b in zip(clock, clock[1:]))
     before = [c for c in clock if c[2] == "AUV1-sim"][-1]

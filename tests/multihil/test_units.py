@@ -17,7 +17,7 @@ from sim.multihil.server import LockstepServer, evaluate
 
 def test_rank_orders_by_priority_then_smaller_id():
     assert rank(5, "B") > rank(3, "A")
-    assert rank(3, "A") > rank(3, "B")       # tie: the smaller id wins
+    assert rank(3, "A") > rank(3, "B")  # tie: the smaller id wins
     assert rank(3, "AUV1") > rank(3, "AUV10")
 
 
@@ -39,8 +39,12 @@ WALL = FakeWall()
 
 
 def fast_election(my_id: str, prio: int) -> Election:
-    return Election(my_id, prio, Timing(join_window_s=0.05, failover_timeout_s=0.05,
-                                        election_wait_s=0.05, peer_timeout_s=5.0), clock=WALL)
+    return Election(
+        my_id,
+        prio,
+        Timing(join_window_s=0.05, failover_timeout_s=0.05, election_wait_s=0.05, peer_timeout_s=5.0),
+        clock=WALL,
+    )
 
 
 def test_the_best_candidate_wins_and_the_others_wait_for_it():
@@ -54,11 +58,11 @@ def test_the_best_candidate_wins_and_the_others_wait_for_it():
 
 def test_a_silent_better_candidate_is_suspected_and_the_next_takes_over():
     a = fast_election("A", 1)
-    a.heard("B", 9)                       # B announced itself, then died
+    a.heard("B", 9)  # B announced itself, then died
     WALL.sleep(0.06)
-    assert a.poll() == ""                 # waits for B first
+    assert a.poll() == ""  # waits for B first
     WALL.sleep(0.06)
-    a.poll()                              # B suspected
+    a.poll()  # B suspected
     assert a.poll() == "become_server"
 
 
@@ -77,40 +81,40 @@ def test_a_server_steps_down_for_a_higher_term_or_a_better_node_only():
     s = fast_election("S", 5)
     WALL.sleep(0.06)
     assert s.poll() == "become_server" and s.server_term == 1
-    assert s.on_heartbeat("X", term=1, priority=4) == "ignore"     # same term, lower priority
-    assert s.on_heartbeat("X", term=1, priority=5) == "ignore"     # same priority, "S" < "X"
+    assert s.on_heartbeat("X", term=1, priority=4) == "ignore"  # same term, lower priority
+    assert s.on_heartbeat("X", term=1, priority=5) == "ignore"  # same priority, "S" < "X"
     assert s.role == "server"
-    assert s.on_heartbeat("Y", term=2, priority=0) == "step_down"   # higher term wins
+    assert s.on_heartbeat("Y", term=2, priority=0) == "step_down"  # higher term wins
     assert s.role == "client" and s.server_id == "Y"
 
 
 def test_a_server_that_hands_over_is_replaced_by_the_best_node_at_once():
     """Lockstep before step 0 (node.py _hand_over): the first server yields to a
     better node it heard; its client takes over without a failover timeout."""
-    first, best = fast_election("B", 0), fast_election("A", 0)      # "A" < "B": A is better
+    first, best = fast_election("B", 0), fast_election("A", 0)  # "A" < "B": A is better
     WALL.sleep(0.06)
     assert first.poll() == "become_server" and first.server_term == 1
     assert best.on_heartbeat("B", term=1, priority=0) == "follow"
     first.heard("A", 0)
     assert first.best() == ("A", 0)
-    first.hand_over()                                               # STEP_DOWN on the wire
+    first.hand_over()  # STEP_DOWN on the wire
     best.on_step_down("B")
     assert best.poll() == "become_server" and best.server_term == 1  # the same term: nothing served yet
-    assert first.role == "client" and first.poll() == ""            # waits for A, never retakes
+    assert first.role == "client" and first.poll() == ""  # waits for A, never retakes
     assert first.on_heartbeat("A", term=1, priority=0) == "follow"
     other = fast_election("C", 0)
     assert other.on_heartbeat("A", term=1, priority=0) == "follow"
-    other.on_step_down("B")                                          # not its server: nothing
+    other.on_step_down("B")  # not its server: nothing
     assert other.server_id == "A"
 
 
 def test_clock_estimate_converges_under_offset_drift_and_asymmetric_delay():
     rng = random.Random(3)
-    offset, drift = 12_345.0, 80e-6           # global = (1 + drift) * local + offset
+    offset, drift = 12_345.0, 80e-6  # global = (1 + drift) * local + offset
     est = SyncEstimator()
     true_global = lambda loc: (1 + drift) * loc + offset  # noqa: E731
     loc = 1e6
-    for _ in range(200):                       # 10 Hz for 20 s
+    for _ in range(200):  # 10 Hz for 20 s
         loc += 1e5
         up, down = 100 + rng.expovariate(1 / 300), 100 + rng.expovariate(1 / 300)
         t1, t4 = loc, loc + up + 20 + down
@@ -123,8 +127,8 @@ def test_clock_estimate_converges_under_offset_drift_and_asymmetric_delay():
 
 def test_impossible_exchanges_are_rejected():
     est = SyncEstimator()
-    assert est.add(100.0, 50.0, 40.0, 200.0) is None      # t3 before t2
-    assert est.add(100.0, 50.0, 60.0, 90.0) is None       # t4 before t1
+    assert est.add(100.0, 50.0, 40.0, 200.0) is None  # t3 before t2
+    assert est.add(100.0, 50.0, 60.0, 90.0) is None  # t4 before t1
     assert est.rejected == 2 and est.count == 0
 
 
@@ -139,7 +143,7 @@ def test_steered_clock_never_runs_backwards():
         now = clk.now()
         assert now >= last
         last = now
-    clk.set(0.0)                               # a set behind the clock is refused
+    clk.set(0.0)  # a set behind the clock is refused
     assert clk.now() >= last
 
 
@@ -147,16 +151,16 @@ def test_lockstep_waits_for_every_participant_and_drops_the_silent():
     tracker = LockstepTracker(timeout_s=0.05, log=lambda s: None)
     srv = LockstepServer(tracker, step_us=100_000, expect=2)
     tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_REGISTER, 0, 0))
-    assert srv.poll() is None                      # expects two participants
+    assert srv.poll() is None  # expects two participants
     tracker.on_message(lockstep_msg("AUV1.NAV", lockstep_t.KIND_REGISTER, 0, 0))
     assert srv.poll() == 0
     tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_STEP_DONE, 0, 0))
-    assert srv.poll() is None                      # AUV1.NAV has not finished step 0
+    assert srv.poll() is None  # AUV1.NAV has not finished step 0
     tracker.on_message(lockstep_msg("AUV1.NAV", lockstep_t.KIND_STEP_DONE, 0, 0))
     assert srv.poll() == 1 and srv.utime(1) == 100_000
     tracker.on_message(lockstep_msg("AUV1.sim", lockstep_t.KIND_STEP_DONE, 1, 100_000))
     time.sleep(0.06)
-    assert srv.poll() == 2 and tracker.dropped == 1   # AUV1.NAV went silent: dropped
+    assert srv.poll() == 2 and tracker.dropped == 1  # AUV1.NAV went silent: dropped
 
 
 def test_participant_confirms_a_repeated_step_without_redoing_it():
@@ -164,13 +168,18 @@ def test_participant_confirms_a_repeated_step_without_redoing_it():
     p = Participation("AUV1.sim", sent.append)
     p.on_clock(4, 400_000)
     p.done()
-    p.on_clock(4, 400_000)                         # a new server repeats step 4
+    p.on_clock(4, 400_000)  # a new server repeats step 4
     assert p.pending is None and [m.step for m in sent] == [4, 4]
 
 
 def test_each_client_gets_only_what_it_asked_for_at_its_position():
-    env = Environment(EnvParams(current=[CurrentLayer(0, 0.3, 0.1)], bathymetry_ref="slope:depth=40,dn=0.01,de=0",
-                                sound_speed_gradient_per_m=0.02))
+    env = Environment(
+        EnvParams(
+            current=[CurrentLayer(0, 0.3, 0.1)],
+            bathymetry_ref="slope:depth=40,dn=0.01,de=0",
+            sound_speed_gradient_per_m=0.02,
+        )
+    )
     needs = env_needs_t()
     needs.utime, needs.client_id, needs.vehicle = 5_000_000, "AUV2-sim", "AUV2"
     needs.variables, needs.n_variables = ["bathymetry", "sound_speed"], 2
@@ -185,6 +194,7 @@ def memq_node(log: list, **kw):
     import lcm
 
     from sim.multihil.node import EnvNode, NodeConfig
+
     lc = lcm.LCM("memq://")
     return lc, EnvNode(NodeConfig("C-sim", "C", **kw), lc, Environment(EnvParams()), log=log.append)
 
@@ -192,17 +202,17 @@ def memq_node(log: list, **kw):
 def test_bad_traffic_is_counted_and_a_world_it_cannot_build_is_refused():
     log: list[str] = []
     lc, node = memq_node(log)
-    lc.publish("SIM.ENV_HEARTBEAT", b"\x00" * 5)          # undecodable: counted, dropped
+    lc.publish("SIM.ENV_HEARTBEAT", b"\x00" * 5)  # undecodable: counted, dropped
     lc.handle_timeout(100)
     assert node.rx.decode_errors == 1
-    node.election.on_heartbeat("S-sim", 1, 5)               # follow a server ...
+    node.election.on_heartbeat("S-sim", 1, 5)  # follow a server ...
     world = Environment(EnvParams(bathymetry_ref="flat:depth=30")).to_env_model(0, "S-sim", 1)
-    world.bathymetry_ref = "grid:no/such/bay.npz"           # ... whose grid this host lacks
+    world.bathymetry_ref = "grid:no/such/bay.npz"  # ... whose grid this host lacks
     lc.publish("SIM.ENV", world.encode())
     lc.handle_timeout(100)
     assert node.env_adoptions == 0 and node.env.params.bathymetry_ref == "flat:depth=50"
     assert any("cannot build the server's world" in line for line in log), log
-    world.bathymetry_ref = "flat:depth=30"                   # one it can build: adopted in place
+    world.bathymetry_ref = "flat:depth=30"  # one it can build: adopted in place
     lc.publish("SIM.ENV", world.encode())
     lc.handle_timeout(100)
     assert node.env_adoptions == 1 and node.env.water_depth(0.0, 0.0) == 30.0
@@ -210,6 +220,7 @@ def test_bad_traffic_is_counted_and_a_world_it_cannot_build_is_refused():
 
 def test_a_clock_of_another_mode_is_refused_with_a_message():
     from auv import sim_clock_t
+
     log: list[str] = []
     lc, node = memq_node(log, mode="lockstep")
     c = sim_clock_t()

@@ -29,8 +29,15 @@ class Recording:
     nav_rc: int
 
 
-def record_survey(out_dir: Path, url: str, env: dict, args: list[str], live_nav: Path | None = None,
-                  nav_channel: str = "AUV1.NAV_EKF", timeout: float = 600) -> Recording:
+def record_survey(
+    out_dir: Path,
+    url: str,
+    env: dict,
+    args: list[str],
+    live_nav: Path | None = None,
+    nav_channel: str = "AUV1.NAV_EKF",
+    timeout: float = 600,
+) -> Recording:
     """survey_log.py with `args`; if live_nav is a binary, auv-nav runs beside it."""
     out_dir.mkdir(parents=True, exist_ok=True)
     log = out_dir / "survey.lcmlog"
@@ -39,17 +46,40 @@ def record_survey(out_dir: Path, url: str, env: dict, args: list[str], live_nav:
     # the nav config the filter gets: derived from the same (overridden) world
     from auvlcm.url import with_receive_buffer
     from tools.survey_log import apply_overrides
+
     sim_yaml.write_text(apply_overrides(SURVEY_CONFIG.read_text(), sets))
     nav_cfg = out_dir / "survey.nav"
     subprocess.run([sys.executable, *NAVCONF, sim_yaml, "-o", nav_cfg], env=env, check=True, timeout=60)
     nav = None
     if live_nav is not None:
-        nav = subprocess.Popen([live_nav, "--config", nav_cfg, "--vehicle", "AUV1", "--channel", nav_channel,
-                                "--clock", "sim", "--rate", "10", "--url", with_receive_buffer(url)],
-                               env=env, stderr=subprocess.PIPE, text=True)
+        nav = subprocess.Popen(
+            [
+                live_nav,
+                "--config",
+                nav_cfg,
+                "--vehicle",
+                "AUV1",
+                "--channel",
+                nav_channel,
+                "--clock",
+                "sim",
+                "--rate",
+                "10",
+                "--url",
+                with_receive_buffer(url),
+            ],
+            env=env,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
     try:
-        run = subprocess.run([sys.executable, *SURVEY_LOG, "--out", log, "--url", url, *args],
-                             env=env, capture_output=True, text=True, timeout=timeout)
+        run = subprocess.run(
+            [sys.executable, *SURVEY_LOG, "--out", log, "--url", url, *args],
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+        )
         assert run.returncode == 0, run.stdout + run.stderr
     finally:
         rc, err = 0, ""
@@ -67,8 +97,9 @@ def record_survey(out_dir: Path, url: str, env: dict, args: list[str], live_nav:
 def replay(config: Path, log: Path, *extra, variant: Path = BUILD) -> dict[str, float | str]:
     """Run auv-nav-replay; its `key value` summary as a dict (numbers as floats)."""
     exe = variant / "bin" / "auv-nav-replay"
-    p = subprocess.run([exe, "--config", config, "--log", log, *map(str, extra)],
-                       capture_output=True, text=True, timeout=300)
+    p = subprocess.run(
+        [exe, "--config", config, "--log", log, *map(str, extra)], capture_output=True, text=True, timeout=300
+    )
     assert p.returncode not in SANITIZER_EXITS, p.stderr
     assert p.returncode == 0, p.stdout + p.stderr
     out: dict[str, float | str] = {}

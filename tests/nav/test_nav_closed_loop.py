@@ -24,7 +24,7 @@ NAVCONF = ("-m", "tools.navconf")
 # As tests/missions/test_missions.py: calm sea (the pilot's dive from the
 # surface in the default yaw-unstable hull does not survive the swell).
 SIM = {"environment": {"waves": None}, "sensors": {"ins": {"channel": "NAV_INS"}}}
-BOX = dict(north=40.0, east=-15.0, length=200.0, width=60.0)      # box_survey.chasm
+BOX = dict(north=40.0, east=-15.0, length=200.0, width=60.0)  # box_survey.chasm
 
 
 class EkfMission(Mission):
@@ -39,14 +39,34 @@ class EkfMission(Mission):
         self.trusted: list[tuple[float, bool, float]] = []
         self.ins: list[tuple[float, float, float]] = []
         self.rx.subscribe("AUV1.NAV", nav_solution_t, lambda c, m: self.sources.add(m.source), 1000)
-        self.rx.subscribe("AUV1.NAV_STATUS", nav_filter_status_t,
-                          lambda c, m: self.trusted.append((m.utime / 1e6, m.trusted, m.position_sigma_m)), 100)
-        self.rx.subscribe("AUV1.NAV_INS", nav_solution_t,
-                          lambda c, m: self.ins.append((m.utime / 1e6, m.north_m, m.east_m)), 1000)
+        self.rx.subscribe(
+            "AUV1.NAV_STATUS",
+            nav_filter_status_t,
+            lambda c, m: self.trusted.append((m.utime / 1e6, m.trusted, m.position_sigma_m)),
+            100,
+        )
+        self.rx.subscribe(
+            "AUV1.NAV_INS", nav_solution_t, lambda c, m: self.ins.append((m.utime / 1e6, m.north_m, m.east_m)), 1000
+        )
 
     def __enter__(self) -> "EkfMission":
-        self._start("nav", [BUILD / "bin" / "auv-nav", "--config", self.nav_cfg, "--vehicle", "AUV1",
-                            "--clock", "sim", "--rate", "20", "--url", self.url], "auv-nav: AUV1")
+        self._start(
+            "nav",
+            [
+                BUILD / "bin" / "auv-nav",
+                "--config",
+                self.nav_cfg,
+                "--vehicle",
+                "AUV1",
+                "--clock",
+                "sim",
+                "--rate",
+                "20",
+                "--url",
+                self.url,
+            ],
+            "auv-nav: AUV1",
+        )
         return super().__enter__()
 
     def _cycled(self) -> bool:
@@ -58,12 +78,15 @@ class EkfMission(Mission):
 
 
 def _truth_at(rec: Record, t: float):
-    return min(rec.truth[max(0, int(t * 50) - 60):int(t * 50) + 60] or rec.truth, key=lambda p: abs(p.t - t))
+    return min(rec.truth[max(0, int(t * 50) - 60) : int(t * 50) + 60] or rec.truth, key=lambda p: abs(p.t - t))
 
 
 def _done(rec: Record) -> bool:
-    return rec.run_state in (chasm_status_t.RUN_DONE, chasm_status_t.RUN_ABORTED) and rec.leaf() in (
-        "recover", "emergency") and rec.truth[-1].depth < 0.5
+    return (
+        rec.run_state in (chasm_status_t.RUN_DONE, chasm_status_t.RUN_ABORTED)
+        and rec.leaf() in ("recover", "emergency")
+        and rec.truth[-1].depth < 0.5
+    )
 
 
 @pytest.mark.slow
@@ -83,8 +106,11 @@ def test_box_survey_flown_on_the_filter(tmp_path, lcm_url, child_env):
     assert sum(t for _, t, _ in m.trusted) > 0.9 * len(m.trusted)
     # the box was covered: every 10 m of each line's middle within 5 m of the truth track
     for east in (0.0, 30.0):
-        bins = {int((p.n - BOX["north"]) // 10) for p in rec.truth
-                if abs(p.e - east) < 5 and BOX["north"] <= p.n < BOX["north"] + BOX["length"]}
+        bins = {
+            int((p.n - BOX["north"]) // 10)
+            for p in rec.truth
+            if abs(p.e - east) < 5 and BOX["north"] <= p.n < BOX["north"] + BOX["length"]
+        }
         assert bins == set(range(20)), f"line at east {east}: gaps at {sorted(set(range(20)) - bins)}"
 
 

@@ -17,7 +17,7 @@ from auvlcm.log import read_events
 
 LAUNCH = [sys.executable, "-m", "tools.launch"]
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
-PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")     # 1500 rpm for N cycles, then done
+PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")  # 1500 rpm for N cycles, then done
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 
@@ -34,8 +34,13 @@ def vehicle(vid, nav, east=0.0):
 
 
 def launch(path, out, url, env):
-    return subprocess.run(LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0"],
-                          env=env, capture_output=True, text=True, timeout=240)
+    return subprocess.run(
+        LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=240,
+    )
 
 
 def test_each_vehicle_flies_on_the_navigation_its_scenario_names(tmp_path, lcm_url, child_env):
@@ -50,9 +55,12 @@ def test_each_vehicle_flies_on_the_navigation_its_scenario_names(tmp_path, lcm_u
             sources.setdefault(ev.channel, set()).add(ev.msg.source)
         if ev.channel == "SIM.ANNOTATION":
             notes.add(ev.msg.name)
-    assert sources == {"AUV1.NAV": {nav_solution_t.SOURCE_EKF}, "AUV1.NAV_INS": {nav_solution_t.SOURCE_SIM_INS},
-                       "AUV2.NAV": {nav_solution_t.SOURCE_SIM_INS}}, sources
-    assert "AUV1.nav" in notes                               # the derived nav config is in the log
+    assert sources == {
+        "AUV1.NAV": {nav_solution_t.SOURCE_EKF},
+        "AUV1.NAV_INS": {nav_solution_t.SOURCE_SIM_INS},
+        "AUV2.NAV": {nav_solution_t.SOURCE_SIM_INS},
+    }, sources
+    assert "AUV1.nav" in notes  # the derived nav config is in the log
     merged = yaml.safe_load((tmp_path / "run" / "AUV1.sim.yaml").read_text())
     assert merged["sensors"]["ins"]["channel"] == "NAV_INS" and set(merged["sensors"]) >= {"ahrs", "dvl", "lbl"}
     assert (tmp_path / "run" / "AUV1.nav.out").exists() and not (tmp_path / "run" / "AUV2.nav.out").exists()
@@ -96,7 +104,7 @@ def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_ur
         publish(f"{vid}.ACTUATOR_STATE", actuator_state_t(), vid)
         publish(f"{vid}.CHASM.NAVIGATOR", chasm_status_t(), vid, "NAVIGATOR")
     assert not watch.all_ready() and watch.not_ready() == ["AUV1.NAV"]
-    publish("AUV2.NAV_STATUS", nav_filter_status_t(), "AUV2")     # not a filter this scenario runs
+    publish("AUV2.NAV_STATUS", nav_filter_status_t(), "AUV2")  # not a filter this scenario runs
     assert watch.not_ready() == ["AUV1.NAV"]
     publish("AUV1.NAV_STATUS", nav_filter_status_t(), "AUV1")
     assert watch.all_ready()
@@ -138,7 +146,7 @@ def test_the_clock_waits_for_a_filter_that_falls_behind(tmp_path, lcm_url):
         for n in sorted(names - {"AUV1.NAV"}):
             report(n, lockstep_t.KIND_STEP_DONE, step)
         clock.advance()
-        assert steps[-1] == step and clock.waiting_for() == ["AUV1.NAV"]   # held for the filter
+        assert steps[-1] == step and clock.waiting_for() == ["AUV1.NAV"]  # held for the filter
         report("AUV1.NAV", lockstep_t.KIND_STEP_DONE, step)
     clock.advance()
     while lc.handle_timeout(200) > 0:

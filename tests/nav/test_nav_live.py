@@ -33,7 +33,7 @@ def test_live_solution_follows_truth_with_its_covariance(survey):
     truth = TruthTrack(survey.log)
     sols, stats, health = _live(survey.log)
     duration = truth.t[-1] - truth.t[0]
-    assert len(sols) >= 0.9 * duration * 10, (len(sols), duration)       # 10 Hz on SIM.CLOCK
+    assert len(sols) >= 0.9 * duration * 10, (len(sols), duration)  # 10 Hz on SIM.CLOCK
     errs = []
     for m in sols:
         assert m.source == nav_solution_t.SOURCE_EKF and m.vehicle == "AUV1"
@@ -51,7 +51,7 @@ def test_live_solution_follows_truth_with_its_covariance(survey):
     trusted = sum(s.trusted for s in stats) / len(stats)
     assert len(stats) >= 0.9 * duration and trusted > 0.95, (len(stats), trusted)
     last = stats[-1]
-    assert last.accepted[0] > 10 * duration and last.accepted[4] > 0     # AHRS at 20 Hz, some LBL
+    assert last.accepted[0] > 10 * duration and last.accepted[4] > 0  # AHRS at 20 Hz, some LBL
     assert health and health[-1].decode_errors == 0 and health[-1].messages_received > 30 * duration
 
 
@@ -70,8 +70,12 @@ def test_each_compass_message_brings_a_solution_out_at_its_time(survey):
     assert len(at) == len(sols), "two solutions for one time: the clock's and the compass's"
     # (a solution the clock put out first, while the compass seemed silent,
     # keeps its time: the compass's for that time is not published after it)
-    same = [t for t in due if t in at
-            and (at[t].pitch_rad, at[t].q_radps, at[t].r_radps) == (ahrs[t].pitch_rad, ahrs[t].q_radps, ahrs[t].r_radps)]
+    same = [
+        t
+        for t in due
+        if t in at
+        and (at[t].pitch_rad, at[t].q_radps, at[t].r_radps) == (ahrs[t].pitch_rad, ahrs[t].q_radps, ahrs[t].r_radps)
+    ]
     assert len(same) >= 0.98 * len(due), (len(same), len(due))
     times = [m.utime for m in sols]
     assert times == sorted(times), "a solution older than one already out"
@@ -85,8 +89,9 @@ def test_live_and_replay_agree(survey, tmp_path):
     replay(survey.nav_config, survey.log, "--csv", out)
     est = {round(float(r["t_s"]), 1): (float(r["est_n"]), float(r["est_e"])) for r in csv.DictReader(open(out))}
     sols, _, _ = _live(survey.log)
-    diffs = [horizontal((m.north_m, m.east_m), est[round(m.utime / 1e6, 1)])
-             for m in sols if round(m.utime / 1e6, 1) in est]
+    diffs = [
+        horizontal((m.north_m, m.east_m), est[round(m.utime / 1e6, 1)]) for m in sols if round(m.utime / 1e6, 1) in est
+    ]
     assert len(diffs) > 0.9 * len(sols)
     diffs.sort()
     assert diffs[len(diffs) // 2] < 0.05 and diffs[int(0.99 * len(diffs))] < 0.5, diffs[-5:]

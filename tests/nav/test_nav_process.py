@@ -40,29 +40,42 @@ def test_bad_config_is_reported_with_file_line_and_column(tmp_path, variant_dir,
     cfg = tmp_path / "bad.nav"
     cfg.write_text(BAD)
     extra = ["--log", tmp_path / "none"] if program == "auv-nav-replay" else []
-    p = subprocess.run([variant_dir / "bin" / program, "--config", cfg, *extra],
-                       capture_output=True, text=True, timeout=30, env=child_env)
+    p = subprocess.run(
+        [variant_dir / "bin" / program, "--config", cfg, *extra],
+        capture_output=True,
+        text=True,
+        timeout=30,
+        env=child_env,
+    )
     assert p.returncode == 1, p.stderr
     lines = p.stderr.splitlines()
     assert f"{cfg}:2:1: unknown key 'depht_noise_m' (did you mean 'depth_noise_m'?)" in lines
     assert f"{cfg}:3:1: transponder needs 5 values: ID NORTH_M EAST_M DEPTH_M TURNAROUND_S" in lines
 
 
-@pytest.mark.parametrize("args,code", [([], 2), (["--config"], 2), (["--config", "x", "--rate", "0"], 2),
-                                        (["--config", "x", "--clock", "gps"], 2)])
+@pytest.mark.parametrize(
+    "args,code",
+    [([], 2), (["--config"], 2), (["--config", "x", "--rate", "0"], 2), (["--config", "x", "--clock", "gps"], 2)],
+)
 def test_usage_errors_exit_2(variant_dir, args, code, child_env):
-    p = subprocess.run([variant_dir / "bin" / "auv-nav", *args], capture_output=True, text=True, timeout=30,
-                       env=child_env)
+    p = subprocess.run(
+        [variant_dir / "bin" / "auv-nav", *args], capture_output=True, text=True, timeout=30, env=child_env
+    )
     assert p.returncode == code and p.stderr
 
 
 def test_replay_rejects_a_bad_drop_and_a_missing_log(tmp_path, build_dir):
     exe = build_dir / "bin" / "auv-nav-replay"
-    p = subprocess.run([exe, "--config", NAV_CFG, "--log", tmp_path / "x", "--drop", "sonar"],
-                       capture_output=True, text=True, timeout=30)
+    p = subprocess.run(
+        [exe, "--config", NAV_CFG, "--log", tmp_path / "x", "--drop", "sonar"],
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
     assert p.returncode == 1 and "--drop" in p.stderr
-    p = subprocess.run([exe, "--config", NAV_CFG, "--log", tmp_path / "missing.lcmlog"],
-                       capture_output=True, text=True, timeout=30)
+    p = subprocess.run(
+        [exe, "--config", NAV_CFG, "--log", tmp_path / "missing.lcmlog"], capture_output=True, text=True, timeout=30
+    )
     assert p.returncode == 1 and "cannot open log" in p.stderr
 
 
@@ -115,12 +128,16 @@ class World:
 
 
 def test_live_alignment_bad_messages_and_clean_stop(variant_dir, lcm_url, child_env):
-    nav = subprocess.Popen([variant_dir / "bin" / "auv-nav", "--config", NAV_CFG, "--vehicle", "AUV1",
-                            "--clock", "sim", "--url", lcm_url], stderr=subprocess.PIPE, text=True, env=child_env)
+    nav = subprocess.Popen(
+        [variant_dir / "bin" / "auv-nav", "--config", NAV_CFG, "--vehicle", "AUV1", "--clock", "sim", "--url", lcm_url],
+        stderr=subprocess.PIPE,
+        text=True,
+        env=child_env,
+    )
     try:
         w = World(lcm_url)
-        w.drain(1.0)                # let it subscribe (liblcm's self-test)
-        w.run(3, gps=False)         # compass, depth, DVL but no position
+        w.drain(1.0)  # let it subscribe (liblcm's self-test)
+        w.run(3, gps=False)  # compass, depth, DVL but no position
         w.drain()
         assert w.nav == [], "no solution before the filter is aligned"
         assert w.status and not any(s.trusted for s in w.status)
@@ -131,15 +148,20 @@ def test_live_alignment_bad_messages_and_clean_stop(variant_dir, lcm_url, child_
         assert last.source == nav_solution_t.SOURCE_EKF and last.status & nav_solution_t.STATUS_ALIGNED
         assert abs(last.north_m - 10) < 3 and abs(last.east_m - 20) < 3 and abs(last.depth_m - 5) < 0.1
         assert abs(last.heading_rad - math.pi / 2) < 0.01
-        assert abs(last.altitude_m - 20) < 0.01         # the DVL's range to the bottom
+        assert abs(last.altitude_m - 20) < 0.01  # the DVL's range to the bottom
         assert w.status[-1].trusted
         # garbage: a truncated DVL, an AHRS on the GPS channel, and seeded
         # random (absurd) messages of every sensor type
         w.lc.publish("AUV1.DVL", dvl_t().encode()[:-3])
         w.lc.publish("AUV1.GPS", ahrs_t().encode())
         rng = random.Random(8)
-        for cls, ch in ((ahrs_t, "AHRS"), (depth_t, "DEPTH"), (dvl_t, "DVL"), (gps_fix_t, "GPS"),
-                        (lbl_ranges_t, "LBL")):
+        for cls, ch in (
+            (ahrs_t, "AHRS"),
+            (depth_t, "DEPTH"),
+            (dvl_t, "DVL"),
+            (gps_fix_t, "GPS"),
+            (lbl_ranges_t, "LBL"),
+        ):
             for _ in range(20):
                 m = random_message(cls, rng)
                 m.vehicle = "AUV1"

@@ -76,7 +76,7 @@ def test_lbl_long_outliers_are_gated(survey, tmp_path):
         p1 = truth.at(r["t_s"] + r["two_way_travel_s"])
         true_range = (math.dist(x, p0) + math.dist(x, p1)) / 2
         err = r["range_m"] - true_range
-        if err > 8.0:           # > 6 sigma: a multipath outlier
+        if err > 8.0:  # > 6 sigma: a multipath outlier
             outliers += 1
             outliers_rejected += r["accepted"] == 0
         elif abs(err) < 3 * 1.25:
@@ -121,7 +121,7 @@ def test_dvl_dropout_degrades_then_recovers(survey, tmp_path):
     rows = _rows(out)
     during = [r for r in rows if 212 <= r["t_s"] <= 260]
     after = [r for r in rows if r["t_s"] >= 300]
-    assert during and all(int(r["status"]) & 32 for r in during)        # DEGRADED
+    assert during and all(int(r["status"]) & 32 for r in during)  # DEGRADED
     assert all(not r["trusted"] for r in during)
     assert sum(r["trusted"] for r in after) > 0.95 * len(after)
     assert max(r["h_err_m"] for r in rows) < 10.0, s
@@ -133,8 +133,9 @@ def test_startup_aligns_on_the_first_gps_fix(survey):
     s = replay(survey.nav_config, survey.log)
     assert s["align_time_s"] == 0.0 and s["aligned_samples"] == s["truth_samples"]
     late = replay(survey.nav_config, survey.log, "--drop", "gps:0:20.5")
-    first_fix = min(ev.msg.utime / 1e6 for ev in read_events(survey.log)
-                    if ev.channel == "AUV1.GPS" and ev.msg.utime / 1e6 > 20.5)
+    first_fix = min(
+        ev.msg.utime / 1e6 for ev in read_events(survey.log) if ev.channel == "AUV1.GPS" and ev.msg.utime / 1e6 > 20.5
+    )
     assert late["align_time_s"] == pytest.approx(first_fix, abs=0.15)
     assert late["aligned_samples"] < late["truth_samples"] - 200
     assert late["h_err_rms_m"] < 2.0
@@ -163,7 +164,7 @@ def test_water_track_estimates_the_current(water_track_survey, tmp_path):
         dc.append(math.hypot(r["est_cn"] - cn, r["est_ce"] - ce))
     assert sum(dc) / len(dc) < 0.05, sum(dc) / len(dc)
     assert s["h_err_rms_m"] < 3.0 and s["nees_pos_mean"] < 6.0, s
-    assert all(int(r["status"]) & 4 for r in rows[::20])     # DVL_WATER
+    assert all(int(r["status"]) & 4 for r in rows[::20])  # DVL_WATER
 
 
 def test_undecodable_messages_are_counted_and_dropped(survey, tmp_path):
@@ -176,7 +177,7 @@ def test_undecodable_messages_are_counted_and_dropped(survey, tmp_path):
     for ev in src:
         dst.write_event(ev.timestamp, ev.channel, ev.data)
         if ev.channel == "AUV1.DVL" and n < 3:
-            dst.write_event(ev.timestamp, "AUV1.DVL", ev.data[:-5])                  # truncated
+            dst.write_event(ev.timestamp, "AUV1.DVL", ev.data[:-5])  # truncated
             dst.write_event(ev.timestamp, "AUV1.LBL", struct.pack(">q", 42) + b"junk")  # wrong type
             n += 1
     src.close()

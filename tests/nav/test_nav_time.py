@@ -21,8 +21,12 @@ INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_bad_stamps_are_counted_in_nav_status_and_dropped(lcm_url, child_env, sanitized, build_dir):
     exe = (build_dir / "san" if sanitized else build_dir) / "bin" / "auv-nav"
-    nav = subprocess.Popen([exe, "--config", NAV_CFG, "--vehicle", "AUV1", "--clock", "sim", "--url", lcm_url],
-                           stderr=subprocess.PIPE, text=True, env=child_env)
+    nav = subprocess.Popen(
+        [exe, "--config", NAV_CFG, "--vehicle", "AUV1", "--clock", "sim", "--url", lcm_url],
+        stderr=subprocess.PIPE,
+        text=True,
+        env=child_env,
+    )
     try:
         w = World(lcm_url)
         w.drain(1.0)
@@ -34,9 +38,9 @@ def test_bad_stamps_are_counted_in_nav_status_and_dropped(lcm_url, child_env, sa
             w.lc.publish("AUV1.DEPTH", d.encode())
 
         for bad in (INT64_MIN, -1, 10**18, INT64_MAX):
-            depth(bad)                       # invalid: 4
-        depth(w.t + 30_000_000)              # 30 s ahead of the clock: from the future
-        depth(w.t - 2_000_000)               # older than the newest depth: out of order
+            depth(bad)  # invalid: 4
+        depth(w.t + 30_000_000)  # 30 s ahead of the clock: from the future
+        depth(w.t - 2_000_000)  # older than the newest depth: out of order
         for bad in (INT64_MAX, INT64_MIN):
             c = sim_clock_t()
             c.utime = bad
@@ -49,7 +53,9 @@ def test_bad_stamps_are_counted_in_nav_status_and_dropped(lcm_url, child_env, sa
         w.run(2.5, gps=True)
         w.drain()
         s = w.status[-1]
-        assert (s.dropped_invalid_time, s.dropped_future, s.dropped_out_of_order) == (4, 1, 1), {k: getattr(s, k) for k in s.__slots__}
+        assert (s.dropped_invalid_time, s.dropped_future, s.dropped_out_of_order) == (4, 1, 1), {
+            k: getattr(s, k) for k in s.__slots__
+        }
         assert (s.clock_invalid, s.clock_backwards, s.clock_jumps) == (2, 1, 1), {k: getattr(s, k) for k in s.__slots__}
         assert s.utime <= w.t, "the filter's clock followed a refused value"
         assert w.nav and max(n.utime for n in w.nav) <= w.t

@@ -12,8 +12,9 @@ from pathlib import Path
 import pytest
 
 HERE = Path(__file__).resolve().parent
-NAMES = sorted({m for f in (HERE / "unit").glob("test_*.cpp")
-                for m in re.findall(r"^TEST\((\w+)\)", f.read_text(), re.M)})
+NAMES = sorted(
+    {m for f in (HERE / "unit").glob("test_*.cpp") for m in re.findall(r"^TEST\((\w+)\)", f.read_text(), re.M)}
+)
 MONTE_CARLO = "nees_is_within_chi_square_bounds_over_monte_carlo_runs"
 
 

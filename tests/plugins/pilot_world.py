@@ -33,6 +33,7 @@ BIND = ROOT / "missions" / "bindings" / "pilot.bind"
 @dataclass
 class Setpoint:
     """What the scripted navigator asks for (SI units, setpoint_t modes)."""
+
     heading: float = 0.0
     vertical_mode: int = setpoint_t.VERTICAL_DEPTH
     depth: float = 0.0
@@ -42,12 +43,13 @@ class Setpoint:
     speed: float = 0.0
     rpm: float = 0.0
     speed_reference: int = setpoint_t.SPEED_OVER_GROUND
-    utime: int | None = None        # the stamp to send (None: the tick's time)
+    utime: int | None = None  # the stamp to send (None: the tick's time)
 
 
 @dataclass
 class Sample:
     """Ground truth at one tick, with the command the pilot sent."""
+
     t: float
     north: float
     east: float
@@ -65,14 +67,15 @@ class Sample:
 @dataclass
 class World:
     """Simulator + PILOT, clocked from here. Use as a context manager."""
+
     tmp: Path
     url: str
     env: dict
     build: Path
     initial: dict = field(default_factory=dict)
-    environment: dict = field(default_factory=dict)   # keys replaced in remus100.yaml's environment
+    environment: dict = field(default_factory=dict)  # keys replaced in remus100.yaml's environment
     drop_waves: bool = False
-    tick_s: float = 0.05                                # the PILOT's 20 Hz
+    tick_s: float = 0.05  # the PILOT's 20 Hz
     manager_args: tuple = ()
 
     def __enter__(self) -> "World":
@@ -89,10 +92,26 @@ class World:
         self.procs: list[subprocess.Popen] = []
         self.utime = 0
         self.samples: list[Sample] = []
-        mgr = [str(self.build / "bin" / "chasm-manager"), "--plan", str(PLAN), "--bind", str(BIND),
-               "--vehicle", "AUV1", "--name", "PILOT", "--rate", str(round(1 / self.tick_s)),
-               "--clock", "sim", "--url", self.url, "--plugin-path", str(self.build / "plugins"),
-               *self.manager_args]
+        mgr = [
+            str(self.build / "bin" / "chasm-manager"),
+            "--plan",
+            str(PLAN),
+            "--bind",
+            str(BIND),
+            "--vehicle",
+            "AUV1",
+            "--name",
+            "PILOT",
+            "--rate",
+            str(round(1 / self.tick_s)),
+            "--clock",
+            "sim",
+            "--url",
+            self.url,
+            "--plugin-path",
+            str(self.build / "plugins"),
+            *self.manager_args,
+        ]
         self.pilot = self._start(mgr, "PILOT: running")
         self.sim = self._start([sys.executable, "-m", "sim", str(self._config())], "running")
         return self
@@ -111,8 +130,13 @@ class World:
         """remus100.yaml (the default table-coefficient vehicle) with the
         test's clock, start state and any environment change."""
         cfg = yaml.safe_load(SIM_CONFIG.read_text())
-        cfg["simulation"].update(clock="lockstep", lcm_url=self.url, truth_rate_hz=round(1 / self.tick_s),
-                                 command_timeout_s=1.0, on_stale="hold")
+        cfg["simulation"].update(
+            clock="lockstep",
+            lcm_url=self.url,
+            truth_rate_hz=round(1 / self.tick_s),
+            command_timeout_s=1.0,
+            on_stale="hold",
+        )
         cfg["initial"].update(self.initial)
         cfg["environment"].update(self.environment)
         if self.drop_waves:
@@ -150,8 +174,7 @@ class World:
         if not self.truth:
             return
         m = self.truth[-1]
-        s = Sample(m.utime / 1e6, m.eta[0], m.eta[1], m.eta[2], m.eta[4], m.eta[5], m.nu[0], m.nu[5],
-                   m.altitude_m)
+        s = Sample(m.utime / 1e6, m.eta[0], m.eta[1], m.eta[2], m.eta[4], m.eta[5], m.nu[0], m.nu[5], m.altitude_m)
         if self.commands:
             c = self.commands[-1]
             s.rudder, s.plane, s.rpm = c.rudder_rad, c.stern_plane_rad, c.prop_rpm

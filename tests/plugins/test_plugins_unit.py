@@ -13,8 +13,12 @@ import pytest
 
 HERE = Path(__file__).resolve().parent
 PLUGINS = sorted(p.name for p in HERE.iterdir() if p.is_dir() and p.name not in ("common", "__pycache__"))
-CASES = [(plugin, name) for plugin in PLUGINS for f in sorted((HERE / plugin).glob("*.c"))
-         for name in re.findall(r'^\s*\{"(\w+)", \w+\},', f.read_text(), re.M)]
+CASES = [
+    (plugin, name)
+    for plugin in PLUGINS
+    for f in sorted((HERE / plugin).glob("*.c"))
+    for name in re.findall(r'^\s*\{"(\w+)", \w+\},', f.read_text(), re.M)
+]
 
 
 def test_the_c_test_lists_are_found():
@@ -27,7 +31,12 @@ def test_plugin_c_unit(plugin, name, variant_dir, child_env):
     exe = variant_dir / "bin" / f"test_plugin_{plugin}"
     if not exe.exists():
         pytest.fail(f"{exe} is not built: run `make build sanitize` first")
-    p = subprocess.run([str(exe), "--plugins", str(variant_dir / "plugins"), name], env=child_env,
-                       capture_output=True, text=True, timeout=120)
+    p = subprocess.run(
+        [str(exe), "--plugins", str(variant_dir / "plugins"), name],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert p.returncode not in (86, 87), f"sanitizer report:\n{p.stderr}"
     assert p.returncode == 0 and f"ok {name}" in p.stdout, p.stdout + p.stderr

@@ -12,8 +12,9 @@ VARIANTS = pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "s
 
 
 def run(*args, sanitized: bool, env: dict) -> subprocess.CompletedProcess:
-    return subprocess.run([c_program("bin/test_lcm_sender", sanitized), *args],
-                          capture_output=True, text=True, timeout=120, env=env)
+    return subprocess.run(
+        [c_program("bin/test_lcm_sender", sanitized), *args], capture_output=True, text=True, timeout=120, env=env
+    )
 
 
 @VARIANTS

@@ -17,9 +17,11 @@ from auvlcm.rx import Receiver
 
 
 class LockstepPilot:
-    def __init__(self, lc: lcm.LCM, vehicle: str, depth_m: float, heading_rad: float = 0.0,
-                 rpm: float = 1500.0) -> None:
+    def __init__(
+        self, lc: lcm.LCM, vehicle: str, depth_m: float, heading_rad: float = 0.0, rpm: float = 1500.0
+    ) -> None:
         from sim.pilot_model import PilotModel
+
         self.lc, self.vehicle = lc, vehicle
         self.depth, self.heading, self.rpm = depth_m, heading_rad, rpm
         self.ap = PilotModel(dt=0.04)
@@ -31,8 +33,7 @@ class LockstepPilot:
         cmd = actuators_t()
         cmd.utime, cmd.vehicle, cmd.seq, cmd.prop_rpm = nav.utime, self.vehicle, len(self.navs), self.rpm
         cmd.rudder_rad = self.ap.rudder(self.heading, nav.heading_rad, nav.r_radps)
-        cmd.stern_plane_rad = self.ap.stern_for_depth(self.depth, nav.depth_m, nav.pitch_rad,
-                                                      nav.q_radps)
+        cmd.stern_plane_rad = self.ap.stern_for_depth(self.depth, nav.depth_m, nav.pitch_rad, nav.q_radps)
         self.lc.publish(f"{self.vehicle}.ACTUATORS", cmd.encode())
 
     def fly(self, seconds: float, step_us: int = 40_000) -> None:
@@ -43,5 +44,6 @@ class LockstepPilot:
         for k in range(int(round(seconds * 1e6 / step_us)) + 1):
             clock.utime, clock.step = k * step_us, k
             self.lc.publish("SIM.CLOCK", clock.encode())
-            assert pump(self.lc, lambda: self.navs and self.navs[-1].utime == clock.utime,
-                        timeout=20), f"no NAV for t={clock.utime / 1e6:.2f}s"
+            assert pump(self.lc, lambda: self.navs and self.navs[-1].utime == clock.utime, timeout=20), (
+                f"no NAV for t={clock.utime / 1e6:.2f}s"
+            )

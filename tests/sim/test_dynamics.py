@@ -22,12 +22,21 @@ def free_body():
 
 
 def rotation(phi, th, psi):
-    cphi, sphi, cth, sth, cpsi, spsi = (math.cos(phi), math.sin(phi), math.cos(th),
-                                        math.sin(th), math.cos(psi), math.sin(psi))
-    return np.array([
-        [cpsi * cth, cpsi * sth * sphi - spsi * cphi, spsi * sphi + cpsi * cphi * sth],
-        [spsi * cth, cpsi * cphi + sphi * sth * spsi, sth * spsi * cphi - cpsi * sphi],
-        [-sth, cth * sphi, cth * cphi]])
+    cphi, sphi, cth, sth, cpsi, spsi = (
+        math.cos(phi),
+        math.sin(phi),
+        math.cos(th),
+        math.sin(th),
+        math.cos(psi),
+        math.sin(psi),
+    )
+    return np.array(
+        [
+            [cpsi * cth, cpsi * sth * sphi - spsi * cphi, spsi * sphi + cpsi * cphi * sth],
+            [spsi * cth, cpsi * cphi + sphi * sth * spsi, sth * spsi * cphi - cpsi * sphi],
+            [-sth, cth * sphi, cth * cphi],
+        ]
+    )
 
 
 def test_free_rigid_body_conserves_energy_and_momentum():
@@ -43,7 +52,7 @@ def test_free_rigid_body_conserves_energy_and_momentum():
         return energy, R @ (m * v), R @ (I @ w)
 
     e0, p0, h0 = invariants()
-    for _ in range(1500):           # 30 s of tumbling
+    for _ in range(1500):  # 30 s of tumbling
         d.step()
     e1, p1, h1 = invariants()
     assert abs(e1 - e0) / e0 < 1e-5
@@ -55,6 +64,7 @@ def test_free_rigid_body_conserves_energy_and_momentum():
 
 def test_rk4_converges_at_fourth_order():
     """Halving dt cuts the error about 16x (a wrong stage weight would not)."""
+
     def final(dt):
         d = Dynamics(REMUS100, dt)
         d.set_state([0, 0, 20, 0.2, 0.1, 0], [1.2, 0.1, 0.05, 0.3, 0.05, 0.05])
@@ -62,6 +72,7 @@ def test_rk4_converges_at_fourth_order():
         for _ in range(int(round(4.0 / dt))):
             d.step()
         return np.array(d.x)
+
     ref = final(0.0025)
     e1 = np.abs(final(0.04) - ref).max()
     e2 = np.abs(final(0.02) - ref).max()
@@ -96,12 +107,26 @@ def test_vehicle_moving_with_the_current_feels_no_force():
     """nu_r = 0 in a uniform current: no drag, no added-mass force, no drift,
     while the hull yaws (the nu_c_dot term keeps a rotating frame honest)."""
     vp = free_body()
-    vp = vp.with_updates({"hydro": dict(REMUS100.hydro, Kpp=0.0, Mqq=0.0, Nrr=0.0, Xqq=0.0,
-                                        Xrr=0.0, Yrr=0.0, Zqq=0.0, Ypq=0.0, Npq=0.0, Mrp=0.0,
-                                        Zrp=0.0)})
+    vp = vp.with_updates(
+        {
+            "hydro": dict(
+                REMUS100.hydro,
+                Kpp=0.0,
+                Mqq=0.0,
+                Nrr=0.0,
+                Xqq=0.0,
+                Xrr=0.0,
+                Yrr=0.0,
+                Zqq=0.0,
+                Ypq=0.0,
+                Npq=0.0,
+                Mrp=0.0,
+                Zrp=0.0,
+            )
+        }
+    )
     vp = vp.with_updates({"buoyancy_n": vp.weight_n, "cg_m": (0.0, 0.0, 0.0)})
-    env = Environment(EnvParams(bathymetry_ref="flat:depth=100",
-                                current=[CurrentLayer(0, 0.3, -0.2, 0)]))
+    env = Environment(EnvParams(bathymetry_ref="flat:depth=100", current=[CurrentLayer(0, 0.3, -0.2, 0)]))
     m = VehicleModel(vp, env, 0.02)
     psi = 1.0
     u = 0.3 * math.cos(psi) - 0.2 * math.sin(psi)
@@ -153,10 +178,10 @@ def test_positive_rudder_turns_bow_to_starboard():
     m.command = Command(math.radians(10), 0, 1500)
     for _ in range(25):
         m.step()
-    assert m.dyn.x[11] > 0.02          # r > 0
+    assert m.dyn.x[11] > 0.02  # r > 0
     m2 = VehicleModel(REMUS100, env, 0.02)
     m2.set_pose((0, 0, 10, 0, 0, 0), (1.5, 0, 0, 0, 0, 0), rpm=1500)
     m2.command = Command(0, math.radians(10), 1500)
     for _ in range(25):
         m2.step()
-    assert m2.dyn.x[10] < -0.02        # q < 0: bow down
+    assert m2.dyn.x[10] < -0.02  # q < 0: bow down

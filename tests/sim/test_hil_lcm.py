@@ -45,14 +45,18 @@ sensors:
 """
 
 
-def start_sim(tmp_path, child_env, url, clock="scaled", warp=10.0, timeout=1.0,
-              on_stale="hold", extra=(), ins_rate=20):
+def start_sim(tmp_path, child_env, url, clock="scaled", warp=10.0, timeout=1.0, on_stale="hold", extra=(), ins_rate=20):
     cfg = tmp_path / "sim.yaml"
-    cfg.write_text(CONFIG.format(clock=clock, warp=warp, timeout=timeout, on_stale=on_stale,
-                                 url=url, ins_rate=ins_rate))
-    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg), *extra],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env=child_env)
+    cfg.write_text(
+        CONFIG.format(clock=clock, warp=warp, timeout=timeout, on_stale=on_stale, url=url, ins_rate=ins_rate)
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sim", str(cfg), *extra],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=child_env,
+    )
     wait_for_line(proc, "running", timeout=20)
     return proc
 
@@ -88,7 +92,7 @@ def test_closed_loop_holds_heading_and_depth(tmp_path, child_env, lcm_url):
     heading_err = [abs((m.eta[5] + math.pi) % (2 * math.pi) - math.pi) for m in late]
     assert max(heading_err) < math.radians(5), max(heading_err)
     assert all(abs(m.eta[2] - 8.0) < 1.0 for m in late)
-    assert late[-1].eta[0] > 60.0                       # went north
+    assert late[-1].eta[0] > 60.0  # went north
     assert not rec.msgs["AUV1.ACTUATOR_STATE"][-1].command_stale
 
 
@@ -98,11 +102,13 @@ def test_stale_commands_go_to_the_safe_command_and_are_reported(tmp_path, child_
     rec.sub("AUV1.ACTUATOR_STATE", actuator_state_t)
     proc = start_sim(tmp_path, child_env, lcm_url, warp=10.0, timeout=2.0, on_stale="safe")
     try:
+
         def send(rpm):
             cmd = actuators_t()
             cmd.vehicle, cmd.prop_rpm, cmd.utime = "AUV1", rpm, 1
             lc.publish("AUV1.ACTUATORS", cmd.encode())
-        t_end = time.monotonic() + 1.0           # 10 sim s of commands at 1200 rpm
+
+        t_end = time.monotonic() + 1.0  # 10 sim s of commands at 1200 rpm
         while time.monotonic() < t_end:
             send(1200.0)
             lc.handle_timeout(20)
@@ -123,15 +129,16 @@ def test_stepped_mode_follows_the_external_clock(tmp_path, child_env, lcm_url):
     rec.sub("SIM.CLOCK", sim_clock_t)
     proc = start_sim(tmp_path, child_env, lcm_url, clock="lockstep")
     try:
-        t0 = 1_000_000_000                       # the world is already at 1000 s
+        t0 = 1_000_000_000  # the world is already at 1000 s
         clock = sim_clock_t()
         clock.server_id, clock.mode, clock.step_us = "test", sim_clock_t.MODE_LOCKSTEP, 100_000
-        for k in range(0, 51):                   # 5 s of global time, 0.1 s steps
+        for k in range(0, 51):  # 5 s of global time, 0.1 s steps
             clock.utime, clock.step = t0 + k * 100_000, k
             lc.publish("SIM.CLOCK", clock.encode())
             time.sleep(0.01)
-        assert pump(lc, lambda: rec.msgs["AUV1.TRUTH"]
-                    and rec.msgs["AUV1.TRUTH"][-1].utime >= t0 + 5_000_000, timeout=10)
+        assert pump(
+            lc, lambda: rec.msgs["AUV1.TRUTH"] and rec.msgs["AUV1.TRUTH"][-1].utime >= t0 + 5_000_000, timeout=10
+        )
         time.sleep(0.3)
         lc.handle_timeout(50)
         last = rec.msgs["AUV1.TRUTH"][-1].utime
@@ -152,11 +159,10 @@ def test_bad_messages_are_counted_dropped_and_reported(tmp_path, child_env, lcm_
         good = actuators_t()
         good.vehicle = "AUV1"
         for _ in range(5):
-            lc.publish("AUV1.ACTUATORS", b"\x00" * 7)            # truncated
+            lc.publish("AUV1.ACTUATORS", b"\x00" * 7)  # truncated
             lc.publish("AUV1.ACTUATORS", ground_truth_t().encode())  # wrong type
-            lc.publish("AUV1.ACTUATORS", good.encode()[:-3])      # cut short
-        assert pump(lc, lambda: any(h.decode_errors >= 15 for h in rec.msgs["AUV1.HEALTH"]),
-                    timeout=10)
+            lc.publish("AUV1.ACTUATORS", good.encode()[:-3])  # cut short
+        assert pump(lc, lambda: any(h.decode_errors >= 15 for h in rec.msgs["AUV1.HEALTH"]), timeout=10)
         n = len(rec.msgs["AUV1.TRUTH"])
         assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) > n + 5, timeout=30)  # still running
         assert pump(lc, lambda: len(rec.msgs["AUV1.HEALTH"]) >= 3, timeout=10)
@@ -178,12 +184,15 @@ def test_gaps_in_the_command_sequence_are_counted_as_overflows(tmp_path, child_e
     try:
         cmd = actuators_t()
         cmd.vehicle, cmd.prop_rpm = "AUV1", 1000.0
-        for seq in (1, 2, 5, 6, 10, 3):   # 3+3 missing; 3 after 10 is a pilot restart
+        for seq in (1, 2, 5, 6, 10, 3):  # 3+3 missing; 3 after 10 is a pilot restart
             cmd.seq = seq
             lc.publish("AUV1.ACTUATORS", cmd.encode())
             time.sleep(0.02)
-        assert pump(lc, lambda: any(h.queue_overflows == 5 and h.messages_received >= 6
-                                    for h in rec.msgs["AUV1.HEALTH"]), timeout=10)
+        assert pump(
+            lc,
+            lambda: any(h.queue_overflows == 5 and h.messages_received >= 6 for h in rec.msgs["AUV1.HEALTH"]),
+            timeout=10,
+        )
     finally:
         assert stop(proc) == 0
     assert max(h.queue_overflows for h in rec.msgs["AUV1.HEALTH"]) == 5
@@ -192,8 +201,9 @@ def test_gaps_in_the_command_sequence_are_counted_as_overflows(tmp_path, child_e
 def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
     cfg = tmp_path / "bad.yaml"
     cfg.write_text("simulation:\n  clock: warp\n")
-    res = subprocess.run([sys.executable, "-m", "sim", str(cfg)],
-                         capture_output=True, text=True, env=child_env, timeout=60)
+    res = subprocess.run(
+        [sys.executable, "-m", "sim", str(cfg)], capture_output=True, text=True, env=child_env, timeout=60
+    )
     assert res.returncode == 2
     assert f"{cfg}:2:10: simulation.clock:" in res.stderr
 
@@ -201,8 +211,9 @@ def test_config_error_exits_with_file_line_and_key(tmp_path, child_env):
 def test_non_local_url_is_refused(tmp_path, child_env):
     cfg = tmp_path / "far.yaml"
     cfg.write_text('simulation: {lcm_url: "udpm://239.255.76.67:7667?ttl=5"}\n')
-    res = subprocess.run([sys.executable, "-m", "sim", str(cfg)],
-                         capture_output=True, text=True, env=child_env, timeout=60)
+    res = subprocess.run(
+        [sys.executable, "-m", "sim", str(cfg)], capture_output=True, text=True, env=child_env, timeout=60
+    )
     assert res.returncode == 2 and "ttl=5" in res.stderr
 
 
@@ -217,19 +228,25 @@ def test_ins_output_channel_moves_or_goes_off(tmp_path, child_env, lcm_url, chan
     rec.sub("AUV1.TRUTH", ground_truth_t)
     rec.sub("SIM.CLOCK", sim_clock_t)
     cfg = tmp_path / "sim.yaml"
-    cfg.write_text(CONFIG.format(clock="scaled", warp=10.0, timeout=1.0, on_stale="hold",
-                                 url=lcm_url, ins_rate=20).replace("ins: {rate_hz: 20, bias: 0.0}",
-                                                      f"ins: {{rate_hz: 20, channel: {channel}}}"))
-    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env=child_env)
+    cfg.write_text(
+        CONFIG.format(clock="scaled", warp=10.0, timeout=1.0, on_stale="hold", url=lcm_url, ins_rate=20).replace(
+            "ins: {rate_hz: 20, bias: 0.0}", f"ins: {{rate_hz: 20, channel: {channel}}}"
+        )
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sim", str(cfg)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=child_env,
+    )
     try:
         wait_for_line(proc, "running", timeout=20)
-        assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) >= 30, timeout=20)   # 3 sim s
+        assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) >= 30, timeout=20)  # 3 sim s
     finally:
         assert stop(proc) == 0
     assert rec.msgs["AUV1.NAV"] == []
-    clocks = rec.msgs["SIM.CLOCK"]            # it runs the world alone: it is the clock
+    clocks = rec.msgs["SIM.CLOCK"]  # it runs the world alone: it is the clock
     assert clocks and clocks[-1].mode == sim_clock_t.MODE_SCALED and clocks[-1].warp == 10.0
     assert all(b.utime > a.utime for a, b in zip(clocks, clocks[1:]))
     moved = rec.msgs["AUV1.NAV_INS"]

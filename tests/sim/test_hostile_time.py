@@ -31,8 +31,7 @@ def command(utime: int, rpm: float, seq: int) -> bytes:
     return a.encode()
 
 
-def test_hostile_clocks_and_commands_are_dropped_counted_and_logged_once(tmp_path, child_env,
-                                                                       lcm_url):
+def test_hostile_clocks_and_commands_are_dropped_counted_and_logged_once(tmp_path, child_env, lcm_url):
     lc = lcm.LCM(lcm_url)
     rec = Recorder(lc)
     rec.sub("AUV1.TRUTH", ground_truth_t)
@@ -51,12 +50,12 @@ def test_hostile_clocks_and_commands_are_dropped_counted_and_logged_once(tmp_pat
         lc.publish("AUV1.ACTUATORS", command(now, 1000.0, 1))
         for i, bad in enumerate(INVALID):
             lc.publish("AUV1.ACTUATORS", command(bad, 0.0, 2 + i))
-        lc.publish("AUV1.ACTUATORS", command(now + 5_000_000, 0.0, 10))     # from the future
-        lc.publish("AUV1.ACTUATORS", command(now - 1_000_000, 0.0, 11))     # out of order
+        lc.publish("AUV1.ACTUATORS", command(now + 5_000_000, 0.0, 10))  # from the future
+        lc.publish("AUV1.ACTUATORS", command(now - 1_000_000, 0.0, 11))  # out of order
         for bad in INVALID:
             lc.publish("SIM.CLOCK", clock_msg(bad))
-        lc.publish("SIM.CLOCK", clock_msg(now - 1_000_000))                 # back by 1 s
-        lc.publish("SIM.CLOCK", clock_msg(now + 100_000_000))               # 100 s ahead, once
+        lc.publish("SIM.CLOCK", clock_msg(now - 1_000_000))  # back by 1 s
+        lc.publish("SIM.CLOCK", clock_msg(now + 100_000_000))  # 100 s ahead, once
         for k in range(21, 31):
             step_to(k)
         assert pump(lc, lambda: rec.msgs["AUV1.ACTUATOR_STATE"][-1].utime >= 30 * STEP_US)
@@ -67,6 +66,6 @@ def test_hostile_clocks_and_commands_are_dropped_counted_and_logged_once(tmp_pat
     times = [m.utime for m in truth]
     assert times == sorted(times) and times[-1] <= 30 * STEP_US + 20_000, times[-5:]
     states = [m for m in rec.msgs["AUV1.ACTUATOR_STATE"] if m.utime > now]
-    assert states and all(m.last_command_utime == now for m in states)   # the good command holds
+    assert states and all(m.last_command_utime == now for m in states)  # the good command holds
     assert "time drops: invalid 8, future 1, out_of_order 1, regression 1, jump 1" in out, out
-    assert out.count("dropped a message") == 5, out                       # one line per reason
+    assert out.count("dropped a message") == 5, out  # one line per reason

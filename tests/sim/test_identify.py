@@ -24,18 +24,30 @@ MINE, NOT_MINE = reacquire_look_t.RESULT_MINE, reacquire_look_t.RESULT_NOT_MINE
 
 
 def truth(t, north=0.0, east=0.0, altitude=4.0):
-    return Truth(t=t, eta=(north, east, 20.0, 0.0, 0.0, 0.0), nu=(1.0, 0, 0, 0, 0, 0),
-                 water_depth_m=20.0 + altitude, altitude_m=altitude)
+    return Truth(
+        t=t,
+        eta=(north, east, 20.0, 0.0, 0.0, 0.0),
+        nu=(1.0, 0, 0, 0, 0, 0),
+        water_depth_m=20.0 + altitude,
+        altitude_m=altitude,
+    )
 
 
 # objects around the origin: 1 (mine) at 3 m, 2 (clutter) at 5 m, 3 (mine) at 6.5 m
-FIELD = TargetField([Target(1, 3.0, 0.0, "mine_like", 1.5), Target(2, 0.0, -5.0, "clutter", 0.8),
-                     Target(3, 0.0, 6.5, "mine_like", 1.5)], 1, "seed")
+FIELD = TargetField(
+    [
+        Target(1, 3.0, 0.0, "mine_like", 1.5),
+        Target(2, 0.0, -5.0, "clutter", 0.8),
+        Target(3, 0.0, 6.5, "mine_like", 1.5),
+    ],
+    1,
+    "seed",
+)
 
 
 def hover(model: Identify, seconds: int, altitude=4.0) -> list:
     out = []
-    for k in range(seconds * 10):          # polled at 10 Hz, looks at 1 Hz
+    for k in range(seconds * 10):  # polled at 10 Hz, looks at 1 Hz
         out += model.poll(truth(k / 10, altitude=altitude))
     return out
 
@@ -49,12 +61,12 @@ def test_looks_follow_p_identify_and_p_correct_within_range_only():
     model = Identify(cfg, FIELD, seed=3, vehicle="AUV4")
     n = 3000
     looks = hover(model, n)
-    assert model.tries == 2 * n                      # objects 1 and 2 in range, 3 beyond
+    assert model.tries == 2 * n  # objects 1 and 2 in range, 3 beyond
     by = {1: [], 2: []}
     for m in looks:
         by[nearest(m).id].append(m)
     assert set(by) == {1, 2} and len(looks) == len(by[1]) + len(by[2])
-    for k in (1, 2):                                  # binomial, 4.5 sigma
+    for k in (1, 2):  # binomial, 4.5 sigma
         assert abs(len(by[k]) - 0.4 * n) < 4.5 * math.sqrt(n * 0.4 * 0.6)
     right = sum(m.result == MINE for m in by[1]) + sum(m.result == NOT_MINE for m in by[2])
     assert abs(right - 0.8 * len(looks)) < 4.5 * math.sqrt(len(looks) * 0.8 * 0.2)
@@ -63,7 +75,7 @@ def test_looks_follow_p_identify_and_p_correct_within_range_only():
     m = by[1][0]
     assert m.vehicle == "AUV4" and m.range_m == pytest.approx(3.0) and m.position_sigma_m == 0.3
     assert [x.look_id for x in looks] == list(range(1, len(looks) + 1))
-    assert len({x.utime for x in looks}) <= n         # once per period at most
+    assert len({x.utime for x in looks}) <= n  # once per period at most
     assert all(x.utime % 1_000_000 == 0 for x in looks)
 
 
@@ -71,7 +83,7 @@ def test_no_looks_too_high_and_the_navigation_error_moves_them():
     cfg = IdentifyConfig(p_identify=1.0, p_correct=1.0, position_sigma_m=0.0, max_altitude_m=8.0)
     assert hover(Identify(cfg, FIELD, 1, "AUV4"), 50, altitude=9.0) == []
     looks = hover(Identify(cfg, FIELD, 1, "AUV4", nav_error=lambda: (2.0, -1.0)), 5, altitude=7.9)
-    assert len(looks) == 10                           # two objects in range, every look
+    assert len(looks) == 10  # two objects in range, every look
     assert {(m.north_m, m.east_m, m.result) for m in looks} == {(5.0, -1.0, MINE), (2.0, -6.0, NOT_MINE)}
 
 
@@ -79,6 +91,7 @@ def test_same_seed_same_looks_other_seed_not():
     def run(seed):
         cfg = IdentifyConfig(range_m=8.0, p_identify=0.5, p_correct=0.7)
         return [(m.look_id, m.north_m, m.east_m, m.result) for m in hover(Identify(cfg, FIELD, seed, "AUV4"), 200)]
+
     a, b, c = run(5), run(5), run(6)
     assert a == b and a != c and len(a) > 100
 
@@ -93,11 +106,15 @@ def test_identify_config_errors_name_key_and_line():
     ]
     with pytest.raises(ConfigError) as exc:
         loads("sonar: {}\nidentify:\n  targets: {mines: 3}\n", Path("c.yaml"))
-    assert exc.value.errors == ["c.yaml:3:3: identify.targets: this configuration has a sonar section: "
-                                "its targets are the field (give the field in one place)"]
+    assert exc.value.errors == [
+        "c.yaml:3:3: identify.targets: this configuration has a sonar section: "
+        "its targets are the field (give the field in one place)"
+    ]
     with pytest.raises(ConfigError) as exc:
-        loads("identify:\n  targets: {mines: 50, min_separation_m: 100, area: {length_m: 50, width_m: 50}}\n",
-              Path("c.yaml"))
+        loads(
+            "identify:\n  targets: {mines: 50, min_separation_m: 100, area: {length_m: 50, width_m: 50}}\n",
+            Path("c.yaml"),
+        )
     assert exc.value.errors[0].startswith("c.yaml:2:20: identify.targets: cannot place")
     cfg = loads("environment: {seed: 4}\nidentify: {range_m: 8}\n")
     assert cfg.identify.range_m == 8 and cfg.identify.targets.seed == 4
@@ -118,27 +135,38 @@ identify:
   targets: {{file: targets.csv}}
 """
 # along the track north at east 0: in range (<= 6 m) 1, 2 and 4; 3 is 9 m off
-TARGETS = [(1, 15.0, 2.0, "mine_like"), (2, 25.0, -4.0, "clutter"), (3, 30.0, 9.0, "mine_like"),
-           (4, 40.0, 5.0, "mine_like")]
+TARGETS = [
+    (1, 15.0, 2.0, "mine_like"),
+    (2, 25.0, -4.0, "clutter"),
+    (3, 30.0, 9.0, "mine_like"),
+    (4, 40.0, 5.0, "mine_like"),
+]
 
 
 def test_looks_over_lcm_from_the_simulator(tmp_path, child_env, lcm_url):
     from lcm_proc import stop, wait_for_line
     from lockstep import LockstepPilot
     from test_hil_lcm import Recorder
-    (tmp_path / "targets.csv").write_text("id,north_m,east_m,kind,length_m\n" + "".join(
-        f"{i},{n},{e},{k},1.0\n" for i, n, e, k in TARGETS))
+
+    (tmp_path / "targets.csv").write_text(
+        "id,north_m,east_m,kind,length_m\n" + "".join(f"{i},{n},{e},{k},1.0\n" for i, n, e, k in TARGETS)
+    )
     cfg = tmp_path / "sim.yaml"
     cfg.write_text(CONFIG.format(url=lcm_url))
     lc = lcm.LCM(lcm_url)
     rec = Recorder(lc)
     rec.sub("AUV4.LOOKS", reacquire_look_t)
     pilot = LockstepPilot(lc, "AUV4", depth_m=5.0)
-    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=child_env)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sim", str(cfg)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=child_env,
+    )
     try:
         wait_for_line(proc, "running", timeout=20)
-        pilot.fly(32.0)                   # past the last object at 40 m north (and 6 m beyond)
+        pilot.fly(32.0)  # past the last object at 40 m north (and 6 m beyond)
         lc.handle_timeout(100)
     finally:
         assert stop(proc) == 0
@@ -148,7 +176,7 @@ def test_looks_over_lcm_from_the_simulator(tmp_path, child_env, lcm_url):
         t = min(TARGETS, key=lambda x: math.hypot(m.north_m - x[1], m.east_m - x[2]))
         assert math.hypot(m.north_m - t[1], m.east_m - t[2]) < 1.5
         assert m.vehicle == "AUV4" and m.range_m <= 6.0
-        assert m.result == (MINE if t[3] == "mine_like" else NOT_MINE)       # p_correct 1
+        assert m.result == (MINE if t[3] == "mine_like" else NOT_MINE)  # p_correct 1
         seen.setdefault(t[0], []).append(m.utime)
     assert set(seen) == {1, 2, 4}, seen
     assert [m.look_id for m in looks] == list(range(1, len(looks) + 1))

@@ -9,7 +9,7 @@ def test_slots_stay_on_the_grid_whatever_the_step():
     p = Periodic(0.1, 0.05)
     seen = []
     for k in range(1, 100):
-        t = k * 0.03            # a step that is no divisor of the period
+        t = k * 0.03  # a step that is no divisor of the period
         if p.due(t):
             seen.append(t)
             p.advance(t)
@@ -21,13 +21,13 @@ def test_slots_stay_on_the_grid_whatever_the_step():
 def test_missed_slots_are_skipped_not_caught_up():
     p = Periodic(0.1)
     assert p.due(0.0)
-    p.advance(0.55)             # five slots went by unseen
+    p.advance(0.55)  # five slots went by unseen
     assert abs(p.next_t - 0.6) < 1e-12 and not p.due(0.59)
 
 
 def test_a_rounding_error_short_of_a_slot_is_due():
     p = Periodic(0.1, 0.3)
-    assert p.due(0.1 + 0.2)     # 0.30000000000000004 > 0.3, and the other way round
+    assert p.due(0.1 + 0.2)  # 0.30000000000000004 > 0.3, and the other way round
     assert Periodic(0.1, 0.1 + 0.2).due(0.3)
 
 

@@ -31,10 +31,14 @@ from sim.sensors import (
 N = 4000
 
 
-def truth(t=0.0, eta=(10.0, -5.0, 20.0, 0.0, 0.0, 1.0), nu=(1.5, 0.0, 0.0, 0, 0, 0.01),
-          water_depth=45.0, current=(0.0, 0.0, 0.0)):
-    return Truth(t=t, eta=eta, nu=nu, current_ned=current, water_depth_m=water_depth,
-                 altitude_m=water_depth - eta[2])
+def truth(
+    t=0.0,
+    eta=(10.0, -5.0, 20.0, 0.0, 0.0, 1.0),
+    nu=(1.5, 0.0, 0.0, 0, 0, 0.01),
+    water_depth=45.0,
+    current=(0.0, 0.0, 0.0),
+):
+    return Truth(t=t, eta=eta, nu=nu, current_ned=current, water_depth_m=water_depth, altitude_m=water_depth - eta[2])
 
 
 def run(sensor, make_truth, n=N, rate=None):
@@ -77,7 +81,7 @@ def test_same_seed_same_measurements_other_seed_not():
 
 def test_sensor_keeps_its_rate_when_polled_at_physics_rate():
     s = DepthSensor(DepthConfig(rate_hz=10.0), 1, "AUV1")
-    msgs = run(s, truth, n=50 * 20, rate=50.0)   # 20 s at 50 Hz
+    msgs = run(s, truth, n=50 * 20, rate=50.0)  # 20 s at 50 Hz
     assert len(msgs) == 200
 
 
@@ -90,13 +94,11 @@ def test_dvl_bottom_lock_below_max_altitude_else_water_track_or_nothing():
     assert np.mean([m.velocity_mps[0] for m in low]) == pytest.approx(1.5, abs=0.002)
     assert all(m.mode == dvl_t.MODE_WATER_TRACK for m in high)
     # through the water: surge minus the current's body-x part (heading 1 rad)
-    assert np.mean([m.velocity_mps[0] for m in high]) == pytest.approx(
-        1.5 - 0.2 * math.cos(1.0), abs=0.002)
+    assert np.mean([m.velocity_mps[0] for m in high]) == pytest.approx(1.5 - 0.2 * math.cos(1.0), abs=0.002)
     none_cfg = DvlConfig(max_altitude_m=30.0, water_track=False)
     gone = run(Dvl(none_cfg, 1, "AUV1"), lambda t: truth(t, water_depth=90.0), n=100)
     assert all(m.mode == dvl_t.MODE_NONE for m in gone)
-    assert np.mean([m.beam_range_m[0] for m in low]) == pytest.approx(
-        25.0 / math.cos(math.radians(30)), abs=0.01)
+    assert np.mean([m.beam_range_m[0] for m in low]) == pytest.approx(25.0 / math.cos(math.radians(30)), abs=0.01)
 
 
 def test_altimeter_range_against_bathymetry_and_its_limit():
@@ -129,10 +131,17 @@ def test_gps_only_at_the_surface():
 
 
 def lbl_env(gradient=0.0):
-    return Environment(EnvParams(sound_speed_mps=1500.0, sound_speed_gradient_per_m=gradient,
-                                 transponders=[Transponder(1, 0.0, 0.0, 40.0, 0.05),
-                                               Transponder(2, 300.0, 400.0, 40.0, 0.10),
-                                               Transponder(3, 5000.0, 0.0, 40.0, 0.0)]))
+    return Environment(
+        EnvParams(
+            sound_speed_mps=1500.0,
+            sound_speed_gradient_per_m=gradient,
+            transponders=[
+                Transponder(1, 0.0, 0.0, 40.0, 0.05),
+                Transponder(2, 300.0, 400.0, 40.0, 0.10),
+                Transponder(3, 5000.0, 0.0, 40.0, 0.0),
+            ],
+        )
+    )
 
 
 def test_lbl_travel_times_match_geometry():
@@ -142,10 +151,9 @@ def test_lbl_travel_times_match_geometry():
     still = (0.0, 0.0, 0.0, 0, 0, 0)
     msgs = run(s, lambda t: truth(t, eta=(0.0, 0.0, 10.0, 0, 0, 0), nu=still), n=20, rate=1.0)
     m = msgs[0]
-    assert list(m.transponder_id) == [1, 2]          # 3 is out of range
+    assert list(m.transponder_id) == [1, 2]  # 3 is out of range
     assert m.two_way_travel_s[0] == pytest.approx(2 * 30.0 / 1500 + 0.05, abs=1e-9)
-    assert m.two_way_travel_s[1] == pytest.approx(
-        2 * math.sqrt(300 ** 2 + 400 ** 2 + 30 ** 2) / 1500 + 0.10, abs=1e-9)
+    assert m.two_way_travel_s[1] == pytest.approx(2 * math.sqrt(300**2 + 400**2 + 30**2) / 1500 + 0.10, abs=1e-9)
     assert m.sound_speed_mps == 1500.0
 
 
@@ -159,13 +167,13 @@ def test_lbl_noise_and_outliers_are_long():
     assert inliers.std() == pytest.approx(1.25, rel=0.06)
     outliers = rng[np.abs(rng) >= 5 * 1.25]
     assert len(outliers) / len(rng) == pytest.approx(0.05 * 0.875, abs=0.015)
-    assert (outliers > 0).all()                        # multipath is never shorter
+    assert (outliers > 0).all()  # multipath is never shorter
 
 
 def test_lbl_reply_published_after_the_last_reply_arrives():
     s = Lbl(LblConfig(rate_hz=0.5, noise=0.0, outlier_probability=0.0), 1, "AUV1", lbl_env())
     got = []
-    for i in range(200):                                # 4 s at 50 Hz
+    for i in range(200):  # 4 s at 50 Hz
         t = i * 0.02
         m = s.poll(truth(t, eta=(0.0, 0.0, 10.0, 0, 0, 0), nu=(0,) * 6))
         if m is not None:
@@ -178,12 +186,17 @@ def test_lbl_reply_published_after_the_last_reply_arrives():
 
 def test_ins_drift_grows_with_distance_and_gps_resets_it():
     frame = LocalFrame(41.5, -70.7)
-    cfg = InsConfig(rate_hz=10.0, noise=0.0, bias=math.radians(1.0), heading_random_walk=0.0,
-                    position_random_walk=0.0, velocity_scale_error=0.0)
+    cfg = InsConfig(
+        rate_hz=10.0,
+        noise=0.0,
+        bias=math.radians(1.0),
+        heading_random_walk=0.0,
+        position_random_walk=0.0,
+        velocity_scale_error=0.0,
+    )
     s = Ins(cfg, 1, "AUV1", frame)
     # 1000 s north at 1.5 m/s, submerged: a 1 deg heading error drifts 1.75 %
-    msgs = run(s, lambda t: truth(t, eta=(1.5 * t, 0.0, 20.0, 0, 0, 0), nu=(1.5, 0, 0, 0, 0, 0)),
-               n=10001)
+    msgs = run(s, lambda t: truth(t, eta=(1.5 * t, 0.0, 20.0, 0, 0, 0), nu=(1.5, 0, 0, 0, 0, 0)), n=10001)
     last = msgs[-1]
     dist = 1.5 * 1000.0
     assert last.east_m == pytest.approx(dist * math.sin(math.radians(1.0)), rel=0.01)

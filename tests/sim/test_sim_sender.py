@@ -43,8 +43,9 @@ class Driven(Simulator):
 
     def _check_stale(self) -> None:
         x = self.model.dyn.x
-        self.model.command = Command(self.ap.rudder(0.5, x[5], x[11]),
-                                     self.ap.stern_for_depth(25.0, x[2], x[4], x[10]), 1500.0)
+        self.model.command = Command(
+            self.ap.rudder(0.5, x[5], x[11]), self.ap.stern_for_depth(25.0, x[2], x[4], x[10]), 1500.0
+        )
         self.last_cmd_t = self.model.t
         super()._check_stale()
 
@@ -92,7 +93,7 @@ class Listener:
         self.lc = lcm.LCM(with_receive_buffer(url))
         self.got: list[tuple[str, bytes]] = []
         sub = self.lc.subscribe(pattern, lambda ch, data: self.got.append((ch, data)))
-        sub.set_queue_capacity(100_000)     # liblcm keeps 30 per subscription by default
+        sub.set_queue_capacity(100_000)  # liblcm keeps 30 per subscription by default
         self._stop = threading.Event()
         self._thread = threading.Thread(target=self._read, daemon=True)
         self._thread.start()
@@ -128,7 +129,7 @@ def message(i: int) -> tuple[str, bytes]:
 
 def test_threaded_lcm_delivers_every_message_in_order(lcm_url, listener):
     rx = listener(lcm_url, r"T\..*")
-    tx = ThreadedLcm(lcm_url, slots=4, spin_us=0)      # tiny queue, no spin: every path taken
+    tx = ThreadedLcm(lcm_url, slots=4, spin_us=0)  # tiny queue, no spin: every path taken
     sent = []
     for start in range(0, 1500, 100):
         for i in range(start, start + 100):
@@ -156,7 +157,7 @@ def test_the_simulator_sends_through_the_thread_what_the_loop_would(lcm_url, lis
     """Fast time, 10 s: the threaded run's messages as received over LCM are the
     in-process run's, published from the loop, message for message in order."""
     paced = Simulator(config(1.0, lcm_url, "scaled"))
-    assert not isinstance(paced.lc, ThreadedLcm)     # paced by the wall clock: the loop publishes
+    assert not isinstance(paced.lc, ThreadedLcm)  # paced by the wall clock: the loop publishes
     paced.close()
     rx = listener(lcm_url, r"(AUV1|SIM)\..*")
     sim = Simulator(config(10.0, lcm_url, "scaled"), fast=True)
@@ -166,7 +167,7 @@ def test_the_simulator_sends_through_the_thread_what_the_loop_would(lcm_url, lis
     assert "0 send errors" in summary
     want = recorded(Simulator, config(10.0, clock="scaled"), fast=True)
     got = [(ch, d) for ch, d in rx.wait_for(sim.published) if not ch.endswith(".HEALTH")]
-    assert len(want) > 900 and len({ch for ch, _ in want}) == 11   # the leak probes (LEAK) are the eleventh
+    assert len(want) > 900 and len({ch for ch, _ in want}) == 11  # the leak probes (LEAK) are the eleventh
     assert len(got) == len(want)
     assert got == want
 
@@ -174,7 +175,7 @@ def test_the_simulator_sends_through_the_thread_what_the_loop_would(lcm_url, lis
 def test_the_loop_never_waits_with_messages_still_queued(lcm_url):
     """Stepped mode: whenever the simulator blocks for the next SIM.CLOCK, the
     sender thread has sent everything (the clock's owner may be waiting for it)."""
-    tx = ThreadedLcm(lcm_url, spin_us=0)    # a sleeping sender: the flush has work to do
+    tx = ThreadedLcm(lcm_url, spin_us=0)  # a sleeping sender: the flush has work to do
     sim = Simulator(config(0.0, lcm_url, "lockstep"), lc=tx)
     pending_at_wait = []
     wait = sim._wait
@@ -182,11 +183,12 @@ def test_the_loop_never_waits_with_messages_still_queued(lcm_url):
     def checked_wait(timeout_s: float) -> bool:
         pending_at_wait.append(tx.pending())
         return wait(timeout_s)
+
     sim._wait = checked_wait
 
     def clock():
         pub = lcm.LCM(lcm_url)
-        for k in range(51):               # 5 s of sim time, 0.1 s steps
+        for k in range(51):  # 5 s of sim time, 0.1 s steps
             c = sim_clock_t()
             c.utime, c.mode, c.step_us = k * 100_000, sim_clock_t.MODE_LOCKSTEP, 100_000
             pub.publish("SIM.CLOCK", c.encode())
@@ -195,6 +197,7 @@ def test_the_loop_never_waits_with_messages_still_queued(lcm_url):
         while sim.model.t < 5.0 - 1e-6 and time.monotonic() < deadline:
             time.sleep(0.01)
         sim.stop_requested = True
+
     th = threading.Thread(target=clock)
     th.start()
     run_quiet(sim)
@@ -223,8 +226,18 @@ def test_same_seed_same_messages_another_seed_other_noise():
     b = recorded(Driven, config(30.0))
     c = recorded(Driven, config(30.0, seed=43))
     channels = {ch for ch, _ in a}
-    assert {"AUV1.AHRS", "AUV1.NAV", "AUV1.DVL", "AUV1.DEPTH", "AUV1.ALTIMETER", "AUV1.GPS",
-            "AUV1.LBL", "AUV1.TRUTH", "AUV1.ACTUATOR_STATE", "SIM.CLOCK"} <= channels
+    assert {
+        "AUV1.AHRS",
+        "AUV1.NAV",
+        "AUV1.DVL",
+        "AUV1.DEPTH",
+        "AUV1.ALTIMETER",
+        "AUV1.GPS",
+        "AUV1.LBL",
+        "AUV1.TRUTH",
+        "AUV1.ACTUATOR_STATE",
+        "SIM.CLOCK",
+    } <= channels
     assert a == b
     # the autopilot steers by truth: the vehicle moves the same, the instruments differ
     truth = [d for ch, d in a if ch == "AUV1.TRUTH"]
@@ -239,7 +252,7 @@ def test_send_failures_are_counted_and_reported_once(lcm_url):
     """Sends happen on the sender thread: a failure is counted, and the owner hears
     of it when it asks (the simulator asks at each HEALTH), once."""
     tx = ThreadedLcm(lcm_url)
-    tx.publish("T." + "X" * 100, b"abc")       # liblcm refuses channels over 63 characters
+    tx.publish("T." + "X" * 100, b"abc")  # liblcm refuses channels over 63 characters
     tx.publish("T.OK", b"abc")
     tx.flush()
     st = tx.stats()

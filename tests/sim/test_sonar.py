@@ -15,17 +15,21 @@ from sim.sonar import LateralRangeCurve, SonarConfig, Target, TargetField, Targe
 from sim.sonar import targets as tg
 from sim.sonar.sidescan import Sidescan
 
-ALONG = 50.0          # the targets' northing: the track passes them going north
+ALONG = 50.0  # the targets' northing: the track passes them going north
 
 
 def truth(t, north, east=0.0, heading=0.0, altitude=6.0):
-    return Truth(t=t, eta=(north, east, 20.0, 0.0, 0.0, heading), nu=(1.5, 0, 0, 0, 0, 0),
-                 water_depth_m=20.0 + altitude, altitude_m=altitude)
+    return Truth(
+        t=t,
+        eta=(north, east, 20.0, 0.0, 0.0, heading),
+        nu=(1.5, 0, 0, 0, 0, 0),
+        water_depth_m=20.0 + altitude,
+        altitude_m=altitude,
+    )
 
 
 def row_of_targets(offsets, kind=tg.MINE_LIKE) -> TargetField:
-    return TargetField([Target(i + 1, ALONG, float(y), kind, 1.5) for i, y in enumerate(offsets)],
-                       1, "seed")
+    return TargetField([Target(i + 1, ALONG, float(y), kind, 1.5) for i, y in enumerate(offsets)], 1, "seed")
 
 
 def fly_passes(sonar: Sidescan, passes: int, altitude: float, heading_north=True) -> list:
@@ -62,8 +66,7 @@ def test_detections_follow_the_lateral_range_curve_over_many_passes(altitude):
             assert abs(hits / n - p) <= 4.5 * math.sqrt(p * (1 - p) / n), (y, hits / n, p)
     # all targets together: a shift of the curve by a percent would show here
     p_all = np.array([curve.pd(y, altitude) for y in offsets])
-    assert abs(sonar.detections.sum() - n * p_all.sum()) <= 4.5 * math.sqrt(
-        n * np.sum(p_all * (1 - p_all)))
+    assert abs(sonar.detections.sum() - n * p_all.sum()) <= 4.5 * math.sqrt(n * np.sum(p_all * (1 - p_all)))
     inside_gap = np.abs(offsets) < g
     assert sonar.detections[inside_gap].sum() == 0 and inside_gap.sum() >= 5
 
@@ -79,20 +82,21 @@ def test_sweep_width_is_the_integral_of_the_curve_and_matches_detections():
     # range setting caps F and the nadir gap keeps growing
     w = [curve.sweep_width(h) for h in (2.0, 4.0, 8.0, 20.0, 29.0)]
     assert w[0] < w[1] < w[2] and w[2] > w[3] > w[4]
-    assert curve.sweep_width(0.5) == 0.0 and curve.sweep_width(40.0) == 0.0   # out of altitude
+    assert curve.sweep_width(0.5) == 0.0 and curve.sweep_width(40.0) == 0.0  # out of altitude
     # empirical: detections per pass of a dense row, times the spacing, is W
-    sonar = Sidescan(SonarConfig(false_alarms_per_km2=0.0),
-                     row_of_targets(np.arange(-59.75, 60.0, 0.5)), seed=9, vehicle="AUV1")
+    sonar = Sidescan(
+        SonarConfig(false_alarms_per_km2=0.0), row_of_targets(np.arange(-59.75, 60.0, 0.5)), seed=9, vehicle="AUV1"
+    )
     fly_passes(sonar, 60, 6.0)
     assert sonar.detections.sum() * 0.5 / 60 == pytest.approx(curve.sweep_width(6.0), rel=0.03)
 
 
 def test_false_alarm_rate_and_placement():
-    rate = 400.0        # per km^2: high, so the count says something
+    rate = 400.0  # per km^2: high, so the count says something
     cfg = SonarConfig(false_alarms_per_km2=rate)
     sonar = Sidescan(cfg, TargetField([], 1, "seed"), seed=4, vehicle="AUV1")
     contacts = []
-    updates = int(20000 / 0.3)                    # 20 km north at 0.3 m per update
+    updates = int(20000 / 0.3)  # 20 km north at 0.3 m per update
     for k in range(updates):
         contacts += sonar.poll(truth(k * 0.2, k * 0.3, altitude=6.0))
     g, far = LateralRangeCurve(cfg).imaged_band(6.0)
@@ -101,7 +105,7 @@ def test_false_alarm_rate_and_placement():
     assert sonar.imaged_area_m2 == pytest.approx(2 * (far - g) * run, rel=1e-6)
     assert len(contacts) == sonar.false_alarms
     assert abs(len(contacts) - expected) <= 4.5 * math.sqrt(expected), (len(contacts), expected)
-    east = np.array([c.east_m for c in contacts])     # heading north: across track is east
+    east = np.array([c.east_m for c in contacts])  # heading north: across track is east
     # placed in the imaged band on both sides (plus the sonar's range error)
     assert np.all((np.abs(east) > g - 1.5) & (np.abs(east) < far + 1.5))
     assert abs(np.mean(east > 0) - 0.5) < 0.05
@@ -112,23 +116,21 @@ def test_same_seed_same_contacts_other_seed_not():
     def run(seed):
         cfg = SonarConfig(false_alarms_per_km2=200.0)
         sonar = Sidescan(cfg, row_of_targets(np.arange(-40, 41, 4.0)), seed=seed, vehicle="AUV1")
-        return [(c.contact_id, c.north_m, c.east_m, c.classification, c.confidence)
-                for c in fly_passes(sonar, 20, 6.0)]
+        return [(c.contact_id, c.north_m, c.east_m, c.classification, c.confidence) for c in fly_passes(sonar, 20, 6.0)]
+
     a, b, c = run(1), run(1), run(2)
     assert a == b and a != c and len(a) > 50
 
 
 def test_contact_position_error_and_fields():
-    cfg = SonarConfig(false_alarms_per_km2=0.0, along_track_sigma_m=0.5, range_sigma_m=0.3,
-                      pd_max=1.0)
-    sonar = Sidescan(cfg, row_of_targets([-20.0, 25.0]), seed=5, vehicle="AUV1",
-                     nav_error=lambda: (3.0, -2.0))
+    cfg = SonarConfig(false_alarms_per_km2=0.0, along_track_sigma_m=0.5, range_sigma_m=0.3, pd_max=1.0)
+    sonar = Sidescan(cfg, row_of_targets([-20.0, 25.0]), seed=5, vehicle="AUV1", nav_error=lambda: (3.0, -2.0))
     contacts = fly_passes(sonar, 400, 6.0)
     assert len(contacts) == 800
     port = [c for c in contacts if c.side == 0]
     stbd = [c for c in contacts if c.side == 1]
     assert len(port) == len(stbd) == 400
-    dn = np.array([c.north_m - ALONG for c in stbd]) - 3.0     # minus the navigation error
+    dn = np.array([c.north_m - ALONG for c in stbd]) - 3.0  # minus the navigation error
     de = np.array([c.east_m - 25.0 for c in stbd]) + 2.0
     assert dn.std() == pytest.approx(0.5, rel=0.12) and abs(dn.mean()) < 0.1
     assert de.std() == pytest.approx(0.3, rel=0.12) and abs(de.mean()) < 0.1
@@ -138,22 +140,27 @@ def test_contact_position_error_and_fields():
     assert [m.contact_id for m in contacts] == list(range(1, 801))
     # classification = score >= threshold, the score of a mine from Beta(6, 2)
     assert np.mean([m.classification == "mine_like" for m in contacts]) == pytest.approx(
-        beta_above(6, 2, 0.5), abs=0.03)
+        beta_above(6, 2, 0.5), abs=0.03
+    )
     assert {m.classification for m in contacts} == {"mine_like", "unknown"}
 
 
 def beta_above(a: int, b: int, x: float) -> float:
     """P(Beta(a, b) >= x) for whole a, b: P(Binomial(a + b - 1, x) < a)."""
     n = a + b - 1
-    return sum(math.comb(n, k) * x ** k * (1 - x) ** (n - k) for k in range(a))
+    return sum(math.comb(n, k) * x**k * (1 - x) ** (n - k) for k in range(a))
 
 
 def test_scores_follow_the_confusion_model_and_set_the_classification():
     """Mines' scores from Beta(mine_a, mine_b), clutter's and false alarms' from
     Beta(clutter_a, clutter_b): means, the fraction over the threshold, the overlap."""
     from sim.sonar import ScoreModel
-    cfg = SonarConfig(false_alarms_per_km2=0.0, pd_max=1.0,
-                      score=ScoreModel(mine_a=5, mine_b=3, clutter_a=2, clutter_b=4, threshold=0.6))
+
+    cfg = SonarConfig(
+        false_alarms_per_km2=0.0,
+        pd_max=1.0,
+        score=ScoreModel(mine_a=5, mine_b=3, clutter_a=2, clutter_b=4, threshold=0.6),
+    )
     mines = Sidescan(cfg, row_of_targets([-20.0, 25.0]), seed=8, vehicle="AUV1")
     clutter = Sidescan(cfg, row_of_targets([-20.0, 25.0], kind=tg.CLUTTER), seed=8, vehicle="AUV1")
     cm, cc = fly_passes(mines, 500, 6.0), fly_passes(clutter, 500, 6.0)
@@ -163,22 +170,20 @@ def test_scores_follow_the_confusion_model_and_set_the_classification():
     assert sm.mean() == pytest.approx(5 / 8, abs=0.02) and sc.mean() == pytest.approx(2 / 6, abs=0.02)
     assert np.mean(sm >= 0.6) == pytest.approx(beta_above(5, 3, 0.6), abs=0.05)
     assert np.mean(sc >= 0.6) == pytest.approx(beta_above(2, 4, 0.6), abs=0.03)
-    assert 0 < np.mean(sc >= 0.6) and np.mean(sm < 0.6) > 0      # they overlap
+    assert 0 < np.mean(sc >= 0.6) and np.mean(sm < 0.6) > 0  # they overlap
     for c in cm:
         assert c.classification == ("mine_like" if c.confidence >= np.float32(0.6) else "unknown")
     for c in cc:
         assert c.classification == ("mine_like" if c.confidence >= np.float32(0.6) else "clutter")
     # false alarms are scored like clutter
-    fa = Sidescan(SonarConfig(false_alarms_per_km2=5000.0, score=cfg.score), row_of_targets([]),
-                  seed=2, vehicle="AUV1")
+    fa = Sidescan(SonarConfig(false_alarms_per_km2=5000.0, score=cfg.score), row_of_targets([]), seed=2, vehicle="AUV1")
     sf = np.array([c.confidence for k in range(3000) for c in fa.poll(truth(k * 0.2, k * 0.3))])
     assert len(sf) > 300 and sf.mean() == pytest.approx(2 / 6, abs=0.03)
 
 
 def test_score_model_config_is_checked_and_the_old_keys_say_what_replaced_them():
     with pytest.raises(ConfigError) as exc:
-        loads("sonar:\n  p_classify: 0.8\n  score: {mine_a: 0, threshold: 1.5, clutter_bb: 3}\n",
-              Path("c.yaml"))
+        loads("sonar:\n  p_classify: 0.8\n  score: {mine_a: 0, threshold: 1.5, clutter_bb: 3}\n", Path("c.yaml"))
     assert exc.value.errors == [
         "c.yaml:2:3: sonar.p_classify: replaced by the score model sonar.score (mine_a, mine_b, "
         "clutter_a, clutter_b, threshold; docs/simulator.md)",
@@ -192,12 +197,12 @@ def test_score_model_config_is_checked_and_the_old_keys_say_what_replaced_them()
 
 def test_no_image_when_rolling_hard_or_out_of_altitude():
     sonar = Sidescan(SonarConfig(pd_max=1.0), row_of_targets([20.0]), seed=1, vehicle="AUV1")
-    for k in range(40):       # too high above the seabed: passes unlooked
+    for k in range(40):  # too high above the seabed: passes unlooked
         sonar.poll(truth(k * 0.2, 45 + k * 0.3, altitude=35.0))
     assert sonar.looks[0] == 0
     tr = [truth(100 + k * 0.2, 45 + k * 0.3) for k in range(40)]
     for x in tr:
-        x.eta = x.eta[:3] + (0.4,) + x.eta[4:]      # 23 deg of roll
+        x.eta = x.eta[:3] + (0.4,) + x.eta[4:]  # 23 deg of roll
         sonar.poll(x)
     assert sonar.looks[0] == 0
 
@@ -219,6 +224,7 @@ def test_targets_placed_by_seed_in_the_area_apart_and_reproducible():
     assert f1.targets[0].depth_m == pytest.approx(30.0 + 0.01 * f1.targets[0].north_m)
     msg = f1.to_lcm(5, "bay")
     from auv import target_field_t
+
     back = target_field_t.decode(msg.encode())
     assert back.n_targets == 52 and back.seed == 7 and back.world == "bay"
     assert sum(t.kind == 0 for t in back.targets) == 12
@@ -226,14 +232,14 @@ def test_targets_placed_by_seed_in_the_area_apart_and_reproducible():
 
 def test_target_file_is_read_and_its_errors_name_the_line(tmp_path):
     good = tmp_path / "t.csv"
-    good.write_text("# two objects\nid,north_m,east_m,kind,length_m\n1,10,5,mine_like,1.5\n"
-                    "2,20,-5,clutter,0.5\n")
+    good.write_text("# two objects\nid,north_m,east_m,kind,length_m\n1,10,5,mine_like,1.5\n2,20,-5,clutter,0.5\n")
     f = tg.load(good, lambda n, e: 40.0)
     assert [(t.id, t.kind, t.depth_m) for t in f.targets] == [(1, "mine_like", 40.0), (2, "clutter", 40.0)]
     assert f.seed == 0 and f.source == str(good)
     bad = tmp_path / "bad.csv"
-    bad.write_text("id,north_m,east_m,kind,length_m\n1,10,5,mine,1\n1,x,5,clutter,1\n"
-                   "2,1,2,clutter,1\n2,1,2,clutter,1\n3,1,2\n")
+    bad.write_text(
+        "id,north_m,east_m,kind,length_m\n1,10,5,mine,1\n1,x,5,clutter,1\n2,1,2,clutter,1\n2,1,2,clutter,1\n3,1,2\n"
+    )
     with pytest.raises(TargetFileError) as exc:
         tg.load(bad, lambda n, e: 0.0)
     lines = str(exc.value).splitlines()
@@ -243,8 +249,11 @@ def test_target_file_is_read_and_its_errors_name_the_line(tmp_path):
 
 def test_sonar_config_errors_name_key_and_line(tmp_path):
     with pytest.raises(ConfigError) as exc:
-        loads("sonar:\n  range_m: -5\n  knee_fraction: 1.5\n  targets:\n    mines: 2.5\n"
-              "    area: {widht_m: 3}\n  publish_targets: maybe\n", Path("c.yaml"))
+        loads(
+            "sonar:\n  range_m: -5\n  knee_fraction: 1.5\n  targets:\n    mines: 2.5\n"
+            "    area: {widht_m: 3}\n  publish_targets: maybe\n",
+            Path("c.yaml"),
+        )
     assert exc.value.errors == [
         "c.yaml:2:12: sonar.range_m: must be > 0",
         "c.yaml:3:18: sonar.knee_fraction: must be in [0, 1]",
@@ -257,9 +266,11 @@ def test_sonar_config_errors_name_key_and_line(tmp_path):
     cfgfile.write_text("sonar:\n  targets: {file: t.csv}\n")
     with pytest.raises(ConfigError) as exc:
         from sim.config import load
+
         load(cfgfile)
-    assert exc.value.errors == [f"{cfgfile}:2:19: sonar.targets: {tmp_path / 't.csv'}:2: "
-                                "kind 'rock' is not one of mine_like, clutter"]
+    assert exc.value.errors == [
+        f"{cfgfile}:2:19: sonar.targets: {tmp_path / 't.csv'}:2: kind 'rock' is not one of mine_like, clutter"
+    ]
     assert loads("sonar: false\n").sonar is None
     assert loads("environment: {seed: 11}\nsonar: {}\n").sonar.targets.seed == 11
 
@@ -269,10 +280,11 @@ def test_coverage_counts_looks_per_pass_and_their_detection_probability():
     cfg = SonarConfig()
     curve = LateralRangeCurve(cfg)
     h = 6.0
-    n = np.arange(0.0, 200.0, 0.15)                  # north along east = 0
+    n = np.arange(0.0, 200.0, 0.15)  # north along east = 0
     g, k, far = curve.limits(h)
-    cov = coverage_grid(n, np.zeros_like(n), np.zeros_like(n), np.full_like(n, h), curve,
-                        cell=1.0, bounds=(0, 200, -60, 60))
+    cov = coverage_grid(
+        n, np.zeros_like(n), np.zeros_like(n), np.full_like(n, h), curve, cell=1.0, bounds=(0, 200, -60, 60)
+    )
     cn, ce = cov.centres()
     row = np.searchsorted(cn, 100.0)
     for j, e in enumerate(ce):
@@ -286,8 +298,7 @@ def test_coverage_counts_looks_per_pass_and_their_detection_probability():
     # the same line back south is a second pass: two looks, 1 - (1 - P)^2
     n2 = np.concatenate([n, n[::-1]])
     yaw = np.concatenate([np.zeros_like(n), np.full_like(n, math.pi)])
-    cov2 = coverage_grid(n2, np.zeros_like(n2), yaw, np.full_like(n2, h), curve, cell=1.0,
-                         bounds=(0, 200, -60, 60))
+    cov2 = coverage_grid(n2, np.zeros_like(n2), yaw, np.full_like(n2, h), curve, cell=1.0, bounds=(0, 200, -60, 60))
     j = np.searchsorted(ce, 20.0)
     assert cov2.looks[row, j] == 2
     assert cov2.pd[row, j] == pytest.approx(1 - (1 - curve.pd(ce[j], h)) ** 2, abs=0.01)

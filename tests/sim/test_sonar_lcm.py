@@ -31,13 +31,22 @@ sonar:
   publish_targets: yes
   targets: {{file: targets.csv}}
 """
-TARGETS = [(1, 20.0, 15.0), (2, 25.0, -15.0), (3, 30.0, 25.0), (4, 35.0, -25.0),
-           (5, 40.0, 20.0), (6, 45.0, -20.0), (7, 50.0, 30.0), (8, 55.0, -30.0)]
+TARGETS = [
+    (1, 20.0, 15.0),
+    (2, 25.0, -15.0),
+    (3, 30.0, 25.0),
+    (4, 35.0, -25.0),
+    (5, 40.0, 20.0),
+    (6, 45.0, -20.0),
+    (7, 50.0, 30.0),
+    (8, 55.0, -30.0),
+]
 
 
 def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
-    (tmp_path / "targets.csv").write_text("id,north_m,east_m,kind,length_m\n" + "".join(
-        f"{i},{n},{e},mine_like,1.5\n" for i, n, e in TARGETS))
+    (tmp_path / "targets.csv").write_text(
+        "id,north_m,east_m,kind,length_m\n" + "".join(f"{i},{n},{e},mine_like,1.5\n" for i, n, e in TARGETS)
+    )
     cfg = tmp_path / "sim.yaml"
     cfg.write_text(CONFIG.format(url=lcm_url))
     lc = lcm.LCM(lcm_url)
@@ -45,25 +54,29 @@ def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
     rec.sub("AUV2.CONTACTS", sidescan_contact_t)
     rec.sub("SIM.TARGETS", target_field_t)
     pilot = LockstepPilot(lc, "AUV2", depth_m=5.0)
-    proc = subprocess.Popen([sys.executable, "-m", "sim", str(cfg)],
-                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                            env=child_env)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sim", str(cfg)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=child_env,
+    )
     try:
         wait_for_line(proc, "running", timeout=20)
-        pilot.fly(45.0)                          # past the last target at 55 m north
+        pilot.fly(45.0)  # past the last target at 55 m north
         lc.handle_timeout(100)
     finally:
         assert stop(proc) == 0
     fields = rec.msgs["SIM.TARGETS"]
-    assert len(fields) == 5                      # at 0 s, then every 10 s of sim time
+    assert len(fields) == 5  # at 0 s, then every 10 s of sim time
     assert fields[0].n_targets == 8 and fields[0].source.endswith("targets.csv")
     assert fields[0].targets[0].depth_m == 15.0
     contacts = rec.msgs["AUV2.CONTACTS"]
-    assert 5 <= len(contacts) <= 8                # P = 0.9 each at 10 m altitude
+    assert 5 <= len(contacts) <= 8  # P = 0.9 each at 10 m altitude
     assert [c.contact_id for c in contacts] == list(range(1, len(contacts) + 1))
     for c in contacts:
         near = min(TARGETS, key=lambda t: math.hypot(c.north_m - t[1], c.east_m - t[2]))
         assert math.hypot(c.north_m - near[1], c.east_m - near[2]) < 4.0
         assert c.vehicle == "AUV2" and c.side == (1 if near[2] > 0 else 0)
-        assert abs(c.utime / 1e6 - near[1] / 1.5) < 8.0          # when it passed abeam
+        assert abs(c.utime / 1e6 - near[1] / 1.5) < 8.0  # when it passed abeam
         assert 9.0 < c.vehicle_altitude_m < 11.0

@@ -25,8 +25,15 @@ def test_quick_report_passes_and_says_so(capsys):
     figs = validate.run(quick=True)
     out = capsys.readouterr().out
     assert figs and all(f.ok for f in figs), [f.name for f in figs if not f.ok]
-    for name in ("wave dynamic pressure at 3 m", "speed at 1500 rpm", "roll: natural period",
-                 "turn diameter, 20 deg rudder", "plane step", "depth hold at 5 m", "PASS"):
+    for name in (
+        "wave dynamic pressure at 3 m",
+        "speed at 1500 rpm",
+        "roll: natural period",
+        "turn diameter, 20 deg rudder",
+        "plane step",
+        "depth hold at 5 m",
+        "PASS",
+    ):
         assert name in out
     assert "FAIL" not in out
 
@@ -57,7 +64,7 @@ def test_regular_wave_matches_linear_theory(depth, speed, heave, pressure):
     assert a["pressure_pa"] == pytest.approx(pressure, rel=0.01)
     # linear amplitude A w, plus the steady second-order (u . grad) u = -k A^2 (up)
     amp = a["orbital_mps"]
-    assert a["accel_mps2"] == pytest.approx(amp * 2 * math.pi / 6.0, abs=1.1 * a["k"] * amp ** 2)
+    assert a["accel_mps2"] == pytest.approx(amp * 2 * math.pi / 6.0, abs=1.1 * a["k"] * amp**2)
 
 
 def test_spectrum_has_its_significant_height_and_follows_the_seed():
@@ -95,7 +102,7 @@ def _float_in_wave(vp, with_acceleration: bool = True) -> np.ndarray:
         else:
             m.step()
         z.append(m.dyn.x[2])
-    return np.array(z[int(6.0 / v.DT):])
+    return np.array(z[int(6.0 / v.DT) :])
 
 
 def test_a_neutral_hull_rides_the_wave_like_the_water():
@@ -127,7 +134,7 @@ def test_level_trim_exists_from_1_to_2_3_mps_and_max_rpm_is_about_2_5_mps():
     for speed in (1.0, 1.5, 2.3):
         tr = v.trim(REMUS100, speed)
         assert tr["residual"] < 1e-9
-        assert abs(tr["plane_rad"]) < REMUS100.fin_max_rad * 0.9      # authority left
+        assert abs(tr["plane_rad"]) < REMUS100.fin_max_rad * 0.9  # authority left
         assert tr["rpm"] < REMUS100.prop_max_rpm
     assert v.trim_speed(REMUS100, REMUS100.prop_max_rpm) == pytest.approx(2.5, abs=0.1)
 

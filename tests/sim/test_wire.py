@@ -24,9 +24,13 @@ from sim.wire import Encoder, fixed_layout
 
 # every fixed-layout type the simulator publishes, with its fixed strings
 SENT = [
-    (ahrs_t, {"vehicle": "AUV1"}), (depth_t, {"vehicle": "AUV1"}), (dvl_t, {"vehicle": "AUV1"}),
-    (altimeter_t, {"vehicle": "AUV1"}), (gps_fix_t, {"vehicle": "AUV1"}),
-    (nav_solution_t, {"vehicle": "AUV1"}), (ground_truth_t, {"vehicle": "AUV1"}),
+    (ahrs_t, {"vehicle": "AUV1"}),
+    (depth_t, {"vehicle": "AUV1"}),
+    (dvl_t, {"vehicle": "AUV1"}),
+    (altimeter_t, {"vehicle": "AUV1"}),
+    (gps_fix_t, {"vehicle": "AUV1"}),
+    (nav_solution_t, {"vehicle": "AUV1"}),
+    (ground_truth_t, {"vehicle": "AUV1"}),
     (actuator_state_t, {"vehicle": "AUV1"}),
     (process_health_t, {"vehicle": "AUV1", "process": "sim"}),
     (sim_clock_t, {"server_id": "AUV1-sim"}),
@@ -37,7 +41,7 @@ RANGES = {"int8_t": 7, "int16_t": 15, "int32_t": 31, "int64_t": 63}
 def random_value(rng: random.Random, typename: str):
     if typename in RANGES:
         bits = RANGES[typename]
-        return rng.randint(-(2 ** bits), 2 ** bits - 1)
+        return rng.randint(-(2**bits), 2**bits - 1)
     if typename == "boolean":
         return rng.random() < 0.5
     if typename == "float":
@@ -55,8 +59,7 @@ def random_message(cls, strings: dict, rng: random.Random):
         elif len(dims) == 1:
             setattr(msg, name, [random_value(rng, tn) for _ in range(dims[0])])
         else:
-            setattr(msg, name, [[random_value(rng, tn) for _ in range(dims[1])]
-                                for _ in range(dims[0])])
+            setattr(msg, name, [[random_value(rng, tn) for _ in range(dims[1])] for _ in range(dims[0])])
     return msg
 
 
@@ -93,7 +96,7 @@ def test_encoder_is_byte_identical_to_lcm_gen(cls, strings):
 def test_out_of_range_values_raise_like_lcm_gen():
     enc = Encoder(ahrs_t, vehicle="AUV1")
     msg = ahrs_t()
-    msg.vehicle, msg.utime = "AUV1", 2 ** 63
+    msg.vehicle, msg.utime = "AUV1", 2**63
     with pytest.raises(Exception):
         msg.encode()
     with pytest.raises(Exception):

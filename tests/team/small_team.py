@@ -20,17 +20,52 @@ POLYGON = "20,20; 70,20; 70,130; 20,130"
 
 def plan(out: Path, search: int = 2, ri: int = 1, polygon: str = POLYGON) -> Path:
     """The planner's scenario for `search` search vehicles and `ri` RI vehicles."""
-    run = subprocess.run([sys.executable, "-m", "tools.plan_survey", "--polygon", polygon,
-                          "--team", str(search), "--ri", str(ri), "--heading", "0", "--range", "40",
-                          "--nadir-gap", "9.5", "--overlap", "0.1", "--depth-m", "5",
-                          "--world", ROOT / "missions/scenarios/mcm_world.yaml", "--seed", "7", "--out", out],
-                         capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.plan_survey",
+            "--polygon",
+            polygon,
+            "--team",
+            str(search),
+            "--ri",
+            str(ri),
+            "--heading",
+            "0",
+            "--range",
+            "40",
+            "--nadir-gap",
+            "9.5",
+            "--overlap",
+            "0.1",
+            "--depth-m",
+            "5",
+            "--world",
+            ROOT / "missions/scenarios/mcm_world.yaml",
+            "--seed",
+            "7",
+            "--out",
+            out,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 0, run.stdout + run.stderr
     return out / f"{out.name}.yaml"
 
 
-def variant(base: Path, out: Path, *, modem: dict | None = None, params: dict[str, dict] | None = None,
-            initial: dict[str, dict] | None = None, faults: list | None = None, limit_s: float | None = None) -> Path:
+def variant(
+    base: Path,
+    out: Path,
+    *,
+    modem: dict | None = None,
+    params: dict[str, dict] | None = None,
+    initial: dict[str, dict] | None = None,
+    faults: list | None = None,
+    limit_s: float | None = None,
+) -> Path:
     """A copy of scenario `base` as out (paths made absolute): `modem` merged
     into every simulator's modem section, `params[vid]` given to the vehicle's
     NAVIGATOR plan (-D), `initial[vid]` its start, `faults` the planned faults."""
@@ -58,16 +93,39 @@ def variant(base: Path, out: Path, *, modem: dict | None = None, params: dict[st
 
 def fly(scenario: Path, run_dir: Path, lcm_url: str, env: dict, expect_rc: int = 0) -> str:
     """Launch the scenario to its end; its stdout."""
-    p = subprocess.run([sys.executable, "-m", "tools.launch", scenario, "--out", run_dir, "--url", lcm_url,
-                        "--build", BUILD, "--progress", "0"], env=env, capture_output=True, text=True, timeout=600)
+    p = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.launch",
+            scenario,
+            "--out",
+            run_dir,
+            "--url",
+            lcm_url,
+            "--build",
+            BUILD,
+            "--progress",
+            "0",
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert p.returncode == expect_rc, p.stdout[-3000:] + p.stderr[-3000:]
     return p.stdout
 
 
 def report(run_dir: Path, out: Path, env: dict) -> dict:
     """report.py's JSON of the run (no plots)."""
-    p = subprocess.run([sys.executable, "-m", "tools.report", run_dir / "run.lcmlog", "--out", out,
-                        "--no-plots"], env=env, capture_output=True, text=True, timeout=300)
+    p = subprocess.run(
+        [sys.executable, "-m", "tools.report", run_dir / "run.lcmlog", "--out", out, "--no-plots"],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     assert p.returncode == 0, p.stdout[-2000:] + p.stderr[-2000:]
     return json.loads((out / "report.json").read_text())
 
@@ -75,12 +133,17 @@ def report(run_dir: Path, out: Path, env: dict) -> dict:
 def messages(log: Path, suffix: str) -> list:
     """(channel, decoded message) of every message on a channel ending with suffix."""
     from auvlcm.log import read_events
+
     return [(ev.channel, ev.msg) for ev in read_events(log) if ev.channel.endswith(suffix) and ev.msg is not None]
 
 
 def team_events(log: Path) -> list[tuple[float, str, str, str, int, str]]:
     """(sim s, vehicle, kind name, origin, number, text) of every TEAM_EVENT."""
     from auv import team_event_t
+
     names = {getattr(team_event_t, k): k for k in dir(team_event_t) if k.isupper()}
-    return [(m.utime / 1e6, m.vehicle, names.get(m.kind, str(m.kind)), m.origin, m.number, m.text)
-            for _, m in messages(log, ".TEAM_EVENT") if isinstance(m, team_event_t)]
+    return [
+        (m.utime / 1e6, m.vehicle, names.get(m.kind, str(m.kind)), m.origin, m.number, m.text)
+        for _, m in messages(log, ".TEAM_EVENT")
+        if isinstance(m, team_event_t)
+    ]

@@ -25,7 +25,7 @@ def station_errors(log):
     out = []
     for t in sorted(a.keys() & b.keys()):
         la, fo = a[t], b[t]
-        course = la.eta[5]          # the leader's true heading (its course, near enough)
+        course = la.eta[5]  # the leader's true heading (its course, near enough)
         cn, ce = math.cos(course), math.sin(course)
         sn = la.eta[0] - BEHIND * cn - SIDE * ce
         se = la.eta[1] - BEHIND * ce + SIDE * cn
@@ -59,7 +59,7 @@ def test_a_leak_aborts_the_leader_and_the_follower_goes_on_alone(tmp_path, lcm_u
     the same failure of follow_peer, after `silent`: tests/team/test_team_faults.py
     covers silence.)"""
     sc = st.variant(SCENARIO, tmp_path / "lf.yaml", faults=[{"at": 60, "vehicle": "AUV1", "do": "leak"}])
-    out = st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=3)      # a vehicle aborted
+    out = st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=3)  # a vehicle aborted
     assert "AUV1: aborted (leak at t=6" in out, out
     assert "AUV2: done" in out and "fault: AUV1 leak at t=60.0 s" in out, out
     log = tmp_path / "run" / "run.lcmlog"

@@ -48,14 +48,16 @@ def test_crossing_paths_keep_their_separation(tmp_path, lcm_url, child_env):
     t = np.array(both)
     after = (t > t[int(np.argmin(horizontal))] + 30e6) & (t < t[int(np.argmin(horizontal))] + 45e6)
     assert after.sum() > 100
-    assert np.median(np.abs(pa[after, 2] - 5.0)) < 0.7 and np.median(np.abs(pb[after, 2] - 5.0)) < 0.7, \
-        (np.median(pa[after, 2]), np.median(pb[after, 2]))
+    assert np.median(np.abs(pa[after, 2] - 5.0)) < 0.7 and np.median(np.abs(pb[after, 2] - 5.0)) < 0.7, (
+        np.median(pa[after, 2]),
+        np.median(pb[after, 2]),
+    )
 
 
 def test_two_vehicles_in_one_slot_collide_at_the_third(tmp_path, lcm_url, child_env):
     base = st.plan(tmp_path / "small")
     sc = st.variant(base, tmp_path / "one_slot.yaml", params={"AUV2": {"my_slot": "0"}}, limit_s=90)
-    st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=6)      # the time limit ends it
+    st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=6)  # the time limit ends it
     link = st.report(tmp_path / "run", tmp_path / "report", child_env)["team"]["link"]["per_vehicle"]
     # AUV1 and AUV2 send in slot 0 together: at AUV3 their frames overlap
     assert link["AUV3"]["collided"] >= 3, link["AUV3"]

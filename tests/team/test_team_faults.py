@@ -25,9 +25,15 @@ def lost_run(tmp_path_factory):
     d = tmp_path_factory.mktemp("team_faults")
     base = st.plan(d / "small")
     silent = {v: {"silent": f"{SILENT:g} s"} for v in ("AUV1", "AUV2", "AUV3")}
-    sc = st.variant(base, d / "lose.yaml", params=silent,
-                    faults=[{"at": LOST_SEARCH_AT, "vehicle": "AUV2", "do": "lose"},
-                            {"at": LOST_RI_AT, "vehicle": "AUV3", "do": "lose"}])
+    sc = st.variant(
+        base,
+        d / "lose.yaml",
+        params=silent,
+        faults=[
+            {"at": LOST_SEARCH_AT, "vehicle": "AUV2", "do": "lose"},
+            {"at": LOST_RI_AT, "vehicle": "AUV3", "do": "lose"},
+        ],
+    )
     out = st.fly(sc, d / "run", lcm_url, child_env)
     return d, out, st.report(d / "run", d / "report", child_env)
 
@@ -52,7 +58,7 @@ def test_the_survivor_takes_over_and_flies_the_lost_vehicles_lines(lost_run):
     heard = [m.utime / 1e6 for _, m in st.messages(log, "AUV1.MODEM_RX") if m.src_vehicle == "AUV2"]
     assert heard and max(heard) <= LOST_SEARCH_AT < lost[0][0], (heard, lost)
     assert SILENT <= lost[0][0] - max(heard) <= SILENT + 0.5, (max(heard), lost)
-    assert not [e for e in ev if e[2] == "PEER_LOST" and e[0] < LOST_SEARCH_AT], ev   # nobody else, before
+    assert not [e for e in ev if e[2] == "PEER_LOST" and e[0] < LOST_SEARCH_AT], ev  # nobody else, before
     taken = [e for e in ev if e[2] == "LINES_TAKEN" and e[1] == "AUV1"]
     assert len(taken) == 1 and taken[0][3] == "AUV2", taken
     numbers = [int(x) for x in taken[0][5].split()]
@@ -65,10 +71,11 @@ def test_the_survivor_takes_over_and_flies_the_lost_vehicles_lines(lost_run):
     t, n, e = (np.array(x) for x in zip(*truth))
     for k, east in ((6, 115.5), (7, 141.5)):
         on = (t > taken[0][0]) & (np.abs(e - east) < 4.0) & (n > 10) & (n < 80)
-        assert on.sum() >= 0.5 * (70 / 1.5) * 10, (k, int(on.sum()))   # half the 70 m at 10 Hz at least
+        assert on.sum() >= 0.5 * (70 / 1.5) * 10, (k, int(on.sum()))  # half the 70 m at 10 Hz at least
     # the report lists the takeover
-    assert any(k["event"] == "LINES_TAKEN" and k["vehicle"] == "AUV1" and k["peer"] == "AUV2"
-               for k in rep["team"]["takeovers"]), rep["team"]["takeovers"]
+    assert any(
+        k["event"] == "LINES_TAKEN" and k["vehicle"] == "AUV1" and k["peer"] == "AUV2" for k in rep["team"]["takeovers"]
+    ), rep["team"]["takeovers"]
 
 
 def test_with_the_ri_vehicle_lost_the_contacts_stay_unidentified(lost_run):
@@ -84,8 +91,11 @@ def test_with_the_ri_vehicle_lost_the_contacts_stay_unidentified(lost_run):
     decided = {(e[3], e[4]) for e in ev if e[1] == "AUV3" and e[2] in ("TARGET_IDENTIFIED", "TARGET_NOT_FOUND")}
     assert queued - decided, (queued, decided)
     team = rep["team"]
-    unidentified = [t for t in team["targets"] if t["kind"] == "mine_like" and t.get("detected_s") is not None
-                    and t.get("identified_s") is None]
+    unidentified = [
+        t
+        for t in team["targets"]
+        if t["kind"] == "mine_like" and t.get("detected_s") is not None and t.get("identified_s") is None
+    ]
     assert unidentified, team["targets"]
     # no identification after the RI vehicle was lost
     assert all(t["identified_s"] is None or t["identified_s"] <= LOST_RI_AT + 0.5 for t in team["targets"])

@@ -29,10 +29,30 @@ PERIOD_US = 100_000
 
 def start(url: str, env: dict, sanitized: bool, vehicle: str, plan: str, *extra: str) -> subprocess.Popen:
     return subprocess.Popen(
-        [c_program("bin/chasm-manager", sanitized), "--plan", HERE / f"{plan}.chasm", "--bind",
-         HERE / f"{plan}.bind", "--vehicle", vehicle, "--name", "NAVIGATOR", "--rate", "10", "--clock", "sim",
-         "--url", url, "--plugin-path", c_program("plugins/chasm_team.so", sanitized).parent, *extra],
-        env=env, stderr=subprocess.PIPE, text=True)
+        [
+            c_program("bin/chasm-manager", sanitized),
+            "--plan",
+            HERE / f"{plan}.chasm",
+            "--bind",
+            HERE / f"{plan}.bind",
+            "--vehicle",
+            vehicle,
+            "--name",
+            "NAVIGATOR",
+            "--rate",
+            "10",
+            "--clock",
+            "sim",
+            "--url",
+            url,
+            "--plugin-path",
+            c_program("plugins/chasm_team.so", sanitized).parent,
+            *extra,
+        ],
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
 
 
 class Sea:
@@ -42,14 +62,13 @@ class Sea:
         self.lc = lcm.LCM(url)
         self.rx = Receiver(self.lc)
         self.utime = 0
-        self.north = north     # where each vehicle stands
+        self.north = north  # where each vehicle stands
         self.status: dict[str, list] = {v: [] for v in north}
         self.frames: dict[str, list] = {v: [] for v in north}
         self.events: dict[str, list] = {v: [] for v in north}
         self.pending: list[tuple[str, modem_tx_t]] = []
         for v in north:
-            self.rx.subscribe(f"{v}.CHASM.NAVIGATOR", chasm_status_t, lambda c, m, v=v: self.status[v].append(m),
-                              1000)
+            self.rx.subscribe(f"{v}.CHASM.NAVIGATOR", chasm_status_t, lambda c, m, v=v: self.status[v].append(m), 1000)
             self.rx.subscribe(f"{v}.MODEM_TX", modem_tx_t, lambda c, m, v=v: self.sent(v, m), 1000)
             self.rx.subscribe(f"{v}.TEAM_EVENT", team_event_t, lambda c, m, v=v: self.events[v].append(m), 1000)
 
@@ -69,11 +88,12 @@ class Sea:
         clock = sim_clock_t()
         clock.utime, clock.server_id, clock.step_us = self.utime, "test", PERIOD_US
         self.lc.publish("SIM.CLOCK", clock.encode())
-        assert pump(self.lc, lambda: all(s and s[-1].utime >= self.utime for s in self.status.values()),
-                    timeout=30), f"a manager did not run its cycle at {self.utime} us"
+        assert pump(self.lc, lambda: all(s and s[-1].utime >= self.utime for s in self.status.values()), timeout=30), (
+            f"a manager did not run its cycle at {self.utime} us"
+        )
 
     def start(self) -> None:
-        for _ in range(300):   # the managers start: clock ticks (time 0) until all run
+        for _ in range(300):  # the managers start: clock ticks (time 0) until all run
             clock = sim_clock_t()
             clock.utime, clock.server_id, clock.step_us = self.utime, "test", PERIOD_US
             self.lc.publish("SIM.CLOCK", clock.encode())
@@ -130,7 +150,7 @@ def test_a_lost_contact_report_is_repeated_acked_and_queued(lcm_url, child_env, 
         while sea.utime < 40_000_000 and t_acked is None:
             sea.tick()
             sea.deliver(drop_first_contact)
-            if 3 in sea.kinds("AUV1"):   # CONTACT_ACKED
+            if 3 in sea.kinds("AUV1"):  # CONTACT_ACKED
                 t_acked = sea.utime
         assert t_acked is not None, (sea.kinds("AUV1"), sea.kinds("AUV4"))
         # a few more rounds: the acked contact is not sent again
@@ -153,16 +173,21 @@ def test_a_lost_contact_report_is_repeated_acked_and_queued(lcm_url, child_env, 
             assert m.kind == modem_tx_t.KIND_TEAM and m.n_bytes <= 32 and m.vehicle == v
             assert start_us <= m.utime % 4_000_000 < start_us + 500_000, (v, m.utime)
             assert codec.decode_frame(bytes(m.payload)).ok
-    sends = [m.utime for m in sea.frames["AUV1"] if any(d.name == "contact" for d in
-                                                        codec.decode_frame(bytes(m.payload)).messages)]
+    sends = [
+        m.utime
+        for m in sea.frames["AUV1"]
+        if any(d.name == "contact" for d in codec.decode_frame(bytes(m.payload)).messages)
+    ]
     assert len(sends) >= 2 and all(t < t_acked for t in sends), (sends, t_acked)
-    assert sea.kinds("AUV1").count(1) == 1 and sea.kinds("AUV1").count(3) == 1   # CONTACT_NEW, CONTACT_ACKED
-    queued = [e for e in sea.events["AUV4"] if e.kind == 4]   # TARGET_QUEUED
+    assert sea.kinds("AUV1").count(1) == 1 and sea.kinds("AUV1").count(3) == 1  # CONTACT_NEW, CONTACT_ACKED
+    queued = [e for e in sea.events["AUV4"] if e.kind == 4]  # TARGET_QUEUED
     assert len(queued) == 1 and queued[0].origin == "AUV1" and queued[0].number == 0
     acks = [d for m in sea.frames["AUV4"] for d in codec.decode_frame(bytes(m.payload)).messages if d.name == "ack"]
     assert acks and all(a.values == {"to": 0, "number": 0} for a in acks)
-    print(f"acked at {t_acked / 1e6:.1f} s after {len(sends)} sends; frames AUV1 {len(sea.frames['AUV1'])}, "
-          f"AUV4 {len(sea.frames['AUV4'])}; events AUV1 {sea.kinds('AUV1')}, AUV4 {sea.kinds('AUV4')}")
+    print(
+        f"acked at {t_acked / 1e6:.1f} s after {len(sends)} sends; frames AUV1 {len(sea.frames['AUV1'])}, "
+        f"AUV4 {len(sea.frames['AUV4'])}; events AUV1 {sea.kinds('AUV1')}, AUV4 {sea.kinds('AUV4')}"
+    )
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
@@ -172,8 +197,10 @@ def test_a_killed_search_vehicle_lines_are_dealt_the_same_way_by_both_survivors(
     and deal its lines round-robin in line order to AUV1 and AUV3: AUV1 takes
     2 and 4, AUV3 takes 3, each computed on its own."""
     sea = Sea(lcm_url, {"AUV1": 0.0, "AUV2": 40.0, "AUV3": 100.0})
-    procs = {v: start(lcm_url, child_env, sanitized, v, "survey", "-D", f'me="{v}"', "-D", f"my_slot={i}")
-             for i, v in enumerate(("AUV1", "AUV2", "AUV3"))}
+    procs = {
+        v: start(lcm_url, child_env, sanitized, v, "survey", "-D", f'me="{v}"', "-D", f"my_slot={i}")
+        for i, v in enumerate(("AUV1", "AUV2", "AUV3"))
+    }
     try:
         sea.start()
         while sea.utime < 30_000_000:
@@ -189,7 +216,7 @@ def test_a_killed_search_vehicle_lines_are_dealt_the_same_way_by_both_survivors(
     assert all(rc == 0 for rc in rcs.values()), errs
     assert [m.vehicle for m in sea.frames["AUV2"]], "AUV2 sent nothing before it was killed"
     for v, share in (("AUV1", "2 4"), ("AUV3", "3")):
-        lost = [e for e in sea.events[v] if e.kind == 8]   # PEER_LOST
+        lost = [e for e in sea.events[v] if e.kind == 8]  # PEER_LOST
         taken = [e for e in sea.events[v] if e.kind == 9]  # LINES_TAKEN
         assert [(e.origin, e.text.startswith("silent")) for e in lost] == [("AUV2", True)], (v, sea.kinds(v))
         assert [(e.origin, e.text) for e in taken] == [("AUV2", share)], v

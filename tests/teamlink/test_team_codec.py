@@ -16,8 +16,17 @@ from auvlcm.team_schema import DEFAULT_SCHEMA, SchemaError, load, parse_text
 
 GEN = ("-m", "tools.gen_team_codec")
 
-STATUS = dict(vehicle=3, time_s=1234, north_m=-512.4, east_m=1999.6, depth_m=12.34,
-              heading=6.28318, speed=1.54, next_line=63, state=5)
+STATUS = dict(
+    vehicle=3,
+    time_s=1234,
+    north_m=-512.4,
+    east_m=1999.6,
+    depth_m=12.34,
+    heading=6.28318,
+    speed=1.54,
+    next_line=63,
+    state=5,
+)
 
 
 @pytest.fixture(scope="module")
@@ -27,8 +36,9 @@ def codec() -> TeamCodec:
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_c_unit_tests(sanitized, child_env):
-    r = subprocess.run([c_program("bin/test_team_codec", sanitized)], capture_output=True,
-                       text=True, timeout=120, env=child_env)
+    r = subprocess.run(
+        [c_program("bin/test_team_codec", sanitized)], capture_output=True, text=True, timeout=120, env=child_env
+    )
     assert r.returncode == 0, r.stdout + r.stderr
     assert "all checks passed" in r.stdout
 
@@ -76,10 +86,20 @@ def test_max_decodes_as_max_and_reencodes(codec):
     assert codec.encode("status", got) == codec.encode("status", v)
 
 
-@pytest.mark.parametrize("field,value", [
-    ("depth_m", float("nan")), ("depth_m", 102.31), ("north_m", -math.inf),
-    ("heading", -1e-9), ("state", 8), ("vehicle", -1), ("time_s", 1.5),
-    ("speed", "fast"), ("state", True)])
+@pytest.mark.parametrize(
+    "field,value",
+    [
+        ("depth_m", float("nan")),
+        ("depth_m", 102.31),
+        ("north_m", -math.inf),
+        ("heading", -1e-9),
+        ("state", 8),
+        ("vehicle", -1),
+        ("time_s", 1.5),
+        ("speed", "fast"),
+        ("state", True),
+    ],
+)
 def test_out_of_range_is_refused_not_clamped(codec, field, value):
     w = codec.writer(32)
     with pytest.raises(EncodeError, match=field):
@@ -128,65 +148,68 @@ def test_decode_stops_at_truncation_unknown_id_and_corrupt_values(codec):
 GOOD = "message a 1 max_bytes 4\n  x int 0 15\n"
 
 
-@pytest.mark.parametrize("text,where,message", [
-    ("message 9a 1 max_bytes 4\n  x int 0 1\n", "1:9", "'9a' is not a name"),
-    ("message a 1 max_bytes 4\n  x-y int 0 1\n", "2:3", "'x-y' is not a name"),
-    ("message a 1 max_bytes 4\n  int int 0 1\n", "2:3", "keyword"),
-    (GOOD + "message b 1 max_bytes 4\n  y int 0 1\n", "3:11", "message id 1 repeats message 'a'"),
-    (GOOD + "message a 2 max_bytes 4\n  y int 0 1\n", "3:9", "declared twice"),
-    ("message a 16 max_bytes 4\n  x int 0 1\n", "1:11", "1..15"),
-    ("message a 0 max_bytes 4\n  x int 0 1\n", "1:11", "1..15"),
-    ("message a 1 max_bytes 4\n  x int 5 5\n", "2:11", "MAX 5 must be above MIN 5"),
-    ("message a 1 max_bytes 4\n  x fixed 0 -1 0.5\n", "2:13", "MAX -1 must be above MIN 0"),
-    ("message a 1 max_bytes 4\n  x fixed 0 1 0\n", "2:15", "STEP 0 must be above 0"),
-    ("message a 1 max_bytes 4\n  x fixed 0 1 -0.1\n", "2:15", "STEP -0.1 must be above 0"),
-    ("message a 1 max_bytes 4\n  x fixed 0 1 0.3\n", "2:15", "not a whole number of steps"),
-    ("message a 1 max_bytes 1\n  x int 0 15\n  y int 0 1\n", "1:9", "over its max_bytes 1"),
-    ("message a 1 max_bytes 4\n  x int 0 1.5\n", "2:11", "whole numbers"),
-    ("message a 1 max_bytes 4\n  x int 0 ten\n", "2:11", "'ten' is not a number"),
-    ("message a 1 max_bytes 4\n  x float 0 1\n", "2:5", "expected 'int MIN MAX'"),
-    ("message a 1 max_bytes 4\n  x int 0 1 2\n", "2:13", "expected 'int MIN MAX'"),
-    ("  x int 0 1\n", "1:3", "needs a 'message NAME ID max_bytes N' line"),
-    ("message a 1 bytes 4\n  x int 0 1\n", "1:1", "expected 'message NAME ID max_bytes N'"),
-    ("message a 1 max_bytes 4\n", "1:9", "has no fields"),
-    ("message a 1 max_bytes 4\n  x int 0 1\n  x int 0 1\n", "3:3", "repeats in message 'a'"),
-    ("# nothing\n", "1:1", "declares no message"),
-])
+@pytest.mark.parametrize(
+    "text,where,message",
+    [
+        ("message 9a 1 max_bytes 4\n  x int 0 1\n", "1:9", "'9a' is not a name"),
+        ("message a 1 max_bytes 4\n  x-y int 0 1\n", "2:3", "'x-y' is not a name"),
+        ("message a 1 max_bytes 4\n  int int 0 1\n", "2:3", "keyword"),
+        (GOOD + "message b 1 max_bytes 4\n  y int 0 1\n", "3:11", "message id 1 repeats message 'a'"),
+        (GOOD + "message a 2 max_bytes 4\n  y int 0 1\n", "3:9", "declared twice"),
+        ("message a 16 max_bytes 4\n  x int 0 1\n", "1:11", "1..15"),
+        ("message a 0 max_bytes 4\n  x int 0 1\n", "1:11", "1..15"),
+        ("message a 1 max_bytes 4\n  x int 5 5\n", "2:11", "MAX 5 must be above MIN 5"),
+        ("message a 1 max_bytes 4\n  x fixed 0 -1 0.5\n", "2:13", "MAX -1 must be above MIN 0"),
+        ("message a 1 max_bytes 4\n  x fixed 0 1 0\n", "2:15", "STEP 0 must be above 0"),
+        ("message a 1 max_bytes 4\n  x fixed 0 1 -0.1\n", "2:15", "STEP -0.1 must be above 0"),
+        ("message a 1 max_bytes 4\n  x fixed 0 1 0.3\n", "2:15", "not a whole number of steps"),
+        ("message a 1 max_bytes 1\n  x int 0 15\n  y int 0 1\n", "1:9", "over its max_bytes 1"),
+        ("message a 1 max_bytes 4\n  x int 0 1.5\n", "2:11", "whole numbers"),
+        ("message a 1 max_bytes 4\n  x int 0 ten\n", "2:11", "'ten' is not a number"),
+        ("message a 1 max_bytes 4\n  x float 0 1\n", "2:5", "expected 'int MIN MAX'"),
+        ("message a 1 max_bytes 4\n  x int 0 1 2\n", "2:13", "expected 'int MIN MAX'"),
+        ("  x int 0 1\n", "1:3", "needs a 'message NAME ID max_bytes N' line"),
+        ("message a 1 bytes 4\n  x int 0 1\n", "1:1", "expected 'message NAME ID max_bytes N'"),
+        ("message a 1 max_bytes 4\n", "1:9", "has no fields"),
+        ("message a 1 max_bytes 4\n  x int 0 1\n  x int 0 1\n", "3:3", "repeats in message 'a'"),
+        ("# nothing\n", "1:1", "declares no message"),
+    ],
+)
 def test_schema_faults_are_file_line_col(text, where, message):
     with pytest.raises(SchemaError) as e:
         parse_text(text, "s.schema")
-    assert any(err.startswith(f"s.schema:{where}: ") and message in err for err in e.value.errors), \
-        e.value.errors
+    assert any(err.startswith(f"s.schema:{where}: ") and message in err for err in e.value.errors), e.value.errors
 
 
 def test_every_fault_is_reported_at_once():
     text = "message a 1 max_bytes 4\n  x int 0 0\n  y fixed 0 1 0\nmessage b 1 max_bytes 4\n  z int 0 1\n"
     with pytest.raises(SchemaError) as e:
         parse_text(text, "s.schema")
-    assert [err.split(": ")[0] for err in e.value.errors] == ["s.schema:2:11", "s.schema:3:15",
-                                                               "s.schema:4:11"]
+    assert [err.split(": ")[0] for err in e.value.errors] == ["s.schema:2:11", "s.schema:3:15", "s.schema:4:11"]
 
 
 def test_generator_refuses_a_bad_schema_with_exit_2_and_writes_nothing(tmp_path):
     bad = tmp_path / "bad.schema"
     bad.write_text("message status 1 max_bytes 2\n  a int 0 1000\n  b fixed 0 1 0\n")
-    r = subprocess.run([sys.executable, *GEN, bad, tmp_path / "out"], capture_output=True,
-                       text=True, timeout=60)
+    r = subprocess.run([sys.executable, *GEN, bad, tmp_path / "out"], capture_output=True, text=True, timeout=60)
     assert r.returncode == 2
     assert "Traceback" not in r.stderr
     lines = r.stderr.splitlines()
     assert any(line.startswith(f"{bad}:3:15: ") for line in lines), r.stderr
     assert not (tmp_path / "out").exists()
-    r = subprocess.run([sys.executable, *GEN, tmp_path / "missing.schema", tmp_path / "out"],
-                       capture_output=True, text=True, timeout=60)
+    r = subprocess.run(
+        [sys.executable, *GEN, tmp_path / "missing.schema", tmp_path / "out"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert r.returncode == 2 and "cannot read the schema" in r.stderr
     r = subprocess.run([sys.executable, *GEN], capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "usage" in r.stderr
 
 
 def test_generator_output_is_the_build_one(tmp_path, build_dir):
-    r = subprocess.run([sys.executable, *GEN, DEFAULT_SCHEMA, tmp_path], capture_output=True,
-                       text=True, timeout=60)
+    r = subprocess.run([sys.executable, *GEN, DEFAULT_SCHEMA, tmp_path], capture_output=True, text=True, timeout=60)
     assert r.returncode == 0, r.stderr
     for name in ("team_codec.h", "team_codec.c"):
         assert (tmp_path / name).read_text() == (build_dir / "gen" / "team" / name).read_text()

@@ -29,9 +29,14 @@ def codec() -> TeamCodec:
 
 
 def probe(args: list[str], lines: list[str], sanitized: bool, env: dict) -> list[str]:
-    r = subprocess.run([c_program("bin/team-codec-probe", sanitized), *args],
-                       input="".join(line + "\n" for line in lines), capture_output=True,
-                       text=True, timeout=120, env=env)
+    r = subprocess.run(
+        [c_program("bin/team-codec-probe", sanitized), *args],
+        input="".join(line + "\n" for line in lines),
+        capture_output=True,
+        text=True,
+        timeout=120,
+        env=env,
+    )
     assert r.returncode == 0, r.stderr[-3000:]
     out = r.stdout.splitlines()
     assert len(out) == len(lines)
@@ -48,8 +53,7 @@ def random_value(f, rng: random.Random):
             return rng.choice([lo, hi])
         return rng.randint(lo, hi)
     if roll < 0.03:
-        return rng.choice([math.nan, math.inf, -math.inf, f.lo - 1e-9, f.hi + 1e-9,
-                           f.hi + f.step])
+        return rng.choice([math.nan, math.inf, -math.inf, f.lo - 1e-9, f.hi + 1e-9, f.hi + f.step])
     if roll < 0.13:
         return rng.choice([f.lo, f.hi])
     if roll < 0.23:  # halfway between steps: the rounding rule must agree
@@ -69,8 +73,10 @@ def random_frames(codec: TeamCodec, rng: random.Random, n: int):
 
 
 def text_of(msgs) -> str:
-    return ";".join(" ".join([name] + [repr(float(v)) if isinstance(v, float) else str(v)
-                                       for v in values.values()]) for name, values in msgs)
+    return ";".join(
+        " ".join([name] + [repr(float(v)) if isinstance(v, float) else str(v) for v in values.values()])
+        for name, values in msgs
+    )
 
 
 def python_encode(codec: TeamCodec, msgs) -> tuple[bytes, int]:
@@ -152,6 +158,5 @@ def test_hostile_frames_stop_both_decoders_at_the_same_place(codec, sanitized, c
 
 
 def test_probe_usage_is_exit_2(child_env):
-    r = subprocess.run([c_program("bin/team-codec-probe")], capture_output=True, text=True,
-                       timeout=30, env=child_env)
+    r = subprocess.run([c_program("bin/team-codec-probe")], capture_output=True, text=True, timeout=30, env=child_env)
     assert r.returncode == 2 and "usage" in r.stderr

@@ -17,11 +17,13 @@ HERE = ROOT / "tests" / "tools" / "scenarios"
 SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 LAUNCH = [sys.executable, "-m", "tools.launch"]
 NAVCONF = [sys.executable, "-m", "tools.navconf"]
-BOMB = (b"a: &a [x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
-        b"c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
-        b"e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d]\nf: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e]\n"
-        b"g: &g [*f, *f, *f, *f, *f, *f, *f, *f, *f]\nh: &h [*g, *g, *g, *g, *g, *g, *g, *g, *g]\n"
-        b"i: &i [*h, *h, *h, *h, *h, *h, *h, *h, *h]\n")
+BOMB = (
+    b"a: &a [x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
+    b"c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
+    b"e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d]\nf: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e]\n"
+    b"g: &g [*f, *f, *f, *f, *f, *f, *f, *f, *f]\nh: &h [*g, *g, *g, *g, *g, *g, *g, *g, *g]\n"
+    b"i: &i [*h, *h, *h, *h, *h, *h, *h, *h, *h]\n"
+)
 
 # name: (file bytes, what the error must say, line:col)
 FILES = {
@@ -47,8 +49,9 @@ def test_hostile_scenario_files_give_file_line_col_and_exit_2(tmp_path, name):
     path = tmp_path / "bad.yaml"
     path.write_bytes(data)
     t0 = time.monotonic()
-    run = subprocess.run(LAUNCH + [str(path), "--out", str(tmp_path / "run")], capture_output=True, text=True,
-                         timeout=60)
+    run = subprocess.run(
+        LAUNCH + [str(path), "--out", str(tmp_path / "run")], capture_output=True, text=True, timeout=60
+    )
     assert time.monotonic() - t0 < 30
     assert run.returncode == 2 and "Traceback" not in run.stderr, run.stderr
     assert what in run.stderr and f"{path}:{pos}" in run.stderr, run.stderr
@@ -65,15 +68,16 @@ vehicles:
     sim: {{config: {SIM}}}
     managers:
       - name: NAVIGATOR
-        plan: {HERE / 'mission.chasm'}
-        bind: {ROOT / 'missions' / 'bindings' / 'direct_actuators.bind'}
+        plan: {HERE / "mission.chasm"}
+        bind: {ROOT / "missions" / "bindings" / "direct_actuators.bind"}
 {manager_extra}{vehicle_extra}""")
     return path
 
 
 def _launch_errors(path, tmp_path):
-    run = subprocess.run(LAUNCH + [str(path), "--out", str(tmp_path / "run")], capture_output=True, text=True,
-                         timeout=120)
+    run = subprocess.run(
+        LAUNCH + [str(path), "--out", str(tmp_path / "run")], capture_output=True, text=True, timeout=120
+    )
     assert run.returncode == 2 and "Traceback" not in run.stderr, run.stderr
     return run.stderr
 
@@ -82,8 +86,10 @@ def test_misspelt_param_newline_in_a_value_and_reserved_vehicle_ids(tmp_path):
     declared = (HERE / "mission.chasm").read_text()
     assert "param cycles" in declared
     err = _launch_errors(_scenario(tmp_path, manager_extra="        params: {cycels: 5}\n"), tmp_path)
-    assert f"{tmp_path / 's.yaml'}:10:18: vehicles[0].managers[0].params.cycels: the plan mission.chasm " \
-           "declares no parameter 'cycels'; did you mean 'cycles'?" in err
+    assert (
+        f"{tmp_path / 's.yaml'}:10:18: vehicles[0].managers[0].params.cycels: the plan mission.chasm "
+        "declares no parameter 'cycels'; did you mean 'cycles'?" in err
+    )
     err = _launch_errors(_scenario(tmp_path, manager_extra='        params: {cycles: "5\\nstate evil"}\n'), tmp_path)
     assert "vehicles[0].managers[0].params.cycles: must not hold a newline" in err
     for vid in ("SIM", "MODEM"):
@@ -95,9 +101,10 @@ def test_misspelt_param_newline_in_a_value_and_reserved_vehicle_ids(tmp_path):
 
 def test_sim_config_refusals_name_file_line_col(tmp_path):
     from sim.config import load
+
     cases = {
         b"vehicle: {id: SIM}\n": "1:15: vehicle.id: 'SIM' is reserved",
-        b"multihil: {client_id: \"a\\nb\"}\n": "1:23: multihil.client_id: must not hold a newline",
+        b'multihil: {client_id: "a\\nb"}\n': "1:23: multihil.client_id: must not hold a newline",
         b"sensors: {gps: {rate_hz: .nan}}\n": "1:26: sensors.gps.rate_hz: must be finite",
         b"simulation: {clock: warp}\n": "1:21: simulation.clock: expected one of: realtime, scaled, lockstep",
         b"sonar: {targets: {mines: 100000}}\n": "1:26: sonar.targets.mines: must be in [0, 1000]",
@@ -113,16 +120,25 @@ def test_sim_config_refusals_name_file_line_col(tmp_path):
 
 
 def test_command_line_overrides_are_checked(tmp_path):
-    run = subprocess.run(LAUNCH + [str(HERE / "two_vehicles.yaml"), "--warp", "nan", "--out", str(tmp_path)],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        LAUNCH + [str(HERE / "two_vehicles.yaml"), "--warp", "nan", "--out", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert run.returncode == 2 and "--warp must be a number > 0" in run.stderr and "Traceback" not in run.stderr
     from tools.survey_log import DEFAULT_CONFIG, apply_overrides
+
     text = DEFAULT_CONFIG.read_text()
-    for item, want in (("sensors.gps.noise=*a", "--set sensors.gps.noise:1:1: YAML alias '*a' refused"),
-                       ("vehicle.id=\"A\\u0007\"", "must not hold control character U+0007"),
-                       ("a..b=1", "--set 'a..b=1': expected key.path=value"),
-                       (b"initial.north_m=2\xff".decode("utf-8", "surrogateescape"),
-                        "--set initial.north_m:1:2: not UTF-8 (byte 0xff)")):
+    for item, want in (
+        ("sensors.gps.noise=*a", "--set sensors.gps.noise:1:1: YAML alias '*a' refused"),
+        ('vehicle.id="A\\u0007"', "must not hold control character U+0007"),
+        ("a..b=1", "--set 'a..b=1': expected key.path=value"),
+        (
+            b"initial.north_m=2\xff".decode("utf-8", "surrogateescape"),
+            "--set initial.north_m:1:2: not UTF-8 (byte 0xff)",
+        ),
+    ):
         with pytest.raises(ValueError) as exc:
             apply_overrides(text, [item])
         assert want in str(exc.value), (item, str(exc.value))

@@ -22,17 +22,20 @@ def _run(cmd, child_env, **kw):
     return subprocess.run([str(c) for c in cmd], capture_output=True, text=True, timeout=120, env=child_env, **kw)
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--vehicles", "2"], "--vehicles needs --polygon"),
-    (["--polygon", "0,0; 100,0; 100,100", "--vehicles", "0"], "--vehicles must be at least 1"),
-    (["--plan-only"], "--plan-only needs --polygon"),
-    (["--polygon", "0,0; 1,x; 5,5", "--plan-only"], "not a number"),
-    (["--polygon", "0,0; 100,0"], "at least 3 vertices"),
-    (["--out", "/proc/no/such/dir"], "--out /proc/no/such/dir"),
-    (["--bogus"], "unrecognized arguments"),
-    (["--time", "warp"], "unknown clock mode 'warp': one of realtime, scaled, lockstep"),
-    (["--time", "scaled", "--warp", "0"], "--warp must be a number > 0"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--vehicles", "2"], "--vehicles needs --polygon"),
+        (["--polygon", "0,0; 100,0; 100,100", "--vehicles", "0"], "--vehicles must be at least 1"),
+        (["--plan-only"], "--plan-only needs --polygon"),
+        (["--polygon", "0,0; 1,x; 5,5", "--plan-only"], "not a number"),
+        (["--polygon", "0,0; 100,0"], "at least 3 vertices"),
+        (["--out", "/proc/no/such/dir"], "--out /proc/no/such/dir"),
+        (["--bogus"], "unrecognized arguments"),
+        (["--time", "warp"], "unknown clock mode 'warp': one of realtime, scaled, lockstep"),
+        (["--time", "scaled", "--warp", "0"], "--warp must be a number > 0"),
+    ],
+)
 def test_demo_usage_errors_are_clear(tmp_path, child_env, args, message):
     args = args if "--out" in args else args + ["--out", tmp_path / "d"]
     run = _run(DEMO + args, child_env)
@@ -41,11 +44,21 @@ def test_demo_usage_errors_are_clear(tmp_path, child_env, args, message):
 
 
 def _report(vehicles=("AUV1",), plots=None, coverage=True) -> dict:
-    rep = {"outcome": "done", "vehicle_outcomes": {v: "done" for v in vehicles}, "duration_s": 360.0,
-           "navigation_error": {v: {"rms_m": 1.0, "max_m": 2.0} for v in vehicles},
-           "record": {v: {"samples": 100, "missing": 0} for v in vehicles},
-           "detection": {"mine_like_detected": 1, "mine_like_targets": 2, "pd": 0.5, "contacts": 3,
-                         "contacts_on_clutter": 1, "false_alarms": 1}}
+    rep = {
+        "outcome": "done",
+        "vehicle_outcomes": {v: "done" for v in vehicles},
+        "duration_s": 360.0,
+        "navigation_error": {v: {"rms_m": 1.0, "max_m": 2.0} for v in vehicles},
+        "record": {v: {"samples": 100, "missing": 0} for v in vehicles},
+        "detection": {
+            "mine_like_detected": 1,
+            "mine_like_targets": 2,
+            "pd": 0.5,
+            "contacts": 3,
+            "contacts_on_clutter": 1,
+            "false_alarms": 1,
+        },
+    }
     if coverage:
         rep["coverage"] = {"survey_area_m2": 1e4, "fraction_once": 0.9, "fraction_twice": 0.5}
     if plots is not None:
@@ -83,18 +96,23 @@ def test_report_without_plots_writes_the_report_and_no_plots(tmp_path, small_log
     assert not list((tmp_path / "r").glob("*.png"))
 
 
-@pytest.mark.parametrize("extra, message", [
-    (["--survey", "/nonexistent/survey.json"], "No such file"),
-    (["--survey", "LOG"], "--survey"),                      # not JSON
-    (["--survey", "EMPTY"], "not a survey description"),    # JSON, wrong shape
-    (["--out", "LOG/x"], "Not a directory"),
-    (["--radius", "0"], "must be > 0"),
-])
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--survey", "/nonexistent/survey.json"], "No such file"),
+        (["--survey", "LOG"], "--survey"),  # not JSON
+        (["--survey", "EMPTY"], "not a survey description"),  # JSON, wrong shape
+        (["--out", "LOG/x"], "Not a directory"),
+        (["--radius", "0"], "must be > 0"),
+    ],
+)
 def test_report_bad_paths_are_clear_errors(tmp_path, small_log, child_env, extra, message):
     empty = tmp_path / "empty.json"
     empty.write_text("{}")
-    extra = [str(small_log) if a == "LOG" else str(empty) if a == "EMPTY" else a.replace("LOG", str(small_log))
-             for a in extra]
+    extra = [
+        str(small_log) if a == "LOG" else str(empty) if a == "EMPTY" else a.replace("LOG", str(small_log))
+        for a in extra
+    ]
     run = _run(REPORT + [small_log, "--no-plots", *extra], child_env)
     assert run.returncode == 2, run.stdout + run.stderr
     assert message in run.stderr and "Traceback" not in run.stderr

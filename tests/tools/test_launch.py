@@ -26,23 +26,38 @@ BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
 
 
 def vehicle(vid, host="local", east=0.0, **params):
-    nav = {"name": "NAVIGATOR", "plan": str(HERE / "mission.chasm"), "bind": BIND, "rate": 10,
-           "params": {"cycles": 60, **params}}
+    nav = {
+        "name": "NAVIGATOR",
+        "plan": str(HERE / "mission.chasm"),
+        "bind": BIND,
+        "rate": 10,
+        "params": {"cycles": 60, **params},
+    }
     watch = {"name": "WATCHER", "plan": str(HERE / "watcher.chasm"), "bind": str(HERE / "watcher.bind"), "rate": 5}
     return {"id": vid, "host": host, "sim": {"config": SIM, "initial": {"east_m": east}}, "managers": [nav, watch]}
 
 
 def write_scenario(tmp_path, vehicles, hosts=("local",), limit=60, name="t"):
-    sc = {"name": name, "seed": 5, "time": {"mode": "lockstep", "limit": limit, "wall_limit": 120},
-          "hosts": list(hosts), "vehicles": vehicles}
+    sc = {
+        "name": name,
+        "seed": 5,
+        "time": {"mode": "lockstep", "limit": limit, "wall_limit": 120},
+        "hosts": list(hosts),
+        "vehicles": vehicles,
+    }
     path = tmp_path / f"{name}.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     return path
 
 
 def launch(path, out, url, env, *extra, timeout=180):
-    return subprocess.run(LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0", *extra],
-                          env=env, capture_output=True, text=True, timeout=timeout)
+    return subprocess.run(
+        LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0", *extra],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+    )
 
 
 def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_url, child_env):
@@ -51,10 +66,9 @@ def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_
     assert run.returncode == 0, run.stdout + run.stderr
     outcome = json.loads((tmp_path / "run" / "outcome.json").read_text())
     assert outcome["outcome"] == "done" and set(outcome["vehicles"]) == {"AUV1", "AUV2"}
-    rec = outcome["recorder"]                                  # auv-recorder, the default: nothing lost
+    rec = outcome["recorder"]  # auv-recorder, the default: nothing lost
     assert rec["dropped"] == 0 and rec["missed"] == 0 and rec["written"] == rec["received"] > 0, rec
-    assert f"record: {rec['written']} of {rec['received']} messages received written, 0 dropped, 0 missed" \
-        in run.stdout
+    assert f"record: {rec['written']} of {rec['received']} messages received written, 0 dropped, 0 missed" in run.stdout
 
     log = load_log(tmp_path / "run" / "run.lcmlog", keep_messages="SIM.ANNOTATION")
     assert log.stats.undecodable == 0
@@ -74,13 +88,17 @@ def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_
     notes = log.messages["SIM.ANNOTATION"]
     kinds = {(n.kind, n.vehicle, n.name) for n in notes}
     assert (1, "", path.name) in kinds and (1, "AUV2", "AUV2.sim.yaml") in kinds
-    assert sum(1 for n in notes if n.kind == 2) == 4         # 2 plans x 2 vehicles
+    assert sum(1 for n in notes if n.kind == 2) == 4  # 2 plans x 2 vehicles
     assert sum(1 for n in notes if n.kind == 0 and n.name.endswith(".bind")) == 4
     assert sum(1 for n in notes if n.kind == 3) == len(list((ROOT / "lcmtypes").glob("*.lcm")))
     starts = [n.text for n in notes if n.kind == 4 and n.name == "start"]
     order = [s.split()[0] for s in starts]
     assert order[:2] == ["AUV1.sim", "AUV2.sim"] and set(order[2:]) == {
-        "AUV1.NAVIGATOR", "AUV1.WATCHER", "AUV2.NAVIGATOR", "AUV2.WATCHER"}
+        "AUV1.NAVIGATOR",
+        "AUV1.WATCHER",
+        "AUV2.NAVIGATOR",
+        "AUV2.WATCHER",
+    }
     end = [n for n in notes if n.kind == 4 and n.name == "end"]
     assert len(end) == 1 and json.loads(end[0].text)["outcome"] == "done"
     merged = yaml.safe_load((tmp_path / "run" / "AUV2.sim.yaml").read_text())
@@ -88,9 +106,11 @@ def test_two_vehicles_run_to_the_end_and_the_log_describes_itself(tmp_path, lcm_
 
 
 def test_abort_fail_and_time_limit_give_their_exit_codes(tmp_path, lcm_url, child_env):
-    cases = [("aborted", 3, vehicle("AUV1", abort_at="3 s")),
-             ("failed", 4, vehicle("AUV1", fail="true")),
-             ("time limit", 6, vehicle("AUV1", cycles=100000))]
+    cases = [
+        ("aborted", 3, vehicle("AUV1", abort_at="3 s")),
+        ("failed", 4, vehicle("AUV1", fail="true")),
+        ("time limit", 6, vehicle("AUV1", cycles=100000)),
+    ]
     for i, (what, code, veh) in enumerate(cases):
         path = write_scenario(tmp_path, [vehicle("AUV2"), veh], limit=20, name=f"c{i}")
         run = launch(path, tmp_path / f"run{i}", lcm_url, child_env)
@@ -105,7 +125,7 @@ def test_abort_fail_and_time_limit_give_their_exit_codes(tmp_path, lcm_url, chil
 def test_a_dying_process_stops_everything_with_its_own_code(tmp_path, lcm_url, child_env):
     veh = vehicle("AUV1", cycles=100000)
     veh["managers"][1]["bind"] = str(tmp_path / "bad.bind")
-    (tmp_path / "bad.bind").write_text("input nav ${VEHICLE}.NAV gps_fix_t\n")   # gps_fix_t has no depth_m
+    (tmp_path / "bad.bind").write_text("input nav ${VEHICLE}.NAV gps_fix_t\n")  # gps_fix_t has no depth_m
     path = write_scenario(tmp_path, [veh])
     run = launch(path, tmp_path / "run", lcm_url, child_env)
     assert run.returncode == 5, run.stdout + run.stderr
@@ -157,12 +177,17 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
     path = write_scenario(tmp_path, [vehicle("AUV1", cycles=100000)], limit=100000)
     for sig, name in ((signal.SIGINT, "int"), (signal.SIGKILL, "kill")):
         out = tmp_path / name
-        proc = subprocess.Popen(LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "0.5"],
-                                env=child_env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        proc = subprocess.Popen(
+            LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "0.5"],
+            env=child_env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
         try:
-            _wait_for_line(proc, "launch: t=", 90)     # running: the clock has started
+            _wait_for_line(proc, "launch: t=", 90)  # running: the clock has started
             kids = _children(proc.pid)
-            assert len(kids) == 4, kids                 # logger, sim, 2 managers
+            assert len(kids) == 4, kids  # logger, sim, 2 managers
             proc.send_signal(sig)
             rc = proc.wait(60)
         finally:
@@ -176,24 +201,35 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
         assert log.stats.undecodable == 0 and len(log["AUV1.TRUTH"]) > 10
         if sig == signal.SIGINT:
             assert rc == 130
-            ends = [ev.msg.text for ev in read_events(out / "run.lcmlog")
-                    if ev.channel == "SIM.ANNOTATION" and ev.msg.name == "end"]
+            ends = [
+                ev.msg.text
+                for ev in read_events(out / "run.lcmlog")
+                if ev.channel == "SIM.ANNOTATION" and ev.msg.name == "end"
+            ]
             assert json.loads(ends[0])["outcome"] == "interrupted"
         else:
             assert rc == -signal.SIGKILL
 
 
 def test_host_split_runs_each_part_on_its_own(tmp_path, lcm_url, child_env):
-    path = write_scenario(tmp_path, [vehicle("AUV1", host="alpha"), vehicle("AUV2", host="beta", cycles=80)],
-                          hosts=("alpha", "beta"))
-    procs = [subprocess.Popen(LAUNCH + [str(path), "--host", h, "--out", str(tmp_path / "run"), "--url", lcm_url,
-                                        "--progress", "0"], env=child_env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, text=True) for h in ("beta", "alpha")]
+    path = write_scenario(
+        tmp_path, [vehicle("AUV1", host="alpha"), vehicle("AUV2", host="beta", cycles=80)], hosts=("alpha", "beta")
+    )
+    procs = [
+        subprocess.Popen(
+            LAUNCH + [str(path), "--host", h, "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
+            env=child_env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        for h in ("beta", "alpha")
+    ]
     outs = [p.communicate(timeout=180)[0] for p in procs]
     assert [p.returncode for p in procs] == [0, 0], outs
     beta = json.loads((tmp_path / "run" / "outcome.beta.json").read_text())
     alpha = json.loads((tmp_path / "run" / "outcome.alpha.json").read_text())
-    assert beta["log"] is None and alpha["log"]       # the logger runs on the first host only
+    assert beta["log"] is None and alpha["log"]  # the logger runs on the first host only
     assert alpha["vehicles"]["AUV2"]["outcome"] == beta["vehicles"]["AUV1"]["outcome"] == "done"
     log = load_log(tmp_path / "run" / "run.lcmlog")
     assert len(log["AUV1.TRUTH"]) > 50 and len(log["AUV2.TRUTH"]) > 50
@@ -214,7 +250,7 @@ vehicles:
     sim: {{config: {SIM}, initial: {{nort_m: 3}}}}
     managers:
       - {{name: NAVIGATOR, plan: missing.chasm, bind: {BIND}, rate: 10}}
-      - {{name: NAVIGATOR, plan: {HERE / 'watcher.chasm'}, bind: {BIND}, rat: 5}}
+      - {{name: NAVIGATOR, plan: {HERE / "watcher.chasm"}, bind: {BIND}, rat: 5}}
 """)
     run = launch(bad, tmp_path / "run", lcm_url, child_env)
     assert run.returncode == 2
@@ -233,13 +269,14 @@ vehicles:
     line = next(i for i, ln in enumerate(text.splitlines(), 1) if "nort_m" in ln)
     run = launch(sim_bad, tmp_path / "run2", lcm_url, child_env)
     assert run.returncode == 2
-    assert f"{sim_bad}:{line}:15: vehicles[0].sim: initial.nort_m: unknown key; did you mean 'north_m'?" \
-        in run.stderr, run.stderr
+    assert (
+        f"{sim_bad}:{line}:15: vehicles[0].sim: initial.nort_m: unknown key; did you mean 'north_m'?" in run.stderr
+    ), run.stderr
 
     plan_bad = write_scenario(tmp_path, [vehicle("AUV1", cycles="ten")], name="planbad")
     run = launch(plan_bad, tmp_path / "run3", lcm_url, child_env)
     assert run.returncode == 2 and "AUV1.NAVIGATOR: plan" in run.stderr and "mission.chasm:" in run.stderr
-    assert not (tmp_path / "run3" / "run.lcmlog").exists()     # nothing started
+    assert not (tmp_path / "run3" / "run.lcmlog").exists()  # nothing started
 
     (tmp_path / "syntax.yaml").write_text("vehicles: [\n")
     run = launch(tmp_path / "syntax.yaml", tmp_path / "run4", lcm_url, child_env)
@@ -248,7 +285,9 @@ vehicles:
 
 def test_bad_planned_faults_are_refused_before_anything_starts(tmp_path, lcm_url, child_env):
     sc = write_scenario(tmp_path, [vehicle("AUV1"), vehicle("AUV2", east=50)], name="faults")
-    text = sc.read_text() + """faults:
+    text = (
+        sc.read_text()
+        + """faults:
   - {at: 30, vehicle: AUV9, do: lose}
   - {at: 30, vehicle: AUV1, do: explode}
   - {at: 40, vehicle: AUV2, do: lose}
@@ -257,8 +296,9 @@ def test_bad_planned_faults_are_refused_before_anything_starts(tmp_path, lcm_url
   - {vehicle: AUV1, when: 3}
   - lose AUV1
 """
+    )
     sc.write_text(text)
-    first = len(text.splitlines()) - 7 + 1      # line of the first entry
+    first = len(text.splitlines()) - 7 + 1  # line of the first entry
     run = launch(sc, tmp_path / "run", lcm_url, child_env)
     assert run.returncode == 2, run.stdout + run.stderr
     err = run.stderr
@@ -269,7 +309,7 @@ def test_bad_planned_faults_are_refused_before_anything_starts(tmp_path, lcm_url
     assert f"{sc}:{first + 5}:5: faults[5]: missing required key 'at'" in err
     assert f"{sc}:{first + 5}:21: faults[5].when: unknown key; expected one of: at, do, vehicle" in err
     assert f"{sc}:{first + 6}:5: faults[6]: expected a mapping" in err
-    assert not (tmp_path / "run" / "run.lcmlog").exists()     # nothing started
+    assert not (tmp_path / "run" / "run.lcmlog").exists()  # nothing started
     # host agents run the processes: a planned fault could not stop them (yet)
     sc.write_text(text.split("faults:")[0] + "faults:\n  - {at: 30, vehicle: AUV2}\n")
     run = launch(sc, tmp_path / "run", lcm_url, child_env, "--agents")
@@ -282,8 +322,11 @@ def test_lcm_logger_stays_selectable(tmp_path, lcm_url, child_env):
     run = launch(path, tmp_path / "run", lcm_url, child_env, "--recorder", "lcm-logger")
     assert run.returncode == 0, run.stdout + run.stderr
     assert "recorder" not in json.loads((tmp_path / "run" / "outcome.json").read_text())
-    notes = [ev.msg.text for ev in read_events(tmp_path / "run" / "run.lcmlog")
-             if ev.channel == "SIM.ANNOTATION" and ev.msg.name == "logger"]
+    notes = [
+        ev.msg.text
+        for ev in read_events(tmp_path / "run" / "run.lcmlog")
+        if ev.channel == "SIM.ANNOTATION" and ev.msg.name == "logger"
+    ]
     assert notes and notes[0].startswith("lcm-logger pid")
     # lcm-logger's 30-message queue loses much of a fast run on a loaded machine
     # (why auv-recorder is the default): only that it recorded the run is checked

@@ -42,7 +42,7 @@ def messages(log) -> tuple[dict[str, list[bytes]], int]:
         m = decode_strict(type_of(ev.data), ev.data)
         if isinstance(m, sim_clock_t):
             last_clock = max(last_clock, m.utime)
-            m.warp = 0.0            # the pace, which the second run changes on purpose
+            m.warp = 0.0  # the pace, which the second run changes on purpose
         if isinstance(m, lockstep_t) and m.kind != lockstep_t.KIND_STEP_DONE:
             continue
         if isinstance(m, chasm_status_t):
@@ -77,13 +77,20 @@ def test_fast_time_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):
         assert run.returncode == 0, run.stdout + run.stderr
         assert "0 dropped, 0 missed" in run.stdout, run.stdout
         runs.append(messages(tmp_path / name / "run.lcmlog"))
-    until = min(last for _, last in runs) - 50_000     # the last step may be cut short by the end
+    until = min(last for _, last in runs) - 50_000  # the last step may be cut short by the end
     a, b = (cut(per, until) for per, _ in runs)
-    assert until >= 4_000_000 and len(a["SIM.CLOCK"]) == until // 50_000 + 1   # every step, once
-    for key in ("AUV1.TRUTH", "AUV2.NAV", "AUV1.CHASM.NAVIGATOR", "AUV2.ACTUATORS",
-                "SIM.LOCKSTEP/AUV2.NAV", "SIM.LOCKSTEP/SIM.RECORDER", "SIM.LOCKSTEP/AUV1.sim"):
+    assert until >= 4_000_000 and len(a["SIM.CLOCK"]) == until // 50_000 + 1  # every step, once
+    for key in (
+        "AUV1.TRUTH",
+        "AUV2.NAV",
+        "AUV1.CHASM.NAVIGATOR",
+        "AUV2.ACTUATORS",
+        "SIM.LOCKSTEP/AUV2.NAV",
+        "SIM.LOCKSTEP/SIM.RECORDER",
+        "SIM.LOCKSTEP/AUV1.sim",
+    ):
         assert len(a.get(key, [])) > 20, (key, len(a.get(key, [])))
-    assert len(a["AUV2.NAV_STATUS"]) >= 4                            # once a second
+    assert len(a["AUV2.NAV_STATUS"]) >= 4  # once a second
     assert sorted(a) == sorted(b)
     for key in sorted(a):
         assert len(a[key]) == len(b[key]), f"{key}: {len(a[key])} vs {len(b[key])} messages"

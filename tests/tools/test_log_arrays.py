@@ -51,7 +51,7 @@ def write_log(path, events):
 def every_type_log(tmp_path):
     rng = random.Random(7)
     msgs = {f"T.{cls.__name__.upper()}": [random_message(cls, rng) for _ in range(5)] for cls in all_types()}
-    events = [(ch, m.encode()) for i in range(5) for ch, ms in msgs.items() for m in ms[i:i + 1]]
+    events = [(ch, m.encode()) for i in range(5) for ch, ms in msgs.items() for m in ms[i : i + 1]]
     path = tmp_path / "all.lcmlog"
     write_log(path, events)
     return path, msgs
@@ -95,14 +95,21 @@ def test_undecodable_and_foreign_events_are_counted_and_dropped(tmp_path):
     good = depth_t()
     good.depth_m = 4.0
     data = good.encode()
-    write_log(tmp_path / "bad.lcmlog", [
-        ("AUV1.DEPTH", data), ("AUV1.DEPTH", data[:-3]), ("AUV1.DEPTH", b"\x00" * 12),
-        ("AUV1.DEPTH", nav_solution_t().encode()), ("AUV1.DEPTH", data + b"x"), ("AUV1.DEPTH", data)])
+    write_log(
+        tmp_path / "bad.lcmlog",
+        [
+            ("AUV1.DEPTH", data),
+            ("AUV1.DEPTH", data[:-3]),
+            ("AUV1.DEPTH", b"\x00" * 12),
+            ("AUV1.DEPTH", nav_solution_t().encode()),
+            ("AUV1.DEPTH", data + b"x"),
+            ("AUV1.DEPTH", data),
+        ],
+    )
     log = load_log(tmp_path / "bad.lcmlog")
     assert len(log["AUV1.DEPTH"]) == 2 and list(log["AUV1.DEPTH"]["depth_m"]) == [4.0, 4.0]
     assert log.undecodable["AUV1.DEPTH"] == 3 and log.type_conflicts["AUV1.DEPTH"] == 1
-    run = subprocess.run(LCMLOG + ["summary", str(tmp_path / "bad.lcmlog")],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(LCMLOG + ["summary", str(tmp_path / "bad.lcmlog")], capture_output=True, text=True, timeout=60)
     assert run.returncode == 1, run.stderr
     assert "3 undecodable event(s) on AUV1.DEPTH" in run.stderr
     assert "1 event(s) of another type on AUV1.DEPTH" in run.stderr
@@ -128,8 +135,9 @@ def test_csv_all_and_ragged_columns(tmp_path):
     tf = target_field_t()
     write_log(tmp_path / "s.lcmlog", [("AUV1.CHASM.NAVIGATOR", st.encode()), ("SIM.TARGETS", tf.encode())])
     outdir = tmp_path / "csv"
-    run = subprocess.run(LCMLOG + ["csv", str(tmp_path / "s.lcmlog"), "--all", str(outdir)],
-                         capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        LCMLOG + ["csv", str(tmp_path / "s.lcmlog"), "--all", str(outdir)], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 0, run.stderr
     row = next(csv.DictReader(open(outdir / "AUV1.CHASM.NAVIGATOR.csv")))
     assert row["active_path"] == "mission;line1" and row["time_in_state_s"] == "3.0;1.5"
@@ -145,20 +153,27 @@ def test_npz_and_states(tmp_path):
         st.last_condition = f"cond{i}"
         events.append(("AUV2.CHASM.NAVIGATOR", st.encode()))
     write_log(tmp_path / "st.lcmlog", events)
-    run = subprocess.run(LCMLOG + ["states", str(tmp_path / "st.lcmlog")], capture_output=True, text=True,
-                         timeout=60)
+    run = subprocess.run(LCMLOG + ["states", str(tmp_path / "st.lcmlog")], capture_output=True, text=True, timeout=60)
     assert run.returncode == 0, run.stderr
     lines = [ln.split() for ln in run.stdout.splitlines()[1:]]
-    assert [(ln[0], ln[5], ln[6]) for ln in lines] == [("0.00", "running", "a"), ("2.00", "running", "b/c"),
-                                                         ("3.00", "done", "b/c")]
-    run = subprocess.run(LCMLOG + ["npz", str(tmp_path / "st.lcmlog"), str(tmp_path / "o.npz")],
-                         capture_output=True, text=True, timeout=60)
+    assert [(ln[0], ln[5], ln[6]) for ln in lines] == [
+        ("0.00", "running", "a"),
+        ("2.00", "running", "b/c"),
+        ("3.00", "done", "b/c"),
+    ]
+    run = subprocess.run(
+        LCMLOG + ["npz", str(tmp_path / "st.lcmlog"), str(tmp_path / "o.npz")],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert run.returncode == 0, run.stderr
     z = np.load(tmp_path / "o.npz")
     assert list(z["AUV2.CHASM.NAVIGATOR/run_state"]) == [1, 1, 1, 3]
 
 
 def test_cli_bad_usage(tmp_path):
-    run = subprocess.run(LCMLOG + ["summary", str(tmp_path / "missing.lcmlog")], capture_output=True,
-                         text=True, timeout=60)
+    run = subprocess.run(
+        LCMLOG + ["summary", str(tmp_path / "missing.lcmlog")], capture_output=True, text=True, timeout=60
+    )
     assert run.returncode == 2 and "no such log file" in run.stderr

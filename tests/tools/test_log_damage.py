@@ -39,7 +39,7 @@ def _events(data: bytes, tmp_path, name="x.lcmlog"):
 
 
 def _flip(data: bytes, at: int, value: int) -> bytes:
-    return data[:at] + bytes([value]) + data[at + 1:]
+    return data[:at] + bytes([value]) + data[at + 1 :]
 
 
 def test_intact_log_reads_whole(good, tmp_path):
@@ -55,7 +55,7 @@ def test_a_corrupt_header_mid_log_loses_one_event_and_the_rest_is_read(good, tmp
     bad = _flip(data, mid + at, data[mid + at] ^ 0x5A)
     _, evs, stats = _events(bad, tmp_path)
     lost = len(offsets) - len(evs)
-    if field == "number":   # a wrong number does not break the chain: nothing lost
+    if field == "number":  # a wrong number does not break the chain: nothing lost
         assert lost == 0
         return
     assert lost == 1, (field, lost)
@@ -68,8 +68,8 @@ def test_huge_and_zero_lengths_and_garbage_between_events(good, tmp_path):
     data, offsets = good
     a, b = offsets[100], offsets[700]
     bad = bytearray(data)
-    struct.pack_into(">i", bad, a + 24, 0x7FFFFFFF)          # huge data length
-    struct.pack_into(">i", bad, b + 20, 0)                   # zero channel length
+    struct.pack_into(">i", bad, a + 24, 0x7FFFFFFF)  # huge data length
+    struct.pack_into(">i", bad, b + 20, 0)  # zero channel length
     c = offsets[900]
     bad = bytes(bad[:c]) + b"\x00garbage" + SYNC_BYTES + b"\xff" * 40 + bytes(bad[c:])
     _, evs, stats = _events(bytes(bad), tmp_path)
@@ -81,7 +81,7 @@ def test_truncated_at_every_region_of_an_event(good, tmp_path):
     data, offsets = _small(good)
     last = offsets[-1]
     for cut in [0, 1, 4, 12, 20, HEADER.size, HEADER.size + 3, len(data) - last - 1]:
-        _, evs, stats = _events(data[:last + cut], tmp_path)
+        _, evs, stats = _events(data[: last + cut], tmp_path)
         assert len(evs) == len(offsets) - 1
         assert stats.damage.lost_events == (1 if cut else 0)
         assert stats.damage.truncated == bool(cut)
@@ -89,7 +89,7 @@ def test_truncated_at_every_region_of_an_event(good, tmp_path):
 
 def test_bad_utf8_in_a_channel_name_is_kept_and_counted(good, tmp_path):
     data, offsets = good
-    at = offsets[5] + HEADER.size           # first byte of the channel name
+    at = offsets[5] + HEADER.size  # first byte of the channel name
     _, evs, stats = _events(_flip(data, at, 0xFF), tmp_path)
     assert len(evs) == len(offsets) and stats.damage.bad_channel_names == 1
     assert sum("\ufffd" in e.channel for e in evs) == 1
@@ -122,7 +122,7 @@ def _run(cmd):
 def _small(good):
     """The first 1500 events: the tools run as processes, keep them quick."""
     data, offsets = good
-    return data[:offsets[1500]], offsets[:1500]
+    return data[: offsets[1500]], offsets[:1500]
 
 
 def test_every_log_tool_reports_lost_events_and_exits_3(good, tmp_path):
@@ -168,6 +168,7 @@ def test_hostile_channel_names_never_escape_the_csv_folder(tmp_path):
     import lcm
 
     from auv import depth_t
+
     p = tmp_path / "names.lcmlog"
     log = lcm.EventLog(str(p), "w", overwrite=True)
     for i, ch in enumerate(["../escape", "/abs", ".hidden", "A\x1b[2J"]):
@@ -175,8 +176,9 @@ def test_hostile_channel_names_never_escape_the_csv_folder(tmp_path):
     log.close()
     run = _run(LCMLOG + ["csv", str(p), "--all", str(tmp_path / "o")])
     assert run.returncode == 0, run.stderr
-    assert sorted(x.name for x in (tmp_path / "o").iterdir()) == sorted([
-        "_.._escape.csv", "_.hidden.csv", "_abs.csv", "A__2J.csv"])
+    assert sorted(x.name for x in (tmp_path / "o").iterdir()) == sorted(
+        ["_.._escape.csv", "_.hidden.csv", "_abs.csv", "A__2J.csv"]
+    )
     assert not (tmp_path / "escape.csv").exists()
     run = _run(LCMLOG + ["summary", str(p)])
     assert "\x1b" not in run.stdout
@@ -184,14 +186,14 @@ def test_hostile_channel_names_never_escape_the_csv_folder(tmp_path):
 
 def test_whole_events_cut_out_are_found_by_their_numbers(good, tmp_path):
     data, offsets = _small(good)
-    cut = data[:offsets[100]] + data[offsets[150]:]          # 50 sound events removed cleanly
+    cut = data[: offsets[100]] + data[offsets[150] :]  # 50 sound events removed cleanly
     _, evs, stats = _events(cut, tmp_path)
     assert len(evs) == len(offsets) - 50
     assert stats.damage.lost_events == 50 and stats.damage.number_gaps == 1 and not stats.damage.skipped_bytes
     assert "the event numbers jump 1 time(s)" in stats.damage.lines("x")[0]
-    bad = bytearray(data)                                     # one damaged number field: nothing lost
+    bad = bytearray(data)  # one damaged number field: nothing lost
     struct.pack_into(">q", bad, offsets[200] + 4, 7)
     _, evs, stats = _events(bytes(bad), tmp_path)
     assert len(evs) == len(offsets) and stats.damage.lost_events == 0
-    _, evs, stats = _events(data + data, tmp_path)            # two logs joined: numbers restart
+    _, evs, stats = _events(data + data, tmp_path)  # two logs joined: numbers restart
     assert len(evs) == 2 * len(offsets) and not stats.damage.any

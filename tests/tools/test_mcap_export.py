@@ -22,9 +22,18 @@ from auvlcm.json_schema import all_schemas, to_json
 from auvlcm.types import all_types
 
 LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
-SURVEY = {"polygon": [[0, 0], [100, 0], [100, 80], [0, 80]], "operating_area": [[-50, -50], [150, -50], [150, 130]],
-          "vehicles": {"AUV1": {"legs": [{"kind": "line", "start": [0, 10], "end": [100, 10]},
-                                         {"kind": "turn", "start": [100, 10], "end": [100, 40]}]}}}
+SURVEY = {
+    "polygon": [[0, 0], [100, 0], [100, 80], [0, 80]],
+    "operating_area": [[-50, -50], [150, -50], [150, 130]],
+    "vehicles": {
+        "AUV1": {
+            "legs": [
+                {"kind": "line", "start": [0, 10], "end": [100, 10]},
+                {"kind": "turn", "start": [100, 10], "end": [100, 40]},
+            ]
+        }
+    },
+}
 
 
 def write_log(path) -> Counter:
@@ -40,6 +49,7 @@ def write_log(path) -> Counter:
         log.write_event(t, channel, data)
         if counted:
             expected[channel] += 1
+
     env = env_model_t()
     env.origin_latitude_deg, env.origin_longitude_deg, env.bathymetry_ref = 41.5, -70.7, "flat:depth=20"
     put("SIM.ENV", env.encode())
@@ -54,9 +64,9 @@ def write_log(path) -> Counter:
         nav.utime, nav.vehicle, nav.north_m, nav.latitude_deg, nav.longitude_deg = i * 100_000, "AUV1", i, 41.5, -70.7
         nav.altitude_m = math.nan if i == 2 else 3.0
         put("AUV1.NAV", nav.encode())
-    put("AUV1.NAV", nav.encode()[:-5], counted=False)         # truncated
-    put("AUV1.JUNK", b"\x01" * 40, counted=False)             # unknown fingerprint
-    put("LCM_SELF_TEST", b"self test", counted=False)         # liblcm's own
+    put("AUV1.NAV", nav.encode()[:-5], counted=False)  # truncated
+    put("AUV1.JUNK", b"\x01" * 40, counted=False)  # unknown fingerprint
+    put("LCM_SELF_TEST", b"self test", counted=False)  # liblcm's own
     log.close()
     return expected
 
@@ -64,9 +74,14 @@ def write_log(path) -> Counter:
 def test_every_channel_and_message_comes_back_valid_against_its_schema(tmp_path, child_env):
     expected = write_log(tmp_path / "t.lcmlog")
     out = tmp_path / "t.mcap"
-    run = subprocess.run(LCMLOG + ["mcap", str(tmp_path / "t.lcmlog"), str(out)], env=child_env,
-                         capture_output=True, text=True, timeout=120)
-    assert run.returncode == 1, run.stdout + run.stderr          # the two bad events are reported
+    run = subprocess.run(
+        LCMLOG + ["mcap", str(tmp_path / "t.lcmlog"), str(out)],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == 1, run.stdout + run.stderr  # the two bad events are reported
     assert "2 undecodable event(s)" in run.stderr and "Traceback" not in run.stderr
 
     counts: Counter = Counter()
@@ -99,7 +114,7 @@ def test_every_channel_and_message_comes_back_valid_against_its_schema(tmp_path,
     assert names[:3] == ["survey area", "operating area", "AUV1 lines"]
     ring = geo["features"][0]["geometry"]["coordinates"][0]
     assert ring[0] == ring[-1] and ring[0] == [-70.7, 41.5]
-    assert len(geo["features"][2]["geometry"]["coordinates"]) == 1        # lines only, not turns
+    assert len(geo["features"][2]["geometry"]["coordinates"]) == 1  # lines only, not turns
 
 
 def test_schemas_reject_what_the_type_cannot_hold():
@@ -108,12 +123,22 @@ def test_schemas_reject_what_the_type_cannot_hold():
     v = jsonschema.Draft202012Validator(schemas["auv.nav_solution_t"])
     good = to_json(nav_solution_t())
     assert v.is_valid(good)
-    for bad in ({**good, "status": 2 ** 31}, {**good, "vehicle": 3}, {**good, "extra": 1},
-                {**good, "position_cov_m2": [[0, 0, 0]] * 2}, {k: x for k, x in good.items() if k != "utime"}):
+    for bad in (
+        {**good, "status": 2**31},
+        {**good, "vehicle": 3},
+        {**good, "extra": 1},
+        {**good, "position_cov_m2": [[0, 0, 0]] * 2},
+        {k: x for k, x in good.items() if k != "utime"},
+    ):
         assert not v.is_valid(bad), bad
 
 
 def test_a_missing_log_is_a_usage_error(tmp_path, child_env):
-    run = subprocess.run(LCMLOG + ["mcap", str(tmp_path / "none.lcmlog"), str(tmp_path / "x.mcap")],
-                         env=child_env, capture_output=True, text=True, timeout=60)
+    run = subprocess.run(
+        LCMLOG + ["mcap", str(tmp_path / "none.lcmlog"), str(tmp_path / "x.mcap")],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert run.returncode == 2 and "no such log" in run.stderr

@@ -17,28 +17,59 @@ from tools.montecarlo_summary import interval, summarize
 
 MC = [sys.executable, "-m", "tools.montecarlo"]
 # One vehicle, two short lines over part of the demo's target field: a few minutes of sim time.
-PLAN = ["--polygon", "150,120; 190,120; 190,150; 150,150", "--vehicles", "1", "--heading", "0", "--range", "40",
-        "--nadir-gap", "8", "--overlap", "0.1", "--world", str(ROOT / "missions/scenarios/mcm_world.yaml"),
-        "--sim-config", str(ROOT / "missions/sim/remus100_mcm.yaml"), "--fix-every-min", "60"]
+PLAN = [
+    "--polygon",
+    "150,120; 190,120; 190,150; 150,150",
+    "--vehicles",
+    "1",
+    "--heading",
+    "0",
+    "--range",
+    "40",
+    "--nadir-gap",
+    "8",
+    "--overlap",
+    "0.1",
+    "--world",
+    str(ROOT / "missions/scenarios/mcm_world.yaml"),
+    "--sim-config",
+    str(ROOT / "missions/sim/remus100_mcm.yaml"),
+    "--fix-every-min",
+    "60",
+]
 
 
 def test_interval_is_the_t_interval_of_the_mean():
     s = interval([1.0, 2.0, 3.0, 4.0])
     assert s["mean"] == 2.5 and s["min"] == 1.0 and s["max"] == 4.0
-    half = 3.182 * (1.6666666666666667 ** 0.5) / 2          # t(0.975, 3) * sd / sqrt(n)
+    half = 3.182 * (1.6666666666666667**0.5) / 2  # t(0.975, 3) * sd / sqrt(n)
     assert s["lo"] == pytest.approx(2.5 - half) and s["hi"] == pytest.approx(2.5 + half)
     assert interval([5.0])["lo"] == interval([5.0])["hi"] == 5.0
-    runs = [{"seed": 1, "metrics": {"outcome": "done", "coverage": 0.9, "pd": None, "false_alarms": 2,
-                                    "nav_error_rms_m": 1.0, "mission_time_s": 100.0}},
-            {"seed": 2, "error": "launcher exit 5"}]
+    runs = [
+        {
+            "seed": 1,
+            "metrics": {
+                "outcome": "done",
+                "coverage": 0.9,
+                "pd": None,
+                "false_alarms": 2,
+                "nav_error_rms_m": 1.0,
+                "mission_time_s": 100.0,
+            },
+        },
+        {"seed": 2, "error": "launcher exit 5"},
+    ]
     s = summarize(runs)
     assert s["reported"] == 1 and s["failed_runs"] == {"2": "launcher exit 5"} and "pd" not in s["metrics"]
 
 
-@pytest.mark.parametrize("args, message", [
-    (["--seeds", "0"], "must be at least 1"),
-    (["--dask", "tcp://x:1", "--dask-local", "2"], "exclude each other"),
-])
+@pytest.mark.parametrize(
+    "args, message",
+    [
+        (["--seeds", "0"], "must be at least 1"),
+        (["--dask", "tcp://x:1", "--dask-local", "2"], "exclude each other"),
+    ],
+)
 def test_usage_errors(tmp_path, args, message, child_env):
     sc = tmp_path / "s.yaml"
     sc.write_text("vehicles: []\n")
@@ -59,13 +90,36 @@ def _truth_and_targets(log):
 
 
 def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
-    plan = subprocess.run([sys.executable, "-m", "tools.plan_survey", *PLAN, "--out", tmp_path / "sc",
-                           "--name", "mc", "--build", BUILD], capture_output=True, text=True, timeout=120)
+    plan = subprocess.run(
+        [sys.executable, "-m", "tools.plan_survey", *PLAN, "--out", tmp_path / "sc", "--name", "mc", "--build", BUILD],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert plan.returncode == 0, plan.stderr
     out = tmp_path / "mc"
-    run = subprocess.run(MC + [tmp_path / "sc" / "mc.yaml", "--seeds", "2", "--first-seed", "3", "--dask-local", "2",
-                               "--out", out, "--build", BUILD, "--timeout", "500"],
-                         capture_output=True, text=True, timeout=900, env=child_env)
+    run = subprocess.run(
+        MC
+        + [
+            tmp_path / "sc" / "mc.yaml",
+            "--seeds",
+            "2",
+            "--first-seed",
+            "3",
+            "--dask-local",
+            "2",
+            "--out",
+            out,
+            "--build",
+            BUILD,
+            "--timeout",
+            "500",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=900,
+        env=child_env,
+    )
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     s = json.loads((out / "summary.json").read_text())
     assert s["runs"] == s["reported"] == 2 and s["outcomes"] == {"done": 2}, s
@@ -81,25 +135,30 @@ def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
         # one simulator per world: a second world's AUV1 would interleave its own times
         assert len(times) > 100 and all(b > a for a, b in zip(times, times[1:])), seed
         worlds.append(targets)
-    assert worlds[0] is not None and worlds[0] != worlds[1]     # the seed changed the target field
+    assert worlds[0] is not None and worlds[0] != worlds[1]  # the seed changed the target field
 
 
 def test_local_jobs_report_runs_that_fail(tmp_path, child_env):
     """The local path (--jobs): a scenario whose plan does not load makes every
     run fail at once; the study still ends, names each failed seed, exits 1."""
     bad = tmp_path / "bad.chasm"
-    bad.write_text("mission \"x\"\nstart nowhere\n")
+    bad.write_text('mission "x"\nstart nowhere\n')
     sc = tmp_path / "s.yaml"
     sc.write_text(f"""name: bad
 time: {{mode: lockstep, limit: 10}}
 vehicles:
   - id: AUV1
-    sim: {{config: {ROOT / 'missions/sim/remus100.yaml'}}}
+    sim: {{config: {ROOT / "missions/sim/remus100.yaml"}}}
     managers:
-      - {{name: NAVIGATOR, plan: {bad}, bind: {ROOT / 'missions/bindings/navigator.bind'}}}
+      - {{name: NAVIGATOR, plan: {bad}, bind: {ROOT / "missions/bindings/navigator.bind"}}}
 """)
-    run = subprocess.run(MC + [sc, "--seeds", "2", "--jobs", "2", "--out", tmp_path / "o", "--build", BUILD,
-                               "--no-plot"], capture_output=True, text=True, timeout=300, env=child_env)
+    run = subprocess.run(
+        MC + [sc, "--seeds", "2", "--jobs", "2", "--out", tmp_path / "o", "--build", BUILD, "--no-plot"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        env=child_env,
+    )
     assert run.returncode == 1, run.stdout + run.stderr
     s = json.loads((tmp_path / "o" / "summary.json").read_text())
     assert s["runs"] == 2 and s["reported"] == 0 and set(s["failed_runs"]) == {"1", "2"}

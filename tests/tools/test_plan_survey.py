@@ -19,9 +19,29 @@ POLY = "0,0; 500,-50; 600,300; 250,420; -20,300"
 
 
 def run_planner(out, *extra):
-    return subprocess.run(PLAN + ["--polygon", POLY, "--vehicles", "3", "--heading", "10", "--range", "40",
-                                  "--nadir-gap", "4", "--overlap", "0.2", "--out", str(out), *extra],
-                          capture_output=True, text=True, timeout=60)
+    return subprocess.run(
+        PLAN
+        + [
+            "--polygon",
+            POLY,
+            "--vehicles",
+            "3",
+            "--heading",
+            "10",
+            "--range",
+            "40",
+            "--nadir-gap",
+            "4",
+            "--overlap",
+            "0.2",
+            "--out",
+            str(out),
+            *extra,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def states_of(text):
@@ -42,16 +62,23 @@ def test_plans_have_the_contract_shape_and_follow_the_geometry(tmp_path):
         for target in re.findall(r"(?:->\s*(?:resume\s+(?:deep\s+)?)?|\bnext\s+)(\w+)", text):
             assert target in names, target
         # one state per leg, in order, each a track of that leg at survey altitude
-        legs = re.findall(r"state (\w+) \{\n\s+do track\(from_north = (\S+) m, from_east = (\S+) m, "
-                          r"to_north = (\S+) m, to_east = (\S+) m, speed = \$speed\)\n"
-                          r"\s+do hold_altitude\(altitude = \$altitude\)\n\s+next (\w+)", text)
+        legs = re.findall(
+            r"state (\w+) \{\n\s+do track\(from_north = (\S+) m, from_east = (\S+) m, "
+            r"to_north = (\S+) m, to_east = (\S+) m, speed = \$speed\)\n"
+            r"\s+do hold_altitude\(altitude = \$altitude\)\n\s+next (\w+)",
+            text,
+        )
         assert len(legs) == len(v["legs"])
         for (name, fn, fe, tn, te, nxt), leg, following in zip(legs, v["legs"], legs[1:] + [("recover",)]):
             assert name.startswith(leg["kind"])
             assert [float(fn), float(fe), float(tn), float(te)] == pytest.approx(leg["start"] + leg["end"], abs=0.051)
             assert nxt == following[0]
-        assert re.search(r"^state gps_fix \{\n    do surface_fix\(timeout = \$fix_timeout\)\n"
-                         r"    when done -> resume deep survey.*\n    when failed -> resume deep survey", text, re.M)
+        assert re.search(
+            r"^state gps_fix \{\n    do surface_fix\(timeout = \$fix_timeout\)\n"
+            r"    when done -> resume deep survey.*\n    when failed -> resume deep survey",
+            text,
+            re.M,
+        )
         assert "when fix_due -> gps_fix" in text and "test fix_due : elapsed > $fix_every" in text
         assert "start mission" in text and re.search(r'include "[./]*.*missions/common/safety.chasm"', text)
         for param in ("max_depth", "min_altitude", "nav_timeout", "mission_timeout", "area"):
@@ -70,34 +97,51 @@ def test_scenario_names_the_plans_and_starts(tmp_path):
         nav = next(m for m in v["managers"] if m["name"] == "NAVIGATOR")
         assert nav["plan"] == f"{v['id']}.chasm"
         assert [v["sim"]["initial"]["north_m"], v["sim"]["initial"]["east_m"]] == pytest.approx(
-            survey["vehicles"][v["id"]]["start"], abs=0.051)
+            survey["vehicles"][v["id"]]["start"], abs=0.051
+        )
     assert "param fix_every    = 10 min" in (tmp_path / "demo" / "AUV2.chasm").read_text()
-    missing = [p for v in sc["vehicles"] for m in v["managers"]
-               for p in (m["plan"], m["bind"]) if not (tmp_path / "demo" / p).exists()]
+    missing = [
+        p
+        for v in sc["vehicles"]
+        for m in v["managers"]
+        for p in (m["plan"], m["bind"])
+        if not (tmp_path / "demo" / p).exists()
+    ]
     assert not missing, f"the scenario names files that do not exist: {sorted(set(missing))}"
     from tools.scenario import load_scenario
+
     assert len(load_scenario(tmp_path / "demo" / "demo.yaml").vehicles) == 3
 
 
 def test_plans_pass_chasm_check(tmp_path):
-    needed = [BUILD / "plugins" / "chasm_guidance.so", ROOT / "missions" / "common" / "navigator_io.chasm",
-              ROOT / "missions" / "common" / "safety.chasm"]
+    needed = [
+        BUILD / "plugins" / "chasm_guidance.so",
+        ROOT / "missions" / "common" / "navigator_io.chasm",
+        ROOT / "missions" / "common" / "safety.chasm",
+    ]
     missing = [str(p) for p in needed if not p.exists()]
     assert not missing, f"chasm check needs the guidance plugin and the shared plan files: missing {missing}"
     assert run_planner(tmp_path / "s").returncode == 0
     plans = sorted((tmp_path / "s").glob("*.chasm"))
-    check = subprocess.run([str(BUILD / "bin" / "chasm"), "check", "-P", str(BUILD / "plugins"), *map(str, plans)],
-                           capture_output=True, text=True, timeout=60)
+    check = subprocess.run(
+        [str(BUILD / "bin" / "chasm"), "check", "-P", str(BUILD / "plugins"), *map(str, plans)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
     assert check.returncode == 0, check.stdout + check.stderr
 
 
-@pytest.mark.parametrize("args,msg", [
-    (["--polygon", "0,0; 1,1", "--range", "40"], "at least 3 vertices"),
-    (["--polygon", POLY, "--range", "40", "--overlap", "1.5"], "overlap"),
-    (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--ids", "A1"], "--ids names 1"),
-    (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--starts", "0,0"], "--starts gives 1"),
-    (["--polygon", "@/nonexistent/poly.txt", "--range", "40"], "No such file"),
-])
+@pytest.mark.parametrize(
+    "args,msg",
+    [
+        (["--polygon", "0,0; 1,1", "--range", "40"], "at least 3 vertices"),
+        (["--polygon", POLY, "--range", "40", "--overlap", "1.5"], "overlap"),
+        (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--ids", "A1"], "--ids names 1"),
+        (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--starts", "0,0"], "--starts gives 1"),
+        (["--polygon", "@/nonexistent/poly.txt", "--range", "40"], "No such file"),
+    ],
+)
 def test_bad_input_exits_2(tmp_path, args, msg):
     run = subprocess.run(PLAN + args + ["--out", str(tmp_path / "x")], capture_output=True, text=True, timeout=60)
     assert run.returncode == 2 and msg in run.stderr, run.stderr
@@ -114,7 +158,8 @@ def test_the_committed_demo_scenario_is_what_the_planner_writes(tmp_path):
     run = subprocess.run(PLAN + args, capture_output=True, text=True, timeout=60, cwd=ROOT)
     assert run.returncode == 0, run.stderr
     assert json.loads((tmp_path / "mcm_demo" / "survey.json").read_text()) == json.loads(
-        (demo / "survey.json").read_text())
+        (demo / "survey.json").read_text()
+    )
     for plan in demo.glob("AUV*.chasm"):
         body = lambda p: p.read_text().split("start mission", 1)[1].rsplit("include", 1)[0]  # noqa: E731
         assert body(plan) == body(tmp_path / "mcm_demo" / plan.name), plan.name

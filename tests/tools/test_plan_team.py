@@ -22,10 +22,32 @@ SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team"
 
 
 def run_team(out, *extra):
-    return subprocess.run(PLAN + ["--polygon", POLY, "--team", "3", "--heading", "0", "--range", "40",
-                                  "--nadir-gap", "9.5", "--overlap", "0.1", "--depth-m", "5",
-                                  "--out", str(out), *extra],
-                          capture_output=True, text=True, timeout=120, cwd=ROOT)
+    return subprocess.run(
+        PLAN
+        + [
+            "--polygon",
+            POLY,
+            "--team",
+            "3",
+            "--heading",
+            "0",
+            "--range",
+            "40",
+            "--nadir-gap",
+            "9.5",
+            "--overlap",
+            "0.1",
+            "--depth-m",
+            "5",
+            "--out",
+            str(out),
+            *extra,
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=ROOT,
+    )
 
 
 def param(text: str, name: str) -> str:
@@ -79,8 +101,9 @@ def test_team_plans_share_roster_and_lines_and_get_one_slot_each(tmp_path):
         nav = next(m for m in v["managers"] if m["name"] == "NAVIGATOR")
         assert nav["bind"].endswith("team_ri.bind" if ri else "team_search.bind")
     from tools.scenario import load_scenario
+
     loaded = load_scenario(out / "t.yaml")
-    assert [v.id for v in loaded.vehicles] == team["roster"]            # the launcher's own checks accept it
+    assert [v.id for v in loaded.vehicles] == team["roster"]  # the launcher's own checks accept it
 
 
 def test_the_launchers_clock_and_no_ri(tmp_path):
@@ -93,15 +116,18 @@ def test_the_launchers_clock_and_no_ri(tmp_path):
     assert param((tmp_path / "f" / "AUV3.chasm").read_text(), "slots") == "3"
 
 
-@pytest.mark.parametrize("extra,msg", [
-    (["--team", "0"], "1 to 14 search vehicles"),
-    (["--team", "15"], "1 to 14 search vehicles"),
-    (["--ri-start", "x"], "--ri-start"),
-    (["--slot-guard", "-1"], "--slot-guard -1: out of range"),
-    (["--silent", "nan"], "--silent nan: out of range"),
-    (["--search-config", "missions/sim/remus100.yaml"], "no modem: section"),
-    (["--ri-config", "/nonexistent.yaml"], "no such file"),
-])
+@pytest.mark.parametrize(
+    "extra,msg",
+    [
+        (["--team", "0"], "1 to 14 search vehicles"),
+        (["--team", "15"], "1 to 14 search vehicles"),
+        (["--ri-start", "x"], "--ri-start"),
+        (["--slot-guard", "-1"], "--slot-guard -1: out of range"),
+        (["--silent", "nan"], "--silent nan: out of range"),
+        (["--search-config", "missions/sim/remus100.yaml"], "no modem: section"),
+        (["--ri-config", "/nonexistent.yaml"], "no such file"),
+    ],
+)
 def test_bad_team_input_exits_2(tmp_path, extra, msg):
     run = run_team(tmp_path / "x", *extra)
     assert run.returncode == 2 and msg in run.stderr, run.stderr
@@ -110,8 +136,9 @@ def test_bad_team_input_exits_2(tmp_path, extra, msg):
 
 def test_mismatched_modems_are_refused(tmp_path):
     cfg = tmp_path / "ri.yaml"
-    cfg.write_text((ROOT / "missions" / "sim" / "remus100_ri.yaml").read_text()
-                   .replace("bitrate_bps: 80", "bitrate_bps: 1300"))
+    cfg.write_text(
+        (ROOT / "missions" / "sim" / "remus100_ri.yaml").read_text().replace("bitrate_bps: 80", "bitrate_bps: 1300")
+    )
     run = run_team(tmp_path / "x", "--ri-config", str(cfg))
     assert run.returncode == 2 and "one team, one modem profile" in run.stderr, run.stderr
 
@@ -123,15 +150,18 @@ def test_the_committed_team_scenario_is_what_the_planner_writes(tmp_path):
     run = subprocess.run(PLAN + args, capture_output=True, text=True, timeout=120, cwd=ROOT)
     assert run.returncode == 0, run.stderr
     assert json.loads((tmp_path / "mcm_team" / "survey.json").read_text()) == json.loads(
-        (SCENARIO / "survey.json").read_text())
-    def plan_body(p):       # include paths are relative to the plan's folder
+        (SCENARIO / "survey.json").read_text()
+    )
+
+    def plan_body(p):  # include paths are relative to the plan's folder
         return [ln for ln in p.read_text().splitlines() if not ln.startswith("include ")]
+
     plans = sorted(SCENARIO.glob("AUV*.chasm"))
     assert [p.name for p in plans] == ["AUV1.chasm", "AUV2.chasm", "AUV3.chasm", "AUV4.chasm"]
     for plan in plans:
         assert plan_body(plan) == plan_body(tmp_path / "mcm_team" / plan.name), plan.name
 
-    def scenario(folder):   # file references resolved: the two folders differ
+    def scenario(folder):  # file references resolved: the two folders differ
         sc = yaml.safe_load((folder / "mcm_team.yaml").read_text())
         for v in sc["vehicles"]:
             v["sim"]["config"] = str((folder / v["sim"]["config"]).resolve())
@@ -139,13 +169,19 @@ def test_the_committed_team_scenario_is_what_the_planner_writes(tmp_path):
                 m["plan"], m["bind"] = str((folder / m["plan"]).resolve()), str((folder / m["bind"]).resolve())
                 m["plan"] = m["plan"].rsplit("/", 1)[1] if m["name"] == "NAVIGATOR" else m["plan"]
         return sc
+
     assert scenario(SCENARIO) == scenario(tmp_path / "mcm_team")
 
 
 def chasm_check(plan):
     from conftest import BUILD, c_program
-    return subprocess.run([str(c_program("bin/chasm")), "check", "-P", str(BUILD / "plugins"), str(plan)],
-                          capture_output=True, text=True, timeout=60)
+
+    return subprocess.run(
+        [str(c_program("bin/chasm")), "check", "-P", str(BUILD / "plugins"), str(plan)],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
 
 
 def test_the_team_plans_load_with_the_team_plugin():
@@ -163,12 +199,19 @@ def test_one_target_field_publisher_and_one_field_in_the_lockstep_team():
     from sim.sonar.publisher import build_field
     from tools.scenario import load_scenario
     from tools.simconfig import vehicle_config
+
     sc = load_scenario(SCENARIO / "mcm_team.yaml")
     cfgs = {v.id: vehicle_config(sc, v, k) for k, v in enumerate(sc.vehicles)}
     assert [cfgs[v].get("sonar", {}).get("publish_targets") for v in ("AUV1", "AUV2", "AUV3", "AUV4")] == [
-        "yes", "no", "no", None]
+        "yes",
+        "no",
+        "no",
+        None,
+    ]
     sims = {vid: loads(dump_yaml(c), SCENARIO / f"{vid}.sim.yaml") for vid, c in cfgs.items()}
     search = build_field(sims["AUV1"])
     ri = build_field(sims["AUV4"], sims["AUV4"].identify.targets)
     assert len(search.targets) == 24
-    assert [(t.north_m, t.east_m, t.kind) for t in ri.targets] == [(t.north_m, t.east_m, t.kind) for t in search.targets]
+    assert [(t.north_m, t.east_m, t.kind) for t in ri.targets] == [
+        (t.north_m, t.east_m, t.kind) for t in search.targets
+    ]

@@ -30,19 +30,35 @@ def _log(path):
 def test_fields_of_any_channel_are_plotted(tmp_path, child_env):
     _log(tmp_path / "r.lcmlog")
     out = tmp_path / "p.png"
-    run = subprocess.run(PLOT + [str(tmp_path / "r.lcmlog"), "AUV1.NAV.depth_m", "AUV1.NAV.position_cov_m2[0][0]",
-                                 "AUV1.CHASM.NAVIGATOR.cycle", "--out", str(out)],
-                         env=child_env, capture_output=True, text=True, timeout=120)
-    assert run.returncode == 1, run.stderr          # the truncated NAV event is reported
+    run = subprocess.run(
+        PLOT
+        + [
+            str(tmp_path / "r.lcmlog"),
+            "AUV1.NAV.depth_m",
+            "AUV1.NAV.position_cov_m2[0][0]",
+            "AUV1.CHASM.NAVIGATOR.cycle",
+            "--out",
+            str(out),
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert run.returncode == 1, run.stderr  # the truncated NAV event is reported
     assert "1 undecodable event(s) on AUV1.NAV" in run.stderr
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 5000
 
 
 def test_unknown_channels_and_fields_are_refused_with_a_hint(tmp_path, capsys):
     from tools import plot_field  # in-process: one matplotlib import for every case
+
     _log(tmp_path / "r.lcmlog")
-    for spec, text in (("AUV1.NAV.depht_m", "did you mean depth_m"), ("AUV1.NAVV.depth_m", "no channel"),
-                       ("AUV1.NAV.vehicle", "is text, not a number")):
+    for spec, text in (
+        ("AUV1.NAV.depht_m", "did you mean depth_m"),
+        ("AUV1.NAVV.depth_m", "no channel"),
+        ("AUV1.NAV.vehicle", "is text, not a number"),
+    ):
         assert plot_field.main([str(tmp_path / "r.lcmlog"), spec, "--out", str(tmp_path / "x.png")]) == 2, spec
         assert text in capsys.readouterr().err, spec
         assert not (tmp_path / "x.png").exists()

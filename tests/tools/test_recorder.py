@@ -19,7 +19,7 @@ from lcm_proc import lcm_tool, stop
 from auv import ground_truth_t, lockstep_t, process_health_t, sim_clock_t
 
 VEHICLES = 16
-PER_VEHICLE = 120          # one burst: 16 vehicles' TRUTH, 1920 messages at once
+PER_VEHICLE = 120  # one burst: 16 vehicles' TRUTH, 1920 messages at once
 WARMUP = "TEST.WARMUP"
 
 
@@ -52,7 +52,7 @@ def wait_logged(path, channel: str, lc: lcm.LCM, proc, what: str, timeout: float
             if any(ch == channel for ch, _ in events(path)):
                 return
         except (OSError, ValueError):
-            pass                                    # not created yet, or a half-written event
+            pass  # not created yet, or a half-written event
         assert proc.poll() is None, f"{what} exited: {proc.communicate()}"
         assert time.monotonic() < deadline, f"{what} never recorded a message"
         time.sleep(0.1)
@@ -79,10 +79,19 @@ def test_a_stalled_recorder_loses_nothing_where_lcm_logger_does(tmp_path, lcm_ur
     30-message subscription queue overflows, the recorder's deep one does not."""
     url = lcm_url + "&recv_buf_size=4194304"
     rec_log, lg_log, stats = tmp_path / "rec.lcmlog", tmp_path / "logger.lcmlog", tmp_path / "stats.json"
-    rec = subprocess.Popen(recorder_cmd(variant_dir, url, rec_log, stats), env=child_env,
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    logger = subprocess.Popen([lcm_tool("lcm-logger"), f"--lcm-url={url}", "--quiet", str(lg_log)],
-                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    rec = subprocess.Popen(
+        recorder_cmd(variant_dir, url, rec_log, stats),
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    logger = subprocess.Popen(
+        [lcm_tool("lcm-logger"), f"--lcm-url={url}", "--quiet", str(lg_log)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     lc = lcm.LCM(url)
     try:
         wait_logged(rec_log, WARMUP, lc, rec, "auv-recorder")
@@ -99,15 +108,15 @@ def test_a_stalled_recorder_loses_nothing_where_lcm_logger_does(tmp_path, lcm_ur
         out, err = rec.communicate()
         stop(logger)
     assert rc_rec == 0, out + err
-    assert err == "", err             # no sanitizer report, no complaint about the signal that stopped it
+    assert err == "", err  # no sanitizer report, no complaint about the signal that stopped it
     expected = list(range(PER_VEHICLE))
     got = truths(events(rec_log))
-    assert got == {f"AUV{v}.TRUTH": expected for v in range(1, VEHICLES + 1)}   # every one, in order
+    assert got == {f"AUV{v}.TRUTH": expected for v in range(1, VEHICLES + 1)}  # every one, in order
     counts = json.loads(stats.read_text())
     assert counts["dropped"] == 0 and counts["missed"] == 0 and counts["write_errors"] == 0, counts
     assert counts["written"] == counts["received"] == len(events(rec_log)), counts
     assert f"written {counts['written']}, dropped 0" in out and "missed 0" in out, out
-    assert counts["recv_buf_granted"] >= 4194304, counts    # the kernel granted what was asked (and reports it)
+    assert counts["recv_buf_granted"] >= 4194304, counts  # the kernel granted what was asked (and reports it)
     lost_by_logger = VEHICLES * PER_VEHICLE - sum(len(v) for v in truths(events(lg_log)).values())
     print(f"lcm-logger lost {lost_by_logger} of {VEHICLES * PER_VEHICLE}; auv-recorder lost 0")
     assert lost_by_logger > 0, "lcm-logger kept up this time: the burst did not test the difference"
@@ -116,8 +125,13 @@ def test_a_stalled_recorder_loses_nothing_where_lcm_logger_does(tmp_path, lcm_ur
 def test_lcm_logplayer_replays_the_recorders_log(tmp_path, lcm_url, child_env, build_dir):
     url = lcm_url + "&recv_buf_size=4194304"
     log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
-    rec = subprocess.Popen(recorder_cmd(build_dir, url, log, stats), env=child_env,
-                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    rec = subprocess.Popen(
+        recorder_cmd(build_dir, url, log, stats),
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     lc = lcm.LCM(url)
     try:
         wait_logged(log, WARMUP, lc, rec, "auv-recorder")
@@ -130,13 +144,17 @@ def test_lcm_logplayer_replays_the_recorders_log(tmp_path, lcm_url, child_env, b
     recorded = truths(events(log))
     assert recorded == {"AUV1.TRUTH": list(range(50)), "AUV2.TRUTH": list(range(50))}
 
-    other = lcm_url.replace("239.255.76.67", "239.255.76.68") + "&recv_buf_size=4194304"   # another world
+    other = lcm_url.replace("239.255.76.67", "239.255.76.68") + "&recv_buf_size=4194304"  # another world
     rx = lcm.LCM(other)
     got: list[tuple[str, int]] = []
     sub = rx.subscribe(r"AUV\d\.TRUTH", lambda ch, data: got.append((ch, ground_truth_t.decode(data).utime)))
     sub.set_queue_capacity(10000)
-    player = subprocess.Popen([lcm_tool("lcm-logplayer"), f"--lcm-url={other}", str(log)],
-                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    player = subprocess.Popen(
+        [lcm_tool("lcm-logplayer"), f"--lcm-url={other}", str(log)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     deadline = time.monotonic() + 30
     while len(got) < 100 and time.monotonic() < deadline:
         rx.handle_timeout(50)
@@ -150,16 +168,22 @@ def test_in_lockstep_time_waits_for_the_recorder(tmp_path, lcm_url, child_env, v
     everything received before that step's clock, reports nothing while it is
     stopped, and leaves when it ends. It also publishes its health."""
     log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
-    rec = subprocess.Popen(recorder_cmd(variant_dir, lcm_url, log, stats, "--health-period", "0.2"),
-                           env=child_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    rec = subprocess.Popen(
+        recorder_cmd(variant_dir, lcm_url, log, stats, "--health-period", "0.2"),
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     lc = lcm.LCM(lcm_url)
-    seen: list[tuple[int, int]] = []      # (kind, step) from SIM.RECORDER
+    seen: list[tuple[int, int]] = []  # (kind, step) from SIM.RECORDER
     health: list = []
 
     def on_lockstep(_ch, data):
         m = lockstep_t.decode(data)
         if m.participant == "SIM.RECORDER":
             seen.append((m.kind, m.step))
+
     lc.subscribe("SIM.LOCKSTEP", on_lockstep)
     lc.subscribe("SIM.HEALTH", lambda _ch, data: health.append(process_health_t.decode(data)))
 
@@ -173,6 +197,7 @@ def test_in_lockstep_time_waits_for_the_recorder(tmp_path, lcm_url, child_env, v
         while not cond() and time.monotonic() < deadline:
             lc.handle_timeout(50)
         return cond()
+
     try:
         assert wait(lambda: (lockstep_t.KIND_REGISTER, 0) in seen), "no REGISTER from SIM.RECORDER"
         for step in (1, 2):
@@ -181,7 +206,7 @@ def test_in_lockstep_time_waits_for_the_recorder(tmp_path, lcm_url, child_env, v
         os.kill(rec.pid, signal.SIGSTOP)
         clock(3)
         lc.handle_timeout(500)
-        assert (lockstep_t.KIND_STEP_DONE, 3) not in seen          # time waits for it
+        assert (lockstep_t.KIND_STEP_DONE, 3) not in seen  # time waits for it
         os.kill(rec.pid, signal.SIGCONT)
         assert wait(lambda: (lockstep_t.KIND_STEP_DONE, 3) in seen), seen
         assert wait(lambda: any(h.process == "recorder" for h in health))
@@ -196,14 +221,23 @@ def test_in_lockstep_time_waits_for_the_recorder(tmp_path, lcm_url, child_env, v
     assert clocks == [1, 2, 3]
 
 
-@pytest.mark.parametrize("args, code, message", [
-    ([], 2, "-f FILE is required"),
-    (["-f", "x.lcmlog", "--queue-mb", "zero"], 2, "--queue-mb: 'zero' is not a number"),
-    (["-f", "x.lcmlog", "--bogus"], 2, "--bogus: unknown option"),
-    (["-f", "/nonexistent-dir/x.lcmlog"], 1, "/nonexistent-dir/x.lcmlog"),
-])
+@pytest.mark.parametrize(
+    "args, code, message",
+    [
+        ([], 2, "-f FILE is required"),
+        (["-f", "x.lcmlog", "--queue-mb", "zero"], 2, "--queue-mb: 'zero' is not a number"),
+        (["-f", "x.lcmlog", "--bogus"], 2, "--bogus: unknown option"),
+        (["-f", "/nonexistent-dir/x.lcmlog"], 1, "/nonexistent-dir/x.lcmlog"),
+    ],
+)
 def test_bad_usage_is_a_clear_error(tmp_path, variant_dir, child_env, args, code, message):
-    run = subprocess.run([str(variant_dir / "bin" / "auv-recorder"), *args], cwd=tmp_path, env=child_env,
-                         capture_output=True, text=True, timeout=30)
+    run = subprocess.run(
+        [str(variant_dir / "bin" / "auv-recorder"), *args],
+        cwd=tmp_path,
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=30,
+    )
     assert run.returncode == code, run.stderr
     assert message in run.stderr and "Sanitizer" not in run.stderr

@@ -33,9 +33,13 @@ def test_time_waits_for_a_stopped_recorder(tmp_path, lcm_url, child_env, build_d
             lc.handle_timeout(20)
         return until()
 
-    rec = subprocess.Popen([str(build_dir / "bin" / "auv-recorder"), "--url", lcm_url, "-f", str(log),
-                            "--stats", str(stats)], env=child_env, stdout=subprocess.PIPE,
-                           stderr=subprocess.STDOUT, text=True)
+    rec = subprocess.Popen(
+        [str(build_dir / "bin" / "auv-recorder"), "--url", lcm_url, "-f", str(log), "--stats", str(stats)],
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+    )
     spec = VehicleSpec("AUV1")
     try:
         world.managers(spec)
@@ -43,7 +47,7 @@ def test_time_waits_for_a_stopped_recorder(tmp_path, lcm_url, child_env, build_d
         world.simulator(spec, "lockstep", {"lockstep_participants": 3, "step_s": 0.1, "lockstep_timeout_s": 60})
         assert pump(120, lambda: _clock_us(clocks) >= 3_000_000), {n: world.output(n)[-400:] for n in world.procs}
         os.kill(rec.pid, signal.SIGSTOP)
-        pump(1.0)                                    # the step in flight when it stopped may still end
+        pump(1.0)  # the step in flight when it stopped may still end
         held = _clock_us(clocks)
         pump(2.0)
         assert _clock_us(clocks) == held, "time went on without the recorder"

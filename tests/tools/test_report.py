@@ -26,8 +26,12 @@ from auv import (
 from auvlcm.log import read_events
 
 REPORT = [sys.executable, "-m", "tools.report"]
-SURVEY = {"polygon": [[0, -60], [200, -60], [200, 90], [0, 90]], "area_m2": 200 * 150,
-          "sonar": {"range_m": 40, "nadir_gap_m": 4}, "operating_area": [[-100, -200], [300, -200], [300, 200]]}
+SURVEY = {
+    "polygon": [[0, -60], [200, -60], [200, 90], [0, 90]],
+    "area_m2": 200 * 150,
+    "sonar": {"range_m": 40, "nadir_gap_m": 4},
+    "operating_area": [[-100, -200], [300, -200], [300, 200]],
+}
 
 
 def synthetic_log(path, lost=()):
@@ -41,6 +45,7 @@ def synthetic_log(path, lost=()):
     def put(ch, msg):
         log.write_event(seq[0], ch, msg.encode())
         seq[0] += 1
+
     a = log_annotation_t()
     a.kind, a.name, a.text = log_annotation_t.KIND_NOTE, "survey.json", json.dumps(SURVEY)
     put("SIM.ANNOTATION", a)
@@ -89,15 +94,19 @@ def synthetic_log(path, lost=()):
 
 def test_report_figures_on_a_known_geometry(tmp_path):
     synthetic_log(tmp_path / "s.lcmlog")
-    run = subprocess.run(REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "1", "--out", str(tmp_path / "r"),
-                                   "--no-plots"], capture_output=True, text=True, timeout=120)
+    run = subprocess.run(
+        REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "1", "--out", str(tmp_path / "r"), "--no-plots"],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
     assert run.returncode == 0, run.stderr
     rep = json.loads((tmp_path / "r" / "report.json").read_text())
     assert rep["outcome"] == "done" and rep["vehicle_outcomes"] == {"AUV1": "done"}
     # Swaths inside the area (east -60..90): line1 sees -40..-4 and 4..40, line2 10..46 and 54..90,
     # over north 0..200. Once: 36 + 42 + 36 = 114 m wide; twice: 10..40, 30 m wide.
     cov = rep["coverage"]
-    edge = 6 * 1 * 200            # at most a cell per swath edge, over the 200 m length
+    edge = 6 * 1 * 200  # at most a cell per swath edge, over the 200 m length
     assert abs(cov["covered_once_m2"] - 114 * 200) <= edge
     assert abs(cov["covered_twice_m2"] - 30 * 200) <= edge
     assert cov["raster_area_m2"] == pytest.approx(200 * 150, rel=0.01)
@@ -116,8 +125,12 @@ def test_report_figures_on_a_known_geometry(tmp_path):
 def test_report_counts_the_truth_samples_the_log_lost(tmp_path):
     for name, lost in (("whole", ()), ("lossy", (5, 300, 301, 302, 4000))):
         synthetic_log(tmp_path / f"{name}.lcmlog", lost=set(lost))
-        run = subprocess.run(REPORT + [str(tmp_path / f"{name}.lcmlog"), "--out", str(tmp_path / name), "--no-plots"],
-                             capture_output=True, text=True, timeout=120)
+        run = subprocess.run(
+            REPORT + [str(tmp_path / f"{name}.lcmlog"), "--out", str(tmp_path / name), "--no-plots"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+        )
         assert run.returncode == 0, run.stderr
         r = json.loads((tmp_path / name / "report.json").read_text())["record"]["AUV1"]
         assert r["missing"] == len(lost) and r["interval_s"] == pytest.approx(0.1), r
@@ -127,8 +140,12 @@ def test_report_counts_the_truth_samples_the_log_lost(tmp_path):
 
 def test_plots_are_written_as_png_and_svg(tmp_path):
     synthetic_log(tmp_path / "s.lcmlog")
-    run = subprocess.run(REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "4", "--out", str(tmp_path / "r")],
-                         capture_output=True, text=True, timeout=180)
+    run = subprocess.run(
+        REPORT + [str(tmp_path / "s.lcmlog"), "--cell", "4", "--out", str(tmp_path / "r")],
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     assert run.returncode == 0, run.stderr
     listed = set(json.loads((tmp_path / "r" / "report.json").read_text())["plots"])
     for name in ("tracks", "coverage", "contacts", "depth", "states"):
@@ -141,18 +158,34 @@ def test_plots_are_written_as_png_and_svg(tmp_path):
 
 def test_report_on_a_real_launcher_run(tmp_path, lcm_url, child_env):
     sc = ROOT / "tests" / "tools" / "scenarios" / "two_vehicles.yaml"
-    run = subprocess.run([sys.executable, "-m", "tools.launch", str(sc), "--out",
-                          str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
-                         env=child_env, capture_output=True, text=True, timeout=180)
+    run = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "tools.launch",
+            str(sc),
+            "--out",
+            str(tmp_path / "run"),
+            "--url",
+            lcm_url,
+            "--progress",
+            "0",
+        ],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
     assert run.returncode == 0, run.stdout + run.stderr
-    rep_run = subprocess.run(REPORT + [str(tmp_path / "run" / "run.lcmlog")], env=child_env,
-                             capture_output=True, text=True, timeout=120)
+    rep_run = subprocess.run(
+        REPORT + [str(tmp_path / "run" / "run.lcmlog")], env=child_env, capture_output=True, text=True, timeout=120
+    )
     assert rep_run.returncode == 0, rep_run.stderr
     rep = json.loads((tmp_path / "run" / "report.json").read_text())
     assert rep["outcome"] == "done" and set(rep["vehicle_outcomes"]) == {"AUV1", "AUV2"}
     assert rep["undecodable_events"] == 0 and 14 < rep["duration_s"] < 17
     assert "coverage" not in rep and rep["detection"] is None
-    truth = {"AUV1": [], "AUV2": []}       # independently: NAV against the truth interpolated in time
+    truth = {"AUV1": [], "AUV2": []}  # independently: NAV against the truth interpolated in time
     navs = {"AUV1": [], "AUV2": []}
     for ev in read_events(tmp_path / "run" / "run.lcmlog"):
         if ev.channel.endswith(".TRUTH"):

@@ -64,9 +64,13 @@ def shifted(survey, sign):
     return out
 
 
-CASES = [(CONVEX, 3, 20.0, Sonar(50, 5), 0.2), (CONVEX, 1, 0.0, Sonar(40, 0), 0.0),
-         (L_SHAPE, 2, 90.0, Sonar(45, 4), 0.1), (U_SHAPE, 3, 0.0, Sonar(30, 3), 0.25),
-         (U_SHAPE, 2, 37.0, Sonar(35, 0), 0.15)]
+CASES = [
+    (CONVEX, 3, 20.0, Sonar(50, 5), 0.2),
+    (CONVEX, 1, 0.0, Sonar(40, 0), 0.0),
+    (L_SHAPE, 2, 90.0, Sonar(45, 4), 0.1),
+    (U_SHAPE, 3, 0.0, Sonar(30, 3), 0.25),
+    (U_SHAPE, 2, 37.0, Sonar(35, 0), 0.15),
+]
 
 
 @pytest.mark.parametrize("poly,n,heading,sonar,overlap", CASES)
@@ -118,7 +122,7 @@ def test_concave_lines_skip_the_notch_only_when_the_swath_cannot_see_across_it()
             by_line.setdefault(leg.line, []).append(leg)
         for legs in by_line.values():
             e = legs[0].start[1]
-            if 120 + 30 < e < 280 - 30:     # the swath sees only the notch's open side
+            if 120 + 30 < e < 280 - 30:  # the swath sees only the notch's open side
                 assert len(legs) == 1 and min(legs[0].start[0], legs[0].end[0]) > 340 - 10
             else:
                 assert len(legs) == 1 and min(legs[0].start[0], legs[0].end[0]) < 0
@@ -129,7 +133,7 @@ def test_operating_area_holds_all_legs_with_room():
     ends = np.array([p for v in s.vehicles for leg in v.legs for p in (leg.start, leg.end)] + CONVEX, float)
     assert inside(s.operating_area, ends).all()
     hull_far = np.array([(p[0] + 20, p[1]) for p in ends])
-    assert inside(s.operating_area, hull_far).all()   # margin > 20 m everywhere
+    assert inside(s.operating_area, hull_far).all()  # margin > 20 m everywhere
 
 
 def test_vehicles_start_near_their_first_line():
@@ -144,22 +148,30 @@ def test_vehicles_start_near_their_first_line():
         assert kinds[0] == "line" and all(a != b for a, b in zip(kinds, kinds[1:]))
 
 
-@pytest.mark.parametrize("text,msg", [
-    ("0,0; 1,1", "at least 3 vertices"),
-    ("0,0; 100,100; 100,0; 0,100", "crosses itself"),
-    ("0,0; 100,x; 0,100", "not a number"),
-    ("0,0; 100; 0,100", "expected 'north,east'"),
-    ("0,0; 1,0; 2,0", "no area"),
-])
+@pytest.mark.parametrize(
+    "text,msg",
+    [
+        ("0,0; 1,1", "at least 3 vertices"),
+        ("0,0; 100,100; 100,0; 0,100", "crosses itself"),
+        ("0,0; 100,x; 0,100", "not a number"),
+        ("0,0; 100; 0,100", "expected 'north,east'"),
+        ("0,0; 1,0; 2,0", "no area"),
+    ],
+)
 def test_bad_polygons(text, msg):
     with pytest.raises(GeometryError, match=msg):
         parse_polygon(text)
 
 
-@pytest.mark.parametrize("kw,msg", [
-    ({"vehicles": 0}, "at least 1"), ({"overlap": 1.0}, "overlap"),
-    ({"sonar": Sonar(40, 20)}, "nadir gap"), ({"sonar": Sonar(0, 0)}, "range must be > 0"),
-])
+@pytest.mark.parametrize(
+    "kw,msg",
+    [
+        ({"vehicles": 0}, "at least 1"),
+        ({"overlap": 1.0}, "overlap"),
+        ({"sonar": Sonar(40, 20)}, "nadir gap"),
+        ({"sonar": Sonar(0, 0)}, "range must be > 0"),
+    ],
+)
 def test_bad_parameters(kw, msg):
     args = {"vehicles": 2, "heading_rad": 0.0, "sonar": Sonar(40, 4), "overlap": 0.1, **kw}
     with pytest.raises(GeometryError, match=msg):

@@ -53,21 +53,21 @@ def test_hostile_stamps_neither_end_the_mission_nor_reach_the_watch(tmp_path):
         feed(watch, "SIM.CLOCK", clock(bad))
         feed(watch, "AUV1.ACTUATOR_STATE", state(bad))
         feed(watch, "AUV1.CHASM.NAVIGATOR", status(bad, "NAVIGATOR"))
-    feed(watch, "SIM.CLOCK", clock(500_000))                     # back in time
-    feed(watch, "SIM.CLOCK", clock(1_000_000 + 3600 * 10**6))    # an hour ahead, once
-    feed(watch, "AUV1.ACTUATOR_STATE", state(1_000_000 + 5_000_000))   # from the future
-    feed(watch, "AUV1.CHASM.WATCHER", status(900_000, "WATCHER"))      # out of order
-    assert watch.sim_time_us == 1_000_000                        # no time limit reached
-    assert watch.vehicles["AUV1"].sim_us == 1_000_000            # no report from the future
-    assert watch.manager_us["AUV1.WATCHER"] == 1_000_000         # nor one out of order
-    feed(watch, "SIM.CLOCK", clock(1_100_000))                   # and the world goes on
+    feed(watch, "SIM.CLOCK", clock(500_000))  # back in time
+    feed(watch, "SIM.CLOCK", clock(1_000_000 + 3600 * 10**6))  # an hour ahead, once
+    feed(watch, "AUV1.ACTUATOR_STATE", state(1_000_000 + 5_000_000))  # from the future
+    feed(watch, "AUV1.CHASM.WATCHER", status(900_000, "WATCHER"))  # out of order
+    assert watch.sim_time_us == 1_000_000  # no time limit reached
+    assert watch.vehicles["AUV1"].sim_us == 1_000_000  # no report from the future
+    assert watch.manager_us["AUV1.WATCHER"] == 1_000_000  # nor one out of order
+    feed(watch, "SIM.CLOCK", clock(1_100_000))  # and the world goes on
     assert watch.sim_time_us == 1_100_000
-    for sub in watch.rx.subscriptions:                            # garbage on every channel
+    for sub in watch.rx.subscriptions:  # garbage on every channel
         sub.on_raw(sub.channel, b"\x00" * 7)
         sub.on_raw(sub.channel, clock(1).encode()[:-1])
     assert watch.sim_time_us == 1_100_000
     n = 2 * len(watch.rx.subscriptions)
-    assert watch.dropped() == {"decode_errors": n, "time": {
-        "invalid": 12, "future": 1, "out_of_order": 1, "regression": 1, "jump": 1}}
-
-
+    assert watch.dropped() == {
+        "decode_errors": n,
+        "time": {"invalid": 12, "future": 1, "out_of_order": 1, "regression": 1, "jump": 1},
+    }

@@ -28,14 +28,14 @@ def loss_probability(range_m: float, cfg: ModemConfig) -> float:
     if range_m > cfg.max_range_m:
         return 1.0
     frac = max(range_m, 0.0) / cfg.max_range_m
-    return cfg.loss_at_zero + (cfg.loss_at_max_range - cfg.loss_at_zero) * frac ** cfg.loss_exponent
+    return cfg.loss_at_zero + (cfg.loss_at_max_range - cfg.loss_at_zero) * frac**cfg.loss_exponent
 
 
 def uniform_draw(seed: int, src: str, seq: int, tx_utime: int, dst: str) -> float:
     """A number in [0, 1) fixed by the frame and its receiver."""
     key = f"{seed}|{src}|{seq}|{tx_utime}|{dst}".encode()
     digest = hashlib.blake2b(key, digest_size=8).digest()
-    return int.from_bytes(digest, "big") / 2.0 ** 64
+    return int.from_bytes(digest, "big") / 2.0**64
 
 
 def snr_db(range_m: float, source_level_db: float, cfg: ModemConfig) -> float:

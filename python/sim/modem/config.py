@@ -20,23 +20,23 @@ from confcheck import Checker, setting
 
 @dataclass
 class ModemConfig:
-    enabled: bool = True             # a `modem:` section turns the modem on
-    profile: str = ""                # rate profile (PROFILES); "" = the keys below
+    enabled: bool = True  # a `modem:` section turns the modem on
+    profile: str = ""  # rate profile (PROFILES); "" = the keys below
     # payload limit of one frame (modem_tx_t.n_bytes is an int16)
     max_frame_bytes: int = setting(256, ge=1, le=32767)
-    bitrate_bps: float = setting(1000.0, gt=0.0)   # payload bits per second while transmitting
+    bitrate_bps: float = setting(1000.0, gt=0.0)  # payload bits per second while transmitting
     frame_overhead_s: float = setting(0.5, ge=0.0)  # preamble and guard time of every frame
-    min_interval_s: float = setting(0.0, ge=0.0)    # least time between the starts of two frames
-    max_range_m: float = setting(2000.0, gt=0.0)    # frames never arrive beyond this 3-D range
-    loss_at_zero: float = setting(0.02, ge=0.0, le=1.0)      # frame loss probability at 0 m
+    min_interval_s: float = setting(0.0, ge=0.0)  # least time between the starts of two frames
+    max_range_m: float = setting(2000.0, gt=0.0)  # frames never arrive beyond this 3-D range
+    loss_at_zero: float = setting(0.02, ge=0.0, le=1.0)  # frame loss probability at 0 m
     loss_at_max_range: float = setting(0.5, ge=0.0, le=1.0)  # ... at max_range_m
-    loss_exponent: float = setting(2.0, gt=0.0)     # shape of the curve between them
-    source_level_db: float = 185.0   # re 1 uPa at 1 m, for the reported SNR
-    noise_level_db: float = 50.0     # in-band noise, re 1 uPa
+    loss_exponent: float = setting(2.0, gt=0.0)  # shape of the curve between them
+    source_level_db: float = 185.0  # re 1 uPa at 1 m, for the reported SNR
+    noise_level_db: float = 50.0  # in-band noise, re 1 uPa
     absorption_db_per_km: float = setting(1.0, ge=0.0)
-    peer_reports: bool = True        # send <V>.PEER_REPORT, publish <V>.PEER.<OTHER>
-    status_period_s: float = setting(1.0, gt=0.0)   # sim seconds between modem_status_t
-    seed: int = -1                   # loss draws; -1 = environment.seed (the world's)
+    peer_reports: bool = True  # send <V>.PEER_REPORT, publish <V>.PEER.<OTHER>
+    status_period_s: float = setting(1.0, gt=0.0)  # sim seconds between modem_status_t
+    seed: int = -1  # loss draws; -1 = environment.seed (the world's)
 
 
 # Rate profiles, one frame per packet, in the class of the WHOI Micro-Modem's
@@ -44,8 +44,8 @@ class ModemConfig:
 # frames at hundreds to thousands of bps). frame_overhead_s stands for the
 # packet's preamble, probe and guard time.
 PROFILES: dict[str, dict[str, float | int]] = {
-    "fsk80":   {"max_frame_bytes": 32,  "bitrate_bps": 80.0,   "frame_overhead_s": 1.0},
-    "psk250":  {"max_frame_bytes": 64,  "bitrate_bps": 250.0,  "frame_overhead_s": 1.0},
+    "fsk80": {"max_frame_bytes": 32, "bitrate_bps": 80.0, "frame_overhead_s": 1.0},
+    "psk250": {"max_frame_bytes": 64, "bitrate_bps": 250.0, "frame_overhead_s": 1.0},
     "psk1300": {"max_frame_bytes": 256, "bitrate_bps": 1300.0, "frame_overhead_s": 1.0},
     "psk5300": {"max_frame_bytes": 256, "bitrate_bps": 5300.0, "frame_overhead_s": 1.0},
 }

@@ -44,15 +44,22 @@ from sim.modem.receiver import Receiver
 from sim.modem.transmitter import Transmitter
 from sim.sensors.base import utime
 
-REPORT_FIRST = 3     # refusals printed; the rest are only counted
+REPORT_FIRST = 3  # refusals printed; the rest are only counted
 HISTORY_STEPS = 1000  # positions kept for requests that arrive after their time
 
 
 class ModemNode:
-    def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment,
-                 rx: LcmReceiver, publish: Callable[[str, bytes], None],
-                 drops: TimeDrops | None = None,
-                 clock_now_us: Callable[[], float | None] | None = None) -> None:
+    def __init__(
+        self,
+        cfg: ModemConfig,
+        vehicle: str,
+        seed: int,
+        env: Environment,
+        rx: LcmReceiver,
+        publish: Callable[[str, bytes], None],
+        drops: TimeDrops | None = None,
+        clock_now_us: Callable[[], float | None] | None = None,
+    ) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.status = modem_status_t()
@@ -62,9 +69,9 @@ class ModemNode:
         self._publish = publish
         self._t: float | None = None
         self._pos = (0.0, 0.0, 0.0)
-        self._hist_t: deque = deque(maxlen=HISTORY_STEPS)     # step times, ascending
+        self._hist_t: deque = deque(maxlen=HISTORY_STEPS)  # step times, ascending
         self._hist_pos: deque = deque(maxlen=HISTORY_STEPS)
-        self._pending: list[modem_tx_t] = []                  # requests from our future
+        self._pending: list[modem_tx_t] = []  # requests from our future
         self._next_status = 0.0
         self.last_report_seq = 0
         self.reports_heard = 0
@@ -77,8 +84,7 @@ class ModemNode:
         rx.subscribe(f"{vehicle}.MODEM_TX", modem_tx_t, self._on_tx, queue_capacity=200)
         rx.subscribe("SIM.ACOUSTIC", acoustic_frame_t, self._on_frame, queue_capacity=2000)
         if cfg.peer_reports:
-            rx.subscribe(f"{vehicle}.PEER_REPORT", peer_report_t, self._on_report,
-                         queue_capacity=200)
+            rx.subscribe(f"{vehicle}.PEER_REPORT", peer_report_t, self._on_report, queue_capacity=200)
 
     # ------------------------------------------------------------ handlers
     def _stamp_ok(self, what: str, stamp: int) -> bool:
@@ -93,29 +99,31 @@ class ModemNode:
 
     def _on_report(self, channel: str, msg: peer_report_t) -> None:
         if msg.seq <= 0 or msg.seq == self.last_report_seq:
-            return                       # not due: the behavior repeats it every cycle
+            return  # not due: the behavior repeats it every cycle
         if not self._stamp_ok(channel, msg.utime):
             return
         self.last_report_seq = msg.seq
         if msg.vehicle not in ("", self.vehicle):
-            self._refused(self.tx.refuse("refused_invalid", msg.seq, f"report of vehicle "
-                                          f"{msg.vehicle!r} on {self.vehicle}.PEER_REPORT"))
+            self._refused(
+                self.tx.refuse(
+                    "refused_invalid", msg.seq, f"report of vehicle {msg.vehicle!r} on {self.vehicle}.PEER_REPORT"
+                )
+            )
             return
         self._send(report_frame(msg, self.vehicle))
 
     def _on_frame(self, channel: str, frame: acoustic_frame_t) -> None:
         if frame.src_vehicle == self.vehicle:
-            return                      # our own: not a stamp to judge
+            return  # our own: not a stamp to judge
         if self._stamp_ok(f"{channel} from {frame.src_vehicle[:40]!r}", frame.utime):
             self.rx.hear(frame)
 
     def _send(self, msg: modem_tx_t) -> None:
         if self._t is None:
-            self._refused(self.tx.refuse("refused_invalid", msg.seq,
-                                          "the simulator has not started its clock yet"))
+            self._refused(self.tx.refuse("refused_invalid", msg.seq, "the simulator has not started its clock yet"))
             return
         if msg.utime > utime(self._t):
-            self._pending.append(msg)       # sent by step() when its time comes
+            self._pending.append(msg)  # sent by step() when its time comes
             return
         self._launch(msg)
 
@@ -125,7 +133,7 @@ class ModemNode:
         if isinstance(out, str):
             self._refused(out)
         else:
-            self.rx.transmit(t, t + out.duration_us / 1e6)   # half duplex
+            self.rx.transmit(t, t + out.duration_us / 1e6)  # half duplex
             self._publish("SIM.ACOUSTIC", out.encode())
             self._publish_status()
 
@@ -140,8 +148,7 @@ class ModemNode:
     def _refused(self, reason: str) -> None:
         if self.refusals_printed < REPORT_FIRST:
             self.refusals_printed += 1
-            print(f"sim: {self.vehicle}: modem refused frame {self.status.last_refused_seq}: "
-                  f"{reason}", flush=True)
+            print(f"sim: {self.vehicle}: modem refused frame {self.status.last_refused_seq}: {reason}", flush=True)
         self._publish_status()
 
     # ---------------------------------------------------------------- step
@@ -154,7 +161,7 @@ class ModemNode:
         if self._pending:
             due = [m for m in self._pending if m.utime <= utime(t)]
             self._pending = [m for m in self._pending if m.utime > utime(t)]
-            for m in sorted(due, key=lambda m: m.utime):     # stable: arrival order within a stamp
+            for m in sorted(due, key=lambda m: m.utime):  # stable: arrival order within a stamp
                 self._launch(m)
         st = self.status
         before = st.received + st.lost + st.out_of_range + st.collided + st.deaf
@@ -166,13 +173,13 @@ class ModemNode:
                 except DecodeError as exc:
                     self.bad_reports += 1
                     if self.bad_reports <= REPORT_FIRST:
-                        print(f"sim: {self.vehicle}: undecodable report from {m.src_vehicle} "
-                              f"dropped: {exc}", flush=True)
+                        print(
+                            f"sim: {self.vehicle}: undecodable report from {m.src_vehicle} dropped: {exc}", flush=True
+                        )
                     continue
                 self.reports_heard += 1
                 self._publish(f"{self.vehicle}.PEER.{m.src_vehicle}", report.encode())
-        if t >= self._next_status - 1e-9 or \
-                st.received + st.lost + st.out_of_range + st.collided + st.deaf != before:
+        if t >= self._next_status - 1e-9 or st.received + st.lost + st.out_of_range + st.collided + st.deaf != before:
             if t >= self._next_status - 1e-9:
                 self._next_status = t + self.cfg.status_period_s
             self._publish_status()
@@ -183,17 +190,24 @@ class ModemNode:
 
     def summary(self) -> str:
         s = self.status
-        return (f"sim: {self.vehicle} modem: {s.sent} frames sent, "
-                f"{s.refused_size + s.refused_rate + s.refused_invalid} refused "
-                f"(size {s.refused_size}, rate {s.refused_rate}, invalid {s.refused_invalid}), "
-                f"{s.received} received, {s.lost} lost, {s.out_of_range} out of range, "
-                f"{s.collided} collided, {s.deaf} missed while sending, "
-                f"{self.reports_heard} peer reports heard")
+        return (
+            f"sim: {self.vehicle} modem: {s.sent} frames sent, "
+            f"{s.refused_size + s.refused_rate + s.refused_invalid} refused "
+            f"(size {s.refused_size}, rate {s.refused_rate}, invalid {s.refused_invalid}), "
+            f"{s.received} received, {s.lost} lost, {s.out_of_range} out of range, "
+            f"{s.collided} collided, {s.deaf} missed while sending, "
+            f"{self.reports_heard} peer reports heard"
+        )
 
 
-def make_modem(cfg, env: Environment, rx: LcmReceiver, publish: Callable[[str, bytes], None],
-               drops: TimeDrops | None = None,
-               clock_now_us: Callable[[], float | None] | None = None) -> ModemNode | None:
+def make_modem(
+    cfg,
+    env: Environment,
+    rx: LcmReceiver,
+    publish: Callable[[str, bytes], None],
+    drops: TimeDrops | None = None,
+    clock_now_us: Callable[[], float | None] | None = None,
+) -> ModemNode | None:
     """The modem of a simulator configuration (sim.config.SimConfig), if it has one."""
     m = cfg.modem
     if m is None or not m.enabled:

@@ -16,7 +16,7 @@ from auvlcm.decode import DecodeError, decode_strict
 
 def report_frame(report: peer_report_t, vehicle: str) -> modem_tx_t:
     """The broadcast frame that carries this vehicle's report."""
-    r = peer_report_t.decode(report.encode())   # a copy, with the payload's fields set
+    r = peer_report_t.decode(report.encode())  # a copy, with the payload's fields set
     r.vehicle, r.heard_by = vehicle, ""
     payload = r.encode()
     m = modem_tx_t()
@@ -29,7 +29,6 @@ def heard_report(rx: modem_rx_t) -> peer_report_t:
     """The report in a received KIND_NAV_REPORT frame; DecodeError if it is not one."""
     r = decode_strict(peer_report_t, bytes(rx.payload))
     if r.vehicle != rx.src_vehicle:
-        raise DecodeError(f"report describes {r.vehicle!r} but was sent by {rx.src_vehicle!r}",
-                          "malformed")
+        raise DecodeError(f"report describes {r.vehicle!r} but was sent by {rx.src_vehicle!r}", "malformed")
     r.heard_by = rx.vehicle
     return r

@@ -50,8 +50,7 @@ def overlaps(a: tuple[float, float], b: tuple[float, float]) -> bool:
 
 
 class Receiver:
-    def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment,
-                 status: modem_status_t) -> None:
+    def __init__(self, cfg: ModemConfig, vehicle: str, seed: int, env: Environment, status: modem_status_t) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.seed = seed
@@ -63,9 +62,9 @@ class Receiver:
         self._heard: list[tuple[float, float, int]] = []  # (start, end, serial) of frames heard here
         self._serial = 0
         self._last_position = (0.0, 0.0, 0.0)
-        self._sending: list[tuple[float, float]] = []     # our own transmissions
-        self._doomed: dict[int, str] = {}        # id(frame in the water) -> "collided" / "deaf"
-        self.bad_frames = 0             # from no valid vehicle id: dropped
+        self._sending: list[tuple[float, float]] = []  # our own transmissions
+        self._doomed: dict[int, str] = {}  # id(frame in the water) -> "collided" / "deaf"
+        self.bad_frames = 0  # from no valid vehicle id: dropped
 
     def hear(self, frame: acoustic_frame_t) -> None:
         """A frame entered the water somewhere: track it if it is meant for us."""
@@ -73,7 +72,7 @@ class Receiver:
             self.bad_frames += 1
             return
         if frame.src_vehicle == self.vehicle:
-            return                      # a modem does not hear itself
+            return  # a modem does not hear itself
         if frame.dst_vehicle and frame.dst_vehicle != self.vehicle:
             self.foreign.append(frame)  # addressed to another vehicle: heard, never delivered
             return
@@ -86,8 +85,9 @@ class Receiver:
             if overlaps(iv, (start, end)):
                 self._doomed.setdefault(id(f), "deaf")
 
-    def _arrivals(self, frames: list[acoustic_frame_t], t: float, position, arrived: list,
-                  mine: bool) -> list[acoustic_frame_t]:
+    def _arrivals(
+        self, frames: list[acoustic_frame_t], t: float, position, arrived: list, mine: bool
+    ) -> list[acoustic_frame_t]:
         """Move the frames whose wavefront reached us to `arrived`; the rest stay."""
         waiting = []
         for f in frames:
@@ -119,11 +119,11 @@ class Receiver:
         return out
 
     def _fate(self, f: acoustic_frame_t, iv: tuple[float, float], serial: int, position) -> str:
-        """"deaf", "collided" or "" for a frame heard over iv; frames in the
+        """ "deaf", "collided" or "" for a frame heard over iv; frames in the
         water that it overlaps are marked to be lost too."""
         fate = self._doomed.pop(id(f), "")
         if iv[1] - iv[0] <= EPS_S:
-            return fate                 # no time on the air: overlaps nothing
+            return fate  # no time on the air: overlaps nothing
         if any(overlaps(iv, s) for s in self._sending):
             fate = fate or "deaf"
         if any(key != serial and overlaps(iv, (a, b)) for a, b, key in self._heard):
@@ -148,7 +148,7 @@ class Receiver:
                 self._doomed.pop(id(f), None)
                 if mine:
                     self.status.out_of_range += 1
-                continue                # too faint to hear, or to disturb another frame
+                continue  # too faint to hear, or to disturb another frame
             iv = (t_arr, t_arr + f.duration_us / 1e6)
             self._serial += 1
             if iv[1] - iv[0] > EPS_S:

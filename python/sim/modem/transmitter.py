@@ -21,8 +21,8 @@ class Transmitter:
     def __init__(self, cfg: ModemConfig, vehicle: str, status: modem_status_t) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
-        self.status = status                 # counters shared with the receiving side
-        self.busy_until = float("-inf")      # sim time the current frame ends
+        self.status = status  # counters shared with the receiving side
+        self.busy_until = float("-inf")  # sim time the current frame ends
         self.busy_seq = 0
         self.last_start = float("-inf")
 
@@ -36,8 +36,9 @@ class Transmitter:
         """Why the frame cannot be sent at sim time t ("" if it can)."""
         cfg, seq = self.cfg, msg.seq
         if msg.vehicle not in ("", self.vehicle):
-            return self.refuse("refused_invalid", seq, f"vehicle {msg.vehicle!r} is not this "
-                                f"modem's vehicle {self.vehicle!r}")
+            return self.refuse(
+                "refused_invalid", seq, f"vehicle {msg.vehicle!r} is not this modem's vehicle {self.vehicle!r}"
+            )
         if msg.kind not in KINDS:
             return self.refuse("refused_invalid", seq, f"unknown kind {msg.kind}")
         if msg.dst_vehicle == self.vehicle:
@@ -45,18 +46,22 @@ class Transmitter:
         if msg.n_bytes <= 0:
             return self.refuse("refused_invalid", seq, "empty frame")
         if msg.n_bytes > cfg.max_frame_bytes:
-            return self.refuse("refused_size", seq, f"{msg.n_bytes} bytes is over "
-                                f"max_frame_bytes = {cfg.max_frame_bytes}")
+            return self.refuse(
+                "refused_size", seq, f"{msg.n_bytes} bytes is over max_frame_bytes = {cfg.max_frame_bytes}"
+            )
         if t < self.busy_until - 1e-9:
-            return self.refuse("refused_rate", seq, f"busy: frame {self.busy_seq} is on the "
-                                f"air until t = {self.busy_until:.3f} s")
+            return self.refuse(
+                "refused_rate", seq, f"busy: frame {self.busy_seq} is on the air until t = {self.busy_until:.3f} s"
+            )
         if t - self.last_start < cfg.min_interval_s - 1e-9:
-            return self.refuse("refused_rate", seq, f"min_interval_s = {cfg.min_interval_s:g}: "
-                                f"last frame started at t = {self.last_start:.3f} s")
+            return self.refuse(
+                "refused_rate",
+                seq,
+                f"min_interval_s = {cfg.min_interval_s:g}: last frame started at t = {self.last_start:.3f} s",
+            )
         return ""
 
-    def send(self, t: float, position: tuple[float, float, float],
-             msg: modem_tx_t) -> acoustic_frame_t | str:
+    def send(self, t: float, position: tuple[float, float, float], msg: modem_tx_t) -> acoustic_frame_t | str:
         """The frame in the water (for SIM.ACOUSTIC), or the reason it was refused."""
         reason = self.check(t, msg)
         if reason:

@@ -5,17 +5,21 @@ from __future__ import annotations
 
 import sys
 
-USAGE = ("usage: auv-multihil node --id ID --url URL [options]     (node --help)\n"
-         "       auv-multihil world [--vehicles N] [--clock MODE] ...  (world --help)")
+USAGE = (
+    "usage: auv-multihil node --id ID --url URL [options]     (node --help)\n"
+    "       auv-multihil world [--vehicles N] [--clock MODE] ...  (world --help)"
+)
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     if argv and argv[0] == "world":
         from sim.multihil.world import main as world_main
+
         return world_main(argv[1:])
     if argv and argv[0] == "node":
         from sim.multihil.standalone import main as node_main
+
         return node_main(argv[1:])
     if argv and argv[0] in ("-h", "--help"):
         print(USAGE)

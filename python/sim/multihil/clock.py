@@ -42,7 +42,7 @@ class SteeredClock:
         self.local = local
         self.warp = warp
         self.max_slew = max_slew
-        self.g0: float | None = None   # None: not set yet (no global time known)
+        self.g0: float | None = None  # None: not set yet (no global time known)
         self.l0 = 0.0
         self.rate = warp
 

@@ -19,22 +19,22 @@ from dataclasses import dataclass
 
 @dataclass
 class Sample:
-    local_mid_us: float     # local time halfway through the exchange
-    offset_us: float        # global - warp * local at that time
-    delay_us: float         # round trip less the server's turnaround
+    local_mid_us: float  # local time halfway through the exchange
+    offset_us: float  # global - warp * local at that time
+    delay_us: float  # round trip less the server's turnaround
 
 
 class SyncEstimator:
-    DELAY_FLOOR_US = 30.0     # delay excess below this counts as equally good
-    def __init__(self, warp: float = 1.0, window: int = 250, bin_s: float = 1.0,
-                 bins: int = 20) -> None:
+    DELAY_FLOOR_US = 30.0  # delay excess below this counts as equally good
+
+    def __init__(self, warp: float = 1.0, window: int = 250, bin_s: float = 1.0, bins: int = 20) -> None:
         self.warp = warp
         self.samples: deque[Sample] = deque(maxlen=window)
         self.bin_us = bin_s * 1e6
         self.bins = bins
-        self.offset_c = 0.0       # fitted offset at local_ref
+        self.offset_c = 0.0  # fitted offset at local_ref
         self.local_ref = 0.0
-        self.drift = 0.0          # d offset / d local (global us per local us, beyond warp)
+        self.drift = 0.0  # d offset / d local (global us per local us, beyond warp)
         self.best_delay_us = 0.0
         self.rejected = 0
 
@@ -66,7 +66,7 @@ class SyncEstimator:
             k = int(s.local_mid_us // self.bin_us)
             if k not in best or s.delay_us < best[k].delay_us:
                 best[k] = s
-        return [best[k] for k in sorted(best)[-self.bins:]]
+        return [best[k] for k in sorted(best)[-self.bins :]]
 
     def _fit(self) -> None:
         good = self.good()
@@ -74,7 +74,7 @@ class SyncEstimator:
         self.best_delay_us = dmin
         if len(good) >= 3:
             xs = [s.local_mid_us for s in good]
-            if max(xs) - min(xs) >= 1.5 * self.bin_us:   # drift needs a baseline
+            if max(xs) - min(xs) >= 1.5 * self.bin_us:  # drift needs a baseline
                 # A sample's offset error is at most half its delay beyond the true
                 # minimum: weigh by that bound, so a late partial bin cannot tilt the line;
                 # excesses below the bins' typical one count alike (a jittery link).

@@ -37,20 +37,20 @@ class Peer:
     id: str
     priority: int | None = None
     last_heard: float = 0.0
-    suspected_at: float | None = None   # suspected dead if not heard since
+    suspected_at: float | None = None  # suspected dead if not heard since
 
 
 def rank(priority: int, node_id: str) -> tuple:
     """Sort key: larger is better (priority up, then the lexicographically smaller id)."""
-    return (priority, tuple(-ord(c) for c in node_id) + (1,))   # 1: a prefix beats longer ids
+    return (priority, tuple(-ord(c) for c in node_id) + (1,))  # 1: a prefix beats longer ids
 
 
 @dataclass
 class Timing:
     join_window_s: float = 1.0
     failover_timeout_s: float = 0.5
-    election_wait_s: float = 0.5     # how long to wait for a better node to take over
-    peer_timeout_s: float = 2.5      # a peer not heard for this long is not counted
+    election_wait_s: float = 0.5  # how long to wait for a better node to take over
+    peer_timeout_s: float = 2.5  # a peer not heard for this long is not counted
 
     @property
     def reconfirm_s(self) -> float:
@@ -71,17 +71,17 @@ class Election:
     max_term: int = 0
     last_heartbeat: float = 0.0
     peers: dict[str, Peer] = field(default_factory=dict)
-    decide_at: float = 0.0           # earliest time to claim the role without a server
+    decide_at: float = 0.0  # earliest time to claim the role without a server
     waiting_since: float = 0.0
     elections_won: int = 0
     step_downs: int = 0
-    gaps: int = 0                    # times this node was not running for a failover timeout
+    gaps: int = 0  # times this node was not running for a failover timeout
     last_gap_s: float = 0.0
-    reconfirm_until: float = 0.0     # after a gap: listen, decide nothing, until then
-    last_active: float | None = None   # when check_gap() last saw this node running
-    _paused: bool = False            # a gap not yet reported by poll()
-    handed_term: int = 0             # term of a server that handed the world over (lockstep, before step 0)
-    clock: Callable[[], float] = field(default=time.monotonic, repr=False)   # wall seconds; tests pass their own
+    reconfirm_until: float = 0.0  # after a gap: listen, decide nothing, until then
+    last_active: float | None = None  # when check_gap() last saw this node running
+    _paused: bool = False  # a gap not yet reported by poll()
+    handed_term: int = 0  # term of a server that handed the world over (lockstep, before step 0)
+    clock: Callable[[], float] = field(default=time.monotonic, repr=False)  # wall seconds; tests pass their own
 
     def __post_init__(self) -> None:
         now = self.clock()
@@ -104,7 +104,7 @@ class Election:
             return "ignore"
         self.max_term = max(self.max_term, term)
         theirs = (term, rank(priority, server_id))
-        if self.role == "reconfirming":      # paused while serving: whoever serves now wins
+        if self.role == "reconfirming":  # paused while serving: whoever serves now wins
             self.role = "client"
             self.step_downs += 1
             self._follow(server_id, term, priority)
@@ -116,9 +116,12 @@ class Election:
                 self._follow(server_id, term, priority)
                 return "step_down"
             return "ignore"
-        if (not self.server_id or server_id == self.server_id
-                or theirs > (self.server_term, rank(self.server_priority, self.server_id))
-                or self.clock() - self.last_heartbeat > self.timing.failover_timeout_s):
+        if (
+            not self.server_id
+            or server_id == self.server_id
+            or theirs > (self.server_term, rank(self.server_priority, self.server_id))
+            or self.clock() - self.last_heartbeat > self.timing.failover_timeout_s
+        ):
             self._follow(server_id, term, priority)
             return "follow"
         return "ignore"
@@ -132,7 +135,7 @@ class Election:
         better node before a lockstep world's first step): no heartbeat will
         come, so the best remaining node takes over now, not after a timeout."""
         if self.role == "client" and node_id == self.server_id:
-            self.handed_term = self.server_term     # the world has not begun: same term
+            self.handed_term = self.server_term  # the world has not begun: same term
             self.server_id = ""
             self.decide_at = self.waiting_since = self.clock()
 
@@ -150,9 +153,13 @@ class Election:
     # ----------------------------------------------------------- deciding
     def live_peers(self) -> list[Peer]:
         now = self.clock()
-        return [p for p in self.peers.values()
-                if p.priority is not None and now - p.last_heard <= self.timing.peer_timeout_s
-                and (p.suspected_at is None or p.last_heard > p.suspected_at)]
+        return [
+            p
+            for p in self.peers.values()
+            if p.priority is not None
+            and now - p.last_heard <= self.timing.peer_timeout_s
+            and (p.suspected_at is None or p.last_heard > p.suspected_at)
+        ]
 
     def best(self) -> tuple[str, int]:
         cands = [(rank(p.priority, p.id), p.id, p.priority) for p in self.live_peers()]
@@ -184,14 +191,14 @@ class Election:
             return "paused"
         if now < self.reconfirm_until:
             return ""
-        if self.role == "reconfirming":      # nobody served in the window: stand like anyone
+        if self.role == "reconfirming":  # nobody served in the window: stand like anyone
             self.role = "client"
         if self.role == "server":
             return ""
         if self.server_id and now - self.last_heartbeat > self.timing.failover_timeout_s:
             self._suspect(self.server_id, now)
             self.server_id = ""
-            self.decide_at = self.waiting_since = now   # successors know each other: no window
+            self.decide_at = self.waiting_since = now  # successors know each other: no window
             return "lost"
         if self.server_id or now < self.decide_at:
             return ""
@@ -222,7 +229,7 @@ class Election:
             self.role = "reconfirming"
             self.server_id = ""
         elif self.server_id:
-            self.last_heartbeat = now        # its silence during our gap proves nothing
+            self.last_heartbeat = now  # its silence during our gap proves nothing
         self.decide_at = self.waiting_since = self.reconfirm_until
 
     def _suspect(self, node_id: str, now: float) -> None:

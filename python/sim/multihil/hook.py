@@ -36,8 +36,11 @@ def apply_cli(cfg, args) -> None:
     mh = cfg.multihil
     if args.multihil:
         mh.enabled = True
-    for name, attr in (("priority", "priority"), ("clock_offset_us", "clock_offset_us"),
-                       ("clock_drift_ppm", "clock_drift_ppm")):
+    for name, attr in (
+        ("priority", "priority"),
+        ("clock_offset_us", "clock_offset_us"),
+        ("clock_drift_ppm", "clock_drift_ppm"),
+    ):
         if getattr(args, name) is not None:
             setattr(mh, attr, getattr(args, name))
 
@@ -45,11 +48,22 @@ def apply_cli(cfg, args) -> None:
 def node_config(cfg) -> NodeConfig:
     mh, s = cfg.multihil, cfg.sim
     mode = s.clock
-    return NodeConfig(mh.client_id, cfg.vehicle_id, mh.priority, list(mh.needs), mh.sample_rate_hz,
-                      mode, s.warp if mode == "scaled" else 1.0, s.clock_rate_hz, mh.step_s,
-                      mh.lockstep_participants, mh.lockstep_timeout_s, mh.heartbeat_hz, mh.sync_hz,
-                      Timing(join_window_s=mh.join_window_s,
-                             failover_timeout_s=mh.failover_timeout_s))
+    return NodeConfig(
+        mh.client_id,
+        cfg.vehicle_id,
+        mh.priority,
+        list(mh.needs),
+        mh.sample_rate_hz,
+        mode,
+        s.warp if mode == "scaled" else 1.0,
+        s.clock_rate_hz,
+        mh.step_s,
+        mh.lockstep_participants,
+        mh.lockstep_timeout_s,
+        mh.heartbeat_hz,
+        mh.sync_hz,
+        Timing(join_window_s=mh.join_window_s, failover_timeout_s=mh.failover_timeout_s),
+    )
 
 
 class SimHook:
@@ -59,18 +73,24 @@ class SimHook:
         ncfg = node_config(cfg)
         self.lockstep = ncfg.mode == "lockstep"
         if sim.pacer.fast:
-            raise ValueError("multihil: --fast has no clock to share; use scaled time or "
-                             "lockstep (--clock lockstep)")
+            raise ValueError("multihil: --fast has no clock to share; use scaled time or lockstep (--clock lockstep)")
         steps = ncfg.step_s / sim.dt
         if self.lockstep and (steps < 0.999 or abs(steps - round(steps)) > 1e-6):
-            raise ValueError(f"multihil: step_s = {ncfg.step_s:g} s must be a whole number of "
-                             f"physics steps ({sim.dt:g} s)")
+            raise ValueError(
+                f"multihil: step_s = {ncfg.step_s:g} s must be a whole number of physics steps ({sim.dt:g} s)"
+            )
         self.log = lambda line: print(line, flush=True)
-        self.node = EnvNode(ncfg, sim.lc, sim.model.env,
-                            LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
-                            position=self._position, on_env=self._adopt, log=self.log,
-                            drops=sim.time_drops,
-                            on_clock=self._on_clock if self.lockstep else None)
+        self.node = EnvNode(
+            ncfg,
+            sim.lc,
+            sim.model.env,
+            LocalClock(cfg.multihil.clock_offset_us, cfg.multihil.clock_drift_ppm),
+            position=self._position,
+            on_env=self._adopt,
+            log=self.log,
+            drops=sim.time_drops,
+            on_clock=self._on_clock if self.lockstep else None,
+        )
         self.joined = False
         self.env_errors = 0
         if self.lockstep:
@@ -103,8 +123,7 @@ class SimHook:
             return False
         if fresh.bathymetry.sha256 != m.bathymetry_sha256:
             self.env_errors += 1
-            self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's "
-                     "(SHA-256); keeping this one")
+            self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's (SHA-256); keeping this one")
             return False
         self.sim.replace_world(fresh)
         return True
@@ -129,10 +148,12 @@ class SimHook:
         if self.lockstep:
             self.follow.part.leave()
         n = self.node
-        self.log(f"multihil: {n.cfg.client_id}: {n.role} (term {n.term}) at the end; "
-                 f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "
-                 f"{n.samples_received} env samples, {n.sample_mismatches} mismatches, "
-                 f"{n.election.elections_won} elections won, {n.election.step_downs} step-downs, "
-                 f"{n.rx.decode_errors} decode errors, {n.election.gaps} gaps "
-                 "(time drops: the simulator's summary)")
+        self.log(
+            f"multihil: {n.cfg.client_id}: {n.role} (term {n.term}) at the end; "
+            f"{n.clock_messages} clock messages, {n.clock_regressions} regressions, "
+            f"{n.samples_received} env samples, {n.sample_mismatches} mismatches, "
+            f"{n.election.elections_won} elections won, {n.election.step_downs} step-downs, "
+            f"{n.rx.decode_errors} decode errors, {n.election.gaps} gaps "
+            "(time drops: the simulator's summary)"
+        )
         n.stop()

@@ -36,10 +36,10 @@ class Participant:
     name: str
     last_done: int = -1
     last_heard: float = field(default_factory=time.monotonic)
-    repeat_at: float = 0.0      # when it last reported a step it had reported before
+    repeat_at: float = 0.0  # when it last reported a step it had reported before
 
 
-RESEND_S = 0.25     # wall seconds without progress before a lockstep message is repeated
+RESEND_S = 0.25  # wall seconds without progress before a lockstep message is repeated
 
 
 class LockstepTracker:
@@ -52,7 +52,7 @@ class LockstepTracker:
         self.parts: dict[str, Participant] = {}
         self.timeout_s = timeout_s
         self.dropped = 0
-        self.repeats = 0            # STEP_DONE messages for a step already known done
+        self.repeats = 0  # STEP_DONE messages for a step already known done
         self.log = log
 
     def on_message(self, msg) -> None:
@@ -64,7 +64,7 @@ class LockstepTracker:
             p = self.parts[msg.participant] = Participant(msg.participant)
         p.last_heard = time.monotonic()
         if msg.kind == lockstep_t.KIND_REGISTER:
-            p.repeat_at = p.last_heard      # still registering: it has heard no clock yet
+            p.repeat_at = p.last_heard  # still registering: it has heard no clock yet
         elif msg.kind == lockstep_t.KIND_STEP_DONE:
             if msg.step <= p.last_done:
                 self.repeats += 1
@@ -92,8 +92,7 @@ class LockstepTracker:
             if now - max(p.last_heard, since) > self.timeout_s:
                 del self.parts[name]
                 self.dropped += 1
-                self.log(f"multihil: lockstep: dropped {name}: silent for {self.timeout_s:g} s "
-                         f"at step {step}")
+                self.log(f"multihil: lockstep: dropped {name}: silent for {self.timeout_s:g} s at step {step}")
 
 
 def lockstep_msg(participant: str, kind: int, step: int, utime: int) -> lockstep_t:
@@ -111,8 +110,8 @@ class Participation:
 
     def __init__(self, name: str, publish, resend_s: float = RESEND_S) -> None:
         self.name = name
-        self.publish = publish          # publish(lockstep_t)
-        self.pending: tuple[int, int] | None = None   # (step, utime) to report
+        self.publish = publish  # publish(lockstep_t)
+        self.pending: tuple[int, int] | None = None  # (step, utime) to report
         self.last_done = -1
         self.last_done_utime = 0
         self.seen_clock = False
@@ -131,8 +130,7 @@ class Participation:
         elif self.pending is None and self.last_done >= 0 and now >= self._next_resend:
             self._next_resend = now + self.resend_s
             self.resent += 1
-            self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, self.last_done,
-                                      self.last_done_utime))
+            self.publish(lockstep_msg(self.name, lockstep_t.KIND_STEP_DONE, self.last_done, self.last_done_utime))
 
     def on_clock(self, step: int, utime: int) -> None:
         self.seen_clock = True

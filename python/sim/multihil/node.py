@@ -65,11 +65,11 @@ class NodeConfig:
     priority: int = 0
     needs: list = field(default_factory=list)
     sample_rate_hz: float = 1.0
-    mode: str = "realtime"           # realtime | scaled | lockstep
+    mode: str = "realtime"  # realtime | scaled | lockstep
     warp: float = 1.0
-    clock_rate_hz: float = 10.0      # SIM.CLOCK rate, free-running [Hz of global time]
-    step_s: float = 0.1              # lockstep step
-    lockstep_expect: int = 0         # participants to wait for before step 0
+    clock_rate_hz: float = 10.0  # SIM.CLOCK rate, free-running [Hz of global time]
+    step_s: float = 0.1  # lockstep step
+    lockstep_expect: int = 0  # participants to wait for before step 0
     lockstep_timeout_s: float = 5.0
     heartbeat_hz: float = 10.0
     sync_hz: float = 10.0
@@ -78,12 +78,19 @@ class NodeConfig:
 
 class EnvNode:
     JOIN_SAMPLES = 5
-    def __init__(self, cfg: NodeConfig, lc: lcm.LCM, env: Environment,
-                 local: LocalClock | None = None,
-                 position: Callable[[], tuple[float, float, float, float] | None] | None = None,
-                 on_env: Callable[[env_model_t], bool] | None = None, log=print,
-                 drops: TimeDrops | None = None,
-                 on_clock: Callable[[sim_clock_t], None] | None = None) -> None:
+
+    def __init__(
+        self,
+        cfg: NodeConfig,
+        lc: lcm.LCM,
+        env: Environment,
+        local: LocalClock | None = None,
+        position: Callable[[], tuple[float, float, float, float] | None] | None = None,
+        on_env: Callable[[env_model_t], bool] | None = None,
+        log=print,
+        drops: TimeDrops | None = None,
+        on_clock: Callable[[sim_clock_t], None] | None = None,
+    ) -> None:
         self.cfg = cfg
         self.lc = lc
         self.env = env
@@ -93,20 +100,19 @@ class EnvNode:
         self.sync = SyncEstimator(self.clock.warp)
         self.position = position
         self.on_env = on_env
-        self.on_clock = on_clock         # each SIM.CLOCK accepted (the lockstep simulator follows it)
+        self.on_clock = on_clock  # each SIM.CLOCK accepted (the lockstep simulator follows it)
         self.election = Election(cfg.client_id, cfg.priority, cfg.timing)
         self.tracker = LockstepTracker(cfg.lockstep_timeout_s, log)
-        self.stepper = LockstepServer(self.tracker, int(round(cfg.step_s * 1e6)),
-                                      cfg.lockstep_expect, log)
+        self.stepper = LockstepServer(self.tracker, int(round(cfg.step_s * 1e6)), cfg.lockstep_expect, log)
         self.lockstep = cfg.mode == "lockstep"
-        self.joined = False              # has a global time (as client or server)
-        self.vehicles: dict[str, str] = {}    # client id -> vehicle, from announcements
-        self.clients: dict[str, float] = {}   # client id -> wall time last heard (server)
-        self.last_clock: sim_clock_t | None = None     # the newest SIM.CLOCK accepted
+        self.joined = False  # has a global time (as client or server)
+        self.vehicles: dict[str, str] = {}  # client id -> vehicle, from announcements
+        self.clients: dict[str, float] = {}  # client id -> wall time last heard (server)
+        self.last_clock: sim_clock_t | None = None  # the newest SIM.CLOCK accepted
         self.drops = drops or TimeDrops(f"multihil: {cfg.client_id}", log)
         self.clock_gate = ClockGate(self.drops)
         self._needs_gates: dict[str, InputGate] = {}
-        self.clock_messages = 0          # accepted ones
+        self.clock_messages = 0  # accepted ones
         self.samples_received = 0
         self.sample_mismatches = 0
         self.env_adoptions = 0
@@ -115,7 +121,7 @@ class EnvNode:
         self._pending_sync: dict[int, float] = {}
         now = time.monotonic()
         self._next = {"candidate": now, "heartbeat": now, "sync": now, "offset": now + 1.0}
-        self._next_tick_us = 0.0         # free-running SIM.CLOCK
+        self._next_tick_us = 0.0  # free-running SIM.CLOCK
         self._next_env_us = 0.0
         self._next_needs_t: float | None = None
         self.rx = Receiver(lc)
@@ -158,18 +164,22 @@ class EnvNode:
         self.election.check_gap()
         event = self.election.poll()
         if event == "lost":
-            self.log(f"multihil: {self.cfg.client_id}: lost server (no heartbeat for "
-                     f"{self.cfg.timing.failover_timeout_s:g} s)")
+            self.log(
+                f"multihil: {self.cfg.client_id}: lost server (no heartbeat for "
+                f"{self.cfg.timing.failover_timeout_s:g} s)"
+            )
         elif event == "become_server":
             self._take_over()
         elif event == "paused":
             was = self.stepper.started
             self.stepper.started = False
-            self.log(f"multihil: {self.cfg.client_id}: not running for "
-                     f"{self.election.last_gap_s:.2f} s (more than the failover timeout): "
-                     + ("stopped serving term " f"{self.term}; " if self.role == "reconfirming"
-                        else "") + f"listening {self.cfg.timing.reconfirm_s:g} s before acting"
-                     + (" (lockstep paused)" if was else ""))
+            self.log(
+                f"multihil: {self.cfg.client_id}: not running for "
+                f"{self.election.last_gap_s:.2f} s (more than the failover timeout): "
+                + (f"stopped serving term {self.term}; " if self.role == "reconfirming" else "")
+                + f"listening {self.cfg.timing.reconfirm_s:g} s before acting"
+                + (" (lockstep paused)" if was else "")
+            )
         # Before a lockstep world's first step the role is still open: every node
         # announces its priority, so the server can yield to the best one
         # (_hand_over): who serves does not depend on who started first.
@@ -216,7 +226,11 @@ class EnvNode:
             self._seq += 1
             req = clock_sync_t()
             req.client_id, req.server_id, req.seq, req.kind = (
-                self.cfg.client_id, "", self._seq, clock_sync_t.KIND_REQUEST)
+                self.cfg.client_id,
+                "",
+                self._seq,
+                clock_sync_t.KIND_REQUEST,
+            )
             t1 = self.local.now_us()
             req.utime = int(self.clock.now()) if self.clock.is_set else 0
             req.t1_client_send_us, req.t2_server_recv_us, req.t3_server_send_us = int(t1), 0, 0
@@ -232,11 +246,10 @@ class EnvNode:
         loc = self.local.now_us()
         m.utime, m.client_id = int(self.clock.at(loc)), self.cfg.client_id
         m.offset_us = self.clock.at(loc) - loc
-        m.drift_ppm = -self.sync.drift_ppm      # how fast the local clock runs against global
+        m.drift_ppm = -self.sync.drift_ppm  # how fast the local clock runs against global
         m.round_trip_us = self.sync.best_delay_us
         m.samples = self.sync.count
-        m.synchronised = self.sync.count >= 3 and abs(
-            self.sync.global_at(loc) - self.clock.at(loc)) < 1000.0
+        m.synchronised = self.sync.count >= 3 and abs(self.sync.global_at(loc) - self.clock.at(loc)) < 1000.0
         return m
 
     def _announce(self) -> None:
@@ -252,8 +265,12 @@ class EnvNode:
         period = 1.0 / self.cfg.sample_rate_hz
         self._next_needs_t = (t if self._next_needs_t is None else self._next_needs_t) + period
         m = env_needs_t()
-        m.utime, m.client_id, m.vehicle, m.priority = (int(round(t * 1e6)), self.cfg.client_id,
-                                                       self.cfg.vehicle, self.cfg.priority)
+        m.utime, m.client_id, m.vehicle, m.priority = (
+            int(round(t * 1e6)),
+            self.cfg.client_id,
+            self.cfg.vehicle,
+            self.cfg.priority,
+        )
         m.variables = list(self.cfg.needs)
         m.n_variables = len(m.variables)
         m.north_m, m.east_m, m.depth_m = n, e, d
@@ -276,17 +293,19 @@ class EnvNode:
             if not self.clock.is_set:
                 self.clock.set(floor)
             elif self.clock.now() < floor:
-                self.clock.set(floor)       # forward only: never behind what the world saw
+                self.clock.set(floor)  # forward only: never behind what the world saw
             self.clock.freeze()
             period = 1e6 / self.cfg.clock_rate_hz
             self._next_tick_us = (int(self.clock.now() // period) + 1) * period
         self.joined = True
         self._next_env_us = 0.0
-        self.clock_gate.raise_term(el.server_term)      # its own clocks: a term it knows began
+        self.clock_gate.raise_term(el.server_term)  # its own clocks: a term it knows began
         g = self.global_now_us()
-        self.log(f"multihil: {self.cfg.client_id}: server for term {el.server_term} "
-                 f"(priority {self.cfg.priority}) at global "
-                 f"{(g or 0) / 1e6:.3f} s")
+        self.log(
+            f"multihil: {self.cfg.client_id}: server for term {el.server_term} "
+            f"(priority {self.cfg.priority}) at global "
+            f"{(g or 0) / 1e6:.3f} s"
+        )
         self._election_msg(env_election_t.KIND_ELECTED, el.server_term)
         self._heartbeat()
         self._next["heartbeat"] = time.monotonic() + 1.0 / self.cfg.heartbeat_hz
@@ -295,8 +314,9 @@ class EnvNode:
         """Lockstep, before step 0: yield to the best node heard (priority, then the
         smaller id), which takes over at once, so the server is the same whatever
         the start order."""
-        self.log(f"multihil: {self.cfg.client_id}: handing the world to {best} (priority "
-                 f"{priority}) before the first step")
+        self.log(
+            f"multihil: {self.cfg.client_id}: handing the world to {best} (priority {priority}) before the first step"
+        )
         self._election_msg(env_election_t.KIND_STEP_DOWN, self.term)
         self.election.hand_over()
 
@@ -322,8 +342,7 @@ class EnvNode:
         m.server_id, m.priority, m.term = self.cfg.client_id, self.cfg.priority, self.term
         m.step = self.stepper.step if self.lockstep else 0
         now = time.monotonic()
-        m.clients = sorted(c for c, t in self.clients.items()
-                           if now - t <= self.cfg.timing.peer_timeout_s)
+        m.clients = sorted(c for c, t in self.clients.items() if now - t <= self.cfg.timing.peer_timeout_s)
         m.n_clients = len(m.clients)
         self._publish("SIM.ENV_HEARTBEAT", m)
 
@@ -337,16 +356,18 @@ class EnvNode:
 
     # ---------------------------------------------------------- handlers
     def _on_heartbeat(self, _ch: str, m: env_heartbeat_t) -> None:
-        self.election.check_gap()       # a message after a pause: re-confirm first
+        self.election.check_gap()  # a message after a pause: re-confirm first
         if m.server_id == self.cfg.client_id:
             return
         before = self.election.server_id
         action = self.election.on_heartbeat(m.server_id, m.term, m.priority)
         if action in ("follow", "step_down"):
-            self.clock_gate.raise_term(m.term)     # its clock is the world's: older terms are over
+            self.clock_gate.raise_term(m.term)  # its clock is the world's: older terms are over
         if action == "step_down":
-            self.log(f"multihil: {self.cfg.client_id}: stepping down for {m.server_id} "
-                     f"(term {m.term}, priority {m.priority})")
+            self.log(
+                f"multihil: {self.cfg.client_id}: stepping down for {m.server_id} "
+                f"(term {m.term}, priority {m.priority})"
+            )
             self._election_msg(env_election_t.KIND_STEP_DOWN, m.term)
             self.stepper.started = False
         if action in ("follow", "step_down") and before != m.server_id:
@@ -364,18 +385,20 @@ class EnvNode:
         else:
             self.election.heard(m.candidate_id, m.priority)
         if m.kind == env_election_t.KIND_STEP_DOWN and self.lockstep and self.last_clock is None:
-            self.election.on_step_down(m.candidate_id)     # a hand-over before step 0
+            self.election.on_step_down(m.candidate_id)  # a hand-over before step 0
         if m.kind == env_election_t.KIND_CANDIDATE and self.role == "server":
-            self._heartbeat()                       # someone lost us: be heard at once
+            self._heartbeat()  # someone lost us: be heard at once
 
     def _on_clock(self, _ch: str, m: sim_clock_t) -> None:
         self.election.check_gap()
         if (m.mode == sim_clock_t.MODE_LOCKSTEP) != self.lockstep:
             self.mode_conflicts += 1
             if self.mode_conflicts == 1:
-                self.log(f"multihil: {self.cfg.client_id}: SIM.CLOCK from {m.server_id} is "
-                         f"{'lockstep' if m.mode == sim_clock_t.MODE_LOCKSTEP else 'free-running'}, but this simulator "
-                         f"runs {self.cfg.mode}: every simulator of a world needs the same mode")
+                self.log(
+                    f"multihil: {self.cfg.client_id}: SIM.CLOCK from {m.server_id} is "
+                    f"{'lockstep' if m.mode == sim_clock_t.MODE_LOCKSTEP else 'free-running'}, but this simulator "
+                    f"runs {self.cfg.mode}: every simulator of a world needs the same mode"
+                )
             return
         if not self.clock_gate.offer(m.utime, m.term):
             return
@@ -391,7 +414,7 @@ class EnvNode:
         if m.kind == clock_sync_t.KIND_REQUEST:
             self.election.heard(m.client_id)
             t2 = self.global_now_us()
-            if self.role == "server" and t2 is not None:      # lockstep: none before step 0
+            if self.role == "server" and t2 is not None:  # lockstep: none before step 0
                 self.clients[m.client_id] = time.monotonic()
                 m.kind, m.server_id = clock_sync_t.KIND_REPLY, self.cfg.client_id
                 m.t2_server_recv_us = int(t2)
@@ -402,13 +425,15 @@ class EnvNode:
         if m.client_id != self.cfg.client_id or m.server_id != self.election.server_id:
             return
         if not (valid_utime(m.t2_server_recv_us) and valid_utime(m.t3_server_send_us)):
-            self.drops.drop(INVALID, "SIM.CLOCK_SYNC", f"reply stamps {m.t2_server_recv_us}, "
-                            f"{m.t3_server_send_us} outside the valid range")
+            self.drops.drop(
+                INVALID,
+                "SIM.CLOCK_SYNC",
+                f"reply stamps {m.t2_server_recv_us}, {m.t3_server_send_us} outside the valid range",
+            )
             return
-        ref = self.clock_gate.now      # the world's clock: a reply far off it cannot be its server's
+        ref = self.clock_gate.now  # the world's clock: a reply far off it cannot be its server's
         if ref is not None and abs(m.t3_server_send_us - ref) > MAX_CLOCK_JUMP_US:
-            self.drops.drop(JUMP, "SIM.CLOCK_SYNC", f"reply at {m.t3_server_send_us}, the "
-                            f"world's clock is at {ref}")
+            self.drops.drop(JUMP, "SIM.CLOCK_SYNC", f"reply at {m.t3_server_send_us}, the world's clock is at {ref}")
             return
         t1 = self._pending_sync.pop(m.seq, None)
         if t1 is None or self.lockstep:
@@ -419,7 +444,7 @@ class EnvNode:
         target = self.sync.global_at(t4)
         if not self.clock.is_set:
             if self.sync.count < self.JOIN_SAMPLES:
-                return          # set the clock from the best of a few, not the first one
+                return  # set the clock from the best of a few, not the first one
             self.clock.set(target, t4)
         else:
             self.clock.steer(target - self.clock.at(t4), self.clock.warp + self.sync.drift)
@@ -442,14 +467,12 @@ class EnvNode:
         else:
             try:
                 fresh = Environment(params, None)
-            except (ValueError, OSError) as exc:     # e.g. a grid file this host lacks
-                self.log(f"multihil: {self.cfg.client_id}: cannot build the server's world "
-                         f"({exc}); keeping this one")
+            except (ValueError, OSError) as exc:  # e.g. a grid file this host lacks
+                self.log(f"multihil: {self.cfg.client_id}: cannot build the server's world ({exc}); keeping this one")
                 return
             self.env.replace_with(fresh)
         self.env_adoptions += 1
-        self.log(f"multihil: {self.cfg.client_id}: adopted world {m.world!r} (seed {m.seed}) "
-                 f"from {m.server_id}")
+        self.log(f"multihil: {self.cfg.client_id}: adopted world {m.world!r} (seed {m.seed}) from {m.server_id}")
 
     def _current_term(self, term: int, utime: int, what: str) -> bool:
         """A world message of the server this node follows, in its term, with a valid stamp."""
@@ -469,10 +492,9 @@ class EnvNode:
             return
         gate = self._needs_gates.get(m.client_id)
         if gate is None:
-            gate = self._needs_gates[m.client_id] = InputGate(
-                self.drops, f"SIM.ENV_NEEDS from {m.client_id}")
+            gate = self._needs_gates[m.client_id] = InputGate(self.drops, f"SIM.ENV_NEEDS from {m.client_id}")
         if not gate.offer(m.utime, self.global_now_us()):
-            return          # evaluated at its stamp: the world at 10^18 s is nobody's business
+            return  # evaluated at its stamp: the world at 10^18 s is nobody's business
         self.clients[m.client_id] = time.monotonic()
         self._publish(f"SIM.ENV_SAMPLE.{m.client_id}", evaluate(self.env, m, self.term))
 
@@ -482,8 +504,10 @@ class EnvNode:
             return
         self.samples_received += 1
         t = s.utime / 1e6
-        if s.valid_mask & env_sample_t.HAS_BATHYMETRY and abs(
-                s.water_depth_m - self.env.water_depth(s.north_m, s.east_m)) > 1e-6:
+        if (
+            s.valid_mask & env_sample_t.HAS_BATHYMETRY
+            and abs(s.water_depth_m - self.env.water_depth(s.north_m, s.east_m)) > 1e-6
+        ):
             self.sample_mismatches += 1
         if s.valid_mask & env_sample_t.HAS_CURRENT:
             mine = self.env.current(t, s.north_m, s.east_m, s.depth_m)
@@ -493,11 +517,13 @@ class EnvNode:
     def _on_lockstep(self, _ch: str, m: lockstep_t) -> None:
         self.election.check_gap()
         if m.kind == lockstep_t.KIND_STEP_DONE:
-            known = max(self.last_clock.step if self.last_clock else -1,
-                        self.stepper.step if self.role == "server" else -1)
-            if not 0 <= m.step <= known + 1:     # done with a step nobody published: a lie
+            known = max(
+                self.last_clock.step if self.last_clock else -1, self.stepper.step if self.role == "server" else -1
+            )
+            if not 0 <= m.step <= known + 1:  # done with a step nobody published: a lie
                 # (+ 1: the participant's report may overtake the clock across a relay)
-                self.drops.drop(FUTURE, "SIM.LOCKSTEP", f"{m.participant} done with step "
-                                f"{m.step}, the newest published is {known}")
+                self.drops.drop(
+                    FUTURE, "SIM.LOCKSTEP", f"{m.participant} done with step {m.step}, the newest published is {known}"
+                )
                 return
         self.tracker.on_message(m)

@@ -10,9 +10,12 @@ from auv import env_needs_t, env_sample_t
 from sim.environment import Environment
 from sim.multihil.lockstep import LockstepTracker
 
-VARIABLE_BITS = {"current": env_sample_t.HAS_CURRENT, "waves": env_sample_t.HAS_WAVES,
-                 "bathymetry": env_sample_t.HAS_BATHYMETRY,
-                 "sound_speed": env_sample_t.HAS_SOUND_SPEED}
+VARIABLE_BITS = {
+    "current": env_sample_t.HAS_CURRENT,
+    "waves": env_sample_t.HAS_WAVES,
+    "bathymetry": env_sample_t.HAS_BATHYMETRY,
+    "sound_speed": env_sample_t.HAS_SOUND_SPEED,
+}
 
 
 def evaluate(env: Environment, needs: env_needs_t, term: int) -> env_sample_t:
@@ -54,8 +57,9 @@ class LockstepServer:
     `expect_names`, if given). A step is published again when a participant
     that owes it repeats its report of the step before (it lost the clock)."""
 
-    def __init__(self, tracker: LockstepTracker, step_us: int, expect: int, log=print,
-                 expect_names: set[str] | None = None) -> None:
+    def __init__(
+        self, tracker: LockstepTracker, step_us: int, expect: int, log=print, expect_names: set[str] | None = None
+    ) -> None:
         self.tracker = tracker
         self.step_us = step_us
         self.expect = expect
@@ -80,8 +84,7 @@ class LockstepServer:
 
     def ready(self) -> bool:
         """Step 0 may go: every participant it waits for has registered."""
-        return (len(self.tracker.parts) >= max(1, self.expect)
-                and self.expect_names <= self.tracker.parts.keys())
+        return len(self.tracker.parts) >= max(1, self.expect) and self.expect_names <= self.tracker.parts.keys()
 
     def poll(self) -> int | None:
         """The step to publish now, if any (a repeat of the current one after a loss)."""

@@ -27,8 +27,9 @@ from sim.multihil.node import MODES, EnvNode, NodeConfig
 
 
 def parse(argv: list[str]) -> argparse.Namespace:
-    ap = argparse.ArgumentParser(prog="python -m sim.multihil node", description=__doc__,
-                                 formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(
+        prog="python -m sim.multihil node", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     ap.add_argument("--id", required=True, help="client id, e.g. AUV1-sim")
     ap.add_argument("--vehicle", default="", help="vehicle id (default: the id up to '-')")
     ap.add_argument("--priority", type=int, default=0)
@@ -56,27 +57,44 @@ def main(argv: list[str]) -> int:
         print(f"multihil: {exc}", file=sys.stderr)
         return 2
     lc = lcm.LCM(url)
-    cfg = NodeConfig(a.id, a.vehicle or a.id.split("-")[0].upper(), a.priority,
-                     [v for v in a.needs.split(",") if v], 1.0, a.mode, a.warp,
-                     step_s=a.step, lockstep_expect=a.expect, sync_hz=a.sync_hz,
-                     timing=Timing(join_window_s=a.join_window,
-                                   failover_timeout_s=a.failover_timeout))
+    cfg = NodeConfig(
+        a.id,
+        a.vehicle or a.id.split("-")[0].upper(),
+        a.priority,
+        [v for v in a.needs.split(",") if v],
+        1.0,
+        a.mode,
+        a.warp,
+        step_s=a.step,
+        lockstep_expect=a.expect,
+        sync_hz=a.sync_hz,
+        timing=Timing(join_window_s=a.join_window, failover_timeout_s=a.failover_timeout),
+    )
     holder: list[EnvNode] = []
 
     def position() -> tuple[float, float, float, float] | None:
         g = holder[0].global_now_us()
         return None if g is None else (g / 1e6, 0.0, 0.0, 0.0)
 
-    node = EnvNode(cfg, lc, Environment(EnvParams()), LocalClock(a.offset_us, a.drift_ppm),
-                   position=position, log=lambda s: print(s, flush=True))
+    node = EnvNode(
+        cfg,
+        lc,
+        Environment(EnvParams()),
+        LocalClock(a.offset_us, a.drift_ppm),
+        position=position,
+        log=lambda s: print(s, flush=True),
+    )
     holder.append(node)
     part = Participation(f"{cfg.vehicle}.sim", lambda m: lc.publish("SIM.LOCKSTEP", m.encode()))
     stop = []
     for sig in (signal.SIGINT, signal.SIGTERM):
         signal.signal(sig, lambda *_: stop.append(1))
     probe = open(a.probe, "w", buffering=1) if a.probe else None
-    print(f"multihil: node {a.id} priority {a.priority} mode {a.mode} offset {a.offset_us:g} us "
-          f"drift {a.drift_ppm:g} ppm", flush=True)
+    print(
+        f"multihil: node {a.id} priority {a.priority} mode {a.mode} offset {a.offset_us:g} us "
+        f"drift {a.drift_ppm:g} ppm",
+        flush=True,
+    )
     t_end = time.monotonic() + a.duration if a.duration > 0 else float("inf")
     next_probe = 0.0
     seen_clocks = 0
@@ -87,7 +105,7 @@ def main(argv: list[str]) -> int:
             part.poll()
             c = node.last_clock
             if c is not None and node.clock_messages != seen_clocks:
-                seen_clocks = node.clock_messages    # each clock message, repeats included
+                seen_clocks = node.clock_messages  # each clock message, repeats included
                 part.on_clock(c.step, c.utime)
                 part.done()
         now = time.monotonic()
@@ -103,9 +121,12 @@ def main(argv: list[str]) -> int:
     if a.mode == "lockstep":
         part.leave()
     node.stop()
-    print(f"multihil: node {a.id} stopped: role {node.role} term {node.term}, "
-          f"{node.clock_messages} clock messages, {node.clock_regressions} regressions, "
-          f"{node.samples_received} samples, {node.sample_mismatches} mismatches, "
-          f"{node.rx.decode_errors} decode errors, {node.election.gaps} gaps, "
-          f"{node.drops.summary()}", flush=True)
+    print(
+        f"multihil: node {a.id} stopped: role {node.role} term {node.term}, "
+        f"{node.clock_messages} clock messages, {node.clock_regressions} regressions, "
+        f"{node.samples_received} samples, {node.sample_mismatches} mismatches, "
+        f"{node.rx.decode_errors} decode errors, {node.election.gaps} gaps, "
+        f"{node.drops.summary()}",
+        flush=True,
+    )
     return 0

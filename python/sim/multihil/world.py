@@ -34,7 +34,7 @@ class VehicleSpec:
     clock_offset_us: float = 0.0
     clock_drift_ppm: float = 0.0
     managers: list[str] = field(default_factory=lambda: ["NAVIGATOR"])
-    edits: list[tuple[str, str]] = field(default_factory=list)   # (old, new) in its config
+    edits: list[tuple[str, str]] = field(default_factory=list)  # (old, new) in its config
 
 
 def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BASE_CONFIG) -> Path:
@@ -42,8 +42,12 @@ def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BA
     text = base.read_text()
     assert "id: AUV1" in text and "multihil:" not in text, f"{base}: not a usable base"
     text = text.replace("id: AUV1", f"id: {spec.vehicle}")
-    mh = {"priority": spec.priority, "clock_offset_us": spec.clock_offset_us,
-          "clock_drift_ppm": spec.clock_drift_ppm, **multihil}
+    mh = {
+        "priority": spec.priority,
+        "clock_offset_us": spec.clock_offset_us,
+        "clock_drift_ppm": spec.clock_drift_ppm,
+        **multihil,
+    }
     text += "\nmultihil:\n" + "".join(f"  {k}: {v}\n" for k, v in mh.items())
     text = text.replace("initial: {depth_m: 0.0}", f"initial: {{depth_m: 0.0, east_m: {spec.east_m}}}")
     for old, new in spec.edits:
@@ -55,30 +59,43 @@ def vehicle_config(out: Path, spec: VehicleSpec, multihil: dict, base: Path = BA
 
 
 class World:
-    def __init__(self, out: Path, url: str, build: Path = ROOT / "build", env: dict | None = None,
-                 python: str = sys.executable) -> None:
+    def __init__(
+        self, out: Path, url: str, build: Path = ROOT / "build", env: dict | None = None, python: str = sys.executable
+    ) -> None:
         self.out, self.url, self.build, self.python = out, url, build, python
         self.env = dict(env or os.environ)
-        self.env.setdefault("PYTHONPATH", str(build / "gen" / "python"))    # that build's message types
+        self.env.setdefault("PYTHONPATH", str(build / "gen" / "python"))  # that build's message types
         self.procs: dict[str, subprocess.Popen] = {}
         out.mkdir(parents=True, exist_ok=True)
 
     def _start(self, name: str, cmd: list, prefix: list[str] | None = None) -> subprocess.Popen:
-        p = subprocess.Popen([*(prefix or []), *map(str, cmd)],
-                             stdout=open(self.out / f"{name}.out", "w"),
-                             stderr=subprocess.STDOUT, env=self.env, start_new_session=True)
+        p = subprocess.Popen(
+            [*(prefix or []), *map(str, cmd)],
+            stdout=open(self.out / f"{name}.out", "w"),
+            stderr=subprocess.STDOUT,
+            env=self.env,
+            start_new_session=True,
+        )
         self.procs[name] = p
         return p
 
     def logger(self, log: Path, prefix: list[str] | None = None) -> None:
         import lcm
+
         binary = Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"
         self._start("logger", [binary, f"--lcm-url={self.url}", "-f", log], prefix)
         time.sleep(0.3)
 
-    def simulator(self, spec: VehicleSpec, clock: str, multihil: dict, warp: float = 1.0,
-                  duration: float = 0.0, prefix: list[str] | None = None,
-                  name: str | None = None) -> subprocess.Popen:
+    def simulator(
+        self,
+        spec: VehicleSpec,
+        clock: str,
+        multihil: dict,
+        warp: float = 1.0,
+        duration: float = 0.0,
+        prefix: list[str] | None = None,
+        name: str | None = None,
+    ) -> subprocess.Popen:
         cfg = vehicle_config(self.out, spec, {"enabled": "true", **multihil})
         cmd = [self.python, "-m", "sim", cfg, "--lcm-url", self.url, "--clock", clock]
         if clock == "scaled":
@@ -87,13 +104,37 @@ class World:
             cmd += ["--duration", duration]
         return self._start(name or f"{spec.vehicle}.sim", cmd, prefix)
 
-    def managers(self, spec: VehicleSpec, prefix: list[str] | None = None, plan: Path = PLAN,
-                 bind: Path = BIND, extra: list[str] | None = None) -> None:
+    def managers(
+        self,
+        spec: VehicleSpec,
+        prefix: list[str] | None = None,
+        plan: Path = PLAN,
+        bind: Path = BIND,
+        extra: list[str] | None = None,
+    ) -> None:
         for name in spec.managers:
-            self._start(f"{spec.vehicle}.{name}",
-                        [self.build / "bin" / "chasm-manager", "--plan", plan, "--bind", bind,
-                         "--vehicle", spec.vehicle, "--name", name, "--rate", "10",
-                         "--clock", "sim", "--lcm-url", self.url, *(extra or [])], prefix)
+            self._start(
+                f"{spec.vehicle}.{name}",
+                [
+                    self.build / "bin" / "chasm-manager",
+                    "--plan",
+                    plan,
+                    "--bind",
+                    bind,
+                    "--vehicle",
+                    spec.vehicle,
+                    "--name",
+                    name,
+                    "--rate",
+                    "10",
+                    "--clock",
+                    "sim",
+                    "--lcm-url",
+                    self.url,
+                    *(extra or []),
+                ],
+                prefix,
+            )
 
     def kill(self, name: str) -> None:
         p = self.procs[name]
@@ -122,6 +163,7 @@ def main(argv: list[str]) -> int:
     import argparse
 
     from auvlcm.url import check_local, default_url
+
     ap = argparse.ArgumentParser(prog="python -m sim.multihil world", description=main.__doc__)
     ap.add_argument("--vehicles", type=int, default=3)
     ap.add_argument("--clock", type=clock_modes.argument, metavar="{realtime,scaled,lockstep}", default="scaled")
@@ -139,8 +181,7 @@ def main(argv: list[str]) -> int:
     world = World(a.out, url)
     log = a.out / "world.lcmlog"
     world.logger(log)
-    specs = [VehicleSpec(f"AUV{i}", priority=a.vehicles - i, east_m=30.0 * (i - 1))
-             for i in range(1, a.vehicles + 1)]
+    specs = [VehicleSpec(f"AUV{i}", priority=a.vehicles - i, east_m=30.0 * (i - 1)) for i in range(1, a.vehicles + 1)]
     lockstep = {"lockstep_participants": 2 * a.vehicles} if a.clock == clock_modes.LOCKSTEP else {}
     print(f"world: {a.vehicles} vehicles, {a.clock} clock, {a.duration:g} sim s, on {url}")
     try:

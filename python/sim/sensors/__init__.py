@@ -3,16 +3,16 @@
 from sim.sensors.base import Sensor, SensorConfig
 from sim.sensors.ins import Ins, InsConfig
 from sim.sensors.instruments import (
-                                     Ahrs,
-                                     AhrsConfig,
-                                     Altimeter,
-                                     AltimeterConfig,
-                                     DepthConfig,
-                                     DepthSensor,
-                                     Dvl,
-                                     DvlConfig,
-                                     Gps,
-                                     GpsConfig,
+    Ahrs,
+    AhrsConfig,
+    Altimeter,
+    AltimeterConfig,
+    DepthConfig,
+    DepthSensor,
+    Dvl,
+    DvlConfig,
+    Gps,
+    GpsConfig,
 )
 from sim.sensors.lbl import Lbl, LblConfig
 from sim.sensors.leak import LeakConfig, LeakSensor
@@ -29,5 +29,16 @@ REGISTRY = {
     "leak": (LeakConfig, LeakSensor),
 }
 
-__all__ = ["Sensor", "SensorConfig", "REGISTRY", "Ahrs", "DepthSensor", "Dvl", "Altimeter",
-           "Gps", "Lbl", "Ins", "LeakSensor"]
+__all__ = [
+    "Sensor",
+    "SensorConfig",
+    "REGISTRY",
+    "Ahrs",
+    "DepthSensor",
+    "Dvl",
+    "Altimeter",
+    "Gps",
+    "Lbl",
+    "Ins",
+    "LeakSensor",
+]

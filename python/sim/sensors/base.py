@@ -28,21 +28,21 @@ CHANNEL_HINT = "a channel name (upper-case letters, digits, '_', e.g. NAV or NAV
 class SensorConfig:
     enabled: bool = True
     rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
-    noise: float = setting(0.0, ge=0.0)        # 1-sigma white noise, in the sensor's unit
-    bias: float = 0.0         # constant offset, in the sensor's unit
-    dropout: float = setting(0.0, ge=0.0, lt=1.0)      # probability that one sample is lost [0, 1)
-    phase_s: float = 0.0      # offset of the first sample, to spread load
+    noise: float = setting(0.0, ge=0.0)  # 1-sigma white noise, in the sensor's unit
+    bias: float = 0.0  # constant offset, in the sensor's unit
+    dropout: float = setting(0.0, ge=0.0, lt=1.0)  # probability that one sample is lost [0, 1)
+    phase_s: float = 0.0  # offset of the first sample, to spread load
 
 
 class Sensor:
     name = "sensor"
-    topic = "SENSOR"          # channel suffix: <VEHICLE>.<topic>
+    topic = "SENSOR"  # channel suffix: <VEHICLE>.<topic>
 
     def __init__(self, cfg: SensorConfig, seed: int, vehicle: str) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.rng = Noise(f"{seed}:{self.name}")
-        self.gauss = self.rng.gauss     # gauss(sigma): N(0, sigma^2), 0 if sigma <= 0
+        self.gauss = self.rng.gauss  # gauss(sigma): N(0, sigma^2), 0 if sigma <= 0
         self.schedule = Periodic(1.0 / cfg.rate_hz, cfg.phase_s, skip_slack=1e-9)
         self.samples = 0
         self.dropped = 0

@@ -24,18 +24,18 @@ from sim.wire import Encoder
 @dataclass
 class InsConfig(SensorConfig):
     rate_hz: float = setting(20.0, gt=0.0, unit="Hz")
-    noise: float = setting(0.05, ge=0.0)                  # white position noise [m]
-    bias: float = math.radians(0.05)     # heading bias [rad]
-    heading_noise: float = setting(math.radians(0.02), ge=0.0)        # [rad]
+    noise: float = setting(0.05, ge=0.0)  # white position noise [m]
+    bias: float = math.radians(0.05)  # heading bias [rad]
+    heading_noise: float = setting(math.radians(0.02), ge=0.0)  # [rad]
     heading_random_walk: float = setting(math.radians(0.002), ge=0.0)  # [rad/sqrt(s)]
-    velocity_noise: float = setting(0.005, ge=0.0)         # [m/s]
-    velocity_scale_error: float = 0.001   # [-], along-track
-    position_random_walk: float = setting(0.005, ge=0.0)   # [m/sqrt(s)]
+    velocity_noise: float = setting(0.005, ge=0.0)  # [m/s]
+    velocity_scale_error: float = 0.001  # [-], along-track
+    position_random_walk: float = setting(0.005, ge=0.0)  # [m/sqrt(s)]
     attitude_noise: float = setting(math.radians(0.02), ge=0.0)  # roll, pitch [rad]
-    gps_aiding: bool = True               # reset drift at the surface
-    gps_sigma_m: float = setting(2.0, ge=0.0)              # position error after a surface fix
+    gps_aiding: bool = True  # reset drift at the surface
+    gps_sigma_m: float = setting(2.0, ge=0.0)  # position error after a surface fix
     surface_depth_m: float = 0.2
-    dvl_max_altitude_m: float = setting(30.0, ge=0.0)      # bottom-lock aiding (status bits only)
+    dvl_max_altitude_m: float = setting(30.0, ge=0.0)  # bottom-lock aiding (status bits only)
     # <VEHICLE>.<channel> it publishes on; "off" publishes nothing (the onboard
     # filter then owns <VEHICLE>.NAV: one writer per channel)
     channel: str = setting("NAV", pattern=CHANNEL_SUFFIX, one_of=("off",), pattern_hint=CHANNEL_HINT)
@@ -54,8 +54,8 @@ class Ins(Sensor):
         self.err_e = 0.0
         self.head_walk = 0.0
         self.last_t: float | None = None
-        self.pos_var = cfg.gps_sigma_m ** 2
-        self.dist = 0.0          # distance travelled since the last fix [m]
+        self.pos_var = cfg.gps_sigma_m**2
+        self.dist = 0.0  # distance travelled since the last fix [m]
         self.t_since_fix = 0.0
         self._pack = Encoder(nav_solution_t, vehicle=vehicle).pack
 
@@ -98,9 +98,8 @@ class Ins(Sensor):
         # the 1-sigma a real filter would claim: the fix's error plus the
         # dead-reckoning drift since (heading and scale errors grow with
         # distance, the random walk with time)
-        frac2 = bias ** 2 + c.velocity_scale_error ** 2 + c.heading_random_walk ** 2 * self.t_since_fix
-        self.pos_var = (c.gps_sigma_m ** 2 + frac2 * self.dist ** 2
-                        + c.position_random_walk ** 2 * self.t_since_fix)
+        frac2 = bias**2 + c.velocity_scale_error**2 + c.heading_random_walk**2 * self.t_since_fix
+        self.pos_var = c.gps_sigma_m**2 + frac2 * self.dist**2 + c.position_random_walk**2 * self.t_since_fix
         noise = c.noise
         alt = tr.altitude_m
         if 0.0 < alt <= c.dvl_max_altitude_m:
@@ -122,15 +121,57 @@ class Ins(Sensor):
         u = nu[0] + gauss(vnoise)
         v = nu[1] + gauss(vnoise)
         w = nu[2] + gauss(vnoise)
-        pv = self.pos_var + noise ** 2
-        dv = noise ** 2
-        vv = vnoise ** 2
-        av = att ** 2
-        hv = c.heading_noise ** 2 + bias ** 2 + self.head_walk ** 2
+        pv = self.pos_var + noise**2
+        dv = noise**2
+        vv = vnoise**2
+        av = att**2
+        hv = c.heading_noise**2 + bias**2 + self.head_walk**2
         return self._pack(
-            utime(t), nav_solution_t.SOURCE_SIM_INS, status, lat, lon, north, east, depth,
-            altitude, roll, pitch, heading, u, v, w, nu[3], nu[4], nu[5], math.hypot(vn, ve),
+            utime(t),
+            nav_solution_t.SOURCE_SIM_INS,
+            status,
+            lat,
+            lon,
+            north,
+            east,
+            depth,
+            altitude,
+            roll,
+            pitch,
+            heading,
+            u,
+            v,
+            w,
+            nu[3],
+            nu[4],
+            nu[5],
+            math.hypot(vn, ve),
             wrap_2pi(math.atan2(ve, vn) + bias + self.head_walk),
-            pv, 0.0, 0.0, 0.0, pv, 0.0, 0.0, 0.0, dv,
-            vv, 0.0, 0.0, 0.0, vv, 0.0, 0.0, 0.0, vv,
-            av, 0.0, 0.0, 0.0, av, 0.0, 0.0, 0.0, hv)
+            pv,
+            0.0,
+            0.0,
+            0.0,
+            pv,
+            0.0,
+            0.0,
+            0.0,
+            dv,
+            vv,
+            0.0,
+            0.0,
+            0.0,
+            vv,
+            0.0,
+            0.0,
+            0.0,
+            vv,
+            av,
+            0.0,
+            0.0,
+            0.0,
+            av,
+            0.0,
+            0.0,
+            0.0,
+            hv,
+        )

@@ -19,10 +19,10 @@ G = 9.81
 @dataclass
 class AhrsConfig(SensorConfig):
     rate_hz: float = setting(20.0, gt=0.0, unit="Hz")
-    noise: float = setting(math.radians(0.5), ge=0.0)         # heading noise [rad]
-    bias: float = math.radians(1.0)          # heading bias [rad]
+    noise: float = setting(math.radians(0.5), ge=0.0)  # heading noise [rad]
+    bias: float = math.radians(1.0)  # heading bias [rad]
     attitude_noise: float = setting(math.radians(0.1), ge=0.0)  # roll / pitch noise [rad]
-    rate_noise: float = setting(math.radians(0.05), ge=0.0)   # gyro noise [rad/s]
+    rate_noise: float = setting(math.radians(0.05), ge=0.0)  # gyro noise [rad/s]
 
 
 class Ahrs(Sensor):
@@ -60,8 +60,8 @@ class Ahrs(Sensor):
 @dataclass
 class DepthConfig(SensorConfig):
     rate_hz: float = setting(10.0, gt=0.0, unit="Hz")
-    noise: float = setting(0.02, ge=0.0)          # [m]
-    bias: float = 0.0            # [m]
+    noise: float = setting(0.02, ge=0.0)  # [m]
+    bias: float = 0.0  # [m]
     water_temperature_c: float = 12.0
 
 
@@ -89,14 +89,14 @@ class DepthSensor(Sensor):
 @dataclass
 class DvlConfig(SensorConfig):
     rate_hz: float = setting(5.0, gt=0.0, unit="Hz")
-    noise: float = setting(0.01, ge=0.0)          # per-axis velocity noise [m/s]
-    bias: float = 0.0            # per-axis velocity offset [m/s]
-    scale_error: float = 0.0     # fractional scale factor error [-]
+    noise: float = setting(0.01, ge=0.0)  # per-axis velocity noise [m/s]
+    bias: float = 0.0  # per-axis velocity offset [m/s]
+    scale_error: float = 0.0  # fractional scale factor error [-]
     max_altitude_m: float = setting(30.0, ge=0.0)  # bottom lock only below this altitude
-    min_altitude_m: float = 0.5   # too close to the bottom: no lock either
-    water_track: bool = True      # above the limit: water track, else nothing
+    min_altitude_m: float = 0.5  # too close to the bottom: no lock either
+    water_track: bool = True  # above the limit: water track, else nothing
     beam_angle_rad: float = math.radians(30.0)
-    range_noise: float = setting(0.05, ge=0.0)     # per-beam range noise [m]
+    range_noise: float = setting(0.05, ge=0.0)  # per-beam range noise [m]
 
 
 class Dvl(Sensor):
@@ -146,10 +146,8 @@ class Dvl(Sensor):
         cphi, sphi, cth, sth = math.cos(phi), math.sin(phi), math.cos(th), math.sin(th)
         cpsi, spsi = math.cos(psi), math.sin(psi)
         uc = cpsi * cth * cn + spsi * cth * ce - sth * cd
-        vc = ((cpsi * sth * sphi - spsi * cphi) * cn + (cpsi * cphi + sphi * sth * spsi) * ce
-              + cth * sphi * cd)
-        wc = ((spsi * sphi + cpsi * cphi * sth) * cn + (sth * spsi * cphi - cpsi * sphi) * ce
-              + cth * cphi * cd)
+        vc = (cpsi * sth * sphi - spsi * cphi) * cn + (cpsi * cphi + sphi * sth * spsi) * ce + cth * sphi * cd
+        wc = (spsi * sphi + cpsi * cphi * sth) * cn + (sth * spsi * cphi - cpsi * sphi) * ce + cth * cphi * cd
         return tr.nu[0] - uc, tr.nu[1] - vc, tr.nu[2] - wc
 
     def dropout_message(self, tr: Truth):
@@ -165,8 +163,8 @@ class Dvl(Sensor):
 @dataclass
 class AltimeterConfig(SensorConfig):
     rate_hz: float = setting(5.0, gt=0.0, unit="Hz")
-    noise: float = setting(0.05, ge=0.0)          # [m]
-    bias: float = 0.0            # [m]
+    noise: float = setting(0.05, ge=0.0)  # [m]
+    bias: float = 0.0  # [m]
     max_range_m: float = setting(50.0, ge=0.0)
 
 
@@ -199,9 +197,9 @@ class Altimeter(Sensor):
 @dataclass
 class GpsConfig(SensorConfig):
     rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
-    noise: float = setting(2.0, ge=0.0)           # horizontal 1-sigma per axis [m]
-    bias: float = 0.0            # [m], added to north and east
-    max_depth_m: float = setting(0.2, ge=0.0)     # antenna out of the water above this depth
+    noise: float = setting(2.0, ge=0.0)  # horizontal 1-sigma per axis [m]
+    bias: float = 0.0  # [m], added to north and east
+    max_depth_m: float = setting(0.2, ge=0.0)  # antenna out of the water above this depth
     hdop: float = 1.0
     satellites: int = 9
 

@@ -22,12 +22,12 @@ from sim.sensors.base import Sensor, SensorConfig, utime
 
 @dataclass
 class LblConfig(SensorConfig):
-    rate_hz: float = setting(0.1, gt=0.0, unit="Hz")             # one interrogation every 10 s
-    noise: float = setting(1.25, ge=0.0)              # range noise, 1-sigma [m] (converted to time)
-    bias: float = 0.0                # range offset [m]
+    rate_hz: float = setting(0.1, gt=0.0, unit="Hz")  # one interrogation every 10 s
+    noise: float = setting(1.25, ge=0.0)  # range noise, 1-sigma [m] (converted to time)
+    bias: float = 0.0  # range offset [m]
     outlier_probability: float = setting(0.05, ge=0.0, lt=1.0)
-    outlier_max_m: float = setting(50.0, ge=0.0)      # outliers add U(0, this) metres of path
-    max_range_m: float = setting(3000.0, ge=0.0)      # no reply beyond this
+    outlier_max_m: float = setting(50.0, ge=0.0)  # outliers add U(0, this) metres of path
+    max_range_m: float = setting(3000.0, ge=0.0)  # no reply beyond this
     assumed_sound_speed_mps: float = 0.0  # what the vehicle assumes; 0 = the world mean
 
 
@@ -53,7 +53,7 @@ class Lbl(Sensor):
         return out
 
     def poll_encoded(self, tr: Truth) -> bytes | None:
-        msg = self.poll(tr)       # published later than measured: through poll()
+        msg = self.poll(tr)  # published later than measured: through poll()
         return None if msg is None else self.encode(msg)
 
     def next_due(self) -> float:

@@ -22,8 +22,8 @@ from sim.sensors.base import Sensor, SensorConfig, utime
 @dataclass
 class LeakConfig(SensorConfig):
     rate_hz: float = setting(1.0, gt=0.0, unit="Hz")
-    at_s: float = setting(-1.0, ge=-1.0)          # water from this sim time on [s]; -1: never
-    probes: int = setting(2, ge=1, le=16)         # probes fitted
+    at_s: float = setting(-1.0, ge=-1.0)  # water from this sim time on [s]; -1: never
+    probes: int = setting(2, ge=1, le=16)  # probes fitted
 
 
 class LeakSensor(Sensor):

@@ -9,5 +9,15 @@ from sim.sonar.coverage import Coverage, coverage_grid
 from sim.sonar.curve import LateralRangeCurve
 from sim.sonar.targets import Target, TargetField, TargetFileError
 
-__all__ = ["ScoreModel", "SonarConfig", "TargetArea", "TargetsConfig", "Coverage", "coverage_grid",
-           "LateralRangeCurve", "Target", "TargetField", "TargetFileError"]
+__all__ = [
+    "ScoreModel",
+    "SonarConfig",
+    "TargetArea",
+    "TargetsConfig",
+    "Coverage",
+    "coverage_grid",
+    "LateralRangeCurve",
+    "Target",
+    "TargetField",
+    "TargetFileError",
+]

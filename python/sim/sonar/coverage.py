@@ -40,7 +40,7 @@ class Coverage:
         sel = self.looks >= at_least
         if mask is not None:
             sel &= mask
-        return float(np.count_nonzero(sel)) * self.cell ** 2
+        return float(np.count_nonzero(sel)) * self.cell**2
 
     def index(self, north: float, east: float) -> tuple[int, int]:
         return int((north - self.north0) // self.cell), int((east - self.east0) // self.cell)
@@ -62,9 +62,17 @@ def split_passes(heading: np.ndarray, imaging: np.ndarray, turn_rad: float) -> n
     return ids
 
 
-def coverage_grid(north, east, heading, altitude, curve: LateralRangeCurve, cell: float = 2.0,
-                  bounds: tuple[float, float, float, float] | None = None,
-                  pass_id=None, turn_rad: float = math.pi / 4) -> Coverage:
+def coverage_grid(
+    north,
+    east,
+    heading,
+    altitude,
+    curve: LateralRangeCurve,
+    cell: float = 2.0,
+    bounds: tuple[float, float, float, float] | None = None,
+    pass_id=None,
+    turn_rad: float = math.pi / 4,
+) -> Coverage:
     """Looks and detection probability per cell; bounds = (n_min, n_max, e_min, e_max)."""
     north, east = np.asarray(north, float), np.asarray(east, float)
     heading, altitude = np.asarray(heading, float), np.asarray(altitude, float)
@@ -81,7 +89,7 @@ def coverage_grid(north, east, heading, altitude, curve: LateralRangeCurve, cell
     looks = np.zeros(shape, dtype=np.int32)
     miss = np.ones(shape)
     ys = np.arange(cell / 4, reach, cell / 2)
-    ys = np.concatenate([-ys[::-1], ys])              # both sides, half-cell steps
+    ys = np.concatenate([-ys[::-1], ys])  # both sides, half-cell steps
     for p in np.unique(pass_id[pass_id >= 0]):
         idx = np.nonzero(pass_id == p)[0]
         # samples about half a cell apart along the pass are enough

@@ -37,14 +37,14 @@ NavError = Callable[[], tuple[float, float]]
 @dataclass
 class IdentifyConfig:
     enabled: bool = True
-    range_m: float = setting(6.0, gt=0.0, le=200.0)            # horizontal range of a look [m]
-    p_identify: float = setting(0.5, ge=0.0, le=1.0)           # a look at an object in range makes it out
-    p_correct: float = setting(0.9, ge=0.0, le=1.0)            # ... and gets mine / not mine right
-    position_sigma_m: float = setting(0.5, ge=0.0, le=100.0)   # 1-sigma position error per axis [m]
-    period_s: float = setting(1.0, gt=0.0, le=3600.0)          # one look at every object in range per period
-    max_altitude_m: float = setting(10.0, gt=0.0)              # looks only this close to the seabed
-    seed: int = -1                                             # -1 = simulation.seed
-    targets: TargetsConfig = field(default_factory=TargetsConfig)   # without a sonar section
+    range_m: float = setting(6.0, gt=0.0, le=200.0)  # horizontal range of a look [m]
+    p_identify: float = setting(0.5, ge=0.0, le=1.0)  # a look at an object in range makes it out
+    p_correct: float = setting(0.9, ge=0.0, le=1.0)  # ... and gets mine / not mine right
+    position_sigma_m: float = setting(0.5, ge=0.0, le=100.0)  # 1-sigma position error per axis [m]
+    period_s: float = setting(1.0, gt=0.0, le=3600.0)  # one look at every object in range per period
+    max_altitude_m: float = setting(10.0, gt=0.0)  # looks only this close to the seabed
+    seed: int = -1  # -1 = simulation.seed
+    targets: TargetsConfig = field(default_factory=TargetsConfig)  # without a sonar section
 
 
 def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig | None:
@@ -52,6 +52,7 @@ def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig 
     import yaml
 
     from sim.sonar.config_check import check_targets
+
     if isinstance(node, yaml.ScalarNode) and doc.scalar(node) is False:
         return None
     errors_before = len(doc.errors)
@@ -59,20 +60,24 @@ def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig 
     items = doc.mapping(node, "identify")
     if "targets" in items:
         if has_sonar:
-            doc.err(items["targets"][0], "identify.targets",
-                    "this configuration has a sonar section: its targets are the field "
-                    "(give the field in one place)")
+            doc.err(
+                items["targets"][0],
+                "identify.targets",
+                "this configuration has a sonar section: its targets are the field (give the field in one place)",
+            )
         else:
-            check_targets(doc, cfg.targets, items["targets"][1], "identify.targets", base,
-                          place=len(doc.errors) == errors_before)
+            check_targets(
+                doc, cfg.targets, items["targets"][1], "identify.targets", base, place=len(doc.errors) == errors_before
+            )
     return cfg if cfg.enabled else None
 
 
 class Identify:
     """The looks of one vehicle, polled with the truth at each due time."""
 
-    def __init__(self, cfg: IdentifyConfig, field_: TargetField, seed: int, vehicle: str,
-                 nav_error: NavError | None = None) -> None:
+    def __init__(
+        self, cfg: IdentifyConfig, field_: TargetField, seed: int, vehicle: str, nav_error: NavError | None = None
+    ) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
         self.rng = Noise(f"{seed}:identify")
@@ -82,8 +87,8 @@ class Identify:
         self._e = np.array([t.east_m for t in ts], dtype=float)
         self._mine = np.array([t.kind == MINE_LIKE for t in ts], dtype=bool)
         self.schedule = Periodic(cfg.period_s, skip_slack=1e-9)
-        self.looks = 0            # reacquire_look_t sent (look_id of the last)
-        self.tries = 0            # objects in range at a look, made out or not
+        self.looks = 0  # reacquire_look_t sent (look_id of the last)
+        self.tries = 0  # objects in range at a look, made out or not
 
     def next_due(self) -> float:
         return self.schedule.next_t
@@ -92,6 +97,7 @@ class Identify:
         """The looks of this period (maybe none); [] when no look is due."""
         from auv import reacquire_look_t
         from sim.sensors.base import utime
+
         t = tr.t
         if not self.schedule.due(t):
             return []
@@ -101,7 +107,7 @@ class Identify:
         n0, e0 = tr.eta[0], tr.eta[1]
         rng = np.hypot(self._n - n0, self._e - e0)
         out = []
-        for i in np.nonzero(rng <= self.cfg.range_m)[0]:      # in index order: deterministic
+        for i in np.nonzero(rng <= self.cfg.range_m)[0]:  # in index order: deterministic
             self.tries += 1
             if self.rng.random() >= self.cfg.p_identify:
                 continue
@@ -126,6 +132,7 @@ class IdentifyOutputs:
 
     def __init__(self, cfg, sensors) -> None:
         from sim.sonar.publisher import build_field
+
         ic = cfg.identify
         self.field = build_field(cfg, cfg.sonar.targets if cfg.sonar is not None else ic.targets)
         ins = next((s for s in sensors if s.name == "ins"), None)

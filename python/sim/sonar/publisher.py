@@ -17,6 +17,7 @@ def build_field(cfg, tc=None) -> tg.TargetField:
     """The configuration's target field (cfg: sim.config.SimConfig; tc: the targets
     section, default the sonar's), on its world's seabed."""
     from sim.environment import Environment
+
     env = Environment(cfg.env, cfg.path.parent)
     tc = tc if tc is not None else cfg.sonar.targets
     if tc.file:
@@ -35,8 +36,7 @@ class SonarOutputs:
         self.sidescan = Sidescan(sc, self.field, cfg.sim.seed, cfg.vehicle_id, nav_error)
         self.channel = f"{cfg.vehicle_id}.CONTACTS"
         self.world = cfg.env.world
-        self.publish_targets = sc.publish_targets == "yes" or (sc.publish_targets == "auto"
-                                                               and publish_world)
+        self.publish_targets = sc.publish_targets == "yes" or (sc.publish_targets == "auto" and publish_world)
         self.targets_period = sc.targets_period_s
         self.next_targets = 0.0 if self.publish_targets else math.inf
 
@@ -53,6 +53,5 @@ class SonarOutputs:
         out = [(self.channel, m.encode()) for m in self.sidescan.poll(tr)]
         if tr.t >= self.next_targets - 1e-9:
             out.append(("SIM.TARGETS", self.field.to_lcm(utime(tr.t), self.world).encode()))
-            self.next_targets = (tr.t + self.targets_period if self.targets_period > 0
-                                 else math.inf)
+            self.next_targets = tr.t + self.targets_period if self.targets_period > 0 else math.inf
         return out

@@ -43,8 +43,9 @@ NavError = Callable[[], tuple[float, float]]
 
 
 class Sidescan:
-    def __init__(self, cfg: SonarConfig, field: TargetField, seed: int, vehicle: str,
-                 nav_error: NavError | None = None) -> None:
+    def __init__(
+        self, cfg: SonarConfig, field: TargetField, seed: int, vehicle: str, nav_error: NavError | None = None
+    ) -> None:
         self.cfg = cfg
         self.field = field
         self.vehicle = vehicle
@@ -109,8 +110,9 @@ class Sidescan:
         return out
 
     # ------------------------------------------------------------ contacts
-    def _contact(self, tr: Truth, north: float, east: float, y: float, c: float, s: float,
-                 confidence: float, classification: str):
+    def _contact(
+        self, tr: Truth, north: float, east: float, y: float, c: float, s: float, confidence: float, classification: str
+    ):
         """A contact at ground range y (signed, + starboard) of a true point (north, east)."""
         cfg = self.cfg
         ea = self.rng.gauss(cfg.along_track_sigma_m)
@@ -133,8 +135,7 @@ class Sidescan:
     def score(self, mine: bool) -> float:
         """A mine-likeness score from the confusion model."""
         m = self.cfg.score
-        return (self.score_rng.beta(m.mine_a, m.mine_b) if mine
-                else self.score_rng.beta(m.clutter_a, m.clutter_b))
+        return self.score_rng.beta(m.mine_a, m.mine_b) if mine else self.score_rng.beta(m.clutter_a, m.clutter_b)
 
     def _target_contact(self, tr: Truth, i: int, y: float, p: float, c: float, s: float):
         mine = bool(self._mine[i])

@@ -41,14 +41,14 @@ class Target:
     east_m: float
     kind: str
     length_m: float
-    depth_m: float = 0.0      # seabed depth at the object
+    depth_m: float = 0.0  # seabed depth at the object
 
 
 @dataclass
 class TargetField:
     targets: list[Target]
-    seed: int                 # 0 when read from a file
-    source: str               # "seed" or the file
+    seed: int  # 0 when read from a file
+    source: str  # "seed" or the file
 
     def mines(self) -> list[Target]:
         return [t for t in self.targets if t.kind == MINE_LIKE]
@@ -61,8 +61,7 @@ class TargetField:
         m.targets = []
         for t in self.targets:
             s = seabed_target_t()
-            s.id, s.north_m, s.east_m, s.depth_m, s.length_m = (
-                t.id, t.north_m, t.east_m, t.depth_m, t.length_m)
+            s.id, s.north_m, s.east_m, s.depth_m, s.length_m = (t.id, t.north_m, t.east_m, t.depth_m, t.length_m)
             s.kind = seabed_target_t.KIND_MINE_LIKE if t.kind == MINE_LIKE else seabed_target_t.KIND_CLUTTER
             m.targets.append(s)
         m.n_targets = len(m.targets)
@@ -74,9 +73,11 @@ def place(cfg: TargetsConfig, seed: int, depth_at: Callable[[float, float], floa
     rng = Noise(f"{seed}:targets")
     a = cfg.area
     placed: list[Target] = []
-    sep2 = cfg.min_separation_m ** 2
-    for kind, count, length in ((MINE_LIKE, cfg.mines, cfg.mine_length_m),
-                                (CLUTTER, cfg.clutter, cfg.clutter_length_m)):
+    sep2 = cfg.min_separation_m**2
+    for kind, count, length in (
+        (MINE_LIKE, cfg.mines, cfg.mine_length_m),
+        (CLUTTER, cfg.clutter, cfg.clutter_length_m),
+    ):
         for _ in range(count):
             for _attempt in range(1000):
                 n = a.north_m + rng.random() * a.length_m
@@ -84,9 +85,11 @@ def place(cfg: TargetsConfig, seed: int, depth_at: Callable[[float, float], floa
                 if all((n - t.north_m) ** 2 + (e - t.east_m) ** 2 >= sep2 for t in placed):
                     break
             else:
-                raise ValueError(f"cannot place {cfg.mines + cfg.clutter} objects "
-                                 f"{cfg.min_separation_m:g} m apart in a {a.length_m:g} x "
-                                 f"{a.width_m:g} m area")
+                raise ValueError(
+                    f"cannot place {cfg.mines + cfg.clutter} objects "
+                    f"{cfg.min_separation_m:g} m apart in a {a.length_m:g} x "
+                    f"{a.width_m:g} m area"
+                )
             placed.append(Target(len(placed) + 1, n, e, kind, length, depth_at(n, e)))
     return TargetField(placed, seed, "seed")
 
@@ -97,15 +100,17 @@ def load(path: Path, depth_at: Callable[[float, float], float]) -> TargetField:
         text = path.read_text()
     except OSError as exc:
         raise TargetFileError(f"{path}: cannot read ({exc.strerror})") from None
-    rows = [(i + 1, line) for i, line in enumerate(text.splitlines())
-            if line.strip() and not line.lstrip().startswith("#")]
+    rows = [
+        (i + 1, line) for i, line in enumerate(text.splitlines()) if line.strip() and not line.lstrip().startswith("#")
+    ]
     if not rows:
         raise TargetFileError(f"{path}: empty; expected a header {','.join(COLUMNS)}")
     header_line, header = rows[0]
     names = [h.strip() for h in next(csv.reader([header]))]
     if sorted(names) != sorted(COLUMNS):
-        raise TargetFileError(f"{path}:{header_line}: header must name the columns "
-                              f"{','.join(COLUMNS)} (got {','.join(names)})")
+        raise TargetFileError(
+            f"{path}:{header_line}: header must name the columns {','.join(COLUMNS)} (got {','.join(names)})"
+        )
     errors: list[str] = []
     out: list[Target] = []
     seen: dict[int, int] = {}

@@ -18,11 +18,18 @@ from typing import Any
 from sim import clock_modes
 
 RUN_NAMES = ("loading", "running", "paused", "done", "aborted", "failed")
-NAV_BITS = ((1, "aligned"), (2, "dvl-bottom"), (4, "dvl-water"), (8, "gps"), (16, "lbl"),
-            (32, "DEGRADED"), (64, "INVALID"))
-LINK_KEEP_S = 8.0        # a heard modem frame stays on the map this long [sim s]
-ACK_KEEP = 20            # acknowledgements kept per vehicle
-WALL_STAMPED = ("agent_table_t",)   # stamped with the host's wall clock: not the world's time
+NAV_BITS = (
+    (1, "aligned"),
+    (2, "dvl-bottom"),
+    (4, "dvl-water"),
+    (8, "gps"),
+    (16, "lbl"),
+    (32, "DEGRADED"),
+    (64, "INVALID"),
+)
+LINK_KEEP_S = 8.0  # a heard modem frame stays on the map this long [sim s]
+ACK_KEEP = 20  # acknowledgements kept per vehicle
+WALL_STAMPED = ("agent_table_t",)  # stamped with the host's wall clock: not the world's time
 
 
 def run_name(code: int) -> str:
@@ -36,11 +43,11 @@ class Series:
     def __init__(self, limit: int) -> None:
         self.limit = limit
         self.items: list[Any] = []
-        self.base = 0                       # items dropped from the front
+        self.base = 0  # items dropped from the front
 
     def append(self, item: Any) -> None:
         self.items.append(item)
-        if len(self.items) > self.limit:    # drop a tenth at once: amortised O(1)
+        if len(self.items) > self.limit:  # drop a tenth at once: amortised O(1)
             cut = self.limit // 10 or 1
             del self.items[:cut]
             self.base += cut
@@ -53,7 +60,7 @@ class Series:
         """(reset, items): reset when the reader fell behind what is kept."""
         if cursor < self.base or cursor > self.end:
             return True, list(self.items)
-        return False, self.items[cursor - self.base:]
+        return False, self.items[cursor - self.base :]
 
 
 class Trail(Series):
@@ -78,10 +85,10 @@ def _vehicle_id(channel: str) -> str:
 class Model:
     def __init__(self) -> None:
         self.lock = threading.Condition()
-        self.epoch = 0                      # bumped by clear(): pages start over
-        self.version = 0                    # bumped by every change
+        self.epoch = 0  # bumped by clear(): pages start over
+        self.version = 0  # bumped by every change
         self.world_version = 0
-        self.world: dict[str, Any] = {}     # survey, operating area, seabed: see live/world.py
+        self.world: dict[str, Any] = {}  # survey, operating area, seabed: see live/world.py
         self.clear()
 
     # ------------------------------------------------------------- writing
@@ -96,7 +103,7 @@ class Model:
             self.targets: list[dict[str, Any]] = []
             self.links: deque = deque(maxlen=200)
             self.clock: dict[str, Any] = {}
-            self.agents: dict[str, dict[str, Any]] = {}   # host -> its agent's process table
+            self.agents: dict[str, dict[str, Any]] = {}  # host -> its agent's process table
             self.counts = {"messages": 0, "ignored": 0}
             self._cache: tuple[int, str] | None = None
 
@@ -110,8 +117,15 @@ class Model:
     def _vehicle(self, vid: str) -> dict[str, Any]:
         v = self.vehicles.get(vid)
         if v is None:
-            v = self.vehicles[vid] = {"id": vid, "truth": None, "nav": None, "nav_status": None,
-                                      "managers": {}, "modem": None, "acks": []}
+            v = self.vehicles[vid] = {
+                "id": vid,
+                "truth": None,
+                "nav": None,
+                "nav_status": None,
+                "managers": {},
+                "modem": None,
+                "acks": [],
+            }
             self.trails[vid + ".true"] = Trail()
             self.trails[vid + ".nav"] = Trail()
         return v
@@ -136,9 +150,17 @@ class Model:
         """Everything but the series, serialised once per version (call under lock)."""
         if self._cache is None or self._cache[0] != self.version:
             links = [ln for ln in self.links if self.t - ln["t"] <= LINK_KEEP_S]
-            now = {"t": self.t, "epoch": self.epoch, "world_version": self.world_version,
-                   "vehicles": self.vehicles, "targets": self.targets, "links": links,
-                   "clock": self.clock, "agents": self.agents, "counts": self.counts}
+            now = {
+                "t": self.t,
+                "epoch": self.epoch,
+                "world_version": self.world_version,
+                "vehicles": self.vehicles,
+                "targets": self.targets,
+                "links": links,
+                "clock": self.clock,
+                "agents": self.agents,
+                "counts": self.counts,
+            }
             self._cache = (self.version, json.dumps(now, separators=(",", ":")))
         return self._cache[1]
 
@@ -162,9 +184,14 @@ def _truth(m: Model, ch: str, msg: Any) -> bool:
     vid = _vehicle_id(ch)
     v = m._vehicle(vid)
     n, e, d = msg.eta[0], msg.eta[1], msg.eta[2]
-    v["truth"] = {"n": round(n, 2), "e": round(e, 2), "depth": round(d, 2),
-                  "heading": round(msg.eta[5] % (2 * math.pi), 4),
-                  "altitude": round(msg.altitude_m, 2), "t": msg.utime / 1e6}
+    v["truth"] = {
+        "n": round(n, 2),
+        "e": round(e, 2),
+        "depth": round(d, 2),
+        "heading": round(msg.eta[5] % (2 * math.pi), 4),
+        "altitude": round(msg.altitude_m, 2),
+        "t": msg.utime / 1e6,
+    }
     m.trails[vid + ".true"].add(n, e)
     return True
 
@@ -175,20 +202,30 @@ def _nav(m: Model, ch: str, msg: Any) -> bool:
     vid = _vehicle_id(ch)
     v = m._vehicle(vid)
     flags = [name for bit, name in NAV_BITS if msg.status & bit]
-    v["nav"] = {"n": round(msg.north_m, 2), "e": round(msg.east_m, 2), "depth": round(msg.depth_m, 2),
-                "heading": round(msg.heading_rad, 4), "altitude": round(msg.altitude_m, 2),
-                "speed": round(msg.speed_over_ground_mps, 2), "flags": flags,
-                "sigma": round(math.sqrt(max(0.0, msg.position_cov_m2[0][0] + msg.position_cov_m2[1][1])), 2),
-                "t": msg.utime / 1e6}
+    v["nav"] = {
+        "n": round(msg.north_m, 2),
+        "e": round(msg.east_m, 2),
+        "depth": round(msg.depth_m, 2),
+        "heading": round(msg.heading_rad, 4),
+        "altitude": round(msg.altitude_m, 2),
+        "speed": round(msg.speed_over_ground_mps, 2),
+        "flags": flags,
+        "sigma": round(math.sqrt(max(0.0, msg.position_cov_m2[0][0] + msg.position_cov_m2[1][1])), 2),
+        "t": msg.utime / 1e6,
+    }
     m.trails[vid + ".nav"].add(msg.north_m, msg.east_m)
     return True
 
 
 def _nav_status(m: Model, ch: str, msg: Any) -> bool:
     v = m._vehicle(_vehicle_id(ch))
-    v["nav_status"] = {"trusted": bool(msg.trusted), "sigma": round(msg.position_sigma_m, 2),
-                       "heading_sigma_deg": round(math.degrees(msg.heading_sigma_rad), 2),
-                       "accepted": list(msg.accepted), "rejected": list(msg.rejected)}
+    v["nav_status"] = {
+        "trusted": bool(msg.trusted),
+        "sigma": round(msg.position_sigma_m, 2),
+        "heading_sigma_deg": round(math.degrees(msg.heading_sigma_rad), 2),
+        "accepted": list(msg.accepted),
+        "rejected": list(msg.rejected),
+    }
     return True
 
 
@@ -197,50 +234,93 @@ def _chasm(m: Model, ch: str, msg: Any) -> bool:
         return False
     v = m._vehicle(_vehicle_id(ch))
     v["managers"][msg.manager or ch.rsplit(".", 1)[-1]] = {
-        "run": run_name(msg.run_state), "path": "/".join(msg.active_path),
+        "run": run_name(msg.run_state),
+        "path": "/".join(msg.active_path),
         "time_in_state": round(msg.time_in_state_s[-1], 1) if msg.path_len else 0.0,
-        "plan": msg.plan, "cycle": msg.cycle,
-        "last": {"t": msg.last_transition_utime / 1e6, "from": msg.last_from, "to": msg.last_to,
-                 "condition": msg.last_condition,
-                 "tests": {n: bool(x) for n, x in zip(msg.test_name, msg.test_value)}},
-        "decode_errors": msg.decode_errors}
+        "plan": msg.plan,
+        "cycle": msg.cycle,
+        "last": {
+            "t": msg.last_transition_utime / 1e6,
+            "from": msg.last_from,
+            "to": msg.last_to,
+            "condition": msg.last_condition,
+            "tests": {n: bool(x) for n, x in zip(msg.test_name, msg.test_value)},
+        },
+        "decode_errors": msg.decode_errors,
+    }
     return True
 
 
 def _contact(m: Model, ch: str, msg: Any) -> bool:
     m._vehicle(_vehicle_id(ch))
-    m.contacts.append({"v": msg.vehicle, "id": msg.contact_id, "n": round(msg.north_m, 2),
-                       "e": round(msg.east_m, 2), "class": msg.classification,
-                       "conf": round(float(msg.confidence), 2), "t": msg.utime / 1e6})
+    m.contacts.append(
+        {
+            "v": msg.vehicle,
+            "id": msg.contact_id,
+            "n": round(msg.north_m, 2),
+            "e": round(msg.east_m, 2),
+            "class": msg.classification,
+            "conf": round(float(msg.confidence), 2),
+            "t": msg.utime / 1e6,
+        }
+    )
     return True
 
 
 def _targets(m: Model, ch: str, msg: Any) -> bool:
-    m.targets = [{"id": t.id, "n": t.north_m, "e": t.east_m,
-                  "kind": "mine_like" if t.kind == 0 else "clutter"} for t in msg.targets]
+    m.targets = [
+        {"id": t.id, "n": t.north_m, "e": t.east_m, "kind": "mine_like" if t.kind == 0 else "clutter"}
+        for t in msg.targets
+    ]
     return True
 
 
 def _modem_rx(m: Model, ch: str, msg: Any) -> bool:
-    m.links.append({"src": msg.src_vehicle, "dst": msg.vehicle, "seq": msg.seq,
-                    "t": msg.utime / 1e6, "range": round(msg.range_m, 1)})
+    m.links.append(
+        {
+            "src": msg.src_vehicle,
+            "dst": msg.vehicle,
+            "seq": msg.seq,
+            "t": msg.utime / 1e6,
+            "range": round(msg.range_m, 1),
+        }
+    )
     return True
 
 
 def _modem_status(m: Model, ch: str, msg: Any) -> bool:
     v = m._vehicle(_vehicle_id(ch))
-    v["modem"] = {k: getattr(msg, k) for k in ("sent", "received", "lost", "out_of_range",
-                                                "collided", "deaf", "refused_size",
-                                                "refused_rate", "refused_invalid")}
+    v["modem"] = {
+        k: getattr(msg, k)
+        for k in (
+            "sent",
+            "received",
+            "lost",
+            "out_of_range",
+            "collided",
+            "deaf",
+            "refused_size",
+            "refused_rate",
+            "refused_invalid",
+        )
+    }
     v["modem"]["last_refusal"] = msg.last_refusal
     return True
 
 
 def _ack(m: Model, ch: str, msg: Any) -> bool:
     v = m._vehicle(_vehicle_id(ch))
-    v["acks"] = (v["acks"] + [{"seq": msg.seq, "manager": msg.manager, "message": msg.message,
-                               "result": ("ok", "rejected", "failed")[msg.result]
-                               if 0 <= msg.result <= 2 else str(msg.result)}])[-ACK_KEEP:]
+    v["acks"] = (
+        v["acks"]
+        + [
+            {
+                "seq": msg.seq,
+                "manager": msg.manager,
+                "message": msg.message,
+                "result": ("ok", "rejected", "failed")[msg.result] if 0 <= msg.result <= 2 else str(msg.result),
+            }
+        ]
+    )[-ACK_KEEP:]
     return True
 
 
@@ -255,23 +335,45 @@ PROC_STATES = ("running", "back-off", "exited", "failed", "stopped")
 def _agent(m: Model, ch: str, msg: Any) -> bool:
     """A host agent's process table (AGENT.<HOST>.PROCS, python/tools/agent.py)."""
     m.agents[msg.host] = {
-        "host": msg.host, "pid": msg.agent_pid, "run": msg.run, "status": msg.status,
+        "host": msg.host,
+        "pid": msg.agent_pid,
+        "run": msg.run,
+        "status": msg.status,
         "launcher_silent_s": msg.launcher_silent_s,
-        "procs": [{"name": p.name, "pid": p.pid,
-                   "state": PROC_STATES[p.state] if 0 <= p.state < len(PROC_STATES) else str(p.state),
-                   "exit_code": p.exit_code, "restarts": p.restarts, "cpu": p.cpu_load,
-                   "rss_mb": p.rss_bytes / 1e6, "uptime_s": p.uptime_s} for p in msg.procs]}
+        "procs": [
+            {
+                "name": p.name,
+                "pid": p.pid,
+                "state": PROC_STATES[p.state] if 0 <= p.state < len(PROC_STATES) else str(p.state),
+                "exit_code": p.exit_code,
+                "restarts": p.restarts,
+                "cpu": p.cpu_load,
+                "rss_mb": p.rss_bytes / 1e6,
+                "uptime_s": p.uptime_s,
+            }
+            for p in msg.procs
+        ],
+    }
     return True
 
 
 _HANDLERS = {
-    "ground_truth_t": _truth, "nav_solution_t": _nav, "nav_filter_status_t": _nav_status,
-    "chasm_status_t": _chasm, "sidescan_contact_t": _contact, "target_field_t": _targets,
-    "modem_rx_t": _modem_rx, "modem_status_t": _modem_status, "mission_ack_t": _ack,
-    "sim_clock_t": _clock, "agent_table_t": _agent,
+    "ground_truth_t": _truth,
+    "nav_solution_t": _nav,
+    "nav_filter_status_t": _nav_status,
+    "chasm_status_t": _chasm,
+    "sidescan_contact_t": _contact,
+    "target_field_t": _targets,
+    "modem_rx_t": _modem_rx,
+    "modem_status_t": _modem_status,
+    "mission_ack_t": _ack,
+    "sim_clock_t": _clock,
+    "agent_table_t": _agent,
 }
 
 # Only these channels are decoded at all (liblcm filters by this regex in C).
-CHANNELS = (r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK)"
-            r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
-            r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS")
+CHANNELS = (
+    r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK)"
+    r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
+    r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS"
+)

@@ -23,10 +23,14 @@ from tools.live.model import Model
 from tools.mission_commands import COMMANDS
 
 STATIC = Path(__file__).resolve().parent / "static"
-TYPES = {".html": "text/html; charset=utf-8", ".js": "text/javascript; charset=utf-8",
-         ".css": "text/css; charset=utf-8", ".png": "image/png"}
+TYPES = {
+    ".html": "text/html; charset=utf-8",
+    ".js": "text/javascript; charset=utf-8",
+    ".css": "text/css; charset=utf-8",
+    ".png": "image/png",
+}
 KEEPALIVE_S = 5.0
-MAX_BODY = 1 << 20          # a plan's text is a few kB; refuse anything silly
+MAX_BODY = 1 << 20  # a plan's text is a few kB; refuse anything silly
 
 
 class ConsoleServer(ThreadingHTTPServer):
@@ -51,7 +55,7 @@ class Handler(BaseHTTPRequestHandler):
     server: ConsoleServer
     protocol_version = "HTTP/1.1"
 
-    def log_message(self, fmt: str, *args: Any) -> None:   # quiet: one line per page elsewhere
+    def log_message(self, fmt: str, *args: Any) -> None:  # quiet: one line per page elsewhere
         pass
 
     # ------------------------------------------------------------- plumbing
@@ -89,7 +93,7 @@ class Handler(BaseHTTPRequestHandler):
         if path == "/":
             path = "/static/index.html"
         if path.startswith("/static/"):
-            name = path[len("/static/"):]
+            name = path[len("/static/") :]
             file = (STATIC / name).resolve()
             if STATIC not in file.parents or not file.is_file() or file.suffix not in TYPES:
                 self._json(HTTPStatus.NOT_FOUND, {"error": f"no {path}"})
@@ -132,13 +136,19 @@ class Handler(BaseHTTPRequestHandler):
                 self._json(HTTPStatus.BAD_REQUEST, {"error": f"need a vehicle and a command ({', '.join(COMMANDS)})"})
                 return
             try:
-                seq = src.command(vehicle, str(body.get("manager", "")), name,
-                                  str(body.get("plan_name", "")), str(body.get("plan_text", "")))
+                seq = src.command(
+                    vehicle,
+                    str(body.get("manager", "")),
+                    name,
+                    str(body.get("plan_name", "")),
+                    str(body.get("plan_text", "")),
+                )
             except ValueError as exc:
                 self._json(HTTPStatus.BAD_REQUEST, {"error": str(exc)})
                 return
-            print(f"console: {name} sent to {vehicle} {body.get('manager') or '(every manager)'}, seq {seq}",
-                  flush=True)
+            print(
+                f"console: {name} sent to {vehicle} {body.get('manager') or '(every manager)'}, seq {seq}", flush=True
+            )
             self._json(HTTPStatus.OK, {"seq": seq})
         elif self.path == "/api/seek":
             if src.mode != "log":
@@ -168,16 +178,14 @@ class Handler(BaseHTTPRequestHandler):
             while not srv.closing.is_set():
                 began = time.monotonic()
                 with model.lock:
-                    model.lock.wait_for(lambda: model.version != version or srv.closing.is_set(),
-                                        timeout=KEEPALIVE_S)
+                    model.lock.wait_for(lambda: model.version != version or srv.closing.is_set(), timeout=KEEPALIVE_S)
                     if model.version == version:
                         chunk = b": keepalive\n\n"
                     else:
                         fresh = model.epoch != epoch
                         epoch = model.epoch
                         series = model.series_since(cursors, fresh)
-                        parts = ['{"now":', model.now_json(),
-                                 ',"series":', json.dumps(series, separators=(",", ":"))]
+                        parts = ['{"now":', model.now_json(), ',"series":', json.dumps(series, separators=(",", ":"))]
                         if model.world_version != world_version:
                             parts += [',"world":', json.dumps(model.world, separators=(",", ":"))]
                             world_version = model.world_version

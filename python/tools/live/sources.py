@@ -26,7 +26,7 @@ from tools.live.model import CHANNELS, WALL_STAMPED, Model
 from tools.live.world import WorldBuilder
 
 WORLD_TYPES = ("log_annotation_t", "env_model_t")
-THINNED = (".TRUTH", ".NAV")     # high-rate channels a log keeps every THIN_US only
+THINNED = (".TRUTH", ".NAV")  # high-rate channels a log keeps every THIN_US only
 THIN_US = 100_000
 
 
@@ -80,13 +80,13 @@ class LiveSource:
             self._seq += 1
             return self._seq
 
-    def command(self, vehicle: str, manager: str, name: str, plan_name: str = "",
-                plan_text: str = "") -> int:
+    def command(self, vehicle: str, manager: str, name: str, plan_name: str = "", plan_text: str = "") -> int:
         """Publish one mission command; the ack arrives in the model. Returns its seq."""
         seq = self.next_seq()
         utime = int(self.model.t * 1e6)
-        msg = mission_commands.command(vehicle, manager, name, seq, utime, plan_name, plan_text,
-                                       reason=f"console ({mission_commands.who()})")
+        msg = mission_commands.command(
+            vehicle, manager, name, seq, utime, plan_name, plan_text, reason=f"console ({mission_commands.who()})"
+        )
         self.lc.publish(f"{vehicle}.MISSION_CMD", msg.encode())
         return seq
 
@@ -123,7 +123,7 @@ class LogSource:
                     self.decode_errors += 1
                     continue
                 if type(msg).__name__ in WORLD_TYPES:
-                    world.observe(ev.channel, msg)      # the layers do not change with time
+                    world.observe(ev.channel, msg)  # the layers do not change with time
                     continue
                 # log order, monotonic time; a wall-stamped table (a host agent's)
                 # shows at the sim time it was recorded at
@@ -135,7 +135,7 @@ class LogSource:
             log.close()
         self.start_t = self.times[0] if self.times else 0.0
         self.end_t = self.times[-1] if self.times else 0.0
-        self.cursor = 0                                  # events applied so far
+        self.cursor = 0  # events applied so far
         self.lock = threading.Lock()
 
     def start(self) -> None:
@@ -151,7 +151,7 @@ class LogSource:
             if upto < self.cursor:
                 self.model.clear()
                 self.cursor = 0
-            for channel, msg in self.events[self.cursor:upto]:
+            for channel, msg in self.events[self.cursor : upto]:
                 self.model.apply(channel, msg)
             self.cursor = upto
             with self.model.lock:

@@ -16,7 +16,7 @@ import yaml
 
 from tools.live.model import Model
 
-GRID = 40                   # seabed cells per side sent to the page
+GRID = 40  # seabed cells per side sent to the page
 
 
 class WorldError(ValueError):
@@ -42,7 +42,7 @@ class WorldBuilder:
         if not isinstance(doc, dict):
             raise WorldError(f"{path}:1:1: a scenario is a mapping")
         world = doc.get("world") or {}
-        if isinstance(world, str):          # a world file next to the scenario
+        if isinstance(world, str):  # a world file next to the scenario
             try:
                 world = yaml.safe_load((path.parent / world).read_text()) or {}
             except (OSError, yaml.YAMLError) as exc:
@@ -51,8 +51,11 @@ class WorldBuilder:
         self.base_dir = path.parent
         if isinstance(world, dict):
             self.bathymetry_ref = _bathymetry_ref(world.get("bathymetry"))
-            self.transponders = [{"id": t.get("id"), "n": t.get("north_m"), "e": t.get("east_m")}
-                                 for t in world.get("transponders") or [] if isinstance(t, dict)]
+            self.transponders = [
+                {"id": t.get("id"), "n": t.get("north_m"), "e": t.get("east_m")}
+                for t in world.get("transponders") or []
+                if isinstance(t, dict)
+            ]
         if doc.get("survey"):
             sp = path.parent / str(doc["survey"])
             try:
@@ -86,16 +89,18 @@ class WorldBuilder:
 
     # ------------------------------------------------------------- layers
     def publish(self) -> None:
-        layers: dict[str, Any] = {"name": self.name, "transponders": self.transponders,
-                                  "bathymetry_ref": self.bathymetry_ref}
+        layers: dict[str, Any] = {
+            "name": self.name,
+            "transponders": self.transponders,
+            "bathymetry_ref": self.bathymetry_ref,
+        }
         s = self.survey or {}
         layers["survey_area"] = s.get("polygon") or []
         layers["operating_area"] = s.get("operating_area") or []
         lines: dict[str, list] = {}
         areas: dict[str, list] = {}
         for vid, plan in (s.get("vehicles") or {}).items():
-            lines[vid] = [[leg["start"], leg["end"]] for leg in plan.get("legs", [])
-                          if leg.get("kind") == "line"]
+            lines[vid] = [[leg["start"], leg["end"]] for leg in plan.get("legs", []) if leg.get("kind") == "line"]
             areas[vid] = plan.get("polygon") or []
         layers["lines"], layers["vehicle_areas"] = lines, areas
         layers["seabed"] = self._seabed(layers)
@@ -107,8 +112,9 @@ class WorldBuilder:
             return None
         try:
             from sim.bathymetry import Bathymetry
+
             depth = Bathymetry(self.bathymetry_ref, self.base_dir).depth
-        except Exception as exc:    # noqa: BLE001 - a map without a seabed beats no map
+        except Exception as exc:  # noqa: BLE001 - a map without a seabed beats no map
             return {"error": f"seabed {self.bathymetry_ref!r}: {exc}"}
         pts = list(layers["operating_area"]) or list(layers["survey_area"])
         pts += [[t["n"], t["e"]] for t in self.transponders if t["n"] is not None]
@@ -120,8 +126,9 @@ class WorldBuilder:
         else:
             n0, n1, e0, e1 = -250.0, 250.0, -250.0, 250.0
         dn, de = (n1 - n0) / GRID, (e1 - e0) / GRID
-        rows = [[round(float(depth(n0 + (i + 0.5) * dn, e0 + (j + 0.5) * de)), 2) for j in range(GRID)]
-                for i in range(GRID)]
+        rows = [
+            [round(float(depth(n0 + (i + 0.5) * dn, e0 + (j + 0.5) * de)), 2) for j in range(GRID)] for i in range(GRID)
+        ]
         return {"north0": n0, "east0": e0, "dn": dn, "de": de, "depth": rows}
 
 
@@ -138,6 +145,7 @@ def _bathymetry_ref(node: Any) -> str:
 def _bathymetry_of_sim_yaml(text: str) -> str:
     try:
         from sim.config import loads
+
         return loads(text).env.bathymetry_ref or ""
-    except Exception:   # noqa: BLE001 - an unreadable config just leaves the seabed out
+    except Exception:  # noqa: BLE001 - an unreadable config just leaves the seabed out
         return ""
