@@ -47,6 +47,21 @@ def c_program(name: str, sanitized: bool = False) -> Path:
     return path
 
 
+def manager_cmd(
+    plan,
+    bind,
+    url: str,
+    *extra,
+    sanitized: bool = False,
+    vehicle: str = "AUV1",
+    name: str = "NAVIGATOR",
+    rate: int = 10,
+) -> list:
+    """A chasm-manager on the simulation clock (SIM.CLOCK), as the tests start one."""
+    return [c_program("bin/chasm-manager", sanitized), "--plan", plan, "--bind", bind, "--vehicle", vehicle,
+            "--name", name, "--rate", str(rate), "--clock", "sim", "--url", url, *extra]  # fmt: skip
+
+
 def fresh_url() -> str:
     """A fresh udpm URL on this host only (ttl=0); for module-scoped runs."""
     return f"udpm://239.255.76.67:{next(_ports)}?ttl=0"

@@ -6,6 +6,7 @@ import os
 import select
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -56,3 +57,16 @@ def stop(proc: subprocess.Popen, sig: int = signal.SIGINT, timeout: float = 10.0
             os.kill(proc.pid, signal.SIGKILL)
             proc.wait()
     return proc.returncode
+
+
+def start_simulator(cfg: Path, env: dict, *extra: str) -> subprocess.Popen:
+    """`python -m sim CFG` (stdout piped, merged with stderr), once it says it runs."""
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "sim", str(cfg), *extra],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        env=env,
+    )
+    wait_for_line(proc, "running", timeout=20)
+    return proc

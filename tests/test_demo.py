@@ -15,28 +15,14 @@ from conftest import BUILD
 POLYGON = "140,120; 240,110; 250,200; 150,210"  # six of the seeded mines are inside
 
 
+def demo(out, url: str, env: dict, *args: str, timeout: float) -> subprocess.CompletedProcess:
+    """`auv-demo` (as a module of this venv) into out, on this test's LCM URL."""
+    cmd = [sys.executable, "-m", "tools.demo", "--out", out, "--url", url, "--build", BUILD, *args]
+    return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout)
+
+
 def test_demo_surveys_a_small_area_end_to_end(tmp_path, lcm_url, child_env):
-    run = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "tools.demo",
-            "--out",
-            tmp_path,
-            "--url",
-            lcm_url,
-            "--build",
-            BUILD,
-            "--polygon",
-            POLYGON,
-            "--vehicles",
-            "2",
-        ],
-        env=child_env,
-        capture_output=True,
-        text=True,
-        timeout=600,
-    )
+    run = demo(tmp_path, lcm_url, child_env, "--polygon", POLYGON, "--vehicles", "2", timeout=600)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     rep = json.loads((tmp_path / "report.json").read_text())
     # every vehicle's navigator ran its plan to the end (not aborted, not timed out)
@@ -76,27 +62,7 @@ def test_demo_team_mission_end_to_end(tmp_path, lcm_url, child_env):
     """`make demo`'s team mission, planned here at reduced size: 2 search + 1
     reacquire-identify vehicles in lockstep, contacts handed over the
     simulated acoustic link (fsk80, TDMA), identified."""
-    run = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "tools.demo",
-            "--out",
-            tmp_path,
-            "--url",
-            lcm_url,
-            "--build",
-            BUILD,
-            "--polygon",
-            TEAM_POLYGON,
-            "--team",
-            "2",
-        ],
-        env=child_env,
-        capture_output=True,
-        text=True,
-        timeout=900,
-    )
+    run = demo(tmp_path, lcm_url, child_env, "--polygon", TEAM_POLYGON, "--team", "2", timeout=900)
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     rep = json.loads((tmp_path / "report.json").read_text())
     assert rep["vehicle_outcomes"] == {f"AUV{i}": "done" for i in range(1, 4)}, rep["vehicle_outcomes"]

@@ -12,7 +12,7 @@ import time
 
 import lcm
 import pytest
-from conftest import ROOT, c_program
+from conftest import ROOT, c_program, manager_cmd
 from lcm_proc import pump, stop
 
 from auv import (
@@ -95,29 +95,8 @@ class World:
 
 
 def start_manager(url, env, sanitized=False, plan="dive.chasm", extra=(), bind="vehicle.bind"):
-    return subprocess.Popen(
-        [
-            c_program("bin/chasm-manager", sanitized),
-            "--plan",
-            HERE / plan,
-            "--bind",
-            HERE / bind,
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "NAVIGATOR",
-            "--rate",
-            "10",
-            "--clock",
-            "sim",
-            "--url",
-            url,
-            *extra,
-        ],
-        env=env,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    cmd = manager_cmd(HERE / plan, HERE / bind, url, *extra, sanitized=sanitized)
+    return subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])

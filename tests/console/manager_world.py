@@ -9,7 +9,7 @@ import subprocess
 import threading
 
 import lcm
-from conftest import ROOT, c_program
+from conftest import ROOT, manager_cmd
 from lcm_proc import stop
 
 from auv import nav_solution_t, sim_clock_t
@@ -22,29 +22,8 @@ class ManagerWorld:
         self.lc = lcm.LCM(url)
         self.utime = 0
         self._stop = threading.Event()
-        self.mgr = subprocess.Popen(
-            [
-                c_program("bin/chasm-manager", sanitized),
-                "--plan",
-                HERE / "dive.chasm",
-                "--bind",
-                HERE / "vehicle.bind",
-                "--vehicle",
-                "AUV1",
-                "--name",
-                "NAVIGATOR",
-                "--rate",
-                "10",
-                "--clock",
-                "sim",
-                "--url",
-                url,
-                *extra,
-            ],
-            env=env,
-            stderr=subprocess.PIPE,
-            text=True,
-        )
+        cmd = manager_cmd(HERE / "dive.chasm", HERE / "vehicle.bind", url, *extra, sanitized=sanitized)
+        self.mgr = subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
         self.thread = threading.Thread(target=self._tick, daemon=True)
         self.thread.start()
 

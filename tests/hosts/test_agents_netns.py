@@ -10,28 +10,20 @@ Needs network namespaces (tests/isolated_net.sh, as `make test` runs it).
 from __future__ import annotations
 
 import json
-import os
 import subprocess
 import sys
 
 import pytest
 from agents import AGENTCTL, AgentProc, alive, vehicle, wait_until, write_scenario
 from conftest import ROOT
-from netns import Hosts, unavailable
+from netns import Hosts, hosts_or_skip
 
 URL = "udpm://239.255.76.67:7667?ttl=1"
 
 
 @pytest.fixture
 def hosts():
-    why = (
-        unavailable()
-        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
-        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
-    )
-    if why:
-        pytest.skip(f"host agents across namespaces need network namespaces: {why}")
-    h = Hosts(3, subnet=78)
+    h = hosts_or_skip(3, 78, "host agents across namespaces")
     yield h
     h.close()
 

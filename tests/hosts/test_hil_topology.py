@@ -30,7 +30,7 @@ import pytest
 import yaml
 from agents import wait_until
 from conftest import ROOT
-from netns import Hosts, unavailable
+from netns import Hosts, hosts_or_skip
 
 from tools.agent_part import host_part
 
@@ -48,14 +48,7 @@ SILENT_S = 45.0
 
 @pytest.fixture
 def hosts():
-    why = (
-        unavailable()
-        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
-        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
-    )
-    if why:
-        pytest.skip(f"the HIL topology needs network namespaces: {why}")
-    h = Hosts(7, subnet=79)
+    h = hosts_or_skip(7, 79, "the HIL topology")
     yield h
     h.close()
 

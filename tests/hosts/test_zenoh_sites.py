@@ -19,7 +19,7 @@ import time
 
 import pytest
 from agents import wait_until
-from netns import Hosts, unavailable
+from netns import Hosts, hosts_or_skip
 
 from sim.multihil.world import VehicleSpec, World
 
@@ -30,15 +30,8 @@ WARP = 2.0
 
 @pytest.fixture
 def hosts():
-    why = (
-        unavailable()
-        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
-        else ("run it through tests/isolated_net.sh, so that its hosts and bridge live in a private namespace")
-    )
-    if why:
-        pytest.skip(f"Zenoh sites need network namespaces: {why}")
     pytest.importorskip("zenoh", reason="the eclipse-zenoh package is not installed (requirements.txt)")
-    h = Hosts(3, subnet=80)
+    h = hosts_or_skip(3, 80, "Zenoh sites")
     yield h
     h.close()
 

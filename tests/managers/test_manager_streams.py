@@ -10,7 +10,7 @@ import signal
 import subprocess
 
 import pytest
-from conftest import ROOT, c_program
+from conftest import ROOT, c_program, manager_cmd
 from lcm_proc import pump, stop
 from test_manager import World
 
@@ -22,30 +22,8 @@ N = 150
 
 def start_echo(url: str, env: dict, sanitized: bool) -> subprocess.Popen:
     plugins = c_program("plugins/chasm_test_msgs_lcm.so", sanitized).parent
-    return subprocess.Popen(
-        [
-            c_program("bin/chasm-manager", sanitized),
-            "--plan",
-            HERE / "echo.chasm",
-            "--bind",
-            HERE / "echo.bind",
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "NAVIGATOR",
-            "--rate",
-            "10",
-            "--clock",
-            "sim",
-            "--url",
-            url,
-            "--plugin-path",
-            plugins,
-        ],
-        env=env,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
+    cmd = manager_cmd(HERE / "echo.chasm", HERE / "echo.bind", url, "--plugin-path", plugins, sanitized=sanitized)
+    return subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
 
 
 def frame(utime: int, seq: int) -> bytes:

@@ -42,6 +42,23 @@ def unavailable() -> str:
     return ""
 
 
+def hosts_or_skip(count: int, subnet: int, what: str) -> Hosts:
+    """count hosts, or the test skips saying why (outside tests/isolated_net.sh, or no tools)."""
+    import pytest
+
+    why = (
+        unavailable()
+        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
+        else (
+            "run it through tests/isolated_net.sh, so that its hosts and bridge live in a "
+            "private namespace and never on the machine's own network"
+        )
+    )
+    if why:
+        pytest.skip(f"{what} needs network namespaces: {why}")
+    return Hosts(count, subnet)
+
+
 class Hosts:
     def __init__(self, count: int, subnet: int = 77) -> None:
         tag = os.getpid() % 1000

@@ -19,7 +19,7 @@ import time
 
 import lcm
 import pytest
-from conftest import ROOT, c_program
+from conftest import ROOT, c_program, manager_cmd
 
 from auv import lockstep_t, sim_clock_t
 from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
@@ -149,27 +149,16 @@ def test_the_launchers_clock_blocks_instead_of_spinning(lcm_url):
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(lcm_url, child_env, tmp_path, sanitized):
     build = ROOT / "build" / ("san" if sanitized else "")
-    mgr = [
-        c_program("bin/chasm-manager", sanitized),
-        "--plan",
+    mgr = manager_cmd(
         ROOT / "tests/tools/scenarios/mission.chasm",
-        "--bind",
         ROOT / "missions/bindings/direct_actuators.bind",
+        lcm_url,
         "-D",
         "cycles=1000",
-        "--vehicle",
-        "AUV1",
-        "--name",
-        "NAVIGATOR",
-        "--rate",
-        "10",
-        "--clock",
-        "sim",
-        "--lcm-url",
-        lcm_url,
         "--plugin-path",
         build / "plugins",
-    ]
+        sanitized=sanitized,
+    )
     nav_conf = tmp_path / "AUV1.nav"
     from sim.config import load
     from tools.navconf import nav_config_text

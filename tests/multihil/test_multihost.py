@@ -10,11 +10,10 @@ tests/multihil/test_multihost.py
 
 from __future__ import annotations
 
-import os
 import time
 
 import pytest
-from netns import Hosts, unavailable
+from netns import Hosts, hosts_or_skip
 
 from auvlcm.log import read_events
 from sim.multihil.world import VehicleSpec, World
@@ -27,17 +26,7 @@ MISSION_S = 20.0  # the depth-band plan's time in the band before it surfaces
 
 @pytest.fixture
 def hosts():
-    why = (
-        unavailable()
-        if os.environ.get("AUV_IN_ISOLATED_NET") == "1"
-        else (
-            "run it through tests/isolated_net.sh, so that its hosts and bridge live in a "
-            "private namespace and never on the machine's own network"
-        )
-    )
-    if why:
-        pytest.skip(f"multi-host test needs network namespaces: {why}")
-    h = Hosts(4)  # three vehicles and an observer running lcm-logger
+    h = hosts_or_skip(4, 77, "the multi-host test")
     yield h
     h.close()
 

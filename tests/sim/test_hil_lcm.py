@@ -12,7 +12,7 @@ from pathlib import Path
 
 import lcm
 import pytest
-from lcm_proc import pump, stop, wait_for_line
+from lcm_proc import pump, start_simulator, stop
 from lockstep import LockstepPilot
 
 from auv import actuator_state_t, actuators_t, ground_truth_t, nav_solution_t, process_health_t, sim_clock_t
@@ -50,15 +50,7 @@ def start_sim(tmp_path, child_env, url, clock="scaled", warp=10.0, timeout=1.0, 
     cfg.write_text(
         CONFIG.format(clock=clock, warp=warp, timeout=timeout, on_stale=on_stale, url=url, ins_rate=ins_rate)
     )
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "sim", str(cfg), *extra],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        env=child_env,
-    )
-    wait_for_line(proc, "running", timeout=20)
-    return proc
+    return start_simulator(cfg, child_env, *extra)
 
 
 class Recorder:
@@ -233,15 +225,8 @@ def test_ins_output_channel_moves_or_goes_off(tmp_path, child_env, lcm_url, chan
             "ins: {rate_hz: 20, bias: 0.0}", f"ins: {{rate_hz: 20, channel: {channel}}}"
         )
     )
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "sim", str(cfg)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        env=child_env,
-    )
+    proc = start_simulator(cfg, child_env)
     try:
-        wait_for_line(proc, "running", timeout=20)
         assert pump(lc, lambda: len(rec.msgs["AUV1.TRUTH"]) >= 30, timeout=20)  # 3 sim s
     finally:
         assert stop(proc) == 0

@@ -5,8 +5,6 @@ process on synthetic tracks, and once in the simulator process over LCM."""
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import lcm
@@ -144,7 +142,7 @@ TARGETS = [
 
 
 def test_looks_over_lcm_from_the_simulator(tmp_path, child_env, lcm_url):
-    from lcm_proc import stop, wait_for_line
+    from lcm_proc import start_simulator, stop
     from lockstep import LockstepPilot
     from test_hil_lcm import Recorder
 
@@ -157,15 +155,8 @@ def test_looks_over_lcm_from_the_simulator(tmp_path, child_env, lcm_url):
     rec = Recorder(lc)
     rec.sub("AUV4.LOOKS", reacquire_look_t)
     pilot = LockstepPilot(lc, "AUV4", depth_m=5.0)
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "sim", str(cfg)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        env=child_env,
-    )
+    proc = start_simulator(cfg, child_env)
     try:
-        wait_for_line(proc, "running", timeout=20)
         pilot.fly(32.0)  # past the last object at 40 m north (and 6 m beyond)
         lc.handle_timeout(100)
     finally:

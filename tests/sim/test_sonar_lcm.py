@@ -7,12 +7,10 @@ target file: exact under any CPU load."""
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 
 import lcm
-from lcm_proc import stop, wait_for_line
+from lcm_proc import start_simulator, stop
 from lockstep import LockstepPilot
 from test_hil_lcm import Recorder
 
@@ -54,15 +52,8 @@ def test_contacts_and_target_field_over_lcm(tmp_path, child_env, lcm_url):
     rec.sub("AUV2.CONTACTS", sidescan_contact_t)
     rec.sub("SIM.TARGETS", target_field_t)
     pilot = LockstepPilot(lc, "AUV2", depth_m=5.0)
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "sim", str(cfg)],
-        stdout=subprocess.PIPE,
-        stderr=subprocess.STDOUT,
-        text=True,
-        env=child_env,
-    )
+    proc = start_simulator(cfg, child_env)
     try:
-        wait_for_line(proc, "running", timeout=20)
         pilot.fly(45.0)  # past the last target at 55 m north
         lc.handle_timeout(100)
     finally:

@@ -12,7 +12,9 @@ import sys
 from pathlib import Path
 
 import yaml
-from conftest import BUILD, ROOT
+from conftest import BUILD
+
+from tools.demo import TEAM_PLAN_ARGS
 
 # 90 m of line north, 110 m east: four line legs per search vehicle
 POLYGON = "20,20; 70,20; 70,130; 20,130"
@@ -31,20 +33,7 @@ def plan(out: Path, search: int = 2, ri: int = 1, polygon: str = POLYGON) -> Pat
             str(search),
             "--ri",
             str(ri),
-            "--heading",
-            "0",
-            "--range",
-            "40",
-            "--nadir-gap",
-            "9.5",
-            "--overlap",
-            "0.1",
-            "--depth-m",
-            "5",
-            "--world",
-            ROOT / "missions/scenarios/mcm_world.yaml",
-            "--seed",
-            "7",
+            *TEAM_PLAN_ARGS,  # the committed team's settings
             "--out",
             out,
         ],

@@ -16,7 +16,7 @@ import subprocess
 
 import lcm
 import pytest
-from conftest import ROOT, c_program
+from conftest import ROOT, c_program, manager_cmd
 from lcm_proc import pump, stop
 
 from auv import chasm_status_t, modem_rx_t, modem_tx_t, nav_solution_t, sidescan_contact_t, sim_clock_t, team_event_t
@@ -28,31 +28,18 @@ PERIOD_US = 100_000
 
 
 def start(url: str, env: dict, sanitized: bool, vehicle: str, plan: str, *extra: str) -> subprocess.Popen:
-    return subprocess.Popen(
-        [
-            c_program("bin/chasm-manager", sanitized),
-            "--plan",
-            HERE / f"{plan}.chasm",
-            "--bind",
-            HERE / f"{plan}.bind",
-            "--vehicle",
-            vehicle,
-            "--name",
-            "NAVIGATOR",
-            "--rate",
-            "10",
-            "--clock",
-            "sim",
-            "--url",
-            url,
-            "--plugin-path",
-            c_program("plugins/chasm_team.so", sanitized).parent,
-            *extra,
-        ],
-        env=env,
-        stderr=subprocess.PIPE,
-        text=True,
+    plugins = c_program("plugins/chasm_team.so", sanitized).parent
+    cmd = manager_cmd(
+        HERE / f"{plan}.chasm",
+        HERE / f"{plan}.bind",
+        url,
+        "--plugin-path",
+        plugins,
+        *extra,
+        sanitized=sanitized,
+        vehicle=vehicle,
     )
+    return subprocess.Popen(cmd, env=env, stderr=subprocess.PIPE, text=True)
 
 
 class Sea:

@@ -16,6 +16,8 @@ import pytest
 import yaml
 from conftest import ROOT
 
+from tools.demo import TEAM_PLAN_ARGS
+
 PLAN = [sys.executable, "-m", "tools.plan_survey"]
 POLY = "20,20; 220,20; 220,200; 20,200"
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team"
@@ -29,16 +31,7 @@ def run_team(out, *extra):
             POLY,
             "--team",
             "3",
-            "--heading",
-            "0",
-            "--range",
-            "40",
-            "--nadir-gap",
-            "9.5",
-            "--overlap",
-            "0.1",
-            "--depth-m",
-            "5",
+            *TEAM_PLAN_ARGS[:10],  # the committed team's geometry and depth (not its world or seed)
             "--out",
             str(out),
             *extra,
