@@ -13,7 +13,9 @@
  * Slots: a behavior's parameters are numbered in the order of its schema; the
  * same index is used to read a parameter (chasm_param_*) or, for a
  * CHASM_READS/CHASM_WRITES entry, the blackboard variable the plan bound to it
- * (chasm_read_* / chasm_write_*). Reading a slot of the wrong type gives 0/"". */
+ * (chasm_read_* / chasm_write_*). Reading a slot of the wrong type gives 0/"".
+ * Write schemas with the CHASM_PARAM_* / CHASM_READ* / CHASM_WRITE* builders
+ * below, indexed by the slot enum, so the two cannot drift apart. */
 #ifndef CHASM_PLUGIN_H
 #define CHASM_PLUGIN_H
 
@@ -55,6 +57,59 @@ typedef struct {
     double min, max;
     const char *doc;         /* one line, shown by `chasm describe` */
 } chasm_param_spec;
+
+/* Schema builders. Index each entry by its slot so that a slot enum and its
+ * table cannot drift apart; a slot left without an entry is a hole (NULL
+ * name) that the Loader refuses, naming the plugin and behavior:
+ *
+ *   enum { DEPTH, GAIN, OUT, N_SLOTS };
+ *   static const chasm_param_spec params[N_SLOTS] = {
+ *       [DEPTH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("depth", "m", 0, 300, "target depth"),
+ *       [GAIN] = CHASM_PARAM_DOUBLE_RANGE("gain", "", 0.5, 0, 10, "filter gain [1/s]"),
+ *       [OUT] = CHASM_WRITE("out", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
+ *   };
+ *
+ * PARAM: a constant of the plan. REQUIRED: the plan must give it; otherwise
+ * DEF is its default; _RANGE: min <= value <= max is checked at load.
+ * READ/WRITE: a variable, VAR its default (NULL: none; the plan may bind one),
+ * REQUIRED: the plan must bind one. A combination not listed here is written
+ * as a designated initializer of its own. Two entries for one slot are a
+ * compile error under -Werror (-Wextra's -Woverride-init). */
+/* Members in declaration order (what C++20 also accepts). */
+#define CHASM_SPEC_(KIND, TYPE, NAME, UNIT) .name = (NAME), .kind = (KIND), .type = (TYPE), .unit = (UNIT)
+#define CHASM_RANGE_(MIN, MAX) .has_range = 1, .min = (MIN), .max = (MAX)
+
+#define CHASM_PARAM_DOUBLE(NAME, UNIT, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_DOUBLE_RANGE(NAME, UNIT, DEF, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .def_number = (DEF), CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_DOUBLE(NAME, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .required = 1, .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_DOUBLE_RANGE(NAME, UNIT, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .required = 1, CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_INT(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_INT_RANGE(NAME, DEF, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .def_number = (DEF), CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_INT_RANGE(NAME, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .required = 1, CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_BOOL(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_BOOL, NAME, ""), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_BOOL(NAME, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_BOOL, NAME, ""), .required = 1, .doc = (DOC)}
+#define CHASM_PARAM_STRING(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .def_string = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_STRING(NAME, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .required = 1, .doc = (DOC)}
+
+#define CHASM_READ(NAME, TYPE, UNIT, VAR, DOC) \
+    {CHASM_SPEC_(CHASM_READS, TYPE, NAME, UNIT), .def_string = (VAR), .doc = (DOC)}
+#define CHASM_READ_REQUIRED(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_READS, TYPE, NAME, UNIT), .required = 1, .doc = (DOC)}
+#define CHASM_WRITE(NAME, TYPE, UNIT, VAR, DOC) \
+    {CHASM_SPEC_(CHASM_WRITES, TYPE, NAME, UNIT), .def_string = (VAR), .doc = (DOC)}
+#define CHASM_WRITE_REQUIRED(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_WRITES, TYPE, NAME, UNIT), .required = 1, .doc = (DOC)}
 
 typedef struct chasm_ctx chasm_ctx;
 
