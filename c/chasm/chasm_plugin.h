@@ -27,8 +27,9 @@ extern "C" {
 #endif
 
 /* Bumped whenever any struct below changes layout; the Loader refuses others.
- * 2: message variables (CHASM_MESSAGES, next_message, post_message). */
-#define CHASM_PLUGIN_ABI 2
+ * 2: message variables (CHASM_MESSAGES, next_message, post_message).
+ * 3: chasm_param_spec.flags (CHASM_SPEC_NO_DEFAULT), host api param_given. */
+#define CHASM_PLUGIN_ABI 3
 #define CHASM_PLUGIN_SYMBOL "chasm_plugin"
 
 /* CHASM_MESSAGES: a variable that is a stream of whole messages (LCM-encoded
@@ -56,7 +57,13 @@ typedef struct {
     int has_range;           /* 1: min <= value <= max is checked at load */
     double min, max;
     const char *doc;         /* one line, shown by `chasm describe` */
+    unsigned flags;          /* CHASM_SPEC_* (ABI 3); the Loader refuses bits it does not know */
 } chasm_param_spec;
+
+/* An optional CHASM_PARAM without a default (one of two forms, a box or a
+ * polygon; a value that overrides a computed one): when the plan leaves it
+ * out it reads as 0/"" and chasm_param_given() says so. Not with required. */
+#define CHASM_SPEC_NO_DEFAULT 1u
 
 /* Schema builders. Index each entry by its slot so that a slot enum and its
  * table cannot drift apart; a slot left without an entry is a hole (NULL
@@ -101,6 +108,11 @@ typedef struct {
     {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .def_string = (DEF), .doc = (DOC)}
 #define CHASM_PARAM_REQUIRED_STRING(NAME, DOC) \
     {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .required = 1, .doc = (DOC)}
+/* Optional, no default: ask chasm_param_given() before using the value. */
+#define CHASM_PARAM_OPTIONAL(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, TYPE, NAME, UNIT), .doc = (DOC), .flags = CHASM_SPEC_NO_DEFAULT}
+#define CHASM_PARAM_OPTIONAL_RANGE(NAME, TYPE, UNIT, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, TYPE, NAME, UNIT), CHASM_RANGE_(MIN, MAX), .doc = (DOC), .flags = CHASM_SPEC_NO_DEFAULT}
 
 #define CHASM_READ(NAME, TYPE, UNIT, VAR, DOC) \
     {CHASM_SPEC_(CHASM_READS, TYPE, NAME, UNIT), .def_string = (VAR), .doc = (DOC)}
@@ -141,6 +153,10 @@ typedef struct {
      * refused (too large, queue full: counted in the manager's status). */
     const void *(*next_message)(chasm_ctx *, int slot, size_t *len);
     int (*post_message)(chasm_ctx *, int slot, const void *data, size_t len);
+    /* ABI 3. param_given: 1 when the plan gave this CHASM_PARAM slot a value
+     * (a default is not given), or a variable is bound to this
+     * CHASM_READS/CHASM_WRITES slot (by the plan or by its default); else 0. */
+    int (*param_given)(const chasm_ctx *, int slot);
 } chasm_host_api;
 
 /* Handed to every call. Read-only for the plugin except through the api. */
@@ -169,6 +185,7 @@ static inline void chasm_write_string(chasm_ctx *c, int s, const char *v) { c->a
 static inline void chasm_log(chasm_ctx *c, const char *m) { c->api->log(c, m); }
 static inline const void *chasm_next_message(chasm_ctx *c, int s, size_t *len) { return c->api->next_message(c, s, len); }
 static inline int chasm_post_message(chasm_ctx *c, int s, const void *d, size_t n) { return c->api->post_message(c, s, d, n); }
+static inline int chasm_param_given(const chasm_ctx *c, int s) { return c->api->param_given(c, s); }
 
 /* A behavior: per-instance state of state_size bytes, zeroed before start().
  * start() runs when its state is entered (return non-zero to fail), step() when
