@@ -13,7 +13,9 @@
  * Slots: a behavior's parameters are numbered in the order of its schema; the
  * same index is used to read a parameter (chasm_param_*) or, for a
  * CHASM_READS/CHASM_WRITES entry, the blackboard variable the plan bound to it
- * (chasm_read_* / chasm_write_*). Reading a slot of the wrong type gives 0/"". */
+ * (chasm_read_* / chasm_write_*). Reading a slot of the wrong type gives 0/"".
+ * Write schemas with the CHASM_PARAM_* / CHASM_READ* / CHASM_WRITE* builders
+ * below, indexed by the slot enum, so the two cannot drift apart. */
 #ifndef CHASM_PLUGIN_H
 #define CHASM_PLUGIN_H
 
@@ -25,8 +27,9 @@ extern "C" {
 #endif
 
 /* Bumped whenever any struct below changes layout; the Loader refuses others.
- * 2: message variables (CHASM_MESSAGES, next_message, post_message). */
-#define CHASM_PLUGIN_ABI 2
+ * 2: message variables (CHASM_MESSAGES, next_message, post_message).
+ * 3: chasm_param_spec.flags (CHASM_SPEC_NO_DEFAULT), host api param_given. */
+#define CHASM_PLUGIN_ABI 3
 #define CHASM_PLUGIN_SYMBOL "chasm_plugin"
 
 /* CHASM_MESSAGES: a variable that is a stream of whole messages (LCM-encoded
@@ -54,7 +57,71 @@ typedef struct {
     int has_range;           /* 1: min <= value <= max is checked at load */
     double min, max;
     const char *doc;         /* one line, shown by `chasm describe` */
+    unsigned flags;          /* CHASM_SPEC_* (ABI 3); the Loader refuses bits it does not know */
 } chasm_param_spec;
+
+/* An optional CHASM_PARAM without a default (one of two forms, a box or a
+ * polygon; a value that overrides a computed one): when the plan leaves it
+ * out it reads as 0/"" and chasm_param_given() says so. Not with required. */
+#define CHASM_SPEC_NO_DEFAULT 1u
+
+/* Schema builders. Index each entry by its slot so that a slot enum and its
+ * table cannot drift apart; a slot left without an entry is a hole (NULL
+ * name) that the Loader refuses, naming the plugin and behavior:
+ *
+ *   enum { DEPTH, GAIN, OUT, N_SLOTS };
+ *   static const chasm_param_spec params[N_SLOTS] = {
+ *       [DEPTH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("depth", "m", 0, 300, "target depth"),
+ *       [GAIN] = CHASM_PARAM_DOUBLE_RANGE("gain", "", 0.5, 0, 10, "filter gain [1/s]"),
+ *       [OUT] = CHASM_WRITE("out", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),
+ *   };
+ *
+ * PARAM: a constant of the plan. REQUIRED: the plan must give it; otherwise
+ * DEF is its default; _RANGE: min <= value <= max is checked at load.
+ * READ/WRITE: a variable, VAR its default (NULL: none; the plan may bind one),
+ * REQUIRED: the plan must bind one. A combination not listed here is written
+ * as a designated initializer of its own. Two entries for one slot are a
+ * compile error under -Werror (-Wextra's -Woverride-init). */
+/* Members in declaration order (what C++20 also accepts). */
+#define CHASM_SPEC_(KIND, TYPE, NAME, UNIT) .name = (NAME), .kind = (KIND), .type = (TYPE), .unit = (UNIT)
+#define CHASM_RANGE_(MIN, MAX) .has_range = 1, .min = (MIN), .max = (MAX)
+
+#define CHASM_PARAM_DOUBLE(NAME, UNIT, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_DOUBLE_RANGE(NAME, UNIT, DEF, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .def_number = (DEF), CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_DOUBLE(NAME, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .required = 1, .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_DOUBLE_RANGE(NAME, UNIT, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_DOUBLE, NAME, UNIT), .required = 1, CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_INT(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_INT_RANGE(NAME, DEF, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .def_number = (DEF), CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_INT_RANGE(NAME, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_INT, NAME, ""), .required = 1, CHASM_RANGE_(MIN, MAX), .doc = (DOC)}
+#define CHASM_PARAM_BOOL(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_BOOL, NAME, ""), .def_number = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_BOOL(NAME, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_BOOL, NAME, ""), .required = 1, .doc = (DOC)}
+#define CHASM_PARAM_STRING(NAME, DEF, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .def_string = (DEF), .doc = (DOC)}
+#define CHASM_PARAM_REQUIRED_STRING(NAME, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, CHASM_STRING, NAME, ""), .required = 1, .doc = (DOC)}
+/* Optional, no default: ask chasm_param_given() before using the value. */
+#define CHASM_PARAM_OPTIONAL(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, TYPE, NAME, UNIT), .doc = (DOC), .flags = CHASM_SPEC_NO_DEFAULT}
+#define CHASM_PARAM_OPTIONAL_RANGE(NAME, TYPE, UNIT, MIN, MAX, DOC) \
+    {CHASM_SPEC_(CHASM_PARAM, TYPE, NAME, UNIT), CHASM_RANGE_(MIN, MAX), .doc = (DOC), .flags = CHASM_SPEC_NO_DEFAULT}
+
+#define CHASM_READ(NAME, TYPE, UNIT, VAR, DOC) \
+    {CHASM_SPEC_(CHASM_READS, TYPE, NAME, UNIT), .def_string = (VAR), .doc = (DOC)}
+#define CHASM_READ_REQUIRED(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_READS, TYPE, NAME, UNIT), .required = 1, .doc = (DOC)}
+#define CHASM_WRITE(NAME, TYPE, UNIT, VAR, DOC) \
+    {CHASM_SPEC_(CHASM_WRITES, TYPE, NAME, UNIT), .def_string = (VAR), .doc = (DOC)}
+#define CHASM_WRITE_REQUIRED(NAME, TYPE, UNIT, DOC) \
+    {CHASM_SPEC_(CHASM_WRITES, TYPE, NAME, UNIT), .required = 1, .doc = (DOC)}
 
 typedef struct chasm_ctx chasm_ctx;
 
@@ -86,6 +153,10 @@ typedef struct {
      * refused (too large, queue full: counted in the manager's status). */
     const void *(*next_message)(chasm_ctx *, int slot, size_t *len);
     int (*post_message)(chasm_ctx *, int slot, const void *data, size_t len);
+    /* ABI 3. param_given: 1 when the plan gave this CHASM_PARAM slot a value
+     * (a default is not given), or a variable is bound to this
+     * CHASM_READS/CHASM_WRITES slot (by the plan or by its default); else 0. */
+    int (*param_given)(const chasm_ctx *, int slot);
 } chasm_host_api;
 
 /* Handed to every call. Read-only for the plugin except through the api. */
@@ -114,6 +185,7 @@ static inline void chasm_write_string(chasm_ctx *c, int s, const char *v) { c->a
 static inline void chasm_log(chasm_ctx *c, const char *m) { c->api->log(c, m); }
 static inline const void *chasm_next_message(chasm_ctx *c, int s, size_t *len) { return c->api->next_message(c, s, len); }
 static inline int chasm_post_message(chasm_ctx *c, int s, const void *d, size_t n) { return c->api->post_message(c, s, d, n); }
+static inline int chasm_param_given(const chasm_ctx *c, int s) { return c->api->param_given(c, s); }
 
 /* A behavior: per-instance state of state_size bytes, zeroed before start().
  * start() runs when its state is entered (return non-zero to fail), step() when

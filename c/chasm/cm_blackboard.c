@@ -172,5 +172,13 @@ static int post_msg(chasm_ctx *c, int s, const void *d, size_t n)
     return 0;
 }
 
+/* A parameter the plan gave, or a variable slot with a variable bound. */
+static int given(const chasm_ctx *c, int s)
+{
+    const cm_ext *x = c->engine;
+    if (s < 0 || s >= x->b->n_slots) return 0;
+    return x->b->specs[s].kind == CHASM_PARAM ? x->b->slots[s].given : x->b->slots[s].var != NULL;
+}
+
 const chasm_host_api cm_host_api = {p_double, p_int, p_bool, p_string, r_double, r_int, r_bool, r_string, age,
-                                    w_double, w_int, w_bool, w_string, plog, next_msg, post_msg};
+                                    w_double, w_int, w_bool, w_string, plog, next_msg, post_msg, given};

@@ -54,6 +54,7 @@ typedef struct {
     const char *s;
     cm_var *var;
     uint64_t next_msg;          /* a READS messages slot: this action's place in the stream */
+    bool given;                 /* a PARAM slot: the plan gave it (chasm_param_given) */
 } cm_slot;
 
 struct cm_plugin;

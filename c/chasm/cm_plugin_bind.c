@@ -92,12 +92,13 @@ static const char *spec_name(const chasm_plugin_descriptor *d, const chasm_param
 static void check_limits(cm_cc *cc, cm_binding *b, const char *item, const cm_aarg *args, cm_loc item_loc, cm_state *st)
 {
     static const chasm_host_api api = {NULL, NULL, NULL, NULL, no_read_d, no_read_i, no_read_b, no_read_s, no_age,
-                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log, no_next, no_post};
+                                       no_write_d, no_write_i, no_write_b, no_write_s, no_log, no_next, no_post, NULL};
     chasm_host_api full = api;
     full.param_double = cm_host_api.param_double;
     full.param_int = cm_host_api.param_int;
     full.param_bool = cm_host_api.param_bool;
     full.param_string = cm_host_api.param_string;
+    full.param_given = cm_host_api.param_given;
     cm_ext x = {0};
     x.c.api = &full;
     x.c.state_path = st ? st->path : "";
@@ -176,6 +177,7 @@ cm_binding *cm_bind(cm_cc *cc, cm_arena *a, cm_plugin_version *ver, const char *
                 continue;
             }
             if (cm_value(cc, &g->val, s->type, unit, what, out)) continue;
+            out->given = true;
             if (s->type == CHASM_INT) out->d = (double)out->i;
             if (s->has_range && (s->type == CHASM_DOUBLE || s->type == CHASM_INT) && (out->d < s->min || out->d > s->max)) {
                 cm_error(cc->d, g->val.loc, "%s is %g %s, outside its range [%g, %g] %s", what, out->d, unit->name, s->min,

@@ -57,8 +57,24 @@ static int valid_spec_list(const chasm_param_spec *p, size_t n, int is_test, cha
         return -1;
     }
     for (size_t i = 0; i < n; i++) {
-        if (!p[i].name || !p[i].name[0]) {
+        if (!p[i].name) {
+            /* a table indexed by a slot enum ([SLOT] = ...) with a slot left out */
+            snprintf(err, el, "%s: parameter slot %zu of %zu is empty (a hole in its table: no entry for that slot)",
+                     what, i, n);
+            return -1;
+        }
+        if (!p[i].name[0]) {
             snprintf(err, el, "%s: parameter %zu has no name", what, i);
+            return -1;
+        }
+        if (p[i].flags & ~CHASM_SPEC_NO_DEFAULT) {
+            snprintf(err, el, "%s: parameter '%s' has flags 0x%x this CHASM does not know", what, p[i].name,
+                     p[i].flags);
+            return -1;
+        }
+        if ((p[i].flags & CHASM_SPEC_NO_DEFAULT) && (p[i].kind != CHASM_PARAM || p[i].required)) {
+            snprintf(err, el, "%s: parameter '%s' is marked optional without a default, which only an optional "
+                     "CHASM_PARAM can be", what, p[i].name);
             return -1;
         }
         if ((unsigned)p[i].type > CHASM_MESSAGES || (unsigned)p[i].kind > CHASM_WRITES) {

@@ -1,9 +1,9 @@
 """A hostile corpus of plugin files, generated from a good plugin: truncated at
 many offsets, header fields corrupted, segments past the end of the file,
 dynamic tables pointing outside the image, the wrong class or machine, text,
-and the built test plugins that are valid ELF but refuse to load (wrong ABI,
-no symbol, a constructor that crashes, exits or hangs). Each case carries a
-piece of the reason the loader must give.
+and the built test plugins that are valid ELF but refuse to load (a newer or
+an older ABI, a schema with a hole, no symbol, a constructor that crashes,
+exits or hangs). Each case carries a piece of the reason the loader must give.
 
 Shared by the `chasm` tests (check -P, run --hotplug, describe) and the
 manager upload tests."""
@@ -134,6 +134,8 @@ def make_special(kind: str, path: Path) -> str:
 # Built test plugins (tests/chasm/plugins/) that are ELF files that load badly.
 BUILT = [
     ("test_basic_badabi", "plugin ABI"),
+    ("test_basic_abi2", "built for plugin ABI 2, this CHASM uses ABI 3"),
+    ("test_hole", "behavior 'holey': parameter slot 1 of 3 is empty"),
     ("test_nosym", "does not export"),
     ("test_ctor_crash", "crashed the probe process"),
     ("test_ctor_exit", "ended the probe process"),

@@ -184,5 +184,9 @@ def test_describe_plugin(chasm):
     assert p.returncode == 0, p.stderr
     assert "optional, no default, range [-1e+06, 1e+06]  # box corner, north (box form)" in p.stdout, p.stdout
     assert "e+15" not in p.stdout
+    p = chasm("describe", "-P", chasm.plugins, "team")  # optional without a default, and no range
+    assert p.returncode == 0, p.stderr
+    assert "altitude       double m      optional, no default  # altitude instead of a depth" in p.stdout, p.stdout
+    assert "e+15" not in p.stdout
     p = chasm("describe", "-P", chasm.plugins, "test_nosym")
     assert p.returncode == 1 and "does not export 'chasm_plugin'" in p.stderr

@@ -21,10 +21,8 @@ static void print_params(const chasm_param_spec *p, size_t n)
             printf(" %s variable%s%s", s->kind == CHASM_WRITES ? "writes" : "reads", s->def_string ? ", default " : "",
                    s->def_string ? s->def_string : "");
         else if (s->required) printf(" required");
+        else if (s->flags & CHASM_SPEC_NO_DEFAULT) printf(" optional, no default");
         else if (s->type == CHASM_STRING) printf(" default \"%s\"", s->def_string ? s->def_string : "");
-        /* A default outside the range can never be given: the plugin uses it to
-         * mean "absent" (one of two forms, a box or a polygon). */
-        else if (s->has_range && (s->def_number < s->min || s->def_number > s->max)) printf(" optional, no default");
         else printf(" default %g", s->def_number);
         if (s->has_range) printf(", range [%g, %g]", s->min, s->max);
         if (s->doc) printf("  # %s", s->doc);

@@ -30,24 +30,23 @@
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-enum { POLYGON, NORTH, EAST, LENGTH, WIDTH, HEADING, MARGIN, AT_NORTH, AT_EAST };
+enum { POLYGON, NORTH, EAST, LENGTH, WIDTH, HEADING, MARGIN, AT_NORTH, AT_EAST, NPARAMS };
 
-static const chasm_param_spec params[] = {
+static const chasm_param_spec params[NPARAMS] = {
     /* The limits are in the description so that planners read them from
      * `chasm describe checks` (python/tools/plugin_limits.py), not a copy. */
-    {"polygon", CHASM_PARAM, CHASM_STRING, "", 0, 0, "", 0, 0, 0,
-     "vertices \"north,east; ...\" in metres (or give a box); at most " STR(PU_POLYGON_MAX)
-     " vertices and " STR(TEXT_MAX_CHARS) " characters"},
-    {"north", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, -1e7, 1e7, "box corner, north"},
-    {"east", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, -1e7, 1e7, "box corner, east"},
-    {"length", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, 0, 1e7, "box side along heading"},
-    {"width", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, 0, 1e7, "box side to the right of heading"},
-    {"heading", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 0, NULL, 1, -6.283185307179586, 6.283185307179586,
-     "direction of the box's length (0: north)"},
-    {"margin", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0, NULL, 1, 0, 1e6,
-     "also true this close to the edge, inside"},
-    {"at_north", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.north_m", 0, 0, 0, "vehicle position, north"},
-    {"at_east", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.east_m", 0, 0, 0, "vehicle position, east"},
+    [POLYGON] = CHASM_PARAM_STRING("polygon", "",
+                                   "vertices \"north,east; ...\" in metres (or give a box); at most " STR(PU_POLYGON_MAX)
+                                   " vertices and " STR(TEXT_MAX_CHARS) " characters"),
+    [NORTH] = CHASM_PARAM_DOUBLE_RANGE("north", "m", 0, -1e7, 1e7, "box corner, north"),
+    [EAST] = CHASM_PARAM_DOUBLE_RANGE("east", "m", 0, -1e7, 1e7, "box corner, east"),
+    [LENGTH] = CHASM_PARAM_DOUBLE_RANGE("length", "m", 0, 0, 1e7, "box side along heading"),
+    [WIDTH] = CHASM_PARAM_DOUBLE_RANGE("width", "m", 0, 0, 1e7, "box side to the right of heading"),
+    [HEADING] = CHASM_PARAM_DOUBLE_RANGE("heading", "rad", 0, -6.283185307179586, 6.283185307179586,
+                                         "direction of the box's length (0: north)"),
+    [MARGIN] = CHASM_PARAM_DOUBLE_RANGE("margin", "m", 0, 0, 1e6, "also true this close to the edge, inside"),
+    [AT_NORTH] = CHASM_READ("at_north", CHASM_DOUBLE, "m", "nav.north_m", "vehicle position, north"),
+    [AT_EAST] = CHASM_READ("at_east", CHASM_DOUBLE, "m", "nav.east_m", "vehicle position, east"),
 };
 
 #define CACHE_SLOTS 16

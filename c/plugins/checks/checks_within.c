@@ -7,13 +7,14 @@
 #include "plugins/checks/checks.h"
 #include "plugins/lib/pu_angle.h"
 
-enum { MEASURED, VALUE, TOLERANCE };
+enum { MEASURED, VALUE, TOLERANCE, WITHIN_NPARAMS };
 
+/* The one schema of the four, for a quantity `what` read from var. */
 #define WITHIN_SPECS(var, unit, what, maxval, maxtol)                                                         \
     {                                                                                                          \
-        {"measured", CHASM_READS, CHASM_DOUBLE, unit, 0, 0, var, 0, 0, 0, "the " what " compared"},            \
-        {"value", CHASM_PARAM, CHASM_DOUBLE, unit, 1, 0, NULL, 1, -(maxval), maxval, "the " what " wanted"},  \
-        {"tolerance", CHASM_PARAM, CHASM_DOUBLE, unit, 1, 0, NULL, 1, 0, maxtol, "largest difference"},        \
+        [MEASURED] = CHASM_READ("measured", CHASM_DOUBLE, unit, var, "the " what " compared"),                 \
+        [VALUE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("value", unit, -(maxval), maxval, "the " what " wanted"),  \
+        [TOLERANCE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("tolerance", unit, 0, maxtol, "largest difference"),   \
     }
 
 static const chasm_param_spec depth_params[] = WITHIN_SPECS("nav.depth_m", "m", "depth", 11000, 11000);
@@ -50,14 +51,14 @@ const chasm_test_spec checks_pitch_within = {"pitch_within", "pitch within toler
 
 /* ------------------------------------------------------------------ near */
 
-enum { N_NORTH, N_EAST, N_AT_NORTH, N_AT_EAST, N_RADIUS };
+enum { N_NORTH, N_EAST, N_AT_NORTH, N_AT_EAST, N_RADIUS, N_NPARAMS };
 
-static const chasm_param_spec near_params[] = {
-    {"north", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, -1e7, 1e7, "the point, north of the origin"},
-    {"east", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, -1e7, 1e7, "the point, east of the origin"},
-    {"at_north", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.north_m", 0, 0, 0, "vehicle position, north"},
-    {"at_east", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.east_m", 0, 0, 0, "vehicle position, east"},
-    {"radius", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0, 1e7, "largest horizontal distance"},
+static const chasm_param_spec near_params[N_NPARAMS] = {
+    [N_NORTH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("north", "m", -1e7, 1e7, "the point, north of the origin"),
+    [N_EAST] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("east", "m", -1e7, 1e7, "the point, east of the origin"),
+    [N_AT_NORTH] = CHASM_READ("at_north", CHASM_DOUBLE, "m", "nav.north_m", "vehicle position, north"),
+    [N_AT_EAST] = CHASM_READ("at_east", CHASM_DOUBLE, "m", "nav.east_m", "vehicle position, east"),
+    [N_RADIUS] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("radius", "m", 0, 1e7, "largest horizontal distance"),
 };
 
 static int near_eval(chasm_ctx *c)

@@ -10,7 +10,7 @@
 
 #include "chasm/chasm_plugin.h"
 
-/* Slots of peer_report, in the order of its schema. */
+/* Slots of peer_report (its schema is indexed by them). */
 enum {
     PR_IN_NORTH, PR_IN_EAST, PR_IN_DEPTH, PR_IN_HEADING, PR_IN_SPEED, PR_IN_PITCH, PR_IN_SIGMA, PR_IN_LABEL,
     PR_OUT_NORTH, PR_OUT_EAST, PR_OUT_DEPTH, PR_OUT_HEADING, PR_OUT_SPEED, PR_OUT_PITCH, PR_OUT_SIGMA,

@@ -12,27 +12,28 @@
 
 /* name, kind, type, unit, required, default, default variable, has_range, min, max, doc */
 const chasm_param_spec comms_peer_report_params[PR_N_SLOTS] = {
-    {"north", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.north_m", 0, 0, 0, "own position north"},
-    {"east", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.east_m", 0, 0, 0, "own position east"},
-    {"depth", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.depth_m", 0, 0, 0, "own depth"},
-    {"heading", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, "nav.heading_rad", 0, 0, 0, "own heading"},
-    {"speed", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "nav.speed_over_ground_mps", 0, 0, 0, "own speed"},
-    {"pitch", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, NULL, 0, 0, 0, "own pitch (optional)"},
-    {"sigma", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, NULL, 0, 0, 0, "own position 1-sigma (optional)"},
-    {"label", CHASM_READS, CHASM_STRING, "", 0, 0, NULL, 0, 0, 0,
-     "what the vehicle is doing, e.g. a variable each state sets (optional; default: this state's path)"},
-    {"out_north", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, "report.north_m", 0, 0, 0, NULL},
-    {"out_east", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, "report.east_m", 0, 0, 0, NULL},
-    {"out_depth", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, "report.depth_m", 0, 0, 0, NULL},
-    {"out_heading", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "report.heading_rad", 0, 0, 0, NULL},
-    {"out_speed", CHASM_WRITES, CHASM_DOUBLE, "m/s", 0, 0, "report.speed_mps", 0, 0, 0, NULL},
-    {"out_pitch", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, NULL, 0, 0, 0, "e.g. report.pitch_rad (optional)"},
-    {"out_sigma", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, NULL, 0, 0, 0,
-     "e.g. report.position_sigma_m (optional)"},
-    {"out_label", CHASM_WRITES, CHASM_STRING, "", 0, 0, NULL, 0, 0, 0, "e.g. report.active_state (optional)"},
-    {"out_seq", CHASM_WRITES, CHASM_INT, "", 0, 0, "report.seq", 0, 0, 0,
-     "report number: each new one is sent by the modem"},
+    [PR_IN_NORTH] = CHASM_READ("north", CHASM_DOUBLE, "m", "nav.north_m", "own position north"),
+    [PR_IN_EAST] = CHASM_READ("east", CHASM_DOUBLE, "m", "nav.east_m", "own position east"),
+    [PR_IN_DEPTH] = CHASM_READ("depth", CHASM_DOUBLE, "m", "nav.depth_m", "own depth"),
+    [PR_IN_HEADING] = CHASM_READ("heading", CHASM_DOUBLE, "rad", "nav.heading_rad", "own heading"),
+    [PR_IN_SPEED] = CHASM_READ("speed", CHASM_DOUBLE, "m/s", "nav.speed_over_ground_mps", "own speed"),
+    [PR_IN_PITCH] = CHASM_READ("pitch", CHASM_DOUBLE, "rad", NULL, "own pitch (optional)"),
+    [PR_IN_SIGMA] = CHASM_READ("sigma", CHASM_DOUBLE, "m", NULL, "own position 1-sigma (optional)"),
+    [PR_IN_LABEL] = CHASM_READ("label", CHASM_STRING, "", NULL,
+                               "what the vehicle is doing, e.g. a variable each state sets (optional; default: this "
+                               "state's path)"),
+    [PR_OUT_NORTH] = CHASM_WRITE("out_north", CHASM_DOUBLE, "m", "report.north_m", NULL),
+    [PR_OUT_EAST] = CHASM_WRITE("out_east", CHASM_DOUBLE, "m", "report.east_m", NULL),
+    [PR_OUT_DEPTH] = CHASM_WRITE("out_depth", CHASM_DOUBLE, "m", "report.depth_m", NULL),
+    [PR_OUT_HEADING] = CHASM_WRITE("out_heading", CHASM_DOUBLE, "rad", "report.heading_rad", NULL),
+    [PR_OUT_SPEED] = CHASM_WRITE("out_speed", CHASM_DOUBLE, "m/s", "report.speed_mps", NULL),
+    [PR_OUT_PITCH] = CHASM_WRITE("out_pitch", CHASM_DOUBLE, "rad", NULL, "e.g. report.pitch_rad (optional)"),
+    [PR_OUT_SIGMA] = CHASM_WRITE("out_sigma", CHASM_DOUBLE, "m", NULL, "e.g. report.position_sigma_m (optional)"),
+    [PR_OUT_LABEL] = CHASM_WRITE("out_label", CHASM_STRING, "", NULL, "e.g. report.active_state (optional)"),
+    [PR_OUT_SEQ] = CHASM_WRITE("out_seq", CHASM_INT, "", "report.seq",
+                               "report number: each new one is sent by the modem"),
 };
+
 
 chasm_status_code comms_peer_report_step(chasm_ctx *c, void *state)
 {

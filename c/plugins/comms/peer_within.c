@@ -7,12 +7,13 @@
 #include "comms.h"
 
 const chasm_param_spec comms_peer_within_params[PW_N_SLOTS] = {
-    {"peer_north", CHASM_READS, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, "e.g. peer_auv2.north_m"},
-    {"peer_east", CHASM_READS, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, "e.g. peer_auv2.east_m"},
-    {"radius", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0, 1e7, "horizontal distance"},
-    {"north", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.north_m", 0, 0, 0, "own position north"},
-    {"east", CHASM_READS, CHASM_DOUBLE, "m", 0, 0, "nav.east_m", 0, 0, 0, "own position east"},
+    [PW_PEER_NORTH] = CHASM_READ_REQUIRED("peer_north", CHASM_DOUBLE, "m", "e.g. peer_auv2.north_m"),
+    [PW_PEER_EAST] = CHASM_READ_REQUIRED("peer_east", CHASM_DOUBLE, "m", "e.g. peer_auv2.east_m"),
+    [PW_RADIUS] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("radius", "m", 0, 1e7, "horizontal distance"),
+    [PW_NORTH] = CHASM_READ("north", CHASM_DOUBLE, "m", "nav.north_m", "own position north"),
+    [PW_EAST] = CHASM_READ("east", CHASM_DOUBLE, "m", "nav.east_m", "own position east"),
 };
+
 
 int comms_peer_within_evaluate(chasm_ctx *c)
 {

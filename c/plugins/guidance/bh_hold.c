@@ -9,31 +9,32 @@
 
 #define RPM_TO_RADPS (2.0 * M_PI / 60.0)
 
-const chasm_param_spec gd_hold_depth_params[] = {
-    {"depth", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0, 6000, "depth to hold"},
-    GD_OUT_VERTICAL_MODE, GD_OUT_DEPTH,
+const chasm_param_spec gd_hold_depth_params[HDEPTH_NPARAMS] = {
+    [HDEPTH_DEPTH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("depth", "m", 0, 6000, "depth to hold"),
+    [HDEPTH_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
+    [HDEPTH_OUT_DEPTH] = GD_OUT_DEPTH,
 };
-_Static_assert(CHASM_COUNT(gd_hold_depth_params) == HDEPTH_NPARAMS, "hold_depth schema and slots disagree");
 
-const chasm_param_spec gd_hold_altitude_params[] = {
-    {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0.5, 1000, "height above the seabed to hold"},
-    GD_OUT_VERTICAL_MODE, GD_OUT_ALTITUDE,
+const chasm_param_spec gd_hold_altitude_params[HALT_NPARAMS] = {
+    [HALT_ALTITUDE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("altitude", "m", 0.5, 1000, "height above the seabed to hold"),
+    [HALT_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
+    [HALT_OUT_ALTITUDE] = GD_OUT_ALTITUDE,
 };
-_Static_assert(CHASM_COUNT(gd_hold_altitude_params) == HALT_NPARAMS, "hold_altitude schema and slots disagree");
 
-const chasm_param_spec gd_hold_heading_params[] = {
-    {"heading", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, -2 * M_PI, 2 * M_PI, "heading to hold"},
-    GD_OUT_HEADING,
+const chasm_param_spec gd_hold_heading_params[HHEAD_NPARAMS] = {
+    [HHEAD_HEADING] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("heading", "rad", -2 * M_PI, 2 * M_PI, "heading to hold"),
+    [HHEAD_OUT_HEADING] = GD_OUT_HEADING,
 };
-_Static_assert(CHASM_COUNT(gd_hold_heading_params) == HHEAD_NPARAMS, "hold_heading schema and slots disagree");
 
-const chasm_param_spec gd_set_speed_params[] = {
-    {"speed", CHASM_PARAM, CHASM_DOUBLE, "m/s", 0, GD_ABSENT, NULL, 1, 0, 5, "speed through the water (or rpm)"},
-    {"rpm", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, GD_ABSENT, NULL, 1, 0, 3000 * RPM_TO_RADPS,
-     "open-loop propeller speed, e.g. 1200 rpm (or speed)"},
-    GD_OUT_SPEED_MODE, GD_OUT_SPEED, GD_OUT_RPM,
+/* speed or rpm: exactly one is given (set_speed's start says so otherwise). */
+const chasm_param_spec gd_set_speed_params[SPEED_NPARAMS] = {
+    [SPEED_SPEED] = CHASM_PARAM_OPTIONAL_RANGE("speed", CHASM_DOUBLE, "m/s", 0, 5, "speed through the water (or rpm)"),
+    [SPEED_RPM] = CHASM_PARAM_OPTIONAL_RANGE("rpm", CHASM_DOUBLE, "rad/s", 0, 3000 * RPM_TO_RADPS,
+                                             "open-loop propeller speed, e.g. 1200 rpm (or speed)"),
+    [SPEED_OUT_SPEED_MODE] = GD_OUT_SPEED_MODE,
+    [SPEED_OUT_SPEED] = GD_OUT_SPEED,
+    [SPEED_OUT_RPM] = GD_OUT_RPM,
 };
-_Static_assert(CHASM_COUNT(gd_set_speed_params) == SPEED_NPARAMS, "set_speed schema and slots disagree");
 
 /* A behavior that writes its setpoints at entry and every cycle, never done. */
 #define CONSTANT_SETPOINT(id, write)                              \
@@ -72,7 +73,7 @@ CONSTANT_SETPOINT(hold_heading, write_heading)
 
 static void write_speed(chasm_ctx *c)
 {
-    if (GD_GIVEN(c, SPEED_SPEED)) {
+    if (chasm_param_given(c, SPEED_SPEED)) {
         chasm_write_int(c, SPEED_OUT_SPEED_MODE, GD_SPEED_MPS);
         chasm_write_double(c, SPEED_OUT_SPEED, chasm_param_double(c, SPEED_SPEED));
     } else {
@@ -83,9 +84,9 @@ static void write_speed(chasm_ctx *c)
 int gd_set_speed_start(chasm_ctx *c, void *state)
 {
     (void)state;
-    if (GD_GIVEN(c, SPEED_SPEED) == GD_GIVEN(c, SPEED_RPM))
+    if (chasm_param_given(c, SPEED_SPEED) == chasm_param_given(c, SPEED_RPM))
         return gd_refuse(c, "set_speed", "give either speed (m/s) or rpm, not %s",
-                         GD_GIVEN(c, SPEED_SPEED) ? "both" : "neither");
+                         chasm_param_given(c, SPEED_SPEED) ? "both" : "neither");
     write_speed(c);
     return 0;
 }

@@ -21,26 +21,28 @@
 #include "gd_behaviors.h"
 #include "gd_slots.h"
 
-#define FORM(name, lo, doc) {name, CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, lo, 1e6, doc}
+/* A box parameter: the box or the polygon is given, so none has a default. */
+#define FORM(name, lo, doc) CHASM_PARAM_OPTIONAL_RANGE(name, CHASM_DOUBLE, "m", lo, 1e6, doc)
 
-const chasm_param_spec gd_lawnmower_params[] = {
-    FORM("north", -1e6, "box corner, north (box form)"),
-    FORM("east", -1e6, "box corner, east (box form)"),
-    FORM("length", 1, "box length along the heading (box form)"),
-    FORM("width", 0, "box width, to the right of the heading (box form)"),
-    {"polygon", CHASM_PARAM, CHASM_STRING, "", 0, 0, "", 0, 0, 0, "area as \"n,e; n,e; ...\" in metres (polygon form)"},
-    {"heading", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, -2 * M_PI, 2 * M_PI, "direction of the lines"},
-    {"spacing", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 1, 10000, "largest distance between lines"},
-    {"turn_radius", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 20, NULL, 1, 1, 1000, "radius of the turns between lines"},
-    {"lead", CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, 0, 1000,
-     "run-in/run-out beyond the area (default max(lookahead, 2 turn_radius))"},
-    GD_SPEED_PARAM,
-    GD_LOOKAHEAD_PARAM,
-    GD_INTEGRAL_PARAM,
-    GD_IN_NORTH, GD_IN_EAST, GD_OUT_HEADING, GD_OUT_SPEED, GD_OUT_SPEED_MODE,
-    GD_WRITES("progress", CHASM_INT, "", "survey_line", "index of the line being flown (resume continues it)"),
+const chasm_param_spec gd_lawnmower_params[MOW_NPARAMS] = {
+    [MOW_NORTH] = FORM("north", -1e6, "box corner, north (box form)"),
+    [MOW_EAST] = FORM("east", -1e6, "box corner, east (box form)"),
+    [MOW_LENGTH] = FORM("length", 1, "box length along the heading (box form)"),
+    [MOW_WIDTH] = FORM("width", 0, "box width, to the right of the heading (box form)"),
+    [MOW_POLYGON] = CHASM_PARAM_STRING("polygon", "", "area as \"n,e; n,e; ...\" in metres (polygon form)"),
+    [MOW_HEADING] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("heading", "rad", -2 * M_PI, 2 * M_PI, "direction of the lines"),
+    [MOW_SPACING] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("spacing", "m", 1, 10000, "largest distance between lines"),
+    [MOW_TURN_RADIUS] = CHASM_PARAM_DOUBLE_RANGE("turn_radius", "m", 20, 1, 1000, "radius of the turns between lines"),
+    /* no default: the default is computed from two other parameters */
+    [MOW_LEAD] = CHASM_PARAM_OPTIONAL_RANGE("lead", CHASM_DOUBLE, "m", 0, 1000,
+                                            "run-in/run-out beyond the area (default max(lookahead, 2 turn_radius))"),
+    [MOW_SPEED] = GD_SPEED_PARAM,
+    [MOW_LOOKAHEAD] = GD_LOOKAHEAD_PARAM,
+    [MOW_INTEGRAL] = GD_INTEGRAL_PARAM,
+    GD_HORIZONTAL_SLOTS(MOW),
+    [MOW_PROGRESS] = CHASM_WRITE("progress", CHASM_INT, "", "survey_line",
+                                 "index of the line being flown (resume continues it)"),
 };
-_Static_assert(CHASM_COUNT(gd_lawnmower_params) == MOW_NPARAMS, "lawnmower schema and slots disagree");
 
 static const gd_horizontal slots = {MOW_IN_NORTH, MOW_IN_EAST, MOW_SPEED, MOW_OUT_HEADING, MOW_OUT_SPEED,
                                     MOW_OUT_SPEED_MODE};
@@ -74,7 +76,7 @@ static int area_of(chasm_ctx *c, pu_polygon *area)
     int given = 0;
     char missing[64] = "";
     for (int i = 0; i < 4; i++) {
-        if (GD_GIVEN(c, MOW_NORTH + i))
+        if (chasm_param_given(c, MOW_NORTH + i))
             given++;
         else
             snprintf(missing + strlen(missing), sizeof missing - strlen(missing), "%s%s", *missing ? ", " : "",
@@ -115,7 +117,7 @@ int gd_lawnmower_start(chasm_ctx *c, void *state)
     if (s->n_lines < 0)
         return gd_refuse(c, "lawnmower", "%s", err);
     double lookahead = chasm_param_double(c, MOW_LOOKAHEAD);
-    s->lead = GD_GIVEN(c, MOW_LEAD) ? chasm_param_double(c, MOW_LEAD)
+    s->lead = chasm_param_given(c, MOW_LEAD) ? chasm_param_double(c, MOW_LEAD)
                                     : fmax(lookahead, 2.0 * chasm_param_double(c, MOW_TURN_RADIUS));
     s->los = (gd_los){lookahead, chasm_param_double(c, MOW_INTEGRAL), 0.0};
     int64_t done = chasm_read_int(c, MOW_PROGRESS);

@@ -4,16 +4,16 @@
 #include "gd_behaviors.h"
 #include "gd_slots.h"
 
-const chasm_param_spec gd_loiter_params[] = {
-    GD_COORD("north", "centre, north"),
-    GD_COORD("east", "centre, east"),
-    {"radius", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 5, 10000, "circle radius (above the turning radius)"},
-    GD_SPEED_PARAM,
-    {"clockwise", CHASM_PARAM, CHASM_BOOL, "", 0, 1, NULL, 0, 0, 0, "direction seen from above"},
-    GD_LOOKAHEAD_PARAM,
-    GD_IN_NORTH, GD_IN_EAST, GD_OUT_HEADING, GD_OUT_SPEED, GD_OUT_SPEED_MODE,
+const chasm_param_spec gd_loiter_params[LOITER_NPARAMS] = {
+    [LOITER_NORTH] = GD_COORD("north", "centre, north"),
+    [LOITER_EAST] = GD_COORD("east", "centre, east"),
+    [LOITER_RADIUS] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("radius", "m", 5, 10000,
+                                                        "circle radius (above the turning radius)"),
+    [LOITER_SPEED] = GD_SPEED_PARAM,
+    [LOITER_CLOCKWISE] = CHASM_PARAM_BOOL("clockwise", 1, "direction seen from above"),
+    [LOITER_LOOKAHEAD] = GD_LOOKAHEAD_PARAM,
+    GD_HORIZONTAL_SLOTS(LOITER),
 };
-_Static_assert(CHASM_COUNT(gd_loiter_params) == LOITER_NPARAMS, "loiter schema and slots disagree");
 
 static const gd_horizontal slots = {LOITER_IN_NORTH, LOITER_IN_EAST, LOITER_SPEED, LOITER_OUT_HEADING,
                                     LOITER_OUT_SPEED, LOITER_OUT_SPEED_MODE};

@@ -7,28 +7,26 @@
 #include "gd_behaviors.h"
 #include "gd_slots.h"
 
-const chasm_param_spec gd_goto_params[] = {
-    GD_COORD("north", "waypoint north"),
-    GD_COORD("east", "waypoint east"),
-    GD_SPEED_PARAM,
-    {"radius", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 5, NULL, 1, 0.5, 1000, "done within this distance"},
-    GD_LOOKAHEAD_PARAM,
-    GD_INTEGRAL_PARAM,
-    GD_IN_NORTH, GD_IN_EAST, GD_OUT_HEADING, GD_OUT_SPEED, GD_OUT_SPEED_MODE,
+const chasm_param_spec gd_goto_params[GOTO_NPARAMS] = {
+    [GOTO_NORTH] = GD_COORD("north", "waypoint north"),
+    [GOTO_EAST] = GD_COORD("east", "waypoint east"),
+    [GOTO_SPEED] = GD_SPEED_PARAM,
+    [GOTO_RADIUS] = CHASM_PARAM_DOUBLE_RANGE("radius", "m", 5, 0.5, 1000, "done within this distance"),
+    [GOTO_LOOKAHEAD] = GD_LOOKAHEAD_PARAM,
+    [GOTO_INTEGRAL] = GD_INTEGRAL_PARAM,
+    GD_HORIZONTAL_SLOTS(GOTO),
 };
-_Static_assert(CHASM_COUNT(gd_goto_params) == GOTO_NPARAMS, "goto schema and slots disagree");
 
-const chasm_param_spec gd_track_params[] = {
-    GD_COORD("from_north", "start of the line, north"),
-    GD_COORD("from_east", "start of the line, east"),
-    GD_COORD("to_north", "end of the line, north"),
-    GD_COORD("to_east", "end of the line, east"),
-    GD_SPEED_PARAM,
-    GD_LOOKAHEAD_PARAM,
-    GD_INTEGRAL_PARAM,
-    GD_IN_NORTH, GD_IN_EAST, GD_OUT_HEADING, GD_OUT_SPEED, GD_OUT_SPEED_MODE,
+const chasm_param_spec gd_track_params[TRACK_NPARAMS] = {
+    [TRACK_FROM_NORTH] = GD_COORD("from_north", "start of the line, north"),
+    [TRACK_FROM_EAST] = GD_COORD("from_east", "start of the line, east"),
+    [TRACK_TO_NORTH] = GD_COORD("to_north", "end of the line, north"),
+    [TRACK_TO_EAST] = GD_COORD("to_east", "end of the line, east"),
+    [TRACK_SPEED] = GD_SPEED_PARAM,
+    [TRACK_LOOKAHEAD] = GD_LOOKAHEAD_PARAM,
+    [TRACK_INTEGRAL] = GD_INTEGRAL_PARAM,
+    GD_HORIZONTAL_SLOTS(TRACK),
 };
-_Static_assert(CHASM_COUNT(gd_track_params) == TRACK_NPARAMS, "track schema and slots disagree");
 
 static const gd_horizontal goto_slots = {GOTO_IN_NORTH, GOTO_IN_EAST, GOTO_SPEED,
                                          GOTO_OUT_HEADING, GOTO_OUT_SPEED, GOTO_OUT_SPEED_MODE};

@@ -11,33 +11,37 @@
 #include "gd_slots.h"
 
 #define RPM_TO_RADPS (2.0 * M_PI / 60.0)
-#define PITCH_PARAM {"pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 0, 10 * M_PI / 180, NULL, 1, 0, 45 * M_PI / 180, \
-                     "bow-up pitch asked of the pilot"}
-#define RPM_PARAM {"rpm", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 0, 0, NULL, 1, 0, 3000 * RPM_TO_RADPS, \
-                   "prop speed on the way up (0: float up)"}
+#define PITCH_PARAM \
+    CHASM_PARAM_DOUBLE_RANGE("pitch", "rad", 10 * M_PI / 180, 0, 45 * M_PI / 180, "bow-up pitch asked of the pilot")
+#define RPM_PARAM \
+    CHASM_PARAM_DOUBLE_RANGE("rpm", "rad/s", 0, 0, 3000 * RPM_TO_RADPS, "prop speed on the way up (0: float up)")
 #define FIX_TYPE_2D 2 /* auv.gps_fix_t.FIX_2D */
 
-const chasm_param_spec gd_surface_params[] = {
-    PITCH_PARAM,
-    RPM_PARAM,
-    {"depth", CHASM_PARAM, CHASM_DOUBLE, "m", 0, 0.5, NULL, 1, 0.1, 10, "done when shallower than this"},
-    GD_IN_DEPTH, GD_OUT_VERTICAL_MODE, GD_OUT_PITCH, GD_OUT_SPEED_MODE, GD_OUT_RPM,
+const chasm_param_spec gd_surface_params[SURF_NPARAMS] = {
+    [SURF_PITCH] = PITCH_PARAM,
+    [SURF_RPM] = RPM_PARAM,
+    [SURF_DEPTH] = CHASM_PARAM_DOUBLE_RANGE("depth", "m", 0.5, 0.1, 10, "done when shallower than this"),
+    [SURF_IN_DEPTH] = GD_IN_DEPTH,
+    [SURF_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
+    [SURF_OUT_PITCH] = GD_OUT_PITCH,
+    [SURF_OUT_SPEED_MODE] = GD_OUT_SPEED_MODE,
+    [SURF_OUT_RPM] = GD_OUT_RPM,
 };
-_Static_assert(CHASM_COUNT(gd_surface_params) == SURF_NPARAMS, "surface schema and slots disagree");
 
-const chasm_param_spec gd_surface_fix_params[] = {
-    {"timeout", CHASM_PARAM, CHASM_DOUBLE, "s", 0, 180, NULL, 1, 1, 86400, "failed without a fix for this long"},
-    PITCH_PARAM,
-    RPM_PARAM,
-    {"in_gps", CHASM_READS, CHASM_INT, "", 0, 0, "gps.fix_type", 0, 0, 0, "GPS fix type (2: 2D, 3: 3D)"},
-    GD_OUT_VERTICAL_MODE, GD_OUT_PITCH, GD_OUT_SPEED_MODE, GD_OUT_RPM,
+const chasm_param_spec gd_surface_fix_params[FIX_NPARAMS] = {
+    [FIX_TIMEOUT] = CHASM_PARAM_DOUBLE_RANGE("timeout", "s", 180, 1, 86400, "failed without a fix for this long"),
+    [FIX_PITCH] = PITCH_PARAM,
+    [FIX_RPM] = RPM_PARAM,
+    [FIX_IN_GPS] = CHASM_READ("in_gps", CHASM_INT, "", "gps.fix_type", "GPS fix type (2: 2D, 3: 3D)"),
+    [FIX_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
+    [FIX_OUT_PITCH] = GD_OUT_PITCH,
+    [FIX_OUT_SPEED_MODE] = GD_OUT_SPEED_MODE,
+    [FIX_OUT_RPM] = GD_OUT_RPM,
 };
-_Static_assert(CHASM_COUNT(gd_surface_fix_params) == FIX_NPARAMS, "surface_fix schema and slots disagree");
 
-const chasm_param_spec gd_timer_params[] = {
-    {"duration", CHASM_PARAM, CHASM_DOUBLE, "s", 1, 0, NULL, 1, 0, 1e7, "done after this long in the state"},
+const chasm_param_spec gd_timer_params[TIMER_NPARAMS] = {
+    [TIMER_DURATION] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("duration", "s", 0, 1e7, "done after this long in the state"),
 };
-_Static_assert(CHASM_COUNT(gd_timer_params) == TIMER_NPARAMS, "timer schema and slots disagree");
 
 /* Both schemas list the four outputs in this order, from out_vertical_mode on. */
 _Static_assert(SURF_OUT_RPM - SURF_OUT_VERTICAL_MODE == 3 && SURF_OUT_PITCH == SURF_OUT_VERTICAL_MODE + 1 &&

@@ -12,21 +12,26 @@
 #include "gd_behaviors.h"
 #include "gd_slots.h"
 
-#define BAND(name, lo, hi, doc) {name, CHASM_PARAM, CHASM_DOUBLE, "m", 0, GD_ABSENT, NULL, 1, lo, hi, doc}
+/* A limit of the band: depths or altitudes are given, a pair of one form. */
+#define BAND(name, lo, hi, doc) CHASM_PARAM_OPTIONAL_RANGE(name, CHASM_DOUBLE, "m", lo, hi, doc)
 #define MIN_RAMP_SPEED 0.3 /* m/s: keeps the ramp moving while the vehicle is slow or stopped */
 #define EASE_M 2.0          /* the ramp slows down over this distance before a limit ... */
 #define MIN_EASE 0.1        /* ... to this fraction of its rate */
 
-const chasm_param_spec gd_yoyo_params[] = {
-    BAND("min_depth", 0, 6000, "shallow limit (depth form)"),
-    BAND("max_depth", 0, 6000, "deep limit (depth form)"),
-    BAND("min_altitude", 0.5, 1000, "low limit above the seabed (altitude form)"),
-    BAND("max_altitude", 0.5, 1000, "high limit above the seabed (altitude form)"),
-    {"pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 2 * M_PI / 180, 45 * M_PI / 180,
-     "flight-path angle of the climbs and dives"},
-    GD_IN_DEPTH, GD_IN_ALTITUDE, GD_IN_SPEED, GD_OUT_VERTICAL_MODE, GD_OUT_DEPTH, GD_OUT_ALTITUDE,
+const chasm_param_spec gd_yoyo_params[YOYO_NPARAMS] = {
+    [YOYO_MIN_DEPTH] = BAND("min_depth", 0, 6000, "shallow limit (depth form)"),
+    [YOYO_MAX_DEPTH] = BAND("max_depth", 0, 6000, "deep limit (depth form)"),
+    [YOYO_MIN_ALTITUDE] = BAND("min_altitude", 0.5, 1000, "low limit above the seabed (altitude form)"),
+    [YOYO_MAX_ALTITUDE] = BAND("max_altitude", 0.5, 1000, "high limit above the seabed (altitude form)"),
+    [YOYO_PITCH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("pitch", "rad", 2 * M_PI / 180, 45 * M_PI / 180,
+                                                     "flight-path angle of the climbs and dives"),
+    [YOYO_IN_DEPTH] = GD_IN_DEPTH,
+    [YOYO_IN_ALTITUDE] = GD_IN_ALTITUDE,
+    [YOYO_IN_SPEED] = GD_IN_SPEED,
+    [YOYO_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
+    [YOYO_OUT_DEPTH] = GD_OUT_DEPTH,
+    [YOYO_OUT_ALTITUDE] = GD_OUT_ALTITUDE,
 };
-_Static_assert(CHASM_COUNT(gd_yoyo_params) == YOYO_NPARAMS, "yoyo schema and slots disagree");
 
 /* The band coordinate of the vehicle: depth, or altitude (< 0: unknown). */
 static double measured(const chasm_ctx *c, const gd_yoyo_state *s)
@@ -43,8 +48,8 @@ static void write(chasm_ctx *c, const gd_yoyo_state *s)
 int gd_yoyo_start(chasm_ctx *c, void *state)
 {
     gd_yoyo_state *s = state;
-    int depths = GD_GIVEN(c, YOYO_MIN_DEPTH) + GD_GIVEN(c, YOYO_MAX_DEPTH);
-    int alts = GD_GIVEN(c, YOYO_MIN_ALTITUDE) + GD_GIVEN(c, YOYO_MAX_ALTITUDE);
+    int depths = chasm_param_given(c, YOYO_MIN_DEPTH) + chasm_param_given(c, YOYO_MAX_DEPTH);
+    int alts = chasm_param_given(c, YOYO_MIN_ALTITUDE) + chasm_param_given(c, YOYO_MAX_ALTITUDE);
     if (!((depths == 2 && alts == 0) || (depths == 0 && alts == 2)))
         return gd_refuse(c, "yoyo", "give min_depth and max_depth, or min_altitude and max_altitude");
     s->altitude_mode = alts == 2;

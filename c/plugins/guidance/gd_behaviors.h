@@ -1,6 +1,6 @@
 /* The behaviors of plugin `guidance`: schema slots, per-instance state and
  * entry points, collected by guidance_plugin.c into the plugin descriptor.
- * Slot enums follow each schema's order (see chasm_plugin.h). Only the
+ * Each schema is indexed by its slot enum (see chasm_plugin.h). Only the
  * descriptor is exported: two plugins (or versions) never share these symbols. */
 #ifndef GD_BEHAVIORS_H
 #define GD_BEHAVIORS_H

@@ -7,8 +7,8 @@
  * north. All values are SI (the plan loader converts).
  *
  * The vertical behaviors share two loops, whose parameters sit in each
- * schema as one contiguous block (the *_PARAMS macros below) at an offset the
- * behavior passes in:
+ * schema as one contiguous block (the *_PARAMS(base) macros below, entries
+ * indexed from slot base) at an offset the behavior passes in:
  *   depth loop:  depth error -> pitch command (PID, limited, slew-limited)
  *   pitch loop:  pitch error -> stern plane (PID with pitch-rate damping)
  */
@@ -27,19 +27,20 @@
 
 /* ---- pitch loop: pitch command -> stern plane */
 enum { PL_KP, PL_KI, PL_KD, PL_MAX_PLANE, PL_PLANE_SLEW, PL_I_LIMIT, PL_COUNT };
-#define PILOT_PITCH_LOOP_PARAMS                                                                                  \
-    {"pitch_kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 50,                                          \
-     "stern plane per pitch error [rad/rad]"},                                                                  \
-    {"pitch_ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 20,                                         \
-     "stern plane per integrated pitch error [rad/(rad s)]"},                                                   \
-    {"pitch_kd", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 50,                                         \
-     "stern plane per pitch rate: the damping [rad/(rad/s)]"},                                                  \
-    {"max_plane", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
-     "stern plane limit"},                                                                                      \
-    {"plane_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0, 1000 * PILOT_DEG,         \
-     "stern plane slew limit (0: none)"},                                                                       \
-    {"plane_i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0, 60 * PILOT_DEG,          \
-     "largest stern plane the pitch integrator may hold (trim)"}
+/* Gains and limits have no defaults: the plan gives every one (docs/behaviors.md). */
+#define PILOT_PITCH_LOOP_PARAMS(base)                                                                          \
+    [(base) + PL_KP] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("pitch_kp", "", 0, 50,                               \
+                                                         "stern plane per pitch error [rad/rad]"),            \
+    [(base) + PL_KI] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("pitch_ki", "", 0, 20,                               \
+                                                         "stern plane per integrated pitch error [rad/(rad s)]"), \
+    [(base) + PL_KD] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("pitch_kd", "", 0, 50,                               \
+                                                         "stern plane per pitch rate: the damping [rad/(rad/s)]"), \
+    [(base) + PL_MAX_PLANE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_plane", "rad", 0.5 * PILOT_DEG,          \
+                                                                60 * PILOT_DEG, "stern plane limit"),         \
+    [(base) + PL_PLANE_SLEW] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("plane_slew", "rad/s", 0, 1000 * PILOT_DEG,  \
+                                                                 "stern plane slew limit (0: none)"),         \
+    [(base) + PL_I_LIMIT] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(                                                 \
+        "plane_i_limit", "rad", 0, 60 * PILOT_DEG, "largest stern plane the pitch integrator may hold (trim)")
 
 typedef struct {
     pu_pid pid;
@@ -55,19 +56,19 @@ double pilot_pitch_step(pilot_pitch_loop *l, const pu_pid_config *cfg, double pi
 
 /* ---- depth loop: depth target -> pitch command (then the pitch loop) */
 enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_TAU, DL_COUNT };
-#define PILOT_DEPTH_LOOP_PARAMS                                                                                  \
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 10, "pitch per metre of depth error [rad/m]"},    \
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 5,                                               \
-     "pitch per integrated depth error [rad/(m s)]"},                                                          \
-    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 20, "pitch per depth rate [rad/(m/s)]"},            \
-    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG, \
-     "pitch command limit"},                                                                                    \
-    {"pitch_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0, 1000 * PILOT_DEG,          \
-     "pitch command slew limit (0: none)"},                                                                     \
-    {"max_depth", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, 0, 11000,                                    \
-     "depth targets are clamped to [0, max_depth]"},                                                            \
-    {"depth_rate_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 1, 0, NULL, 1, 0, 60,                                  \
-     "low-pass time constant of the depth rate used by kd"}
+#define PILOT_DEPTH_LOOP_PARAMS(base)                                                                          \
+    [(base) + DL_KP] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("kp", "", 0, 10, "pitch per metre of depth error [rad/m]"), \
+    [(base) + DL_KI] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("ki", "", 0, 5,                                      \
+                                                         "pitch per integrated depth error [rad/(m s)]"),     \
+    [(base) + DL_KD] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("kd", "", 0, 20, "pitch per depth rate [rad/(m/s)]"), \
+    [(base) + DL_MAX_PITCH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_pitch", "rad", 0.5 * PILOT_DEG,          \
+                                                                60 * PILOT_DEG, "pitch command limit"),       \
+    [(base) + DL_PITCH_SLEW] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("pitch_slew", "rad/s", 0, 1000 * PILOT_DEG,  \
+                                                                 "pitch command slew limit (0: none)"),       \
+    [(base) + DL_MAX_DEPTH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_depth", "m", 0, 11000,                   \
+                                                                "depth targets are clamped to [0, max_depth]"), \
+    [(base) + DL_RATE_TAU] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(                                                \
+        "depth_rate_tau", "s", 0, 60, "low-pass time constant of the depth rate used by kd")
 
 typedef struct {
     pu_pid pid;

@@ -16,27 +16,27 @@
 #include "plugins/lib/pu_angle.h"
 #include "plugins/pilot/pilot.h"
 
-enum { HEADING, YAW_RATE, SETPOINT, RUDDER, KP, KI, KD, MAX_TURN_RATE, MAX_RUDDER, RUDDER_SLEW, I_LIMIT, I_ZONE };
+enum { HEADING, YAW_RATE, SETPOINT, RUDDER, KP, KI, KD, MAX_TURN_RATE, MAX_RUDDER, RUDDER_SLEW, I_LIMIT, I_ZONE,
+       NPARAMS };
 
-static const chasm_param_spec params[] = {
-    {"heading", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, "nav.heading_rad", 0, 0, 0, "vehicle heading"},
-    {"yaw_rate", CHASM_READS, CHASM_DOUBLE, "rad/s", 0, 0, "nav.r_radps", 0, 0, 0, "body yaw rate r"},
-    {"setpoint", CHASM_READS, CHASM_DOUBLE, "rad", 0, 0, "setpoint.heading_rad", 0, 0, 0, "desired heading"},
-    {"rudder", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "actuators.rudder_rad", 0, 0, 0, "rudder command"},
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 20, "rudder per heading error [rad/rad]"},
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 5, "rudder per integrated heading error [rad/(rad s)]"},
-    {"kd", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0.01, 50,
-     "rudder per yaw rate: the yaw damping [rad/(rad/s)]"},
-    {"max_turn_rate", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0.1 * PILOT_DEG,
-     90 * PILOT_DEG, "largest turn rate a heading error asks for"},
-    {"max_rudder", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 60 * PILOT_DEG,
-     "rudder limit"},
-    {"rudder_slew", CHASM_PARAM, CHASM_DOUBLE, "rad/s", 1, 0, NULL, 1, 0, 1000 * PILOT_DEG,
-     "rudder slew limit (0: none)"},
-    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0, 60 * PILOT_DEG,
-     "largest rudder the integrator may hold"},
-    {"i_zone", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0, 180 * PILOT_DEG,
-     "integrate only within this heading error (0: always)"},
+static const chasm_param_spec params[NPARAMS] = {
+    [HEADING] = CHASM_READ("heading", CHASM_DOUBLE, "rad", "nav.heading_rad", "vehicle heading"),
+    [YAW_RATE] = CHASM_READ("yaw_rate", CHASM_DOUBLE, "rad/s", "nav.r_radps", "body yaw rate r"),
+    [SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "desired heading"),
+    [RUDDER] = CHASM_WRITE("rudder", CHASM_DOUBLE, "rad", "actuators.rudder_rad", "rudder command"),
+    [KP] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("kp", "", 0, 20, "rudder per heading error [rad/rad]"),
+    [KI] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("ki", "", 0, 5, "rudder per integrated heading error [rad/(rad s)]"),
+    [KD] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("kd", "", 0.01, 50, "rudder per yaw rate: the yaw damping [rad/(rad/s)]"),
+    [MAX_TURN_RATE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_turn_rate", "rad/s", 0.1 * PILOT_DEG, 90 * PILOT_DEG,
+                                                        "largest turn rate a heading error asks for"),
+    [MAX_RUDDER] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_rudder", "rad", 0.5 * PILOT_DEG, 60 * PILOT_DEG,
+                                                     "rudder limit"),
+    [RUDDER_SLEW] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("rudder_slew", "rad/s", 0, 1000 * PILOT_DEG,
+                                                      "rudder slew limit (0: none)"),
+    [I_LIMIT] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("i_limit", "rad", 0, 60 * PILOT_DEG,
+                                                  "largest rudder the integrator may hold"),
+    [I_ZONE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("i_zone", "rad", 0, 180 * PILOT_DEG,
+                                                 "integrate only within this heading error (0: always)"),
 };
 
 typedef struct {

@@ -10,11 +10,12 @@
 
 #include "plugins/pilot/pilot.h"
 
-#define RPM_LIMIT_PARAMS                                                                                   \
-    {"min_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "lowest prop command [rpm]"}, \
-    {"max_rpm", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, -100000, 100000, "highest prop command [rpm]"}, \
-    {"rpm_slew", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 1e6, "prop slew limit [rpm/s] (0: none)"}
-#define PROP_OUT {"prop", CHASM_WRITES, CHASM_DOUBLE, "", 0, 0, "actuators.prop_rpm", 0, 0, 0, "prop command [rpm]"}
+/* The rpm limits at their slots (prop_start reads max_rpm right after min_rpm). */
+#define RPM_LIMIT_PARAMS(min, max, slew)                                                                        \
+    [min] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("min_rpm", "", -100000, 100000, "lowest prop command [rpm]"),     \
+    [max] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_rpm", "", -100000, 100000, "highest prop command [rpm]"),    \
+    [slew] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("rpm_slew", "", 0, 1e6, "prop slew limit [rpm/s] (0: none)")
+#define PROP_OUT CHASM_WRITE("prop", CHASM_DOUBLE, "", "actuators.prop_rpm", "prop command [rpm]")
 
 typedef struct {
     pu_pid pid;
@@ -38,20 +39,22 @@ static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const
 
 /* ------------------------------------------------------------ speed_control */
 
-enum { S_SPEED, S_SETPOINT, S_REFERENCE, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW };
+enum { S_SPEED, S_SETPOINT, S_REFERENCE, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW,
+       S_NPARAMS };
 
-static const chasm_param_spec speed_params[] = {
-    {"speed", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "nav.u_mps", 0, 0, 0, "measured surge speed"},
-    {"setpoint", CHASM_READS, CHASM_DOUBLE, "m/s", 0, 0, "setpoint.speed_mps", 0, 0, 0, "desired speed"},
-    {"reference", CHASM_READS, CHASM_INT, "", 0, 0, "setpoint.speed_reference", 0, 0, 0,
-     "setpoint_t.SPEED_OVER_GROUND (0): PI on the measured speed; SPEED_THROUGH_WATER (1): the rpm law alone"},
-    PROP_OUT,
-    {"rpm_per_mps", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000,
-     "feed-forward: prop rpm per m/s of setpoint"},
-    {"kp", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per m/s of speed error"},
-    {"ki", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "rpm per metre of integrated speed error"},
-    {"i_limit", CHASM_PARAM, CHASM_DOUBLE, "", 1, 0, NULL, 1, 0, 100000, "largest rpm the integrator may hold"},
-    RPM_LIMIT_PARAMS,
+static const chasm_param_spec speed_params[S_NPARAMS] = {
+    [S_SPEED] = CHASM_READ("speed", CHASM_DOUBLE, "m/s", "nav.u_mps", "measured surge speed"),
+    [S_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "desired speed"),
+    [S_REFERENCE] = CHASM_READ("reference", CHASM_INT, "", "setpoint.speed_reference",
+                               "setpoint_t.SPEED_OVER_GROUND (0): PI on the measured speed; SPEED_THROUGH_WATER (1): "
+                               "the rpm law alone"),
+    [S_PROP] = PROP_OUT,
+    [S_FF] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("rpm_per_mps", "", 0, 100000,
+                                               "feed-forward: prop rpm per m/s of setpoint"),
+    [S_KP] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("kp", "", 0, 100000, "rpm per m/s of speed error"),
+    [S_KI] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("ki", "", 0, 100000, "rpm per metre of integrated speed error"),
+    [S_I_LIMIT] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("i_limit", "", 0, 100000, "largest rpm the integrator may hold"),
+    RPM_LIMIT_PARAMS(S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW),
 };
 
 static int speed_start(chasm_ctx *c, void *st) { return prop_start(c, st, S_MIN_RPM, S_PROP, "speed_control"); }
@@ -95,12 +98,12 @@ const chasm_behavior_spec pilot_speed_behavior = {
 
 /* -------------------------------------------------------------- rpm_control */
 
-enum { R_SETPOINT, R_PROP, R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW };
+enum { R_SETPOINT, R_PROP, R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW, R_NPARAMS };
 
-static const chasm_param_spec rpm_params[] = {
-    {"setpoint", CHASM_READS, CHASM_DOUBLE, "", 0, 0, "setpoint.prop_rpm", 0, 0, 0, "desired prop rpm"},
-    PROP_OUT,
-    RPM_LIMIT_PARAMS,
+static const chasm_param_spec rpm_params[R_NPARAMS] = {
+    [R_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "", "setpoint.prop_rpm", "desired prop rpm"),
+    [R_PROP] = PROP_OUT,
+    RPM_LIMIT_PARAMS(R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW),
 };
 
 static int rpm_start(chasm_ctx *c, void *st) { return prop_start(c, st, R_MIN_RPM, R_PROP, "rpm_control"); }

@@ -4,22 +4,25 @@
 
 #include "plugins/pilot/pilot.h"
 
-#define READ(name, unit, var, doc) {name, CHASM_READS, CHASM_DOUBLE, unit, 0, 0, var, 0, 0, 0, doc}
-#define PLANE_OUT {"stern_plane", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "actuators.stern_plane_rad", 0, 0, 0, \
-                   "stern plane command"}
+/* Entries all three share. */
+#define PITCH_IN CHASM_READ("pitch", CHASM_DOUBLE, "rad", "nav.pitch_rad", "vehicle pitch, positive bow up")
+#define Q_IN CHASM_READ("pitch_rate", CHASM_DOUBLE, "rad/s", "nav.q_radps", "body pitch rate q")
+#define DEPTH_IN CHASM_READ("depth", CHASM_DOUBLE, "m", "nav.depth_m", "vehicle depth")
+#define PLANE_OUT CHASM_WRITE("stern_plane", CHASM_DOUBLE, "rad", "actuators.stern_plane_rad", "stern plane command")
 
 /* ------------------------------------------------------------ depth_control */
 
-enum { D_DEPTH, D_PITCH, D_Q, D_SETPOINT, D_PLANE, D_LOOP, D_PITCH_LOOP = D_LOOP + DL_COUNT };
+enum { D_DEPTH, D_PITCH, D_Q, D_SETPOINT, D_PLANE, D_LOOP, D_PITCH_LOOP = D_LOOP + DL_COUNT,
+       D_NPARAMS = D_PITCH_LOOP + PL_COUNT };
 
-static const chasm_param_spec depth_params[] = {
-    READ("depth", "m", "nav.depth_m", "vehicle depth"),
-    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
-    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
-    READ("setpoint", "m", "setpoint.depth_m", "desired depth"),
-    PLANE_OUT,
-    PILOT_DEPTH_LOOP_PARAMS,
-    PILOT_PITCH_LOOP_PARAMS,
+static const chasm_param_spec depth_params[D_NPARAMS] = {
+    [D_DEPTH] = DEPTH_IN,
+    [D_PITCH] = PITCH_IN,
+    [D_Q] = Q_IN,
+    [D_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "m", "setpoint.depth_m", "desired depth"),
+    [D_PLANE] = PLANE_OUT,
+    PILOT_DEPTH_LOOP_PARAMS(D_LOOP),
+    PILOT_PITCH_LOOP_PARAMS(D_PITCH_LOOP),
 };
 
 typedef struct {
@@ -60,21 +63,22 @@ const chasm_behavior_spec pilot_depth_behavior = {
 #define SEARCH_LEAD_M 2.0
 
 enum { A_DEPTH, A_ALTITUDE, A_PITCH, A_Q, A_SETPOINT, A_PLANE, A_TAU, A_SEARCH, A_LOOP,
-       A_PITCH_LOOP = A_LOOP + DL_COUNT };
+       A_PITCH_LOOP = A_LOOP + DL_COUNT, A_NPARAMS = A_PITCH_LOOP + PL_COUNT };
 
-static const chasm_param_spec altitude_params[] = {
-    READ("depth", "m", "nav.depth_m", "vehicle depth"),
-    READ("altitude", "m", "nav.altitude_m", "height above the seabed, negative if unknown"),
-    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
-    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
-    READ("setpoint", "m", "setpoint.altitude_m", "desired altitude"),
-    PLANE_OUT,
-    {"altitude_tau", CHASM_PARAM, CHASM_DOUBLE, "s", 1, 0, NULL, 1, 0, 60,
-     "low-pass time constant of the depth target (0: none)"},
-    {"search_rate", CHASM_PARAM, CHASM_DOUBLE, "m/s", 1, 0, NULL, 1, 0, 2,
-     "descent rate of the target while the altitude is unknown (0: hold)"},
-    PILOT_DEPTH_LOOP_PARAMS,
-    PILOT_PITCH_LOOP_PARAMS,
+static const chasm_param_spec altitude_params[A_NPARAMS] = {
+    [A_DEPTH] = DEPTH_IN,
+    [A_ALTITUDE] = CHASM_READ("altitude", CHASM_DOUBLE, "m", "nav.altitude_m",
+                              "height above the seabed, negative if unknown"),
+    [A_PITCH] = PITCH_IN,
+    [A_Q] = Q_IN,
+    [A_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "m", "setpoint.altitude_m", "desired altitude"),
+    [A_PLANE] = PLANE_OUT,
+    [A_TAU] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("altitude_tau", "s", 0, 60,
+                                                "low-pass time constant of the depth target (0: none)"),
+    [A_SEARCH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(
+        "search_rate", "m/s", 0, 2, "descent rate of the target while the altitude is unknown (0: hold)"),
+    PILOT_DEPTH_LOOP_PARAMS(A_LOOP),
+    PILOT_PITCH_LOOP_PARAMS(A_PITCH_LOOP),
 };
 
 typedef struct {
@@ -124,16 +128,16 @@ const chasm_behavior_spec pilot_altitude_behavior = {
 
 /* ------------------------------------------------------------ pitch_control */
 
-enum { P_PITCH, P_Q, P_SETPOINT, P_PLANE, P_MAX_PITCH, P_LOOP };
+enum { P_PITCH, P_Q, P_SETPOINT, P_PLANE, P_MAX_PITCH, P_LOOP, P_NPARAMS = P_LOOP + PL_COUNT };
 
-static const chasm_param_spec pitch_params[] = {
-    READ("pitch", "rad", "nav.pitch_rad", "vehicle pitch, positive bow up"),
-    READ("pitch_rate", "rad/s", "nav.q_radps", "body pitch rate q"),
-    READ("setpoint", "rad", "setpoint.pitch_rad", "desired pitch, positive bow up"),
-    PLANE_OUT,
-    {"max_pitch", CHASM_PARAM, CHASM_DOUBLE, "rad", 1, 0, NULL, 1, 0.5 * PILOT_DEG, 80 * PILOT_DEG,
-     "the setpoint is clamped to +-max_pitch"},
-    PILOT_PITCH_LOOP_PARAMS,
+static const chasm_param_spec pitch_params[P_NPARAMS] = {
+    [P_PITCH] = PITCH_IN,
+    [P_Q] = Q_IN,
+    [P_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "rad", "setpoint.pitch_rad", "desired pitch, positive bow up"),
+    [P_PLANE] = PLANE_OUT,
+    [P_MAX_PITCH] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("max_pitch", "rad", 0.5 * PILOT_DEG, 80 * PILOT_DEG,
+                                                      "the setpoint is clamped to +-max_pitch"),
+    PILOT_PITCH_LOOP_PARAMS(P_LOOP),
 };
 
 typedef struct {

@@ -16,31 +16,33 @@
 #include "plugins/pilot/pilot.h"
 
 enum { W_UTIME, W_HEADING, W_DEPTH, W_ALTITUDE, W_PITCH, W_SPEED, W_RPM, W_VMODE, W_SMODE, W_REF,
-       W_COUNT, W_IGNORING, W_REASON, W_LAST, W_STATE, W_REF_OUT, W_TIMEOUT, W_FLYING };
+       W_COUNT, W_IGNORING, W_REASON, W_LAST, W_STATE, W_REF_OUT, W_TIMEOUT, W_FLYING, W_NPARAMS };
 
-#define IN(name, type, unit, var) {name, CHASM_READS, type, unit, 0, 0, var, 0, 0, 0, "the setpoint's " name}
-#define OUT(name, type, var, doc) {name, CHASM_WRITES, type, "", 0, 0, var, 0, 0, 0, doc}
+/* A field of the setpoint watched: read as is, its doc says which. */
+#define IN(name, type, unit, var) CHASM_READ(name, type, unit, var, "the setpoint's " name)
 
-static const chasm_param_spec params[] = {
-    IN("utime", CHASM_INT, "", "setpoint.utime"),
-    IN("heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad"),
-    IN("depth", CHASM_DOUBLE, "m", "setpoint.depth_m"),
-    IN("altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m"),
-    IN("pitch", CHASM_DOUBLE, "rad", "setpoint.pitch_rad"),
-    IN("speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps"),
-    IN("rpm", CHASM_DOUBLE, "", "setpoint.prop_rpm"),
-    IN("vertical_mode", CHASM_INT, "", "setpoint.vertical_mode"),
-    IN("speed_mode", CHASM_INT, "", "setpoint.speed_mode"),
-    IN("speed_reference", CHASM_INT, "", "setpoint.speed_reference"),
-    OUT("ignored", CHASM_INT, "pilot.setpoints_ignored", "setpoints ignored so far"),
-    OUT("ignoring", CHASM_BOOL, "pilot.ignoring", "the newest setpoint is ignored"),
-    OUT("reason", CHASM_INT, "pilot.last_ignored_reason", "1: utime 0, 2: utime older than timeout"),
-    OUT("last", CHASM_INT, "pilot.last_ignored_utime", "utime of the last setpoint ignored [us]"),
-    OUT("state", CHASM_INT, "pilot.state", "0 idle, 1 flying"),
-    OUT("reference", CHASM_INT, "pilot.speed_reference", "what speed is held against"),
-    {"timeout", CHASM_PARAM, CHASM_DOUBLE, "s", 1, 0, NULL, 1, 0, 3600,
-     "a setpoint older than this on arrival is ignored (the plan's setpoint_timeout)"},
-    {"flying", CHASM_PARAM, CHASM_BOOL, "", 1, 0, NULL, 0, 0, 0, "true in the state that flies"},
+static const chasm_param_spec params[W_NPARAMS] = {
+    [W_UTIME] = IN("utime", CHASM_INT, "", "setpoint.utime"),
+    [W_HEADING] = IN("heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad"),
+    [W_DEPTH] = IN("depth", CHASM_DOUBLE, "m", "setpoint.depth_m"),
+    [W_ALTITUDE] = IN("altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m"),
+    [W_PITCH] = IN("pitch", CHASM_DOUBLE, "rad", "setpoint.pitch_rad"),
+    [W_SPEED] = IN("speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps"),
+    [W_RPM] = IN("rpm", CHASM_DOUBLE, "", "setpoint.prop_rpm"),
+    [W_VMODE] = IN("vertical_mode", CHASM_INT, "", "setpoint.vertical_mode"),
+    [W_SMODE] = IN("speed_mode", CHASM_INT, "", "setpoint.speed_mode"),
+    [W_REF] = IN("speed_reference", CHASM_INT, "", "setpoint.speed_reference"),
+    [W_COUNT] = CHASM_WRITE("ignored", CHASM_INT, "", "pilot.setpoints_ignored", "setpoints ignored so far"),
+    [W_IGNORING] = CHASM_WRITE("ignoring", CHASM_BOOL, "", "pilot.ignoring", "the newest setpoint is ignored"),
+    [W_REASON] = CHASM_WRITE("reason", CHASM_INT, "", "pilot.last_ignored_reason",
+                             "1: utime 0, 2: utime older than timeout"),
+    [W_LAST] = CHASM_WRITE("last", CHASM_INT, "", "pilot.last_ignored_utime",
+                           "utime of the last setpoint ignored [us]"),
+    [W_STATE] = CHASM_WRITE("state", CHASM_INT, "", "pilot.state", "0 idle, 1 flying"),
+    [W_REF_OUT] = CHASM_WRITE("reference", CHASM_INT, "", "pilot.speed_reference", "what speed is held against"),
+    [W_TIMEOUT] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(
+        "timeout", "s", 0, 3600, "a setpoint older than this on arrival is ignored (the plan's setpoint_timeout)"),
+    [W_FLYING] = CHASM_PARAM_REQUIRED_BOOL("flying", "true in the state that flies"),
 };
 
 typedef struct {

@@ -21,18 +21,22 @@
 
 #include "plugins/lib/pu_angle.h"
 
-const chasm_param_spec tm_follow_params[] = {
-    TM_SPARAM("peer", 1, "the teammate followed (a roster name)"),
-    TM_PARAM("behind", "m", 30, -1000, 1000, "station distance astern of the peer (negative: ahead)"),
-    TM_PARAM("side", "m", 0, -1000, 1000, "station distance to the peer's right (negative: left)"),
-    TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed when on station (the peer's, if it reports one)"),
-    TM_PARAM("min_speed", "m/s", 0.5, 0.1, 5, "slowest speed while dropping back"),
-    TM_PARAM("max_speed", "m/s", 2.2, 0.1, 5, "fastest speed while catching up"),
-    TM_PARAM("gain", "Hz", 0.05, 0, 10, "speed added per metre behind the station"),
-    TM_VERTICAL_PARAMS,
-    TM_PARAM("lookahead", "m", 20, 1, 500, "steer at this point ahead of the station along the peer's course"),
-    TM_POSITION_INPUTS,
-    TM_STEER_OUTPUTS,
+const chasm_param_spec tm_follow_params[FP_NPARAMS] = {
+    [FP_PEER] = CHASM_PARAM_REQUIRED_STRING("peer", "the teammate followed (a roster name)"),
+    [FP_BEHIND] = CHASM_PARAM_DOUBLE_RANGE("behind", "m", 30, -1000, 1000,
+                                           "station distance astern of the peer (negative: ahead)"),
+    [FP_SIDE] = CHASM_PARAM_DOUBLE_RANGE("side", "m", 0, -1000, 1000,
+                                         "station distance to the peer's right (negative: left)"),
+    [FP_SPEED] = CHASM_PARAM_DOUBLE_RANGE("speed", "m/s", 1.5, 0.1, 5,
+                                          "speed when on station (the peer's, if it reports one)"),
+    [FP_MIN_SPEED] = CHASM_PARAM_DOUBLE_RANGE("min_speed", "m/s", 0.5, 0.1, 5, "slowest speed while dropping back"),
+    [FP_MAX_SPEED] = CHASM_PARAM_DOUBLE_RANGE("max_speed", "m/s", 2.2, 0.1, 5, "fastest speed while catching up"),
+    [FP_GAIN] = CHASM_PARAM_DOUBLE_RANGE("gain", "Hz", 0.05, 0, 10, "speed added per metre behind the station"),
+    TM_VERTICAL_PARAMS(FP_DEPTH, FP_ALTITUDE),
+    [FP_LOOKAHEAD] = CHASM_PARAM_DOUBLE_RANGE("lookahead", "m", 20, 1, 500,
+                                              "steer at this point ahead of the station along the peer's course"),
+    TM_POSITION_INPUTS(FP_IN_NORTH, FP_IN_EAST),
+    TM_STEER_OUTPUTS(FP_OUT_HEADING),
 };
 _Static_assert(CHASM_COUNT(tm_follow_params) == FP_NPARAMS, "follow_peer schema and slots disagree");
 _Static_assert(FP_OUT_ALTITUDE - FP_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint slots out of tm_steer's order");

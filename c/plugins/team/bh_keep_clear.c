@@ -13,17 +13,18 @@
 
 #include "plugins/lib/pu_angle.h"
 
-const chasm_param_spec tm_keepclear_params[] = {
-    TM_PARAM("radius", "m", 30, 1, 1000, "keep at least this far apart horizontally"),
-    TM_PARAM("band", "m", 3, 0.5, 50, "depth offset while giving way"),
-    TM_PARAM("horizon", "s", 30, 1, 600, "how far ahead paths are predicted"),
-    TM_PARAM("hysteresis", "m", 10, 0, 1000, "clear only beyond radius + hysteresis"),
-    TM_PARAM("silent", "s", 120, 1, 3600, "ignore a teammate not heard for this long"),
-    TM_NAV("north", "m", "nav.north_m", "own position north"),
-    TM_NAV("east", "m", "nav.east_m", "own position east"),
-    TM_NAV("heading", "rad", "nav.heading_rad", "own heading"),
-    TM_NAV("speed", "m/s", "nav.speed_over_ground_mps", "own speed over ground"),
-    TM_OUT("out_offset", CHASM_DOUBLE, "m", NULL, "also write the offset to this variable (optional)"),
+const chasm_param_spec tm_keepclear_params[KC_NPARAMS] = {
+    [KC_RADIUS] = CHASM_PARAM_DOUBLE_RANGE("radius", "m", 30, 1, 1000, "keep at least this far apart horizontally"),
+    [KC_BAND] = CHASM_PARAM_DOUBLE_RANGE("band", "m", 3, 0.5, 50, "depth offset while giving way"),
+    [KC_HORIZON] = CHASM_PARAM_DOUBLE_RANGE("horizon", "s", 30, 1, 600, "how far ahead paths are predicted"),
+    [KC_HYSTERESIS] = CHASM_PARAM_DOUBLE_RANGE("hysteresis", "m", 10, 0, 1000, "clear only beyond radius + hysteresis"),
+    [KC_SILENT] = CHASM_PARAM_DOUBLE_RANGE("silent", "s", 120, 1, 3600, "ignore a teammate not heard for this long"),
+    [KC_IN_NORTH] = CHASM_READ("north", CHASM_DOUBLE, "m", "nav.north_m", "own position north"),
+    [KC_IN_EAST] = CHASM_READ("east", CHASM_DOUBLE, "m", "nav.east_m", "own position east"),
+    [KC_IN_HEADING] = CHASM_READ("heading", CHASM_DOUBLE, "rad", "nav.heading_rad", "own heading"),
+    [KC_IN_SPEED] = CHASM_READ("speed", CHASM_DOUBLE, "m/s", "nav.speed_over_ground_mps", "own speed over ground"),
+    [KC_OUT_OFFSET] = CHASM_WRITE("out_offset", CHASM_DOUBLE, "m", NULL,
+                                  "also write the offset to this variable (optional)"),
 };
 _Static_assert(CHASM_COUNT(tm_keepclear_params) == KC_NPARAMS, "keep_clear schema and slots disagree");
 

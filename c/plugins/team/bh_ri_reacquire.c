@@ -20,19 +20,29 @@
 #include "tm_route.h"
 #include "tm_store.h"
 
-const chasm_param_spec tm_ri_params[] = {
-    TM_MSGS_IN("looks", "looks", "the short-range sensor's looks (a `messages` variable bound to <V>.LOOKS)"),
-    TM_PARAM("merge", "m", 5, 0, 100, "reports, and looks after a target's first, within this distance are one object"),
-    TM_PARAM("look_gate", "m", 10, 0, 100, "a target's first look counts within this of the reports (both vehicles' navigation errors)"),
-    TM_PARAM("ident_range", "m", 6, 0.5, 200, "the sensor's useful range: the target is reached within it"),
-    TM_PARAM("look_timeout", "s", 180, 1, 3600, "not found if no look decides it this long after reaching it"),
-    TM_PARAM("ident_error", "", 0.001, 1e-9, 0.5, "a target is decided once its looks leave at most this probability that the call is wrong"),
-    TM_PARAM("runout", "m", 30, 1, 1000, "straight run past a target before turning back for the next pass (wider than the turning circle)"),
-    TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
-    TM_VERTICAL_PARAMS,
-    TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
-    TM_POSITION_INPUTS,
-    TM_STEER_OUTPUTS,
+const chasm_param_spec tm_ri_params[RI_NPARAMS] = {
+    [RI_LOOKS] = CHASM_READ("looks", CHASM_MESSAGES, "", "looks",
+                            "the short-range sensor's looks (a `messages` variable bound to <V>.LOOKS)"),
+    [RI_MERGE] = CHASM_PARAM_DOUBLE_RANGE(
+        "merge", "m", 5, 0, 100, "reports, and looks after a target's first, within this distance are one object"),
+    [RI_LOOK_GATE] = CHASM_PARAM_DOUBLE_RANGE(
+        "look_gate", "m", 10, 0, 100,
+        "a target's first look counts within this of the reports (both vehicles' navigation errors)"),
+    [RI_IDENT_RANGE] = CHASM_PARAM_DOUBLE_RANGE("ident_range", "m", 6, 0.5, 200,
+                                                "the sensor's useful range: the target is reached within it"),
+    [RI_LOOK_TIMEOUT] = CHASM_PARAM_DOUBLE_RANGE("look_timeout", "s", 180, 1, 3600,
+                                                 "not found if no look decides it this long after reaching it"),
+    [RI_IDENT_ERROR] = CHASM_PARAM_DOUBLE_RANGE(
+        "ident_error", "", 0.001, 1e-9, 0.5,
+        "a target is decided once its looks leave at most this probability that the call is wrong"),
+    [RI_RUNOUT] = CHASM_PARAM_DOUBLE_RANGE(
+        "runout", "m", 30, 1, 1000,
+        "straight run past a target before turning back for the next pass (wider than the turning circle)"),
+    [RI_SPEED] = CHASM_PARAM_DOUBLE_RANGE("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
+    TM_VERTICAL_PARAMS(RI_DEPTH, RI_ALTITUDE),
+    [RI_LOOKAHEAD] = CHASM_PARAM_DOUBLE_RANGE("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
+    TM_POSITION_INPUTS(RI_IN_NORTH, RI_IN_EAST),
+    TM_STEER_OUTPUTS(RI_OUT_HEADING),
 };
 _Static_assert(CHASM_COUNT(tm_ri_params) == RI_NPARAMS, "ri_reacquire schema and slots disagree");
 _Static_assert(RI_OUT_ALTITUDE - RI_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint slots out of tm_steer's order");

@@ -10,10 +10,12 @@
 #include "tm_behaviors.h"
 #include "tm_store.h"
 
-const chasm_param_spec tm_search_params[] = {
-    TM_MSGS_IN("rx", "contacts", "sidescan contacts (a `messages` variable bound to <V>.CONTACTS)"),
-    TM_PARAM("min_score", "", 0.5, 0, 1, "a merged contact at least this mine-like is reported"),
-    TM_PARAM("merge", "m", 5, 0, 100, "looks within this distance are one object"),
+const chasm_param_spec tm_search_params[SC_NPARAMS] = {
+    [SC_RX] = CHASM_READ("rx", CHASM_MESSAGES, "", "contacts",
+                         "sidescan contacts (a `messages` variable bound to <V>.CONTACTS)"),
+    [SC_MIN_SCORE] = CHASM_PARAM_DOUBLE_RANGE("min_score", "", 0.5, 0, 1,
+                                              "a merged contact at least this mine-like is reported"),
+    [SC_MERGE] = CHASM_PARAM_DOUBLE_RANGE("merge", "m", 5, 0, 100, "looks within this distance are one object"),
 };
 _Static_assert(CHASM_COUNT(tm_search_params) == SC_NPARAMS, "search_contacts schema and slots disagree");
 

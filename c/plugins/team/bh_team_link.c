@@ -23,20 +23,27 @@
 #include "tm_store.h"
 #include "tm_tdma.h"
 
-const chasm_param_spec tm_link_params[] = {
-    TM_SPARAM("team", 1, "the roster, the same in every plan: \"AUV1,AUV2,AUV3,AUV4\" (index = team number)"),
-    TM_SPARAM("me", 1, "this vehicle's name in the roster"),
-    TM_PARAM("slot", "s", 5, 0.1, 600, "TDMA slot length"),
-    TM_IPARAM("slots", 4, 1, 16, "slots in a TDMA round"),
-    TM_IPARAM("my_slot", 0, 0, 15, "this vehicle's slot (0 .. slots - 1)"),
-    TM_PARAM("window", "s", 1, 0.01, 600, "a frame starts only this soon after the slot's start"),
-    TM_IPARAM("frame_bytes", 32, 4, 256, "the modem's frame size"),
-    TM_PARAM("silent", "s", 120, 1, 36000, "a teammate not heard for this long is lost"),
-    TM_IPARAM("repeat", 3, 1, 100, "sends of an unacked contact before it yields to the status (it is still "
-                                   "resent until acked); sends of each ident"),
-    TM_MSGS_IN("rx", "modem_rx", "frames received (messages bound to <V>.MODEM_RX modem_rx_t)"),
-    TM_MSGS_OUT("tx", "modem_tx", "frames to send (messages bound to <V>.MODEM_TX modem_tx_t)"),
-    TM_MSGS_OUT("events", "team_events", "team events (messages bound to <V>.TEAM_EVENT team_event_t)"),
+const chasm_param_spec tm_link_params[LINK_NPARAMS] = {
+    [LINK_TEAM] = CHASM_PARAM_REQUIRED_STRING(
+        "team", "the roster, the same in every plan: \"AUV1,AUV2,AUV3,AUV4\" (index = team number)"),
+    [LINK_ME] = CHASM_PARAM_REQUIRED_STRING("me", "this vehicle's name in the roster"),
+    [LINK_SLOT] = CHASM_PARAM_DOUBLE_RANGE("slot", "s", 5, 0.1, 600, "TDMA slot length"),
+    [LINK_SLOTS] = CHASM_PARAM_INT_RANGE("slots", 4, 1, 16, "slots in a TDMA round"),
+    [LINK_MY_SLOT] = CHASM_PARAM_INT_RANGE("my_slot", 0, 0, 15, "this vehicle's slot (0 .. slots - 1)"),
+    [LINK_WINDOW] = CHASM_PARAM_DOUBLE_RANGE("window", "s", 1, 0.01, 600,
+                                             "a frame starts only this soon after the slot's start"),
+    [LINK_FRAME_BYTES] = CHASM_PARAM_INT_RANGE("frame_bytes", 32, 4, 256, "the modem's frame size"),
+    [LINK_SILENT] = CHASM_PARAM_DOUBLE_RANGE("silent", "s", 120, 1, 36000,
+                                             "a teammate not heard for this long is lost"),
+    [LINK_REPEAT] = CHASM_PARAM_INT_RANGE("repeat", 3, 1, 100,
+                                          "sends of an unacked contact before it yields to the status (it is still "
+                                          "resent until acked); sends of each ident"),
+    [LINK_RX] = CHASM_READ("rx", CHASM_MESSAGES, "", "modem_rx",
+                           "frames received (messages bound to <V>.MODEM_RX modem_rx_t)"),
+    [LINK_TX] = CHASM_WRITE("tx", CHASM_MESSAGES, "", "modem_tx",
+                            "frames to send (messages bound to <V>.MODEM_TX modem_tx_t)"),
+    [LINK_EVENTS] = CHASM_WRITE("events", CHASM_MESSAGES, "", "team_events",
+                                "team events (messages bound to <V>.TEAM_EVENT team_event_t)"),
 };
 _Static_assert(CHASM_COUNT(tm_link_params) == LINK_NPARAMS, "team_link schema and slots disagree");
 

@@ -8,13 +8,14 @@
 
 #include "plugins/lib/pu_angle.h"
 
-const chasm_param_spec tm_status_params[] = {
-    TM_IPARAM("code", -1, -1, 7, "state code to send (-1: as the team behaviors set it; 5 = abort)"),
-    TM_NAV("north", "m", "nav.north_m", "own position north"),
-    TM_NAV("east", "m", "nav.east_m", "own position east"),
-    TM_NAV("depth", "m", "nav.depth_m", "own depth"),
-    TM_NAV("heading", "rad", "nav.heading_rad", "own heading"),
-    TM_NAV("speed", "m/s", "nav.speed_over_ground_mps", "own speed over ground"),
+const chasm_param_spec tm_status_params[STATUS_NPARAMS] = {
+    [STATUS_CODE] = CHASM_PARAM_INT_RANGE("code", -1, -1, 7,
+                                          "state code to send (-1: as the team behaviors set it; 5 = abort)"),
+    [STATUS_NORTH] = CHASM_READ("north", CHASM_DOUBLE, "m", "nav.north_m", "own position north"),
+    [STATUS_EAST] = CHASM_READ("east", CHASM_DOUBLE, "m", "nav.east_m", "own position east"),
+    [STATUS_DEPTH] = CHASM_READ("depth", CHASM_DOUBLE, "m", "nav.depth_m", "own depth"),
+    [STATUS_HEADING] = CHASM_READ("heading", CHASM_DOUBLE, "rad", "nav.heading_rad", "own heading"),
+    [STATUS_SPEED] = CHASM_READ("speed", CHASM_DOUBLE, "m/s", "nav.speed_over_ground_mps", "own speed over ground"),
 };
 _Static_assert(CHASM_COUNT(tm_status_params) == STATUS_NPARAMS, "team_status schema and slots disagree");
 

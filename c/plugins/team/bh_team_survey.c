@@ -18,15 +18,17 @@
 #include "tm_behaviors.h"
 #include "tm_store.h"
 
-const chasm_param_spec tm_survey_params[] = {
-    TM_SPARAM("lines", 1, "the team's lines: \"owner: n,e n,e; ...\" (the same string in every plan)"),
-    TM_PARAM("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
-    TM_VERTICAL_PARAMS,
-    TM_PARAM("radius", "m", 5, 0.5, 1000, "a line's start is reached within this distance"),
-    TM_PARAM("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
-    TM_PARAM("integral", "Hz", 0.04, 0, 1, "ILOS integral rate (0: plain LOS)"),
-    TM_POSITION_INPUTS,
-    TM_STEER_OUTPUTS,
+const chasm_param_spec tm_survey_params[SV_NPARAMS] = {
+    [SV_LINES] = CHASM_PARAM_REQUIRED_STRING("lines",
+        "the team's lines: \"owner: n,e n,e; ...\" (the same string in every plan)"),
+    [SV_SPEED] = CHASM_PARAM_DOUBLE_RANGE("speed", "m/s", 1.5, 0.1, 5, "speed through the water"),
+    TM_VERTICAL_PARAMS(SV_DEPTH, SV_ALTITUDE),
+    [SV_RADIUS] = CHASM_PARAM_DOUBLE_RANGE("radius", "m", 5, 0.5, 1000,
+                                           "a line's start is reached within this distance"),
+    [SV_LOOKAHEAD] = CHASM_PARAM_DOUBLE_RANGE("lookahead", "m", 10, 1, 500, "LOS lookahead distance"),
+    [SV_INTEGRAL] = CHASM_PARAM_DOUBLE_RANGE("integral", "Hz", 0.04, 0, 1, "ILOS integral rate (0: plain LOS)"),
+    TM_POSITION_INPUTS(SV_IN_NORTH, SV_IN_EAST),
+    TM_STEER_OUTPUTS(SV_OUT_HEADING),
 };
 _Static_assert(CHASM_COUNT(tm_survey_params) == SV_NPARAMS, "team_survey schema and slots disagree");
 _Static_assert(SV_OUT_ALTITUDE - SV_OUT_HEADING == TM_OUT_ALTITUDE, "setpoint slots out of tm_steer's order");

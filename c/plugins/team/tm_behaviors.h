@@ -1,5 +1,6 @@
 /* The behaviors of plugin `team`: schema slots and entry points, collected
- * by team_plugin.c into the descriptor. Slot enums follow each schema's order. */
+ * by team_plugin.c into the descriptor. Each schema is indexed by its slot
+ * enum (see chasm_plugin.h). */
 #ifndef TM_BEHAVIORS_H
 #define TM_BEHAVIORS_H
 
@@ -12,23 +13,15 @@
     PU_HIDDEN int tm_##id##_start(chasm_ctx *c, void *state);          \
     PU_HIDDEN chasm_status_code tm_##id##_step(chasm_ctx *c, void *state)
 
-#define TM_NAV(name, unit, var, doc) {name, CHASM_READS, CHASM_DOUBLE, unit, 0, 0, var, 0, 0, 0, doc}
-#define TM_OUT(name, type, unit, var, doc) {name, CHASM_WRITES, type, unit, 0, 0, var, 0, 0, 0, doc}
-#define TM_PARAM(name, unit, def, lo, hi, doc) {name, CHASM_PARAM, CHASM_DOUBLE, unit, 0, def, NULL, 1, lo, hi, doc}
-#define TM_IPARAM(name, def, lo, hi, doc) {name, CHASM_PARAM, CHASM_INT, "", 0, def, NULL, 1, lo, hi, doc}
-#define TM_SPARAM(name, req, doc) {name, CHASM_PARAM, CHASM_STRING, "", req, 0, NULL, 0, 0, 0, doc}
-#define TM_MSGS_IN(name, var, doc) {name, CHASM_READS, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
-#define TM_MSGS_OUT(name, var, doc) {name, CHASM_WRITES, CHASM_MESSAGES, "", 0, 0, var, 0, 0, 0, doc}
-#define TM_ABSENT (-1e15)
-/* The vertical setpoint of a steering behavior (tm_steer): a depth, or an
- * altitude when one is given; and the position it steers from. */
-#define TM_VERTICAL_PARAMS                                                       \
-    TM_PARAM("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),      \
-        {"altitude", CHASM_PARAM, CHASM_DOUBLE, "m", 0, TM_ABSENT, NULL, 0, 0, 0, \
-         "altitude instead of a depth (minus keep_clear's offset)"}
-#define TM_POSITION_INPUTS                                                   \
-    TM_NAV("in_north", "m", "nav.north_m", "vehicle north position"),        \
-        TM_NAV("in_east", "m", "nav.east_m", "vehicle east position")
+/* The vertical setpoint of a steering behavior (tm_steer), at its two slots:
+ * a depth, or an altitude when one is given (chasm_param_given). */
+#define TM_VERTICAL_PARAMS(depth, altitude)                                                                   \
+    [depth] = CHASM_PARAM_DOUBLE_RANGE("depth", "m", 5, 0, 1000, "depth (plus keep_clear's offset)"),          \
+    [altitude] = CHASM_PARAM_OPTIONAL("altitude", CHASM_DOUBLE, "m",                                        \
+                                      "altitude instead of a depth (minus keep_clear's offset)")
+#define TM_POSITION_INPUTS(north, east)                                                                       \
+    [north] = CHASM_READ("in_north", CHASM_DOUBLE, "m", "nav.north_m", "vehicle north position"),              \
+    [east] = CHASM_READ("in_east", CHASM_DOUBLE, "m", "nav.east_m", "vehicle east position")
 
 /* ---- team_link (bh_team_link.c) */
 enum { LINK_TEAM, LINK_ME, LINK_SLOT, LINK_SLOTS, LINK_MY_SLOT, LINK_WINDOW, LINK_FRAME_BYTES, LINK_SILENT,
@@ -94,15 +87,18 @@ TM_DECLARE(keepclear, KC_NPARAMS);
 PU_HIDDEN void tm_keepclear_stop(chasm_ctx *c, void *state);
 
 /* The setpoint outputs of a steering behavior, in this order from slot `out`
- * (TM_STEER_OUTPUTS in its schema); tm_steer writes them all each cycle. */
+ * (TM_STEER_OUTPUTS(out) in its schema); tm_steer writes them all each cycle. */
 enum { TM_OUT_HEADING, TM_OUT_SPEED, TM_OUT_SPEED_MODE, TM_OUT_VERTICAL_MODE, TM_OUT_DEPTH, TM_OUT_ALTITUDE };
-#define TM_STEER_OUTPUTS                                                                          \
-    TM_OUT("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),       \
-        TM_OUT("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"),         \
-        TM_OUT("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"),                  \
-        TM_OUT("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"), \
-        TM_OUT("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"),             \
-        TM_OUT("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint")
+#define TM_STEER_OUTPUTS(out)                                                                              \
+    [(out) + TM_OUT_HEADING] =                                                                             \
+        CHASM_WRITE("out_heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad", "heading setpoint"),       \
+    [(out) + TM_OUT_SPEED] = CHASM_WRITE("out_speed", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "speed setpoint"), \
+    [(out) + TM_OUT_SPEED_MODE] = CHASM_WRITE("out_speed_mode", CHASM_INT, "", "setpoint.speed_mode", "0 m/s"), \
+    [(out) + TM_OUT_VERTICAL_MODE] =                                                                       \
+        CHASM_WRITE("out_vertical_mode", CHASM_INT, "", "setpoint.vertical_mode", "0 depth, 1 altitude"),   \
+    [(out) + TM_OUT_DEPTH] = CHASM_WRITE("out_depth", CHASM_DOUBLE, "m", "setpoint.depth_m", "depth setpoint"), \
+    [(out) + TM_OUT_ALTITUDE] =                                                                            \
+        CHASM_WRITE("out_altitude", CHASM_DOUBLE, "m", "setpoint.altitude_m", "altitude setpoint")
 /* Heading, speed (m/s) and the vertical setpoint: depth + offset, or
  * altitude - offset when an altitude is given. */
 PU_HIDDEN void tm_steer(chasm_ctx *c, double heading, int speed, int depth, int altitude, int out, double offset);

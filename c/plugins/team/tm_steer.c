@@ -9,10 +9,9 @@ void tm_steer(chasm_ctx *c, double heading, int speed, int depth, int altitude, 
     chasm_write_double(c, out + TM_OUT_HEADING, heading);
     chasm_write_double(c, out + TM_OUT_SPEED, chasm_param_double(c, speed));
     chasm_write_int(c, out + TM_OUT_SPEED_MODE, 0);
-    double alt = chasm_param_double(c, altitude);
-    if (alt != TM_ABSENT) {
+    if (chasm_param_given(c, altitude)) {
         chasm_write_int(c, out + TM_OUT_VERTICAL_MODE, 1);
-        chasm_write_double(c, out + TM_OUT_ALTITUDE, fmax(0.5, alt - offset));
+        chasm_write_double(c, out + TM_OUT_ALTITUDE, fmax(0.5, chasm_param_double(c, altitude) - offset));
     } else {
         chasm_write_int(c, out + TM_OUT_VERTICAL_MODE, 0);
         chasm_write_double(c, out + TM_OUT_DEPTH, chasm_param_double(c, depth) + offset);

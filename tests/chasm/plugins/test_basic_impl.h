@@ -6,10 +6,10 @@
 #include "chasm/chasm_plugin.h"
 
 /* hold: writes value * TEST_GAIN to its output every time it runs; never done. */
-enum { HOLD_VALUE, HOLD_OUT };
-static const chasm_param_spec hold_params[] = {
-    {"value", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 1, -100, 100, "depth to hold"},
-    {"out", CHASM_WRITES, CHASM_DOUBLE, "m", 0, 0, "test.out", 0, 0, 0, "where it goes"},
+enum { HOLD_VALUE, HOLD_OUT, HOLD_NPARAMS };
+static const chasm_param_spec hold_params[HOLD_NPARAMS] = {
+    [HOLD_VALUE] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("value", "m", -100, 100, "depth to hold"),
+    [HOLD_OUT] = CHASM_WRITE("out", CHASM_DOUBLE, "m", "test.out", "where it goes"),
 };
 static chasm_status_code hold_step(chasm_ctx *c, void *st)
 {
@@ -19,10 +19,10 @@ static chasm_status_code hold_step(chasm_ctx *c, void *st)
 }
 
 /* count_to: done after n steps; writes its count. */
-enum { COUNT_N, COUNT_OUT };
-static const chasm_param_spec count_params[] = {
-    {"n", CHASM_PARAM, CHASM_INT, "", 1, 0, NULL, 1, 1, 1000000, "steps until done"},
-    {"count", CHASM_WRITES, CHASM_INT, "", 0, 0, "test.count", 0, 0, 0, NULL},
+enum { COUNT_N, COUNT_OUT, COUNT_NPARAMS };
+static const chasm_param_spec count_params[COUNT_NPARAMS] = {
+    [COUNT_N] = CHASM_PARAM_REQUIRED_INT_RANGE("n", 1, 1000000, "steps until done"),
+    [COUNT_OUT] = CHASM_WRITE("count", CHASM_INT, "", "test.count", NULL),
 };
 typedef struct { int64_t k; } count_state;
 static chasm_status_code count_step(chasm_ctx *c, void *st)
@@ -35,7 +35,7 @@ static chasm_status_code count_step(chasm_ctx *c, void *st)
 
 /* fail_after: fails at its n-th step. */
 static const chasm_param_spec fail_params[] = {
-    {"n", CHASM_PARAM, CHASM_INT, "", 0, 1, NULL, 0, 0, 0, NULL},
+    CHASM_PARAM_INT("n", 1, NULL),
 };
 static chasm_status_code fail_step(chasm_ctx *c, void *st)
 {
@@ -45,7 +45,7 @@ static chasm_status_code fail_step(chasm_ctx *c, void *st)
 
 /* trace: logs "start TAG", "step TAG" and "stop TAG" so tests see the order. */
 static const chasm_param_spec trace_params[] = {
-    {"tag", CHASM_PARAM, CHASM_STRING, "", 1, 0, NULL, 0, 0, 0, NULL},
+    CHASM_PARAM_REQUIRED_STRING("tag", NULL),
 };
 static void trace_msg(chasm_ctx *c, const char *what)
 {
@@ -66,8 +66,8 @@ static const chasm_behavior_spec behaviors[] = {
 
 /* above: true when the variable x is above limit. */
 static const chasm_param_spec above_params[] = {
-    {"x", CHASM_READS, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, NULL},
-    {"limit", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, NULL},
+    CHASM_READ_REQUIRED("x", CHASM_DOUBLE, "m", NULL),
+    CHASM_PARAM_REQUIRED_DOUBLE("limit", "m", NULL),
 };
 static int above_eval(chasm_ctx *c) { return chasm_read_double(c, 0) > chasm_param_double(c, 1); }
 static const chasm_test_spec tests[] = {

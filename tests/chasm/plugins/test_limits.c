@@ -7,11 +7,11 @@
 #include "chasm/chasm_plugin.h"
 
 #define MAX_POINTS 4
-enum { POINTS, OUT };
+enum { POINTS, OUT, NPARAMS };
 
-static const chasm_param_spec route_params[] = {
-    {"points", CHASM_PARAM, CHASM_STRING, "", 1, 0, NULL, 0, 0, 0, "\"x; x; ...\", at most 4"},
-    {"out", CHASM_WRITES, CHASM_INT, "", 0, 0, "test.count", 0, 0, 0, NULL},
+static const chasm_param_spec route_params[NPARAMS] = {
+    [POINTS] = CHASM_PARAM_REQUIRED_STRING("points", "\"x; x; ...\", at most 4"),
+    [OUT] = CHASM_WRITE("out", CHASM_INT, "", "test.count", NULL),
 };
 static int count(const char *s)
 {
@@ -29,7 +29,7 @@ static const chasm_behavior_spec behaviors[] = {
     {"route", "follow points", route_params, CHASM_COUNT(route_params), 0, NULL, route_step, NULL},
 };
 static const chasm_param_spec many_params[] = {
-    {"points", CHASM_PARAM, CHASM_STRING, "", 1, 0, NULL, 0, 0, 0, "\"x; x; ...\", at most 4"},
+    [POINTS] = CHASM_PARAM_REQUIRED_STRING("points", "\"x; x; ...\", at most 4"),
 };
 static int many_eval(chasm_ctx *c) { return count(chasm_param_string(c, 0)) > 2; }
 static const chasm_test_spec tests[] = {

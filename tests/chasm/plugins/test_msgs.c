@@ -9,11 +9,11 @@
 /* take: every message (or at most `max` per call) as text, joined by ','
  * into `log` (the last 1000 characters), their number into `count`. */
 static const chasm_param_spec take_params[] = {
-    {"rx", CHASM_READS, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "messages to take"},
-    {"log", CHASM_WRITES, CHASM_STRING, "", 1, 0, NULL, 0, 0, 0, "what was taken, in order"},
-    {"count", CHASM_WRITES, CHASM_INT, "", 1, 0, NULL, 0, 0, 0, "how many were taken"},
-    {"max", CHASM_PARAM, CHASM_INT, "", 0, 0, NULL, 1, 0, 1000, "at most this many per call (0: all)"},
-    {"age", CHASM_WRITES, CHASM_DOUBLE, "s", 0, 0, NULL, 0, 0, 0, "age of rx as the plugin sees it"},
+    CHASM_READ_REQUIRED("rx", CHASM_MESSAGES, "", "messages to take"),
+    CHASM_WRITE_REQUIRED("log", CHASM_STRING, "", "what was taken, in order"),
+    CHASM_WRITE_REQUIRED("count", CHASM_INT, "", "how many were taken"),
+    CHASM_PARAM_INT_RANGE("max", 0, 0, 1000, "at most this many per call (0: all)"),
+    CHASM_WRITE("age", CHASM_DOUBLE, "s", NULL, "age of rx as the plugin sees it"),
 };
 typedef struct {
     char log[1024];
@@ -48,8 +48,8 @@ static chasm_status_code take_step(chasm_ctx *c, void *st)
 
 /* relay: posts every message it takes from rx to tx, unchanged. */
 static const chasm_param_spec relay_params[] = {
-    {"rx", CHASM_READS, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "messages to take"},
-    {"tx", CHASM_WRITES, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "where they go"},
+    CHASM_READ_REQUIRED("rx", CHASM_MESSAGES, "", "messages to take"),
+    CHASM_WRITE_REQUIRED("tx", CHASM_MESSAGES, "", "where they go"),
 };
 static chasm_status_code relay_step(chasm_ctx *c, void *st)
 {
@@ -64,12 +64,12 @@ static chasm_status_code relay_step(chasm_ctx *c, void *st)
  * one of `size` bytes of 'x' when size > 0, or NULL bytes when `null`;
  * `refused` counts the refusals it got back. */
 static const chasm_param_spec post_params[] = {
-    {"tx", CHASM_WRITES, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "where to post"},
-    {"text", CHASM_PARAM, CHASM_STRING, "", 0, 0, "m", 0, 0, 0, "prefix of each message"},
-    {"n", CHASM_PARAM, CHASM_INT, "", 0, 1, NULL, 1, 0, 10000, "messages per call"},
-    {"size", CHASM_PARAM, CHASM_INT, "", 0, 0, NULL, 1, 0, 1e6, "post one message of this many bytes instead"},
-    {"null", CHASM_PARAM, CHASM_BOOL, "", 0, 0, NULL, 0, 0, 0, "post NULL with a length of 5"},
-    {"refused", CHASM_WRITES, CHASM_INT, "", 0, 0, NULL, 0, 0, 0, "posts refused so far"},
+    CHASM_WRITE_REQUIRED("tx", CHASM_MESSAGES, "", "where to post"),
+    CHASM_PARAM_STRING("text", "m", "prefix of each message"),
+    CHASM_PARAM_INT_RANGE("n", 1, 0, 10000, "messages per call"),
+    CHASM_PARAM_INT_RANGE("size", 0, 0, 1e6, "post one message of this many bytes instead"),
+    CHASM_PARAM_BOOL("null", 0, "post NULL with a length of 5"),
+    CHASM_WRITE("refused", CHASM_INT, "", NULL, "posts refused so far"),
 };
 typedef struct {
     int64_t k, refused;

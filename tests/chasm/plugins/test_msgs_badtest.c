@@ -3,7 +3,7 @@
 #include "chasm/chasm_plugin.h"
 
 static const chasm_param_spec params[] = {
-    {"rx", CHASM_READS, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "messages"},
+    CHASM_READ_REQUIRED("rx", CHASM_MESSAGES, "", "messages"),
 };
 static int any(chasm_ctx *c) { size_t n; return chasm_next_message(c, 0, &n) != NULL; }
 static const chasm_test_spec tests[] = {{"any_message", "true when a message came", params, 1, any}};

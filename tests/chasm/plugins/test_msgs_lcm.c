@@ -10,10 +10,10 @@
 #include "chasm/chasm_plugin.h"
 
 static const chasm_param_spec echo_params[] = {
-    {"rx", CHASM_READS, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "modem_tx_t messages to echo"},
-    {"tx", CHASM_WRITES, CHASM_MESSAGES, "", 1, 0, NULL, 0, 0, 0, "the echoes"},
-    {"taken", CHASM_WRITES, CHASM_INT, "", 1, 0, NULL, 0, 0, 0, "messages taken so far"},
-    {"undecodable", CHASM_WRITES, CHASM_INT, "", 1, 0, NULL, 0, 0, 0, "taken messages that did not decode"},
+    CHASM_READ_REQUIRED("rx", CHASM_MESSAGES, "", "modem_tx_t messages to echo"),
+    CHASM_WRITE_REQUIRED("tx", CHASM_MESSAGES, "", "the echoes"),
+    CHASM_WRITE_REQUIRED("taken", CHASM_INT, "", "messages taken so far"),
+    CHASM_WRITE_REQUIRED("undecodable", CHASM_INT, "", "taken messages that did not decode"),
 };
 typedef struct {
     int64_t taken, bad;

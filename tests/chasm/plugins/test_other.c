@@ -3,12 +3,12 @@
 #include "chasm/chasm_plugin.h"
 static chasm_status_code step(chasm_ctx *c, void *s) { (void)c; (void)s; return CHASM_RUNNING; }
 static const chasm_param_spec goto_params[] = {
-    {"north", CHASM_PARAM, CHASM_DOUBLE, "m", 1, 0, NULL, 0, 0, 0, NULL},
-    {"speed", CHASM_PARAM, CHASM_DOUBLE, "m/s", 0, 1.0, NULL, 1, 0.2, 2.5, NULL},
-    {"heading", CHASM_WRITES, CHASM_DOUBLE, "rad", 0, 0, "setpoint.heading", 0, 0, 0, NULL},
-    {"label", CHASM_PARAM, CHASM_STRING, "", 0, 0, "leg", 0, 0, 0, NULL},
-    {"loops", CHASM_PARAM, CHASM_INT, "", 0, 1, NULL, 0, 0, 0, NULL},
-    {"verbose", CHASM_PARAM, CHASM_BOOL, "", 0, 0, NULL, 0, 0, 0, NULL},
+    CHASM_PARAM_REQUIRED_DOUBLE("north", "m", NULL),
+    CHASM_PARAM_DOUBLE_RANGE("speed", "m/s", 1.0, 0.2, 2.5, NULL),
+    CHASM_WRITE("heading", CHASM_DOUBLE, "rad", "setpoint.heading", NULL),
+    CHASM_PARAM_STRING("label", "leg", NULL),
+    CHASM_PARAM_INT("loops", 1, NULL),
+    CHASM_PARAM_BOOL("verbose", 0, NULL),
 };
 static const chasm_behavior_spec behaviors[] = {
     {"hold", NULL, NULL, 0, 0, NULL, step, NULL},

@@ -5,12 +5,13 @@
  *   chasm_unit_tests --plugins DIR [--list] [NAME] */
 #include "../../harness/plan_test.h"
 
-extern const unit_test semantics_tests[], plugin_tests[], stream_tests[];
+extern const unit_test semantics_tests[], plugin_tests[], stream_tests[], schema_tests[];
 
 int main(int argc, char **argv)
 {
     unit_register_list(semantics_tests);
     unit_register_list(plugin_tests);
     unit_register_list(stream_tests);
+    unit_register_list(schema_tests);
     return unit_main(argc, argv, pt_log_clear);
 }

@@ -117,6 +117,8 @@ static void expect_rejected(const char *file, int write_garbage, const char *exp
 static void hotplug_broken_file(void) { expect_rejected(NULL, 1, "cannot load plugin file"); }
 static void hotplug_missing_file(void) { expect_rejected("chasm_no_such_plugin.so", 0, "cannot read plugin file"); }
 static void hotplug_wrong_abi(void) { expect_rejected("chasm_test_basic_badabi.so", 0, "built for plugin ABI 100"); }
+static void hotplug_abi2(void) { expect_rejected("chasm_test_basic_abi2.so", 0,
+                                                "built for plugin ABI 2, this CHASM uses ABI 3"); }
 static void hotplug_schema_mismatch(void) { expect_rejected("chasm_test_basic_noschema.so", 0, "unknown parameter 'value' for 'hold'"); }
 static void hotplug_missing_symbol(void) { expect_rejected("chasm_test_nosym.so", 0, "does not export the symbol 'chasm_plugin'"); }
 static void hotplug_unused_plugin(void) { expect_rejected("chasm_test_other.so", 0, "is not used by the running plan"); }
@@ -178,6 +180,7 @@ const unit_test plugin_tests[] = {
     {"hotplug_broken_file", hotplug_broken_file},
     {"hotplug_missing_file", hotplug_missing_file},
     {"hotplug_wrong_abi", hotplug_wrong_abi},
+    {"hotplug_abi2", hotplug_abi2},
     {"hotplug_schema_mismatch", hotplug_schema_mismatch},
     {"hotplug_missing_symbol", hotplug_missing_symbol},
     {"hotplug_unused_plugin", hotplug_unused_plugin},
