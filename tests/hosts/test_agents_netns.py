@@ -79,7 +79,12 @@ def test_agents_on_two_machines_fly_a_mission_without_a_launcher(hosts, tmp_path
         assert run.returncode == 0, run.stdout + run.stderr
         out = watch.communicate(timeout=90)[0]
         assert watch.returncode == 0, out + "".join(a.text() for a in agents)
-        assert out.strip().endswith("clock from AUV1-sim")  # one world clock, the best priority's
+        # One world clock for the whole run. Which simulator serves it is not the
+        # test's to say: each agent starts its own, and a free-running world is
+        # served by the first to stand, whatever its priority (docs/multihil.md);
+        # under load beta's started more than a join window before alpha's.
+        servers = out.strip().rsplit("clock from ", 1)[1].split()
+        assert len(servers) == 1 and servers[0] in ("AUV1-sim", "AUV2-sim"), out
         status = ctl(hosts, env, "status", "--host", "alpha", "--host", "beta", "--json")
         tables = {t["host"]: t for t in json.loads(status.stdout)}
         assert {p["name"]: p["state"] for p in tables["beta"]["procs"]} == {
