@@ -19,12 +19,16 @@ demo_loop='k=0; while true; do k=$((k + 1));
     tests/isolated_net.sh .venv/bin/auv-demo --out "$0/demo" > "$0/demo-$k.log" 2>&1; done'
 
 failed=0
+loader=
+# Stopping this script stops the demos too (they run in their own group).
+trap '[[ -n $loader ]] && kill -TERM -- "-$loader" 2>/dev/null' EXIT
+trap 'exit 130' INT TERM
 for i in $(seq 1 "$runs"); do
     setsid bash -c "$demo_loop" "$out" & loader=$!
     start=$(date +%s)
     tests/isolated_net.sh .venv/bin/python -m pytest -q "$@" > "$out/run-$i.log" 2>&1
     rc=$?
-    kill -TERM -- "-$loader" 2>/dev/null; wait "$loader" 2>/dev/null
+    kill -TERM -- "-$loader" 2>/dev/null; wait "$loader" 2>/dev/null; loader=
     line="run $i: exit $rc, $(( $(date +%s) - start )) s: $(tail -1 "$out/run-$i.log")"
     echo "$line" | tee -a "$out/summary.txt"
     [[ $rc -eq 0 ]] || failed=$((failed + 1))
