@@ -12,7 +12,7 @@ import time
 
 import lcm
 import pytest
-from conftest import ROOT, c_program, manager_cmd
+from conftest import ROOT, manager_cmd
 from lcm_proc import pump, stop
 
 from auv import (
@@ -235,19 +235,7 @@ def test_plans_and_bindings_that_do_not_fit_are_refused(tmp_path, lcm_url, child
     plan = tmp_path / "p.chasm"
     plan.write_text(text.replace(*plan_edit))
     run = subprocess.run(
-        [
-            c_program("bin/chasm-manager"),
-            "--plan",
-            plan,
-            "--bind",
-            HERE / "vehicle.bind",
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "NAVIGATOR",
-            "--url",
-            lcm_url,
-        ],
+        manager_cmd(plan, HERE / "vehicle.bind", lcm_url),
         env=child_env,
         capture_output=True,
         text=True,
@@ -305,19 +293,7 @@ def test_bad_binding_flags_are_refused(tmp_path, lcm_url, child_env, line, error
     bind = tmp_path / "strict.bind"
     bind.write_text(line + "\n" + (HERE / "vehicle.bind").read_text())
     run = subprocess.run(
-        [
-            c_program("bin/chasm-manager"),
-            "--plan",
-            HERE / "gps_fix.chasm",
-            "--bind",
-            bind,
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "NAVIGATOR",
-            "--url",
-            lcm_url,
-        ],
+        manager_cmd(HERE / "gps_fix.chasm", bind, lcm_url),
         env=child_env,
         capture_output=True,
         text=True,

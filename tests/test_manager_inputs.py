@@ -11,6 +11,7 @@ import signal
 from pathlib import Path
 
 import pytest
+from conftest import manager_cmd
 from lcm_proc import stop
 from test_manager import HERE, World, start_manager
 
@@ -289,26 +290,12 @@ def test_the_documented_maximum_plan_gets_through_and_one_byte_more_is_refused(
 def test_manager_overrides_are_values_and_names_are_checked(lcm_url, child_env, tmp_path):
     import subprocess
 
-    from conftest import c_program
-
     plan = tmp_path / "p.chasm"
     plan.write_text(
         "param depth = 10 m\n"
         + (HERE / "dive.chasm").read_text().replace("setpoint.depth_m = 10 m", "setpoint.depth_m = $depth")
     )
-    base = [
-        c_program("bin/chasm-manager"),
-        "--plan",
-        plan,
-        "--bind",
-        HERE / "vehicle.bind",
-        "--vehicle",
-        "AUV1",
-        "--name",
-        "NAVIGATOR",
-        "--lcm-url",
-        lcm_url,
-    ]
+    base = manager_cmd(plan, HERE / "vehicle.bind", lcm_url)
     for define, error in [
         ("depth=12 m\nstate evil {\n}", "control character"),
         ("depht=12 m", "did you mean 'depth'"),
