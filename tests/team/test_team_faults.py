@@ -8,6 +8,8 @@ must stay in the report as unidentified."""
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 import small_team as st
@@ -41,11 +43,19 @@ def lost_run(tmp_path_factory):
 def test_the_launcher_kills_the_lost_vehicles_and_the_others_finish(lost_run):
     d, out, rep = lost_run
     assert rep["vehicle_outcomes"] == {"AUV1": "done", "AUV2": "lost", "AUV3": "lost"}, rep["vehicle_outcomes"]
-    assert "fault: AUV2 lost at t=100.0 s" in out and "killed AUV2.sim, AUV2.PILOT, AUV2.NAVIGATOR" in out
-    # nothing of a lost vehicle speaks after its fault (SIGKILL: no goodbye)
+    # The world is stepped by the simulators: the launcher only watches its
+    # clock and kills a vehicle when it sees the fault's time, which on a
+    # loaded machine can be some steps later (a stress run saw it late). So:
+    # killed at or after the planned time, and nothing of a lost vehicle
+    # speaks after it was killed (SIGKILL: no goodbye).
     for vid, at in (("AUV2", LOST_SEARCH_AT), ("AUV3", LOST_RI_AT)):
+        hit = re.search(rf"fault: {vid} lost at t=([0-9.]+) s \(planned at {at:g} s[^)]*\): killed (.*)", out)
+        assert hit, out
+        killed_at = float(hit.group(1))
+        assert at <= killed_at <= at + 5.0, (vid, killed_at)
+        assert hit.group(2).split(", ") == [f"{vid}.sim", f"{vid}.PILOT", f"{vid}.NAVIGATOR"], hit.group(2)
         last = max(m.utime for _, m in st.messages(d / "run" / "run.lcmlog", f"{vid}.TRUTH")) / 1e6
-        assert at - 1.0 <= last <= at + 0.2, (vid, last)
+        assert at - 1.0 <= last <= killed_at + 0.2, (vid, last, killed_at)
 
 
 def test_the_survivor_takes_over_and_flies_the_lost_vehicles_lines(lost_run):

@@ -7,8 +7,8 @@
  * straight passes until it is decided (pass_heading). Looks (reacquire_look_t, a messages
  * input) weigh in on the nearest pending target within `merge` of the look
  * until a sequential test decides it to `ident_error` (tm_targets_look);
- * a target not identified within look_timeout of first coming within
- * ident_range is NOT_FOUND. Every result is queued for the link (ident) and
+ * a target not identified after look_timeout spent on it as the current
+ * target (from first coming within ident_range) is NOT_FOUND. Every result is queued for the link (ident) and
  * posted as an event. DONE when no target is pending and every teammate is
  * done, aborted or lost. */
 #include <math.h>
@@ -169,7 +169,6 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
 {
     tm_ri_state *st = state;
     tm_store *s = tm_store_get();
-    double now = (double)c->now_us * 1e-6;
     const void *msg;
     size_t len;
     while ((msg = chasm_next_message(c, RI_LOOKS, &len))) {
@@ -192,9 +191,15 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
         if (t->state == TM_T_PENDING) {
             gd_point g = aim_point(t);
             double d = hypot(p.n - g.n, p.e - g.e);
-            if (d <= chasm_param_double(c, RI_IDENT_RANGE) && t->near_since < 0)
-                t->near_since = now;
-            if (t->near_since >= 0 && now - t->near_since > chasm_param_double(c, RI_LOOK_TIMEOUT)) {
+            if (d <= chasm_param_double(c, RI_IDENT_RANGE))
+                t->engaged = 1;
+            /* only while it is the current target: one that a replan set aside
+             * (a nearer report came in) is not timed out while the vehicle
+             * works elsewhere (the demo lost a target so: 140 of its 180 s ran
+             * while the vehicle identified two others) */
+            if (t->engaged)
+                t->look_s += c->dt_s;
+            if (t->look_s > chasm_param_double(c, RI_LOOK_TIMEOUT)) {
                 t->state = TM_T_NOT_FOUND;
                 t->result = TM_RESULT_NOT_FOUND;
                 decided(c, s, st->current);
@@ -215,8 +220,8 @@ chasm_status_code tm_ri_step(chasm_ctx *c, void *state)
             /* passes from here on; a pass that went by reaches the target
              * even if it missed by more than ident_range (the clock starts) */
             heading = pass_heading(c, st, g, p);
-            if (st->passing && t->near_since < 0)
-                t->near_since = now;
+            if (st->passing)
+                t->engaged = 1;
         } else {
             double along;
             heading = gd_los_heading(&st->los, &st->leg, p, c->dt_s, &along, NULL);

@@ -61,7 +61,7 @@ int tm_targets_report(tm_target_queue *q, tm_key k, double n, double e, double s
         return -1;
     }
     tm_target *g = &q->t[q->n];
-    *g = (tm_target){.key = k, .n = n, .e = e, .sigma = sigma, .score = score, .t_first = t, .near_since = -1.0};
+    *g = (tm_target){.key = k, .n = n, .e = e, .sigma = sigma, .score = score, .t_first = t};
     *created = 1;
     return q->n++;
 }

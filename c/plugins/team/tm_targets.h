@@ -32,7 +32,10 @@ typedef struct {
     double llr;                      /* log-likelihood ratio mine : not mine of those looks */
     double look_sum_n, look_sum_e;   /* sum of their positions (their mean is where the object is) */
     double look_n, look_e;           /* position of the deciding look */
-    double near_since;               /* first time within ident range, < 0 never */
+    int engaged;                     /* came within ident range (or a pass went by) as the current target */
+    double look_s;                   /* time spent on it as the current target since then [s]: a target
+                                        set aside for another keeps what it had, so look_timeout is the
+                                        RI vehicle's time on it, not the time since it was first near */
 } tm_target;
 
 typedef struct {
