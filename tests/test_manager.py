@@ -26,6 +26,7 @@ from auv import (
     sim_clock_t,
 )
 from auvlcm.rx import Receiver
+from auvlcm.url import with_receive_buffer
 
 HERE = ROOT / "tests" / "managers"
 PERIOD_US = 100_000  # start_manager runs the manager at --rate 10
@@ -35,7 +36,11 @@ class World:
     """Drives SIM.CLOCK and AUV1.NAV, and records what the manager publishes."""
 
     def __init__(self, url: str) -> None:
-        self.lc = lcm.LCM(url)
+        # A large socket buffer: the test publishes bursts (150 messages at a
+        # time) that come back to its own socket with the manager's echoes,
+        # and it reads only afterwards; the default 208 KiB dropped a status
+        # in a stress run and the tick waited for it in vain.
+        self.lc = lcm.LCM(with_receive_buffer(url))
         self.rx = Receiver(self.lc)
         self.setpoints: list = []
         self.status: list = []
