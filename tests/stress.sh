@@ -26,7 +26,8 @@ trap 'exit 130' INT TERM
 for i in $(seq 1 "$runs"); do
     setsid bash -c "$demo_loop" "$out" & loader=$!
     start=$(date +%s)
-    tests/isolated_net.sh .venv/bin/python -m pytest -q "$@" > "$out/run-$i.log" 2>&1
+    # -v: a test that fails is named as it fails, even in a run stopped before its summary
+    tests/isolated_net.sh .venv/bin/python -m pytest -v "$@" > "$out/run-$i.log" 2>&1
     rc=$?
     kill -TERM -- "-$loader" 2>/dev/null; wait "$loader" 2>/dev/null; loader=
     line="run $i: exit $rc, $(( $(date +%s) - start )) s: $(tail -1 "$out/run-$i.log")"
