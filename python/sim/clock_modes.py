@@ -12,6 +12,8 @@ lockstep; both are still read, as lockstep, and never written.
 
 from __future__ import annotations
 
+import argparse
+
 from auv import sim_clock_t
 
 REALTIME, SCALED, LOCKSTEP = "realtime", "scaled", "lockstep"
@@ -36,8 +38,6 @@ def name_of_wire(mode: int) -> str:
 
 def argument(text: str) -> str:
     """argparse type= for a --clock/--time flag: the canonical name, old names accepted."""
-    import argparse
-
     try:
         return canonical(text)
     except ValueError as e:

@@ -42,8 +42,6 @@ from sim.sensors import REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder
 
-CLOCK_MODE = clock_modes.WIRE
-
 
 def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
     """Every enabled sensor of the configuration (all of them if none are listed)."""
@@ -346,7 +344,7 @@ class Simulator:
                 self._enc_clock.pack(
                     utime(t),
                     0,
-                    CLOCK_MODE[self.cfg.sim.clock],
+                    clock_modes.WIRE[self.cfg.sim.clock],
                     self.pacer.warp if not self.pacer.fast else 0.0,
                     0,
                     self._step_us,

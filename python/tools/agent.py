@@ -31,14 +31,12 @@ from pathlib import Path
 import lcm
 
 from auv import agent_ack_t, agent_command_t, agent_process_t, agent_table_t
-from auvlcm.paths import build_dir
+from auvlcm.paths import ROOT, build_dir
 from auvlcm.rx import Receiver
 from auvlcm.url import check_local, default_url
 from tools.agent_part import PartError, host_part
 from tools.agent_procs import BACKOFF, RUNNING, Supervised, policy_for, rule_errors
 from tools.scenario import HOST_NAME
-
-ROOT = Path(__file__).resolve().parents[2]
 
 C = agent_command_t
 TABLE_PERIOD_S = 1.0

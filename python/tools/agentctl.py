@@ -40,8 +40,6 @@ from tools.agent import channels
 from tools.agent_procs import STATE_NAMES, rule_errors
 from tools.scenario import load_scenario
 
-ROOT = Path(__file__).resolve().parents[2]
-
 C = agent_command_t
 RULE = re.compile(r"(?P<pat>[^=]+)=(?P<pol>never|on-failure)(?::(?P<lim>\d+))?(?::(?P<b>[0-9.]+))?(?::(?P<m>[0-9.]+))?")
 

@@ -26,9 +26,9 @@ import sys
 import time
 from pathlib import Path
 
+from auvlcm.paths import ROOT
 from sim import clock_modes
 
-ROOT = Path(__file__).resolve().parents[2]
 PY = sys.executable
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
 # What missions/scenarios/mcm_demo was planned with (its header); --polygon plans with these.

@@ -31,7 +31,7 @@ from pathlib import Path
 import lcm
 
 from auv import lockstep_t
-from auvlcm.paths import build_dir
+from auvlcm.paths import ROOT, build_dir
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from confcheck import ConfigError
 from sim import clock_modes
@@ -42,8 +42,6 @@ from tools.procs import Child
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
 from tools.simconfig import write_configs
 from tools.worldclock import WorldClock
-
-ROOT = Path(__file__).resolve().parents[2]
 
 EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
 STARTUP_TIMEOUT_S = 90.0

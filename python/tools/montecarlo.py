@@ -32,9 +32,8 @@ import time
 from concurrent.futures import Executor, ThreadPoolExecutor
 from pathlib import Path
 
+from auvlcm.paths import ROOT, build_dir
 from tools.montecarlo_summary import plot, summarize, summary_text
-
-ROOT = Path(__file__).resolve().parents[2]
 
 BASE_PORT = 7900  # without namespaces, run k listens on BASE_PORT + k
 
@@ -125,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--dask", metavar="ADDRESS", help="a Dask distributed scheduler to run the seeds on")
     ap.add_argument("--dask-local", type=int, metavar="N", help="a local Dask cluster of N worker processes")
     ap.add_argument("--out", type=Path, help="default build/montecarlo/<scenario name>")
-    ap.add_argument("--build", type=Path, default=Path(os.environ.get("AUV_BUILD", ROOT / "build")))
+    ap.add_argument("--build", type=Path, default=build_dir())
     ap.add_argument("--timeout", type=float, help="wall seconds for one run's launcher")
     ap.add_argument("--no-plot", action="store_true")
     args = ap.parse_args(argv)

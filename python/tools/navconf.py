@@ -23,8 +23,6 @@ from pathlib import Path
 from sim.config import SimConfig, load_or_report
 from sim.sensors import REGISTRY
 
-ROOT = Path(__file__).resolve().parents[2]
-
 # Below this a configured bias is "none"; the filter still gets a small prior.
 MIN_BIAS_SIGMA_RAD = math.radians(0.1)
 

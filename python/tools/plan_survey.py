@@ -26,15 +26,13 @@ from pathlib import Path
 
 import yaml
 
-from auvlcm.paths import build_dir
+from auvlcm.paths import ROOT, build_dir
 from sim import clock_modes
 from tools.plan_team import add_team_options, write_team
 from tools.plan_text import Limits, estimated_duration_s, plan_text
 from tools.plugin_limits import LimitsError, check_plan, polygon_limits
 from tools.survey_geometry import GeometryError, format_polygon, parse_polygon
 from tools.survey_plan import Sonar, Survey, plan_survey
-
-ROOT = Path(__file__).resolve().parents[2]
 
 DEFAULTS = {
     "sim_config": ROOT / "missions" / "sim" / "remus100.yaml",

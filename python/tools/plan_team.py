@@ -21,6 +21,7 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from auvlcm.paths import ROOT
 from sim import clock_modes
 from tools.plan_text import Limits, estimated_duration_s
 from tools.scenario import CLOCK_SOURCES
@@ -28,7 +29,6 @@ from tools.survey_geometry import GeometryError
 from tools.survey_plan import Survey
 from tools.team_plan_text import TeamLink, lines_string, ri_plan, search_plan
 
-ROOT = Path(__file__).resolve().parents[2]
 SLOWEST_SOUND_MPS = 1400.0  # below any sea water's: the delay bound stays a bound
 MAX_PARAM_STRING = 1023  # the plan language's longest string (docs/chasm.md, "Limits")
 

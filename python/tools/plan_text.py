@@ -16,10 +16,10 @@ import os
 from dataclasses import dataclass
 from pathlib import Path
 
+from auvlcm.paths import ROOT
 from tools.survey_geometry import format_polygon
 from tools.survey_plan import Survey, VehicleSurvey
 
-ROOT = Path(__file__).resolve().parents[2]
 NAVIGATOR_IO = ROOT / "missions" / "common" / "navigator_io.chasm"
 SAFETY = ROOT / "missions" / "common" / "safety.chasm"  # the shared `abort when` rules
 TEAM_SAFETY = ROOT / "missions" / "common" / "team_safety.chasm"  # ... whose emergency tells the team

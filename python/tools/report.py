@@ -30,8 +30,6 @@ from tools.association import associate
 from tools.coverage import coverage_grid, point_in_polygon
 from tools.run_data import RunData, interp_truth, load_run
 
-ROOT = Path(__file__).resolve().parents[2]
-
 
 def detection_stats(run: RunData, radius: float, covered=None) -> dict | None:
     """Each contact goes to the nearest true object within `radius`; a mine-like

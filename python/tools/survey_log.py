@@ -34,13 +34,12 @@ from pathlib import Path
 import lcm
 
 from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t
+from auvlcm.paths import ROOT
 from auvlcm.rx import Receiver
 from auvlcm.timepolicy import InputGate, TimeDrops
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.procs import Child
 from tools.survey_pilot import Nav, Survey, SurveyPilot
-
-ROOT = Path(__file__).resolve().parents[2]
 
 DEFAULT_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 STEP_S = 0.1

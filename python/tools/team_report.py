@@ -30,9 +30,9 @@ from typing import Any
 
 import numpy as np
 
+from auvlcm.paths import ROOT
 from tools.run_data import RunData
 
-ROOT = Path(__file__).resolve().parents[2]
 SCHEMA = ROOT / "c" / "plugins" / "team" / "team_link.schema"
 # TEAM_SPEC section 2's contact message, used while the schema file is not in this tree
 SPEC_CONTACT = [

@@ -16,6 +16,8 @@ import shutil
 import subprocess
 import time
 
+import pytest
+
 from auvlcm.url import NETNS_ENV
 
 
@@ -44,8 +46,6 @@ def unavailable() -> str:
 
 def hosts_or_skip(count: int, subnet: int, what: str) -> Hosts:
     """count hosts, or the test skips saying why (outside tests/isolated_net.sh, or no tools)."""
-    import pytest
-
     why = (
         unavailable()
         if os.environ.get("AUV_IN_ISOLATED_NET") == "1"

@@ -55,8 +55,6 @@ from sim.multihil.election import Election, Timing
 from sim.multihil.lockstep import LockstepTracker
 from sim.multihil.server import LockstepServer, evaluate
 
-MODES = clock_modes.WIRE
-
 
 @dataclass
 class NodeConfig:
@@ -349,7 +347,7 @@ class EnvNode:
     def _publish_clock(self, utime: int, step: int) -> None:
         c = sim_clock_t()
         c.utime, c.server_id, c.term = int(utime), self.cfg.client_id, self.term
-        c.mode = MODES[self.cfg.mode]
+        c.mode = clock_modes.WIRE[self.cfg.mode]
         c.warp = self.clock.warp if self.cfg.mode == "scaled" else 1.0
         c.step, c.step_us = step, self.stepper.step_us if self.lockstep else 0
         self._publish("SIM.CLOCK", c)

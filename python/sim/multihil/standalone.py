@@ -19,11 +19,12 @@ import time
 import lcm
 
 from auvlcm.url import check_local
+from sim import clock_modes
 from sim.environment import Environment, EnvParams
 from sim.multihil.clock import LocalClock, mono_us
 from sim.multihil.election import Timing
 from sim.multihil.lockstep import Participation
-from sim.multihil.node import MODES, EnvNode, NodeConfig
+from sim.multihil.node import EnvNode, NodeConfig
 
 
 def parse(argv: list[str]) -> argparse.Namespace:
@@ -34,7 +35,7 @@ def parse(argv: list[str]) -> argparse.Namespace:
     ap.add_argument("--vehicle", default="", help="vehicle id (default: the id up to '-')")
     ap.add_argument("--priority", type=int, default=0)
     ap.add_argument("--url", required=True, help="LCM URL (ttl=0; ttl=1 only inside a test netns)")
-    ap.add_argument("--mode", choices=sorted(MODES), default="realtime")
+    ap.add_argument("--mode", choices=clock_modes.MODES, default="realtime")
     ap.add_argument("--warp", type=float, default=1.0)
     ap.add_argument("--step", type=float, default=0.1, help="lockstep step [s]")
     ap.add_argument("--expect", type=int, default=0, help="lockstep participants before step 0")
