@@ -38,6 +38,8 @@ class LockstepFollower:
         self.active = m.mode == sim_clock_t.MODE_LOCKSTEP
         if self.active:
             self._clock = (m.step, m.utime)
+            if self.sim.modem is not None:  # it judges what the barrier guarantees is in
+                self.sim.modem.clock(m.utime)
 
     def _hold_command(self, channel: str, msg) -> None:
         t = msg.utime / 1e6

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 
 import pytest
-from world import STEP_US, World
+from world import LAG_CLOCKS, STEP_US, World
 
 from sim.modem.acoustics import loss_probability
 from sim.modem.config import ModemConfig
@@ -36,16 +36,20 @@ def test_delay_is_distance_over_sound_speed_and_range_is_a_hard_limit(world):
     world.tick()  # the sender takes it at t0
     world.run_for(1.8)  # beyond 2000 m / c
     sent_from = world.truth["AUV1"][t0]
-    ((arrival_tick, rx),) = world.arrived_at["AUV2.MODEM_RX"]
+    ((delivered_tick, rx),) = world.arrived_at["AUV2.MODEM_RX"]
     assert rx.tx_utime == t0 and rx.src_vehicle == "AUV1" and rx.vehicle == "AUV2"
     assert rx.payload == bytes(range(20))
-    # the step that delivered it is the first one the wavefront reached
+    # the range is from the first step the wavefront reached, wherever the
+    # receiver was when the frame came to it
+    arrival_tick = min(u for u in world.truth["AUV2"] if u >= rx.utime - 1)
     at = world.truth["AUV2"][arrival_tick]
     d = math.dist(sent_from, at)
     c = C0 + GRADIENT * 0.5 * (sent_from[2] + at[2])
     t_arrival_us = t0 + d / c * 1e6
     assert arrival_tick - STEP_US < t_arrival_us <= arrival_tick
     assert abs(rx.utime - t_arrival_us) <= 1.0
+    # judged once every frame up to then is certain to be in: two clocks later
+    assert delivered_tick == arrival_tick + LAG_CLOCKS * STEP_US
     assert rx.range_m == pytest.approx(d, abs=1e-6)
     # 2100 m is over max_range_m = 2000: never delivered, counted as such
     assert world.msgs["AUV3.MODEM_RX"] == []

@@ -73,9 +73,12 @@ def test_hostile_requests_and_reports_are_not_sent():
         r = peer_report_t()
         r.utime, r.vehicle, r.seq = bad, "AUV2", i + 1
         feed("AUV2.PEER_REPORT", r)
+    node.step(10.02, (0.0, 0.0, 10.0))  # requests are handled at the step after they came
     assert not [ch for ch, _ in lc.published if ch == "SIM.ACOUSTIC"]
     good = tx_msg(vehicle="AUV2", seq=9)
     good.utime = 10_000_000
     feed("AUV2.MODEM_TX", good)
-    assert [ch for ch, _ in lc.published if ch == "SIM.ACOUSTIC"] == ["SIM.ACOUSTIC"]
+    node.step(10.04, (0.0, 0.0, 10.0))
+    sent = [data for ch, data in lc.published if ch == "SIM.ACOUSTIC"]
+    assert len(sent) == 1 and acoustic_frame_t.decode(sent[0]).utime == 10_000_000  # at its own stamp
     assert node.drops.counts["invalid"] == 8

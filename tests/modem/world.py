@@ -21,6 +21,9 @@ from auvlcm.rx import Receiver
 
 STEP_US = 20_000  # one physics step at 50 Hz
 T0_US = 100_000_000  # the world starts at 100 s
+# a simulator judges frames two lockstep clocks back (sim/modem/node.py): a
+# frame that arrived at step k is delivered at step k + 2
+LAG_CLOCKS = 2
 
 SIM_CONFIG = """
 vehicle: {{id: {vid}}}

@@ -13,23 +13,28 @@ the same source is dropped and counted per reason (the simulator's
 summary line), logged the first time. A frame from 10^18 never waits in the
 water for ever.
 
-The simulator calls step() after every physics step with the new truth; the
-handlers run between steps and use the truth of the latest step, which is
-the simulator's current time.
+The simulator calls step() after every physics step with the new truth.
 
 A frame goes into the water at its request's own stamp (the vehicle
 software's time when it asked), from where the vehicle was at the first
-physics step at or after it: not at whatever step the simulator happened to
-be at when the request arrived. Under lockstep a request stamped at the end
-of a step arrives while the simulator integrates that step, a little before
-or after its last sub-step: sending at the arrival's step made two runs of
-one scenario differ (issue 14). A request from the simulator's future waits
-for its time; one from its past takes its position from a short history.
+physics step at or after it (the receiver's track): not at whatever step the
+simulator happened to be at when the request arrived.
+
+Requests are handled, and frames judged, in step(), never in a handler: a
+handler only queues. Free-running, step() handles every request up to the
+current step. Under lockstep (the simulator passes each clock to clock())
+a run must not depend on which process ran first, so step() handles only
+what is certain to have arrived, by the rule of the lockstep barrier: every
+message stamped up to clock k was sent before its sender reported step k
+done, so it is here before clock k+1. Requests stamped up to the previous
+clock are handled (in stamp order, then channel, then arrival on that
+channel); a frame they put in the water reaches the other simulators before
+the clock after that, so frames are judged up to two clocks back (issue 14:
+two runs of one team scenario give the same log).
 """
 
 from __future__ import annotations
 
-import bisect
 from collections import deque
 from typing import Callable
 
@@ -45,7 +50,6 @@ from sim.modem.transmitter import Transmitter
 from sim.sensors.base import utime
 
 REPORT_FIRST = 3  # refusals printed; the rest are only counted
-HISTORY_STEPS = 1000  # positions kept for requests that arrive after their time
 
 
 class ModemNode:
@@ -69,9 +73,11 @@ class ModemNode:
         self._publish = publish
         self._t: float | None = None
         self._pos = (0.0, 0.0, 0.0)
-        self._hist_t: deque = deque(maxlen=HISTORY_STEPS)  # step times, ascending
-        self._hist_pos: deque = deque(maxlen=HISTORY_STEPS)
-        self._pending: list[modem_tx_t] = []  # requests from our future
+        self.track = self.rx.track  # where our vehicle was, step by step (shared with the receiver)
+        # requests not handled yet: (stamp, channel, arrival on the channel, what to do)
+        self._requests: list[tuple[int, str, int, Callable[[], None]]] = []
+        self._arrivals: dict[str, int] = {}
+        self._clocks: deque = deque(maxlen=3)  # the last lockstep clocks [s] (empty: free-running)
         self._next_status = 0.0
         self.last_report_seq = 0
         self.reports_heard = 0
@@ -93,9 +99,13 @@ class ModemNode:
             gate = self._gates[what] = InputGate(self.drops, what)
         return gate.offer(stamp, self.clock_now_us())
 
+    def _queue(self, channel: str, stamp: int, action: Callable[[], None]) -> None:
+        n = self._arrivals[channel] = self._arrivals.get(channel, 0) + 1
+        self._requests.append((stamp, channel, n, action))
+
     def _on_tx(self, channel: str, msg: modem_tx_t) -> None:
         if self._stamp_ok(channel, msg.utime):
-            self._send(msg)
+            self._queue(channel, msg.utime, lambda: self._send(msg))
 
     def _on_report(self, channel: str, msg: peer_report_t) -> None:
         if msg.seq <= 0 or msg.seq == self.last_report_seq:
@@ -103,6 +113,9 @@ class ModemNode:
         if not self._stamp_ok(channel, msg.utime):
             return
         self.last_report_seq = msg.seq
+        self._queue(channel, msg.utime, lambda: self._send_report(msg))
+
+    def _send_report(self, msg: peer_report_t) -> None:
         if msg.vehicle not in ("", self.vehicle):
             self._refused(
                 self.tx.refuse(
@@ -119,15 +132,6 @@ class ModemNode:
             self.rx.hear(frame)
 
     def _send(self, msg: modem_tx_t) -> None:
-        if self._t is None:
-            self._refused(self.tx.refuse("refused_invalid", msg.seq, "the simulator has not started its clock yet"))
-            return
-        if msg.utime > utime(self._t):
-            self._pending.append(msg)  # sent by step() when its time comes
-            return
-        self._launch(msg)
-
-    def _launch(self, msg: modem_tx_t) -> None:
         t, pos = self._when_and_where(msg.utime / 1e6)
         out = self.tx.send(t, pos, msg)
         if isinstance(out, str):
@@ -139,11 +143,12 @@ class ModemNode:
 
     def _when_and_where(self, t_req: float) -> tuple[float, tuple[float, float, float]]:
         """The request's time and the position of the first step at or after it;
-        a request older than the history goes out now, from here."""
-        if not self._hist_t or t_req < self._hist_t[0] - 1e-9:
-            return (self._t if self._t is not None else t_req), self._pos
-        i = bisect.bisect_left(self._hist_t, t_req - 1e-9)
-        return t_req, self._hist_pos[min(i, len(self._hist_pos) - 1)]
+        a request older than the track goes out now, from here."""
+        tr = self.track
+        if not tr.covers(t_req):
+            return self._t, self._pos
+        i = tr.first_at_or_after(t_req)
+        return t_req, tr.positions[min(i, len(tr) - 1)]
 
     def _refused(self, reason: str) -> None:
         if self.refusals_printed < REPORT_FIRST:
@@ -152,20 +157,35 @@ class ModemNode:
         self._publish_status()
 
     # ---------------------------------------------------------------- step
+    def clock(self, utime_us: int) -> None:
+        """A lockstep clock the simulator accepted (a clock sent again is one clock)."""
+        t = utime_us / 1e6
+        if not self._clocks or t > self._clocks[-1]:
+            self._clocks.append(t)
+
+    def _horizons(self, t: float) -> tuple[float, float]:
+        """(requests, frames): handle what is stamped up to these times (module doc)."""
+        if not self._clocks:
+            return t, t  # free-running: everything up to now
+        c = list(self._clocks)
+        before = float("-inf")
+        return (c[-2] if len(c) >= 2 else before), (c[-3] if len(c) >= 3 else before)
+
     def step(self, t: float, position: tuple[float, float, float]) -> None:
-        """Deliver what has arrived by sim time t at our true position; send
-        the requests whose time has come."""
+        """Send the requests and deliver the frames whose time has come (module doc),
+        after the physics step that ended at t."""
         self._t, self._pos = t, position
-        self._hist_t.append(t)
-        self._hist_pos.append(position)
-        if self._pending:
-            due = [m for m in self._pending if m.utime <= utime(t)]
-            self._pending = [m for m in self._pending if m.utime > utime(t)]
-            for m in sorted(due, key=lambda m: m.utime):  # stable: arrival order within a stamp
-                self._launch(m)
+        self.rx.record(t, position)
+        h_req, h_rx = self._horizons(t)
+        limit = h_req * 1e6 + 0.5  # stamps [us] up to the horizon (-inf: none yet)
+        if self._requests and min(r[0] for r in self._requests) <= limit:
+            due = sorted(r for r in self._requests if r[0] <= limit)
+            self._requests = [r for r in self._requests if r[0] > limit]
+            for *_, action in due:
+                action()
         st = self.status
         before = st.received + st.lost + st.out_of_range + st.collided + st.deaf
-        for m in self.rx.step(t, position):
+        for m in self.rx.judge(h_rx):
             self._publish(f"{self.vehicle}.MODEM_RX", m.encode())
             if self.cfg.peer_reports and m.kind == modem_tx_t.KIND_NAV_REPORT:
                 try:
