@@ -37,6 +37,7 @@ from confcheck import ConfigError
 from sim import clock_modes
 from sim.multihil.lockstep import lockstep_msg
 from tools.annotate import Annotator
+from tools.fault_step import FaultStepper, takes_part
 from tools.mission_watch import MissionWatch
 from tools.procs import Child
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
@@ -137,6 +138,7 @@ class Launcher:
                 args.warp or sc.time.warp,
                 sc.time.step_s,
                 participants(sc, self.own_log and self.recorder == "auv-recorder"),
+                before_step=self.apply_faults,
             )
             if self.own_clock
             else None
@@ -145,6 +147,12 @@ class Launcher:
         self.children: list[Child] = []
         self.stop_reason = ""
         self.faults = list(sc.faults)  # planned, in time order (tools/scenario_faults.py)
+        # a world stepped by the simulators: the launcher takes part, to kill between steps
+        self.fault_step = (
+            FaultStepper(self.lc, self._lost_by, self._settled, self.apply_faults)
+            if not self.clock and takes_part(sc, self.host, sim_configs.values())
+            else None
+        )
         self.log_path = self.out / sc.log_file
         self.recorder_stats = self.out / "recorder.json"
 
@@ -298,6 +306,8 @@ class Launcher:
             if self._dead():
                 return "died"
             self.watch.handle(0.1)
+            if self.fault_step:
+                self.fault_step.poll()  # registers before step 0
             if ready():
                 return ""
         missing = self.clock.not_ready() if self.clock else self.watch.not_ready()
@@ -319,7 +329,10 @@ class Launcher:
                 self.clock.advance()
             # blocks until a message comes (a report, a status) or the next step is due
             self.watch.handle(self.clock.wait_s() if self.clock else 0.1)
-            self.inject_faults()
+            if self.fault_step:
+                self.fault_step.poll()
+            elif not self.clock:  # free-running: when the watch sees the time
+                self.apply_faults(self.watch.sim_time_us)
             outcome = self.watch.outcome()
             if outcome:
                 return outcome
@@ -341,18 +354,28 @@ class Launcher:
                     flush=True,
                 )
 
-    def inject_faults(self) -> None:
-        """The planned faults whose time has come (docs/scenarios.md, "Faults").
+    def _lost_by(self, t_us: int) -> set[str]:
+        """The participants of the vehicles lost at or before t_us (sim time)."""
+        vids = {f.vehicle for f in self.faults if f.do == "lose" and f.at_s * 1e6 <= t_us + 0.5}
+        return {n for n in participants(self.sc, False) if n.split(".", 1)[0] in vids}
+
+    def _settled(self, name: str) -> bool:
+        """That participant's process is not running here (gone, or on another host)."""
+        c = next((c for c in self.children if c.name == name), None)
+        return c is None or c.poll() is not None
+
+    def apply_faults(self, t_us: int) -> None:
+        """The planned faults due by sim time t_us (docs/scenarios.md, "Faults").
         Every host's launcher applies each one to its watch and clock; the host
-        that runs the vehicle kills its processes."""
-        while self.faults and self.watch.sim_time_us >= self.faults[0].at_s * 1e6:
+        that runs the vehicle kills its processes. Lockstep: called between the
+        steps (tools/fault_step.py), t_us the first step the vehicle misses."""
+        while self.faults and self.faults[0].at_s * 1e6 <= t_us + 0.5:
             f = self.faults.pop(0)
+            t = t_us / 1e6
             if f.do != "lose":  # the simulator applies it (its configuration has the time)
-                text = (
-                    f"{f.vehicle} {f.do} at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, {f.where})"
-                )
+                text = f"{f.vehicle} {f.do} at t={t:.1f} s (planned at {f.at_s:g} s, {f.where})"
                 print(f"launch: fault: {text}", flush=True)
-                self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
+                self.notes.event("fault", text, vehicle=f.vehicle, utime=t_us)
                 continue
             prefix = f"{f.vehicle}."
             names = {n for n in participants(self.sc, False) if n.startswith(prefix)}
@@ -363,15 +386,17 @@ class Launcher:
                 self.clock.lose(names)
             for n in sorted(names):  # a world stepped by the simulators stops waiting for them too
                 self.lc.publish("SIM.LOCKSTEP", lockstep_msg(n, lockstep_t.KIND_LEAVE, 0, 0).encode())
-            self.watch.lose(f.vehicle, self.watch.sim_time_us / 1e6)
+            self.watch.lose(f.vehicle, t)
             text = (
-                f"{f.vehicle} lost at t={self.watch.sim_time_us / 1e6:.1f} s (planned at {f.at_s:g} s, "
+                f"{f.vehicle} lost at t={t:.1f} s (planned at {f.at_s:g} s, "
                 f"{f.where}): killed {', '.join(c.name for c in killed) or 'nothing on this host'}"
             )
             print(f"launch: fault: {text}", flush=True)
-            self.notes.event("fault", text, vehicle=f.vehicle, utime=self.watch.sim_time_us)
+            self.notes.event("fault", text, vehicle=f.vehicle, utime=t_us)
 
     def stop_all(self, result: str) -> None:
+        if self.fault_step:
+            self.fault_step.close()  # the world must not wait for the launcher while it stops
         dead = self._dead()
         if dead is not None:
             self.stop_reason = (

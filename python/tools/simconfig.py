@@ -9,6 +9,7 @@ from pathlib import Path
 
 from confcheck import Checker, ConfigError
 from confcheck.reader import dump_yaml
+from tools.fault_step import count_in
 from tools.scenario import Scenario, Vehicle, position
 
 
@@ -93,7 +94,7 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
 
             listed = cfg.get("sensors") or {name: {} for name in REGISTRY}  # none listed: all of them
             cfg["sensors"] = merge(listed, {"leak": {"at_s": f.at_s}})
-    return cfg
+    return count_in(sc, cfg)  # a planned loss: the launcher takes part in the lockstep
 
 
 def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 import time
+from typing import Callable
 
 import lcm
 
@@ -37,9 +38,19 @@ PACE = {clock_modes.REALTIME: 1.0, clock_modes.SCALED: None, clock_modes.LOCKSTE
 
 class WorldClock:
     def __init__(
-        self, lc: lcm.LCM, mode: str, warp: float, step_s: float, participants: set[str] | None = None, log=print
+        self,
+        lc: lcm.LCM,
+        mode: str,
+        warp: float,
+        step_s: float,
+        participants: set[str] | None = None,
+        log=print,
+        before_step: Callable[[int], None] | None = None,
     ) -> None:
+        """before_step(utime): called before a new step is published, when every
+        participant has reported the one before (planned faults act there)."""
         self.lc = lc
+        self.before_step = before_step
         self.mode = mode
         self.warp = PACE[mode] if PACE[mode] is not None else warp
         self.step_us = max(1, round(step_s * 1e6))
@@ -112,10 +123,13 @@ class WorldClock:
             and time.monotonic() < self._due(self.server.step + 1)
         ):
             return
+        previous = self.server.step if self.ticks else None  # the step published last
         step = self.server.poll()
         if step is None:
             return
         self.now_us = self.server.utime(step)
+        if self.before_step is not None and (previous is None or step > previous):
+            self.before_step(self.now_us)  # a new step, not one published again
         self._publish(step)
         if not math.isinf(self.warp) and time.monotonic() > self._due(step) + 0.5:
             # far behind the pace (an overloaded machine): go on from here, no burst

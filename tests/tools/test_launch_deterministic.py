@@ -5,26 +5,39 @@ what else is left out of the comparison, and why: tests/logcompare.py).
 The second run is paced (`--time scaled`): the pace changes nothing else.
 
 Two vehicles, one on the onboard filter (auv-nav), each with two managers, a
-few seconds of sim time.
+few seconds of sim time; a third is lost by a planned fault at 2 s, which the
+launcher applies between two steps (tools/fault_step.py): the same in both runs.
 """
 
 from __future__ import annotations
 
+import yaml
 from logcompare import compare, cut, messages
 from test_launch import launch, vehicle, write_scenario
+
+from auv import ground_truth_t
+
+LOST_AT = 2.0
 
 
 def test_fast_time_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):
     ekf = vehicle("AUV2", east=40.0, cycles=50)
     ekf["nav"] = "ekf"
-    path = write_scenario(tmp_path, [vehicle("AUV1", cycles=40), ekf], limit=30)
+    path = write_scenario(tmp_path, [vehicle("AUV1", cycles=40), ekf, vehicle("AUV3", east=80.0)], limit=30)
+    sc = yaml.safe_load(path.read_text())
+    sc["faults"] = [{"at": LOST_AT, "vehicle": "AUV3", "do": "lose"}]
+    path.write_text(yaml.safe_dump(sc, sort_keys=False))
     runs = []
     # the mode only paces the lockstep clock: fast, then scaled, give the same log
     for name, pace in (("a", []), ("b", ["--time", "scaled", "--warp", "40"])):
         run = launch(path, tmp_path / name, lcm_url, child_env, *pace)
         assert run.returncode == 0, run.stdout + run.stderr
         assert "0 dropped, 0 missed" in run.stdout, run.stdout
+        # killed before the first step at or after its time: it did every step before
+        assert f"AUV3 lost at t={LOST_AT:.1f} s" in run.stdout, run.stdout
         runs.append(messages(tmp_path / name / "run.lcmlog"))
+        last = max(ground_truth_t.decode(d).utime for _, d in runs[-1][0]["AUV3.TRUTH"])
+        assert (LOST_AT - 0.1) * 1e6 <= last < LOST_AT * 1e6, last  # TRUTH at 10 Hz
     until = min(last for _, last in runs) - 50_000  # the last step may be cut short by the end
     a, b = (cut(per, until) for per, _ in runs)
     assert until >= 4_000_000 and len(a["SIM.CLOCK"]) == until // 50_000 + 1  # every step, once
