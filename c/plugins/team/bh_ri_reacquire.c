@@ -84,20 +84,32 @@ static gd_point aim_point(const tm_target *t)
  * instead: straight at the aim point (pure pursuit ends on the point), on
  * through it on the same course for `runout` metres, then turns and comes
  * back from wherever the turn left it. The pass ends when the point goes
- * behind (its bearing turns more than 90 degrees off the course), which also
- * catches a pass that misses. A runout wider than the turning circle keeps
- * the point outside it when the vehicle comes about, so pursuit never
- * degenerates into circling. */
+ * behind: its bearing jumps more than 90 degrees off the course (a pass
+ * over the point), or, when pursuit cannot close in because the point lies
+ * inside the turning circle, its bearing has swung half way round since the
+ * pass began (`swept`): judged on the last commanded course alone, pursuit
+ * of such a point turns the bearing a little each cycle, never 90 degrees at
+ * once, and the vehicle circled it for ever some 10 m off (the demo lost a
+ * target so). A runout wider than the turning circle keeps the point
+ * outside it when the vehicle comes about. */
 static double pass_heading(chasm_ctx *c, tm_ri_state *st, gd_point g, gd_point p)
 {
     double d = hypot(g.n - p.n, g.e - p.e), bearing = atan2(g.e - p.e, g.n - p.n);
-    if (st->passing && d > chasm_param_double(c, RI_RUNOUT))
-        st->passing = 0;
-    if (!st->passing && fabs(remainder(bearing - st->pass_course, 2 * M_PI)) > M_PI / 2 &&
-        d <= chasm_param_double(c, RI_RUNOUT))
-        st->passing = 1;   /* went by: hold the course */
-    if (!st->passing)
-        st->pass_course = bearing;
+    double runout = chasm_param_double(c, RI_RUNOUT);
+    if (st->passing && d > runout) {
+        st->passing = 0;   /* ran out: come about */
+        st->swept = 0.0;
+    }
+    if (!st->passing) {
+        double turn = remainder(bearing - st->pass_course, 2 * M_PI);
+        st->swept += turn;
+        if ((fabs(turn) > M_PI / 2 || fabs(st->swept) > M_PI) && d <= runout) {
+            st->passing = 1;   /* went by, or cannot close in: hold the course */
+            st->swept = 0.0;
+        } else {
+            st->pass_course = bearing;
+        }
+    }
     double h = fmod(st->pass_course, 2 * M_PI);
     return h < 0 ? h + 2 * M_PI : h;
 }
@@ -124,6 +136,7 @@ static void replan(chasm_ctx *c, tm_store *s, tm_ri_state *st)
     if (next != st->current) {
         st->current = next;
         st->passing = st->close = 0;
+        st->swept = 0.0;
         if (next >= 0) {
             gd_line_make(&st->leg, p, aim_point(&s->targets.t[next]));
             st->los = (gd_los){chasm_param_double(c, RI_LOOKAHEAD), 0.0, 0.0};

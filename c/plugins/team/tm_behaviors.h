@@ -62,6 +62,7 @@ typedef struct {
     int close;            /* came within runout of the target: passes, not the leg */
     int passing;          /* running out straight past the target (pass_heading) */
     double pass_course;   /* course of the current pass [rad] */
+    double swept;         /* the point's bearing turned through since the pass began [rad] */
 } tm_ri_state;
 TM_DECLARE(ri, RI_NPARAMS);
 

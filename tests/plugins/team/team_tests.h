@@ -20,6 +20,7 @@ void time_stamps_unwrap(void);
 void plan_refuses_bad_roster_and_lines(void);
 void search_vehicle_reports_until_acked(void);
 void ri_vehicle_merges_routes_and_identifies(void);
+void ri_vehicle_passes_through_a_target_inside_its_turning_circle(void);
 void lost_teammates_lines_are_taken(void);
 void done_teammates_take_no_lines(void);
 void aborted_teammate_is_lost_at_once(void);

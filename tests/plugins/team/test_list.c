@@ -21,6 +21,8 @@ const unit_test plugin_tests[] = {
     {"plan_refuses_bad_roster_and_lines", plan_refuses_bad_roster_and_lines},
     {"search_vehicle_reports_until_acked", search_vehicle_reports_until_acked},
     {"ri_vehicle_merges_routes_and_identifies", ri_vehicle_merges_routes_and_identifies},
+    {"ri_vehicle_passes_through_a_target_inside_its_turning_circle",
+     ri_vehicle_passes_through_a_target_inside_its_turning_circle},
     {"lost_teammates_lines_are_taken", lost_teammates_lines_are_taken},
     {"done_teammates_take_no_lines", done_teammates_take_no_lines},
     {"aborted_teammate_is_lost_at_once", aborted_teammate_is_lost_at_once},
