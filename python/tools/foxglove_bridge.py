@@ -8,8 +8,8 @@ connect to ws://ADDR:PORT. Each LCM channel is a topic of the same name, JSON
 with the JSON Schema of its type (auvlcm.json_schema, as `lcmlog.py mcap`
 writes); plus derived/<VEHICLE>/nav_position and true_position
 (foxglove.LocationFix) and derived/survey_geojson (foxglove.GeoJSON, once the
-survey and the world origin have been heard, repeated every few seconds so a
-panel opened later gets it). Messages that do not decode are counted and
+survey and the world origin have been heard, at once to a client that
+subscribes to it and every few seconds; Foxglove keeps no latched messages). Messages that do not decode are counted and
 dropped. Binds to localhost unless told otherwise.
 
 Exit status: 0 on Ctrl-C or SIGTERM, 1 if LCM stops working, 2 on a usage or address error.
@@ -86,6 +86,13 @@ class Bridge:
         elif name == "target_field_t":
             self.targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id) for t in msg.targets]
 
+    def on_subscribe(self, client, channel) -> None:
+        """foxglove.websocket.ServerListener: a panel that subscribes to the survey
+        gets it at the next tick, not after up to GEOJSON_EVERY_S (called on the
+        server's thread: one float written)."""
+        if channel.topic == f"{DERIVED}survey_geojson":
+            self.geojson_sent = 0.0
+
     def tick(self) -> None:
         """Repeat the survey's GeoJSON: Foxglove keeps no latched messages."""
         now = time.monotonic()
@@ -111,7 +118,7 @@ def main(argv: list[str] | None = None) -> int:
     sub = lc.subscribe(".*", bridge.on_raw)
     sub.set_queue_capacity(5000)
     try:
-        server = foxglove.start_server(name="chasm-auv", host=args.bind, port=args.port)
+        server = foxglove.start_server(name="chasm-auv", host=args.bind, port=args.port, server_listener=bridge)
     except Exception as exc:  # noqa: BLE001 - the SDK raises its own error types
         print(f"foxglove_bridge: cannot serve on {args.bind}:{args.port}: {exc}", file=sys.stderr)
         return 2

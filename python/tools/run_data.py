@@ -18,6 +18,8 @@ import numpy as np
 from auvlcm.arrays import ChannelArrays, LogArrays, load_log
 from tools.timeline import Segment, state_timeline
 
+FINAL_RUNS = ("done", "aborted", "failed")  # a plan's run states that end it
+
 KEEP = (
     r"SIM\.TARGETS|SIM\.ANNOTATION|.*\.CONTACTS"
     r"|.*\.TEAM_EVENT|.*\.MODEM_RX|.*\.MODEM_TX|.*\.MODEM_STATUS|.*\.LOOKS"
@@ -47,10 +49,34 @@ class RunData:
         return self.log.messages.get(f"{vid}.CONTACTS", [])
 
     def duration_s(self) -> float:
-        if "SIM.CLOCK" in self.log:
-            t = self.log["SIM.CLOCK"].t
-            return float(t[-1] - t[0]) if len(t) else 0.0
+        """Sim time from the first clock to the mission's end: when the last vehicle's
+        plan ended (done, aborted, failed) or it was lost. The log's last clock only
+        when a vehicle never ended: after the end the world's clock runs on while the
+        launcher stops the processes, for as long as that takes (not the mission's time,
+        and not the same in two runs)."""
+        t0 = None
+        if "SIM.CLOCK" in self.log and len(self.log["SIM.CLOCK"].t):
+            t0 = float(self.log["SIM.CLOCK"].t[0])
+        ends = [self._end_s(v) for v in self.vehicles]
+        if t0 is not None and ends and None not in ends:
+            return max(ends) - t0
+        if t0 is not None:
+            return float(self.log["SIM.CLOCK"].t[-1]) - t0
         return max((float(self.truth(v).t[-1] - self.truth(v).t[0]) for v in self.vehicles), default=0.0)
+
+    def _end_s(self, vid: str) -> float | None:
+        """When vid's mission ended: its first plan to end, or its loss (None: never)."""
+        ends = [
+            seg.start
+            for name, segs in self.timelines.items()
+            if name.startswith(f"{vid}.")
+            for seg in segs
+            if seg.run in FINAL_RUNS
+        ]
+        if ends:
+            return min(ends)
+        lost = ((self.outcome or {}).get("vehicles") or {}).get(vid, {}).get("lost_at_s")
+        return float(lost) if lost is not None else None
 
     def bathymetry(self):
         """depth(north, east) of the world, from a vehicle's configuration; None if unknown."""
