@@ -25,6 +25,7 @@ import time
 from typing import Any
 
 import foxglove
+import foxglove.websocket
 import lcm
 
 from auvlcm.json_schema import schema_of, to_json
@@ -34,6 +35,18 @@ from tools.foxglove_topics import DERIVED, GEOJSON, LOCATION_FIX, geojson, locat
 from tools.live.sources import decode
 
 GEOJSON_EVERY_S = 5.0
+
+
+class SubscribeListener(foxglove.websocket.ServerListener):
+    """A panel that subscribes to the survey gets it at the bridge's next tick, not
+    after up to GEOJSON_EVERY_S (called on the server's thread: one float written)."""
+
+    def __init__(self, bridge: "Bridge") -> None:
+        self.bridge = bridge
+
+    def on_subscribe(self, client, channel) -> None:
+        if channel.topic == f"{DERIVED}survey_geojson":
+            self.bridge.geojson_sent = 0.0
 
 
 class Bridge:
@@ -86,13 +99,6 @@ class Bridge:
         elif name == "target_field_t":
             self.targets = [(t.north_m, t.east_m, "mine_like" if t.kind == 0 else "clutter", t.id) for t in msg.targets]
 
-    def on_subscribe(self, client, channel) -> None:
-        """foxglove.websocket.ServerListener: a panel that subscribes to the survey
-        gets it at the next tick, not after up to GEOJSON_EVERY_S (called on the
-        server's thread: one float written)."""
-        if channel.topic == f"{DERIVED}survey_geojson":
-            self.geojson_sent = 0.0
-
     def tick(self) -> None:
         """Repeat the survey's GeoJSON: Foxglove keeps no latched messages."""
         now = time.monotonic()
@@ -118,7 +124,9 @@ def main(argv: list[str] | None = None) -> int:
     sub = lc.subscribe(".*", bridge.on_raw)
     sub.set_queue_capacity(5000)
     try:
-        server = foxglove.start_server(name="chasm-auv", host=args.bind, port=args.port, server_listener=bridge)
+        server = foxglove.start_server(
+            name="chasm-auv", host=args.bind, port=args.port, server_listener=SubscribeListener(bridge)
+        )
     except Exception as exc:  # noqa: BLE001 - the SDK raises its own error types
         print(f"foxglove_bridge: cannot serve on {args.bind}:{args.port}: {exc}", file=sys.stderr)
         return 2

@@ -7,9 +7,10 @@
 Runs the real simulator (python/sim) in lockstep and drives it from here:
 this script is the global clock (SIM.CLOCK, 0.1 s steps) and a scripted survey
 controller (survey_pilot.py) steering by the simulator's black-box INS
-(<V>.NAV). Each step waits for the simulator's output, so the run is
-deterministic (same config and seed, same sensor data) and as fast as the
-processes allow.
+(<V>.NAV). Each step waits for the simulator's output and for every other
+participant of the lockstep (a filter under test, auv-nav, reports its steps
+on SIM.LOCKSTEP), so the run is deterministic (same config and seed, same
+sensor data, the same filter output) and as fast as the processes allow.
 
 Everything on the URL is recorded into an LCM log (lcm-logger's format). By
 default this script records it itself, in the same loop that waits for each
@@ -33,11 +34,12 @@ from pathlib import Path
 
 import lcm
 
-from auv import actuator_state_t, actuators_t, log_annotation_t, nav_solution_t, sim_clock_t
+from auv import actuator_state_t, actuators_t, lockstep_t, log_annotation_t, nav_solution_t, sim_clock_t
 from auvlcm.paths import ROOT
 from auvlcm.rx import Receiver
 from auvlcm.timepolicy import InputGate, TimeDrops
 from auvlcm.url import check_local, default_url, with_receive_buffer
+from sim.multihil.lockstep import LockstepTracker
 from tools.procs import Child
 from tools.survey_pilot import Nav, Survey, SurveyPilot
 
@@ -94,6 +96,10 @@ class Stepper:
         self._state_gate = InputGate(self.time_drops, f"{vehicle}.ACTUATOR_STATE")
         self.rx.subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=200)
         self.rx.subscribe(f"{vehicle}.ACTUATOR_STATE", actuator_state_t, self._on_state, queue_capacity=200)
+        # whoever else takes part in the lockstep (a filter under test: auv-nav)
+        # is waited for too, so it can never fall behind the world on a loaded machine
+        self.tracker = LockstepTracker(timeout_s=None)
+        self.rx.subscribe("SIM.LOCKSTEP", lockstep_t, lambda _ch, m: self.tracker.on_message(m), queue_capacity=1000)
 
     def _on_nav(self, _ch: str, m) -> None:
         self.nav = Nav(m.north_m, m.east_m, m.depth_m, m.heading_rad, m.pitch_rad, m.q_radps, m.r_radps)
@@ -105,21 +111,29 @@ class Stepper:
 
     def clock(self, utime: int) -> None:
         c = sim_clock_t()
+        step_us = int(STEP_S * 1e6)
         c.utime, c.server_id, c.mode, c.warp, c.step_us = (
             utime,
             "survey_log",
             sim_clock_t.MODE_LOCKSTEP,
             0.0,
-            int(STEP_S * 1e6),
+            step_us,
         )
+        # numbered like a lockstep server's steps: the simulator reports each
+        # one, and a filter in the world (auv-nav) waits for that report before
+        # its clock's solution, so the compass's solution of the step is out
+        # first on any load (without numbers every step was "step 0")
+        c.step = utime // step_us
         self.lc.publish("SIM.CLOCK", c.encode())
         self.clock_utime = utime
 
     def step_to(self, utime: int, timeout_s: float) -> None:
-        """Release the simulator up to utime and wait until it got there."""
+        """Release the simulator up to utime and wait until it got there and every
+        participant of the lockstep reported the step."""
         deadline = time.monotonic() + timeout_s
         resend = 0.0
-        while self.sim_utime < utime:
+        step = utime // int(STEP_S * 1e6)
+        while self.sim_utime < utime or self.tracker.waiting_for(step):
             now = time.monotonic()
             if now > deadline:
                 raise TimeoutError(f"simulator did not reach t={utime / 1e6:.1f}s")

@@ -68,15 +68,17 @@ def test_each_compass_message_brings_a_solution_out_at_its_time(survey):
     due = [t for t in ahrs if t >= first]
     at = {m.utime: m for m in sols}
     assert len(at) == len(sols), "two solutions for one time: the clock's and the compass's"
-    # (a solution the clock put out first, while the compass seemed silent,
-    # keeps its time: the compass's for that time is not published after it)
+    # every one of them, on any load: survey_log's clock is a lockstep
+    # barrier that waits for auv-nav too, and auv-nav puts its clock's
+    # solution out only after the step's data (a 98 % bound failed under a
+    # stress run when survey_log waited for the simulator alone)
     same = [
         t
         for t in due
         if t in at
         and (at[t].pitch_rad, at[t].q_radps, at[t].r_radps) == (ahrs[t].pitch_rad, ahrs[t].q_radps, ahrs[t].r_radps)
     ]
-    assert len(same) >= 0.98 * len(due), (len(same), len(due))
+    assert len(same) == len(due), (len(same), len(due))
     times = [m.utime for m in sols]
     assert times == sorted(times), "a solution older than one already out"
 
