@@ -84,7 +84,13 @@ void cm_load_plugins(cm_cc *cc)
         char err[1024];
         cm_plugin_version *v = cm_plugin_version_open(m, file, err, sizeof err);
         if (!v) {
-            cm_error(cc->d, u->loc, "plugin '%s': %s", u->name, err);
+            /* the descriptor's checks name the plugin already ("plugin 'x': behavior ...") */
+            char named[160];
+            snprintf(named, sizeof named, "plugin '%s'", u->name);
+            if (!strncmp(err, named, strlen(named)))
+                cm_error(cc->d, u->loc, "%s", err);
+            else
+                cm_error(cc->d, u->loc, "%s: %s", named, err);
             continue;
         }
         if (strcmp(v->desc->name, u->name)) {

@@ -68,6 +68,7 @@ def test_check_refuses_every_hostile_file_at_its_use(variant_dir, env, tmp_path)
         lines = [l for l in p.stderr.splitlines() if l.startswith(f"{name}.chasm:")]
         assert len(lines) == 1, (name, p.stderr)
         assert lines[0].startswith(f"{name}.chasm:1:5: error: plugin '{name}': "), lines[0]
+        assert lines[0].count(f"plugin '{name}'") == 1, lines[0]  # named once
         assert reason in lines[0], (name, reason, lines[0])
 
 
