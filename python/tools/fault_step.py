@@ -27,6 +27,7 @@ import lcm
 import yaml
 
 from auv import lockstep_t, sim_clock_t
+from auvlcm.rx import Receiver
 from sim import clock_modes
 from sim.multihil.lockstep import LockstepTracker, Participation
 
@@ -40,8 +41,11 @@ def loses_vehicles(sc) -> bool:
 def is_lockstep_multihil(cfg: dict) -> bool:
     """Whether a merged simulator configuration steps a multi-HIL lockstep world."""
     mh, sim = cfg.get("multihil") or {}, cfg.get("simulation") or {}
-    clock = str(sim.get("clock", clock_modes.REALTIME))
-    return bool(mh.get("enabled")) and dict(clock_modes.OLD_NAMES).get(clock, clock) == clock_modes.LOCKSTEP
+    try:
+        clock = clock_modes.canonical(str(sim.get("clock", clock_modes.REALTIME)))
+    except ValueError:
+        return False  # the simulator's own check names a bad mode
+    return bool(mh.get("enabled")) and clock == clock_modes.LOCKSTEP
 
 
 def takes_part(sc, host: str | None, sim_configs) -> bool:
@@ -80,23 +84,16 @@ class FaultStepper:
         self.tracker = LockstepTracker(timeout_s=None)
         self.lost_by, self.settled, self.apply = lost_by, settled, apply
         self.step_us = 0
-        lc.subscribe("SIM.CLOCK", self._on_clock).set_queue_capacity(1000)
-        lc.subscribe("SIM.LOCKSTEP", self._on_lockstep).set_queue_capacity(1000)
+        self.rx = Receiver(lc)  # typed: what does not decode is counted and dropped
+        self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
+        self.rx.subscribe("SIM.LOCKSTEP", lockstep_t, self._on_lockstep, queue_capacity=1000)
 
-    def _on_clock(self, _ch: str, data: bytes) -> None:
-        try:
-            m = sim_clock_t.decode(data)
-        except ValueError:
-            return
+    def _on_clock(self, _ch: str, m: sim_clock_t) -> None:
         if m.mode == sim_clock_t.MODE_LOCKSTEP and m.step_us > 0:
             self.step_us = m.step_us
             self.part.on_clock(m.step, m.utime)
 
-    def _on_lockstep(self, _ch: str, data: bytes) -> None:
-        try:
-            m = lockstep_t.decode(data)
-        except ValueError:
-            return
+    def _on_lockstep(self, _ch: str, m: lockstep_t) -> None:
         if m.participant != NAME:
             self.tracker.on_message(m)
 

@@ -165,9 +165,9 @@ class ModemNode:
 
     def _horizons(self, t: float) -> tuple[float, float]:
         """(requests, frames): handle what is stamped up to these times (module doc)."""
-        if not self._clocks:
+        c = self._clocks
+        if not c:
             return t, t  # free-running: everything up to now
-        c = list(self._clocks)
         before = float("-inf")
         return (c[-2] if len(c) >= 2 else before), (c[-3] if len(c) >= 3 else before)
 
