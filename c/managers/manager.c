@@ -39,6 +39,7 @@ int manager_load(manager_t *mg, const char *name, const char *text, manager_plan
     }
     /* Inputs are judged against the manager's clock (time rule). */
     out->bindings.clock = &mg->clock;
+    out->bindings.lockstep = &mg->lockstep.lockstep;
     out->bindings.future_tol_us = mg->opt.future_tol_us;
     out->bindings.who = mg->opt.name;
     return 0;

@@ -5,104 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Does every bound value of this message fit its variable? An integer
- * outside int64 (or NaN) and a string longer than a string variable holds
- * would otherwise be cut or be undefined behaviour. */
-static int values_fit(const mgr_message_binding *mb, const void *msg)
-{
-    for (int i = 0; i < mb->n_vars; i++) {
-        const mgr_var_binding *v = &mb->vars[i];
-        int ok = 1;
-        if (v->var_type == CHASM_INT)
-            (void)tp_double_to_i64(field_ref_get_double(&v->field, msg), &ok);
-        else if (v->var_type == CHASM_STRING) {
-            const char *s = field_ref_get_string(&v->field, msg);
-            ok = !s || strlen(s) <= CHASM_STRING_MAX;
-        }
-        if (!ok)
-            return 0;
-    }
-    return 1;
-}
-
-/* Copy a decoded message's bound fields into the blackboard, once it has
- * passed the time rule and every value fits. */
-static void on_input(const char *channel, const void *msg, int64_t recv_utime, void *user)
-{
-    (void)recv_utime;
-    mgr_message_binding *mb = user;
-    mgr_bindings *b = mb->owner;
-    const tp_clock *clk = b->clock;
-    /* The message's own time of validity: plans compute message age from it.
-     * A message type without utime is valid when it arrives. */
-    int64_t utime = clk && clk->have ? clk->now : 0;
-    if (mb->has_utime) {
-        int ok;
-        utime = tp_double_to_i64(field_ref_get_double(&mb->utime, msg), &ok);
-        if (!ok)
-            utime = -1; /* not representable: invalid */
-    }
-    tp_reason why = tp_input_offer(&mb->order, utime, clk && clk->have, clk ? clk->now : 0, b->future_tol_us);
-    if (why != TP_OK) {
-        tp_count(&b->time_drops, why, b->who ? b->who : "manager", channel, utime);
-        return;
-    }
-    if (mb->stream_var >= 0) {
-        /* the whole message, as received: plugins decode it themselves */
-        size_t len = 0;
-        const void *raw = rx_current_raw(mb->sub, &len);
-        if (!raw || chasm_messages_append(b->machine, mb->stream_var, raw, len, utime) != 0) {
-            if (b->range_drops++ == 0)
-                fprintf(stderr, "%s: %s: dropped a %zu-byte message: over %d bytes, too large for the messages variable "
-                                "'%s'; further drops of this kind are only counted\n",
-                        b->who ? b->who : "manager", channel, len, CHASM_MESSAGE_MAX_BYTES,
-                        chasm_var_name(b->machine, mb->stream_var));
-            return;
-        }
-        mb->messages_in++;
-        b->inputs_applied++;
-        return;
-    }
-    if (!values_fit(mb, msg)) {
-        if (b->range_drops++ == 0)
-            fprintf(stderr, "%s: %s: dropped a message with a value that does not fit its plan variable "
-                            "(integer out of range or string over %d characters); further drops of this kind are only counted\n",
-                    b->who ? b->who : "manager", channel, CHASM_STRING_MAX);
-        return;
-    }
-    for (int i = 0; i < mb->n_vars; i++) {
-        const mgr_var_binding *v = &mb->vars[i];
-        int ok;
-        switch (v->var_type) {
-        case CHASM_DOUBLE:
-            chasm_var_set_double(b->machine, v->var, field_ref_get_double(&v->field, msg), utime);
-            break;
-        case CHASM_INT:
-            chasm_var_set_int(b->machine, v->var, tp_double_to_i64(field_ref_get_double(&v->field, msg), &ok), utime);
-            break;
-        case CHASM_BOOL:
-            chasm_var_set_bool(b->machine, v->var, field_ref_get_double(&v->field, msg) != 0.0, utime);
-            break;
-        case CHASM_STRING: {
-            const char *s = field_ref_get_string(&v->field, msg);
-            chasm_var_set_string(b->machine, v->var, s ? s : "", utime);
-            break;
-        }
-        case CHASM_MESSAGES: break;   /* never a field: whole messages go above */
-        }
-    }
-    b->inputs_applied++;
-}
-
-void mgr_bindings_recheck(mgr_bindings *b, int64_t now)
-{
-    for (int i = 0; i < b->n_msgs; i++) {
-        mgr_message_binding *mb = &b->msgs[i];
-        if (!mb->is_output && tp_input_recheck(&mb->order, now, b->future_tol_us))
-            tp_count(&b->time_drops, TP_FUTURE, b->who ? b->who : "manager", mb->channel, mb->order.newest);
-    }
-}
-
 /* A messages variable is bound by a line whose prefix is its whole name. */
 static int bind_stream(mgr_bindings *b, const char *path, int var, mgr_errors *errs)
 {
@@ -237,7 +139,7 @@ int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm)
         if (mb->is_output || (mb->n_vars == 0 && mb->stream_var < 0))
             continue;
         mb->owner = b;
-        mb->sub = rx_subscribe(lcm, mb->channel, mb->type, on_input, mb);
+        mb->sub = rx_subscribe(lcm, mb->channel, mb->type, mgr_input_received, mb);
         if (!mb->sub)
             return -1;
         if (mb->stream_var >= 0) {
@@ -333,16 +235,6 @@ uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
     return n;
 }
 
-int mgr_bindings_inputs_ready(const mgr_bindings *b)
-{
-    /* Delivered is not enough: a message dropped by the time rule or a range
-     * check has not filled the blackboard. */
-    for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub && !b->msgs[i].optional && !b->msgs[i].order.have && b->msgs[i].stream_var < 0)
-            return 0;   /* a stream is events, not state: a plan never waits for its first message */
-    return 1;
-}
-
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
 {
     for (int i = 0; i < b->n_msgs; i++) {
@@ -355,5 +247,6 @@ void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
         free(mb->prefix);
     }
     free(b->msgs);
+    mgr_held_free(&b->held);
     memset(b, 0, sizeof *b);
 }

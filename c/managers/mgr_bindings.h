@@ -18,6 +18,7 @@
 #include "common/lcm_rx.h"
 #include "common/time_policy.h"
 #include "managers/mgr_errors.h"
+#include "managers/mgr_held.h"
 #include "managers/mgr_limits.h"
 
 typedef struct {
@@ -62,6 +63,10 @@ typedef struct mgr_bindings {
     /* The receiver's clock inputs are judged against (docs/channels.md,
      * "Time and timestamps"); set by the manager before subscribing. */
     const tp_clock *clock;
+    /* Nonzero while the clock is a lockstep clock: inputs stamped after it
+     * wait for it (mgr_held.h). */
+    const int *lockstep;
+    mgr_held held;
     int64_t future_tol_us;
     const char *who;        /* manager name, for the first-drop log lines */
     tp_counts time_drops;   /* per tp_reason */
@@ -90,6 +95,8 @@ int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehic
 int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                             mgr_errors *errs);
 /* Subscribe to every input channel; messages then update the blackboard. */
+/* The handler of every input subscription (mgr_inputs.c); user is the binding. */
+void mgr_input_received(const char *channel, const void *msg, int64_t recv_utime, void *user);
 int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm);
 /* Publish every output message with the current output variables. */
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us);
@@ -101,6 +108,9 @@ int mgr_bindings_inputs_ready(const mgr_bindings *b);
  * of `now` is counted as such and its input accepts newer messages again
  * (libchasm already treats it as stale). Cheap: call every cycle. */
 void mgr_bindings_recheck(mgr_bindings *b, int64_t now);
+/* Apply the held inputs whose step's clock has come (mgr_held.h): call after
+ * the cycle of each clock, before the next clock can be handled. */
+void mgr_bindings_release_held(mgr_bindings *b);
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm);
 
 #endif

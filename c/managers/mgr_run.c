@@ -31,6 +31,11 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
         .clock_old_term = (int64_t)ck->n[TP_OLD_TERM],
         .commands_refused = (int64_t)mg->commands_refused,
     };
+    const mgr_held *held = &mg->plan.bindings.held;
+    if (held->held || held->overflow)
+        fprintf(stderr, "%s: lockstep: %llu inputs arrived before their step's clock and waited for it, %llu applied "
+                        "on arrival (over %d waiting)\n", mg->opt.name, (unsigned long long)held->held,
+                (unsigned long long)held->overflow, MGR_HELD_MAX);
     mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->plan.bindings);
     d.messages_in = (int64_t)sc.in;
     d.messages_out = (int64_t)sc.out;
@@ -111,6 +116,11 @@ static int finish(manager_t *mg, chasm_run_state rs)
     if (mg->opt.sim_clock)
         mgr_lockstep_leave(&mg->lockstep, mg->lcm);
     fprintf(stderr, "%s: %s (%s)\n", mg->opt.name, mg->stop ? "stopped" : "plan ended", chasm_run_state_name(rs));
+    const mgr_held *held = &mg->plan.bindings.held;
+    if (held->held || held->overflow)
+        fprintf(stderr, "%s: lockstep: %llu inputs arrived before their step's clock and waited for it, %llu applied "
+                        "on arrival (over %d waiting)\n", mg->opt.name, (unsigned long long)held->held,
+                (unsigned long long)held->overflow, MGR_HELD_MAX);
     mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->plan.bindings);
     if (sc.n_streams)
         fprintf(stderr, "%s: messages: %llu in, %llu out, %llu missed, %llu posts refused\n", mg->opt.name,
@@ -131,9 +141,14 @@ int manager_run(manager_t *mg)
             return 2;
         if (mg->stop)
             break;
-        if (!cycle_due(mg, &next_cycle, period_us))
+        /* Inputs that came ahead of their clock join the blackboard only
+         * once the cycle of that clock is decided (mgr_held.h). */
+        if (!cycle_due(mg, &next_cycle, period_us)) {
+            mgr_bindings_release_held(&mg->plan.bindings);
             continue;
+        }
         rs = cycle(mg);
+        mgr_bindings_release_held(&mg->plan.bindings);
         /* Skip missed cycles instead of running a burst after a stall; the
          * clock is within 0..TP_UTIME_MAX, and the sums saturate anyway. */
         next_cycle = tp_sat_add(next_cycle, period_us);
