@@ -24,19 +24,24 @@ from conftest import fresh_url, manager_cmd
 from auv import lockstep_t, nav_solution_t, setpoint_t, sim_clock_t
 
 STEP_US = 100_000
-EARLY_STEP = 6  # the step whose NAV comes ahead of its clock
+EARLY_STEP = 6  # NAV of this step and the next come ahead of this step's clock
 LAST_STEP = 10
 
 PLAN = """mission "order"
 input  nav.depth_m        : double m
 output setpoint.depth_m   : double m
 test deep : nav.depth_m > 5 m
+test shallow : nav.depth_m < 5 m
 state wait {
     do set setpoint.depth_m = 1 m on entry
     when deep -> seen
 }
 state seen {
     do set setpoint.depth_m = 2 m on entry
+    when shallow -> back
+}
+state back {
+    do set setpoint.depth_m = 3 m on entry
 }
 """
 BIND = """input   nav       ${VEHICLE}.NAV        nav_solution_t
@@ -45,8 +50,10 @@ output  setpoint  ${VEHICLE}.SETPOINT   setpoint_t
 
 
 def fly(tmp_path, url: str, env: dict, sanitized: bool, early: bool) -> tuple[list[tuple[int, float]], str]:
-    """Steps 1..LAST_STEP; NAV of step k is stamped t_k and deep from EARLY_STEP
-    on. Returns the manager's setpoints (utime, depth) and its output."""
+    """Steps 1..LAST_STEP; NAV of step k is stamped t_k, deep only at EARLY_STEP.
+    early: NAV of EARLY_STEP and of the step after it are sent before the clock
+    of EARLY_STEP (one step ahead, two steps ahead). Returns the manager's
+    setpoints (utime, depth) and its output."""
     (tmp_path / "order.chasm").write_text(PLAN)
     (tmp_path / "order.bind").write_text(BIND)
     cmd = manager_cmd(tmp_path / "order.chasm", tmp_path / "order.bind", url, sanitized=sanitized)
@@ -79,19 +86,19 @@ def fly(tmp_path, url: str, env: dict, sanitized: bool, early: bool) -> tuple[li
 
     def nav(step: int) -> None:
         n = nav_solution_t()
-        n.utime, n.vehicle, n.depth_m = step * STEP_US, "AUV1", 10.0 if step >= EARLY_STEP else 0.0
+        n.utime, n.vehicle, n.depth_m = step * STEP_US, "AUV1", 10.0 if step == EARLY_STEP else 0.0
         lc.publish("AUV1.NAV", n.encode())
 
     try:
         assert pump(30, lambda: any(m.kind == lockstep_t.KIND_REGISTER for m in reports)), proc.poll()
         for step in range(1, LAST_STEP + 1):
+            ahead = early and step in (EARLY_STEP, EARLY_STEP + 1)
             if early and step == EARLY_STEP:
-                nav(step)  # same sender, so the manager's socket has it before the clock
-                clock(step)
-            else:
-                clock(step)
+                nav(step)  # same sender, so the manager's socket has them before the clock
+                nav(step + 1)
+            clock(step)
             assert pump(30, lambda: done(step)), f"no report of step {step}"
-            if not (early and step == EARLY_STEP):
+            if not ahead:
                 nav(step)  # the usual order: after the manager's cycle of this clock
         pump(0.2, lambda: False)  # the last setpoints
     finally:
@@ -110,9 +117,10 @@ def _setpoint(data: bytes) -> tuple[int, float]:
 def test_an_input_ahead_of_its_clock_waits_for_the_cycle_after_it(tmp_path, lcm_url, child_env, sanitized):
     usual, _ = fly(tmp_path, lcm_url, child_env, sanitized, early=False)
     ahead, out = fly(tmp_path, fresh_url(), child_env, sanitized, early=True)
-    # the plan saw the deep NAV of step 6 at the cycle of step 7, in both orders
-    first_deep = next(t for t, depth in usual if depth == 2.0)
-    assert first_deep == (EARLY_STEP + 1) * STEP_US, usual
+    # the plan saw the deep NAV of step 6 at the cycle of step 7 and the
+    # shallow one of step 7 at the cycle of step 8, in both orders
+    assert next(t for t, depth in usual if depth == 2.0) == (EARLY_STEP + 1) * STEP_US, usual
+    assert next(t for t, depth in usual if depth == 3.0) == (EARLY_STEP + 2) * STEP_US, usual
     assert ahead == usual
     assert "arrived before the clock of its step" in out, out
-    assert "lockstep: 1 inputs arrived before their step's clock and waited for it, 0 applied" in out, out
+    assert "lockstep: 2 inputs arrived before their step's clock and waited for it, 0 applied" in out, out
