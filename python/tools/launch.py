@@ -38,6 +38,7 @@ from sim import clock_modes
 from sim.multihil.lockstep import lockstep_msg
 from tools.annotate import Annotator
 from tools.fault_step import FaultStepper, takes_part
+from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
 from tools.procs import Child
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
@@ -94,18 +95,6 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
                 errors.append(f"{m.where}: {v.id}.{m.name}: plan {m.plan} does not load:")
                 errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
     return errors
-
-
-def participants(sc: Scenario, recorder: bool) -> set[str]:
-    """Whom the launcher's lockstep clock waits for, on every host: each vehicle's
-    simulator, managers and onboard filter, and the recorder it starts (if it does)."""
-    names = {"SIM.RECORDER"} if recorder else set()
-    for v in sc.vehicles:
-        names.add(f"{v.id}.sim")
-        names |= {f"{v.id}.{m.name}" for m in v.managers}
-        if v.nav.source == "ekf":
-            names.add(f"{v.id}.NAV")
-    return names
 
 
 class Launcher:
@@ -502,7 +491,9 @@ def main(argv: list[str] | None = None) -> int:
     args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)
-    sim_configs, errors = write_configs(sc, sc.vehicles, args.out)
+    # the recorder takes part in a lockstep world; with agents the log host's lcm-logger records
+    records = not args.agents and sc.log_enabled and (args.recorder or sc.log_recorder) == "auv-recorder"
+    sim_configs, errors = write_configs(sc, sc.vehicles, args.out, records)
     navs, nav_errors = nav_configs(Scenario(**{**sc.__dict__, "vehicles": mine}), sim_configs, args.out, args.build)
     errors += nav_errors
     errors += check_plans(Scenario(**{**sc.__dict__, "vehicles": mine}), args.build)

@@ -10,6 +10,7 @@ from pathlib import Path
 from confcheck import Checker, ConfigError
 from confcheck.reader import dump_yaml
 from tools.fault_step import count_in
+from tools.lockstep_names import name_them
 from tools.scenario import Scenario, Vehicle, position
 
 
@@ -72,9 +73,11 @@ def _ins_out_of_the_way(v: Vehicle, cfg: dict) -> dict:
     return dict(cfg, sensors=merge(sensors, {"ins": merge(ins or {}, {"channel": "NAV_INS"})}))
 
 
-def vehicle_config(sc: Scenario, v: Vehicle, index: int) -> dict:
-    """The merged simulator configuration of one vehicle (plain data)."""
-    return _ins_out_of_the_way(v, _targets_publisher(sc, v, _merged_config(sc, v, index)))
+def vehicle_config(sc: Scenario, v: Vehicle, index: int, recorder: bool = False) -> dict:
+    """The merged simulator configuration of one vehicle (plain data); recorder:
+    the run records with auv-recorder, a participant of a lockstep world."""
+    cfg = _ins_out_of_the_way(v, _targets_publisher(sc, v, _merged_config(sc, v, index)))
+    return name_them(sc, cfg, recorder)  # a lockstep world waits for each participant by name
 
 
 def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
@@ -116,8 +119,11 @@ def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:
         return pos
 
 
-def write_configs(sc: Scenario, vehicles: list[Vehicle], out_dir: Path) -> tuple[dict[str, Path], list[str]]:
-    """Write <ID>.sim.yaml per vehicle; return their paths and the scenario errors."""
+def write_configs(
+    sc: Scenario, vehicles: list[Vehicle], out_dir: Path, recorder: bool = False
+) -> tuple[dict[str, Path], list[str]]:
+    """Write <ID>.sim.yaml per vehicle; return their paths and the scenario errors.
+    recorder: the run records with auv-recorder (vehicle_config)."""
     from sim.config import load
 
     paths, errors = {}, []
@@ -125,7 +131,7 @@ def write_configs(sc: Scenario, vehicles: list[Vehicle], out_dir: Path) -> tuple
         index = sc.vehicles.index(v)
         path = out_dir / f"{v.id}.sim.yaml"
         try:
-            merged = vehicle_config(sc, v, index)
+            merged = vehicle_config(sc, v, index, recorder)
         except ConfigError as exc:  # the base file itself was refused (its own positions)
             errors += [f"{line} (the sim config of vehicles[{index}])" for line in exc.errors]
             continue

@@ -118,7 +118,7 @@ def test_the_clock_waits_for_a_filter_that_falls_behind(tmp_path, lcm_url):
 
     from auv import lockstep_t, sim_clock_t
     from sim.multihil.lockstep import lockstep_msg
-    from tools.launch import participants
+    from tools.lockstep_names import participants
     from tools.scenario import load_scenario
     from tools.worldclock import WorldClock
 

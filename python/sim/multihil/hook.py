@@ -59,6 +59,7 @@ def node_config(cfg) -> NodeConfig:
         s.clock_rate_hz,
         mh.step_s,
         mh.lockstep_participants,
+        list(mh.lockstep_names),
         mh.lockstep_timeout_s,
         mh.heartbeat_hz,
         mh.sync_hz,

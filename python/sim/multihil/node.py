@@ -68,6 +68,7 @@ class NodeConfig:
     clock_rate_hz: float = 10.0  # SIM.CLOCK rate, free-running [Hz of global time]
     step_s: float = 0.1  # lockstep step
     lockstep_expect: int = 0  # participants to wait for before step 0
+    lockstep_names: list = field(default_factory=list)  # ... and these, by name
     lockstep_timeout_s: float = 5.0
     heartbeat_hz: float = 10.0
     sync_hz: float = 10.0
@@ -101,7 +102,9 @@ class EnvNode:
         self.on_clock = on_clock  # each SIM.CLOCK accepted (the lockstep simulator follows it)
         self.election = Election(cfg.client_id, cfg.priority, cfg.timing)
         self.tracker = LockstepTracker(cfg.lockstep_timeout_s, log)
-        self.stepper = LockstepServer(self.tracker, int(round(cfg.step_s * 1e6)), cfg.lockstep_expect, log)
+        self.stepper = LockstepServer(
+            self.tracker, int(round(cfg.step_s * 1e6)), cfg.lockstep_expect, log, expect_names=set(cfg.lockstep_names)
+        )
         self.lockstep = cfg.mode == "lockstep"
         self.joined = False  # has a global time (as client or server)
         self.vehicles: dict[str, str] = {}  # client id -> vehicle, from announcements
