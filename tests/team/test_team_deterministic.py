@@ -9,9 +9,6 @@ out and why)."""
 
 from __future__ import annotations
 
-import os
-
-import pytest
 import small_team as st
 from logcompare import SKIP, compare, cut, messages
 
@@ -19,19 +16,17 @@ LIMIT_S = 150.0  # sim time: the first status rounds and contacts
 WALL_PACED = ("SIM.CLOCK_SYNC", "SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION")
 
 
-# Idle, the two runs are the same (4 of 4, 77 112 messages over 150 s; the old
-# modem diverged at 82 s). Under a stress run's load they still diverged in 1 of
-# 2 runs (and in 2 of 2 loaded runs with 0.05 s multi-HIL steps, branch
-# step-check), first at the RI vehicle's PILOT output
-# (AUV3.ACTUATORS at 86.2 s, 123.9 s) while every input recorded for it was
-# the same: a race between the managers' cycle and the step's data not found
-# yet (issue 14, still open). A test that fails on a busy machine would make
-# CI a lottery; it runs when asked: AUV_TEAM_DETERMINISM=1.
-@pytest.mark.skipif(
-    not os.environ.get("AUV_TEAM_DETERMINISM"),
-    reason="team lockstep runs still diverge under load (the RI vehicle's PILOT, issue 14 open); "
-    "AUV_TEAM_DETERMINISM=1 runs it",
-)
+# Two races made loaded runs differ, both fixed at their root (issue 14):
+# - a manager applied an input of step k that reached it before clock k did
+#   (the kernel hands a multicast datagram to its sockets one after another):
+#   the RI vehicle's PILOT output differed with the same recorded inputs; a
+#   manager now holds such an input until the cycle of its clock is done
+#   (c/managers/mgr_held.h, tests/managers/test_manager_lockstep_order.py);
+# - the world's count of participants (3 per vehicle) was met by the recorder
+#   with one simulator still starting, which joined at step 1: the world now
+#   waits for every participant by name (tools/lockstep_names.py).
+# With two demos running beside it: 13 of 14 pairs the same; the one that
+# differed was the second race, before its fix.
 def test_the_team_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):
     sc = st.variant(st.plan(tmp_path / "small"), tmp_path / "short.yaml", limit_s=LIMIT_S)
     runs = []
