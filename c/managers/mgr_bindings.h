@@ -94,9 +94,9 @@ int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, 
 int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehicle, mgr_errors *errs);
 int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                             mgr_errors *errs);
-/* Subscribe to every input channel; messages then update the blackboard. */
 /* The handler of every input subscription (mgr_inputs.c); user is the binding. */
 void mgr_input_received(const char *channel, const void *msg, int64_t recv_utime, void *user);
+/* Subscribe to every input channel; messages then update the blackboard. */
 int mgr_bindings_subscribe(mgr_bindings *b, lcm_t *lcm);
 /* Publish every output message with the current output variables. */
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us);

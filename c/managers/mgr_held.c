@@ -12,17 +12,13 @@ int mgr_held_push(mgr_held *h, void *binding, int64_t utime, const void *data, s
     }
     if (h->n == h->cap) {
         size_t cap = h->cap ? 2 * h->cap : 16;
-        mgr_held_msg *items = malloc(cap * sizeof *items);
+        mgr_held_msg *items = realloc(h->items, cap * sizeof *items);
         if (!items) {
             h->overflow++;
             return -1;
         }
-        for (size_t i = 0; i < h->n; i++) /* unwrap the ring into the new array */
-            items[i] = h->items[(h->head + i) % h->cap];
-        free(h->items);
         h->items = items;
         h->cap = cap;
-        h->head = 0;
     }
     unsigned char *copy = malloc(len ? len : 1);
     if (!copy) {
@@ -30,35 +26,32 @@ int mgr_held_push(mgr_held *h, void *binding, int64_t utime, const void *data, s
         return -1;
     }
     memcpy(copy, data, len);
-    h->items[(h->head + h->n) % h->cap] = (mgr_held_msg){binding, utime, len, copy};
-    h->n++;
+    h->items[h->n++] = (mgr_held_msg){binding, utime, len, copy};
     h->held++;
     return 0;
 }
 
 void mgr_held_release(mgr_held *h, int64_t now, mgr_held_apply apply, void *user)
 {
-    /* One pass in arrival order: released messages go, the others close up
-     * behind the ones kept, so the kept ones stay in order too. */
-    size_t kept = 0, n = h->n;
-    for (size_t i = 0; i < n; i++) {
-        mgr_held_msg m = h->items[(h->head + i) % h->cap];
+    /* One pass in arrival order: released messages go, the ones kept close
+     * up, still in arrival order. */
+    size_t kept = 0;
+    for (size_t i = 0; i < h->n; i++) {
+        mgr_held_msg m = h->items[i];
         if (m.utime > now) {
-            h->items[(h->head + kept++) % h->cap] = m;
+            h->items[kept++] = m;
             continue;
         }
         apply(m.binding, m.utime, m.data, m.len, user);
         free(m.data);
     }
     h->n = kept;
-    if (kept == 0)
-        h->head = 0;
 }
 
 void mgr_held_free(mgr_held *h)
 {
     for (size_t i = 0; i < h->n; i++)
-        free(h->items[(h->head + i) % h->cap].data);
+        free(h->items[i].data);
     free(h->items);
     memset(h, 0, sizeof *h);
 }

@@ -32,8 +32,8 @@ typedef struct mgr_held_msg {
 } mgr_held_msg;
 
 typedef struct {
-    mgr_held_msg *items;    /* a ring, oldest first */
-    size_t head, n, cap;
+    mgr_held_msg *items;    /* in arrival order */
+    size_t n, cap;
     uint64_t held;          /* messages that waited for their clock */
     uint64_t overflow;      /* applied on arrival because the queue was full */
 } mgr_held;

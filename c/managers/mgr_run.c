@@ -31,11 +31,6 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
         .clock_old_term = (int64_t)ck->n[TP_OLD_TERM],
         .commands_refused = (int64_t)mg->commands_refused,
     };
-    const mgr_held *held = &mg->plan.bindings.held;
-    if (held->held || held->overflow)
-        fprintf(stderr, "%s: lockstep: %llu inputs arrived before their step's clock and waited for it, %llu applied "
-                        "on arrival (over %d waiting)\n", mg->opt.name, (unsigned long long)held->held,
-                (unsigned long long)held->overflow, MGR_HELD_MAX);
     mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->plan.bindings);
     d.messages_in = (int64_t)sc.in;
     d.messages_out = (int64_t)sc.out;

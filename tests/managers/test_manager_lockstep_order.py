@@ -124,3 +124,4 @@ def test_an_input_ahead_of_its_clock_waits_for_the_cycle_after_it(tmp_path, lcm_
     assert ahead == usual
     assert "arrived before the clock of its step" in out, out
     assert "lockstep: 2 inputs arrived before their step's clock and waited for it, 0 applied" in out, out
+    assert out.count("inputs arrived before their step's clock") == 1, out  # once, at exit: not per cycle
