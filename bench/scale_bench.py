@@ -29,6 +29,8 @@ import time
 from collections import Counter, defaultdict
 from pathlib import Path
 
+import yaml
+
 from tools.demo import PLAN_ARGS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -116,8 +118,18 @@ def profile_summary(raw: Path, top: int = 15) -> list[str]:
     return lines
 
 
-def run_case(n: int, args, out: Path) -> dict:
-    case = out / f"v{n}"
+def as_baseline(scenario: Path) -> None:
+    """The transport before the channel filter: every vehicle's simulator
+    publishes from its sender thread (the default then); AUV_LCM_CHANFILTER=0
+    in the run's environment does the rest."""
+    doc = yaml.safe_load(scenario.read_text())
+    for v in doc["vehicles"]:
+        v["sim"].setdefault("simulation", {})["publish_thread"] = True
+    scenario.write_text(yaml.safe_dump(doc, sort_keys=False))
+
+
+def run_case(n: int, args, out: Path, baseline: bool = False) -> dict:
+    case = out / (f"v{n}-baseline" if baseline else f"v{n}")
     shutil.rmtree(case, ignore_errors=True)
     plan = subprocess.run(
         [
@@ -139,6 +151,8 @@ def run_case(n: int, args, out: Path) -> dict:
     )
     if plan.returncode:
         return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
+    if baseline:
+        as_baseline(case / "plan" / f"scale{n}.yaml")
     launch = [
         sys.executable,
         "-m",
@@ -150,6 +164,8 @@ def run_case(n: int, args, out: Path) -> dict:
         "0",
     ] + (["--url", args.url] if args.url else [])
     env = dict(os.environ)
+    if baseline:
+        env["AUV_LCM_CHANFILTER"] = "0"
     if args.cprofile:
         prof_dir = case / "cprofile"
         prof_dir.mkdir(parents=True, exist_ok=True)
@@ -201,6 +217,7 @@ def run_case(n: int, args, out: Path) -> dict:
     sim = outcome.get("sim_time_s", 0.0)
     res = {
         "vehicles": n,
+        "baseline": baseline,
         "outcome": outcome.get("outcome"),
         "sim_time_s": sim,
         "wall_s": wall,
@@ -256,6 +273,35 @@ def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
     return lines or ["  (no cProfile output: did the processes exit normally?)"]
 
 
+def report(r: dict, n: int, label: str) -> None:
+    if "cpu_s" not in r:
+        print(f"{n:>3}  {r['outcome']}: {r.get('error', '')}")
+        return
+    print(
+        f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
+        + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS)
+        + f"   {r['outcome']}"
+        + (f" ({r['reason']})" if r["outcome"] != "done" else "")
+        + (f"   [{label}]" if label else ""),
+        flush=True,
+    )
+    if r["sim_time_s"] > 0:
+        # Load-independent: CPU per vehicle-second of sim, and the throughput that
+        # would give if these cores did nothing else (a ceiling, not a measurement).
+        per = {k: 1000 * r["cpu_s"][k] / (n * r["sim_time_s"]) for k in KINDS}
+        total = sum(per.values())
+        r["cpu_ms_per_vehicle_s"] = per
+        print(
+            f"    cpu per vehicle-second: {total:.1f} ms ("
+            + ", ".join(f"{k} {v:.1f}" for k, v in per.items() if v)
+            + f"); on {os.cpu_count()} idle "
+            f"cores at most {os.cpu_count() * 1000 / total:.0f} vehicle-s/s",
+            flush=True,
+        )
+    for line in r.get("profile", []):
+        print(line)
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--vehicles", default="1,2", help="comma-separated vehicle counts (default 1,2: quick)")
@@ -268,6 +314,12 @@ def main() -> int:
         action="store_true",
         help="cProfile every Python process of each run (the "
         "simulators, the launcher): where their wall time goes, without py-spy",
+    )
+    ap.add_argument(
+        "--baseline",
+        action="store_true",
+        help="also run each case as before the channel filter (AUV_LCM_CHANFILTER=0, "
+        "simulators publishing from a sender thread) and print the ratios",
     )
     ap.add_argument("--url", help="LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
@@ -290,33 +342,19 @@ def main() -> int:
     )
     results = []
     for n in counts:
-        r = run_case(n, args, args.out)
-        results.append(r)
-        if "cpu_s" not in r:
-            print(f"{n:>3}  {r['outcome']}: {r.get('error', '')}")
-            continue
-        print(
-            f"{n:>3} {r['sim_time_s']:7.0f} {r['wall_s']:7.1f} {r['rtf']:6.1f} {r['vehicle_s_per_s']:8.1f}         "
-            + " ".join(f"{r['cpu_s'][k]:9.1f}" for k in KINDS)
-            + f"   {r['outcome']}"
-            + (f" ({r['reason']})" if r["outcome"] != "done" else ""),
-            flush=True,
-        )
-        if r["sim_time_s"] > 0:
-            # Load-independent: CPU per vehicle-second of sim, and the throughput that
-            # would give if these cores did nothing else (a ceiling, not a measurement).
-            per = {k: 1000 * r["cpu_s"][k] / (n * r["sim_time_s"]) for k in KINDS}
-            total = sum(per.values())
-            r["cpu_ms_per_vehicle_s"] = per
+        for baseline in (False, True) if args.baseline else (False,):
+            r = run_case(n, args, args.out, baseline)
+            results.append(r)
+            report(r, n, "baseline" if baseline else "")
+        if args.baseline and all(x.get("cpu_ms_per_vehicle_s") for x in results[-2:]):
+            now, before = results[-2], results[-1]
+            cpu = [sum(x["cpu_ms_per_vehicle_s"].values()) for x in (now, before)]
             print(
-                f"    cpu per vehicle-second: {total:.1f} ms ("
-                + ", ".join(f"{k} {v:.1f}" for k, v in per.items() if v)
-                + f"); on {os.cpu_count()} idle "
-                f"cores at most {os.cpu_count() * 1000 / total:.0f} vehicle-s/s",
+                f"    {n} vehicles against the baseline: vehicle-s/s x"
+                f"{now['vehicle_s_per_s'] / before['vehicle_s_per_s']:.2f}, "
+                f"CPU per vehicle-second x{cpu[0] / cpu[1]:.2f}",
                 flush=True,
             )
-        for line in r.get("profile", []):
-            print(line)
     (args.out / "scale.json").write_text(json.dumps(results, indent=1))
     print(f"scale_bench: {args.out / 'scale.json'}")
     return 0

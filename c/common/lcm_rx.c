@@ -1,7 +1,9 @@
 #include "common/lcm_rx.h"
 
+#include "common/lcm_chanfilter.h"
 #include "common/lcm_validate.h"
 
+#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -70,6 +72,43 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
     s->type->info()->decode_cleanup(s->scratch);
 }
 
+lcm_t *rx_lcm_create(const char *url)
+{
+    lcm_t *lcm = lcm_create(url);
+    if (lcm)
+        auv_chanfilter_register(lcm, auv_chanfilter_new(url));
+    return lcm;
+}
+
+void rx_lcm_destroy(lcm_t *lcm)
+{
+    auv_chanfilter_unregister(lcm);
+    if (lcm)
+        lcm_destroy(lcm);
+}
+
+lcm_subscription_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user)
+{
+    return rx_subscribe_raw_where(lcm, channel, NULL, 0, 0, handler, user);
+}
+
+lcm_subscription_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
+                                           int payload_len, lcm_msg_handler_t handler, void *user)
+{
+    auv_chanfilter_t *f = auv_chanfilter_of(lcm);
+    const auv_chanfilter_rule_t rule = {channel, payload, payload_at, payload_len};
+    if (auv_chanfilter_note_rule(f, &rule) < 0)
+        return NULL;
+    lcm_subscription_t *sub = lcm_subscribe(lcm, channel, handler, user);
+    if (sub && auv_chanfilter_apply(f) < 0) {
+        static int told;
+        if (!told++)
+            fprintf(stderr, "lcm_rx: the kernel refused the channel filter (%s): this process receives every channel\n",
+                    strerror(errno));
+    }
+    return sub;
+}
+
 rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,
                        rx_handler_t handler, void *user)
 {
@@ -83,7 +122,7 @@ rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *
     s->handler = handler;
     s->user = user;
     if (s->scratch)
-        s->lcm_sub = lcm_subscribe(lcm, channel, on_message, s);
+        s->lcm_sub = rx_subscribe_raw(lcm, channel, on_message, s);
     if (!s->lcm_sub) {
         free(s->scratch);
         free(s);

@@ -29,6 +29,25 @@ typedef void (*rx_handler_t)(const char *channel, const void *msg, int64_t recv_
 
 typedef struct rx_sub rx_sub_t;
 
+/* lcm_create(url) with a kernel-side channel filter (lcm_chanfilter.h): the
+ * process then wakes only for the channels it subscribes to through
+ * rx_subscribe and rx_subscribe_raw. Close it with rx_lcm_destroy. */
+lcm_t *rx_lcm_create(const char *url);
+void rx_lcm_destroy(lcm_t *lcm);
+
+/* lcm_subscribe that widens the instance's channel filter first. Every
+ * subscription of an rx_lcm_create instance must come through here or
+ * rx_subscribe: one made with lcm_subscribe is dropped by the filter. */
+lcm_subscription_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user);
+
+/* rx_subscribe_raw for the messages that carry payload_len bytes of payload
+ * at payload_at of their encoding (0: the fingerprint): the kernel drops the
+ * others before the process wakes, where the filter is on. The handler must
+ * still check: without a filter (another transport, AUV_LCM_CHANFILTER=0)
+ * every message of the channel arrives. */
+lcm_subscription_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
+                                           int payload_len, lcm_msg_handler_t handler, void *user);
+
 /* Subscribe to channel (an LCM regex) expecting one type. NULL on failure. */
 rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,
                        rx_handler_t handler, void *user);

@@ -8,6 +8,7 @@
 #include "managers/mgr_clock.h"
 #include "managers/mgr_commands.h"
 #include "managers/mgr_lcm.h"
+#include "common/lcm_rx.h"
 
 static void log_line(void *user, int64_t now_us, const char *state, const char *message)
 {
@@ -102,7 +103,7 @@ int manager_create(manager_t *mg, const manager_options *opt)
     if (manager_load(mg, mg->opt.plan_path, NULL, &mg->plan, &errs) != 0) {
         int status = load_failure_status(&errs);
         mgr_errors_free(&errs);
-        lcm_destroy(mg->lcm);
+        rx_lcm_destroy(mg->lcm);
         return status;
     }
     mgr_errors_free(&errs);
@@ -121,7 +122,7 @@ void manager_destroy(manager_t *mg)
     rx_unsubscribe(mg->lcm, mg->clock_sub);
     mgr_commands_unsubscribe(mg);
     plan_free(mg, &mg->plan);
-    lcm_destroy(mg->lcm);
+    rx_lcm_destroy(mg->lcm);
     mg->clock_sub = NULL;
     mg->lcm = NULL;
 }

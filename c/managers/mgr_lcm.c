@@ -6,6 +6,8 @@
  * sizes, and why they are what they are: mgr_limits.h. */
 #include "managers/mgr_lcm.h"
 
+#include "common/lcm_rx.h"
+
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +42,7 @@ lcm_t *mgr_lcm_open(const char *url_opt, const char *who, size_t *max_plan_bytes
         snprintf(url, sizeof url, "%s%crecv_buf_size=%zu", base, strchr(base, '?') ? '&' : '?', want);
     else
         snprintf(url, sizeof url, "%s", base);
-    lcm_t *lcm = lcm_create(url);
+    lcm_t *lcm = rx_lcm_create(url); /* filtered: wakes for its own channels only */
     if (!lcm) {
         fprintf(stderr, "%s: cannot open LCM at %s (no multicast route? see README)\n", who, url);
         return NULL;

@@ -169,7 +169,7 @@ int main(int argc, char **argv)
         std::printf("%s: ok (%d transponders)\n", opt.config_path.c_str(), cfg.n_transponders);
         return 0;
     }
-    lcm_t *lcm = lcm_create(opt.url.empty() ? nullptr : opt.url.c_str()); // NULL: liblcm honours LCM_DEFAULT_URL
+    lcm_t *lcm = rx_lcm_create(opt.url.empty() ? nullptr : opt.url.c_str()); // NULL: liblcm honours LCM_DEFAULT_URL
     if (!lcm) {
         std::fprintf(stderr, "auv-nav: cannot open LCM at %s (no multicast route? see README)\n", opt.url.empty() ? "the default URL" : opt.url.c_str());
         return 2;
@@ -193,6 +193,6 @@ int main(int argc, char **argv)
             std::fprintf(stderr, "auv-nav: cannot subscribe to the sensor channels\n");
         }
     }
-    lcm_destroy(lcm);
+    rx_lcm_destroy(lcm);
     return rc;
 }

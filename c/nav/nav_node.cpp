@@ -22,6 +22,19 @@ double clock_s(clockid_t id)
     return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
 }
 
+// lockstep_t's encoding: fingerprint (8 bytes), utime (8), then the
+// participant: its length with the NUL (4, big-endian), the characters, NUL.
+constexpr int kParticipantAt = 16;
+
+std::string lockstep_participant_field(const std::string &name)
+{
+    const uint32_t len = (uint32_t)name.size() + 1;
+    std::string f{(char)(len >> 24), (char)(len >> 16), (char)(len >> 8), (char)len};
+    f += name;
+    f.push_back('\0');
+    return f;
+}
+
 }  // namespace
 
 NavNode::NavNode(const NodeOptions &opt, const NavConfig &cfg, lcm_t *lcm)
@@ -70,7 +83,12 @@ bool NavNode::subscribe()
         if (!clock_sub_)
             return false;
         rx_set_queue_capacity(clock_sub_, 1000);
-        lockstep_sub_ = lcm_subscribe(lcm_, "SIM.LOCKSTEP", on_lockstep, this);
+        // Only its simulator's reports wake this process (the kernel's channel
+        // filter compares the participant field, lcm_chanfilter.h): the
+        // world's 5 reports per vehicle and step are O(N^2) otherwise.
+        const std::string key = lockstep_participant_field(sim_participant_);
+        lockstep_sub_ = rx_subscribe_raw_where(lcm_, "SIM.LOCKSTEP", key.data(), kParticipantAt, (int)key.size(),
+                                               on_lockstep, this);
         if (!lockstep_sub_)
             return false;
         lcm_subscription_set_queue_capacity(lockstep_sub_, 1000);
@@ -140,10 +158,9 @@ void NavNode::on_clock(const char *, const void *msg, int64_t, void *user)
 
 void NavNode::on_lockstep(const lcm_recv_buf_t *rbuf, const char *, void *user)
 {
-    // Every participant of the world reports each step here (5 per vehicle):
-    // decode only this vehicle's simulator's. lockstep_t starts with its
-    // fingerprint (8 bytes), utime (8), then the participant: length with
-    // the NUL (4, big-endian) and the characters.
+    // Every participant of the world reports each step here (5 per vehicle).
+    // The channel filter lets only this vehicle's simulator's through, where
+    // it is on; check anyway, and decode only that one (the layout: above).
     auto *n = static_cast<NavNode *>(user);
     const auto *d = static_cast<const uint8_t *>(rbuf->data);
     const std::string &me = n->sim_participant_;

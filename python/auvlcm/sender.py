@@ -23,6 +23,7 @@ from pathlib import Path
 
 import lcm
 
+from auvlcm.chanfilter import ChannelFilter, FilteredLcm
 from auvlcm.paths import build_dir
 
 LIBRARY = "libauvlcm_sender.so"
@@ -91,7 +92,13 @@ class ThreadedLcm:
         if spin_us is None:
             spin_us = DEFAULT_SPIN_US if len(os.sched_getaffinity(0)) > 1 else 0
         fast, slow = _load()
-        self.lc = lc = lc if lc is not None else lcm.LCM(url)
+        # an instance made here gets a channel filter (auvlcm/chanfilter.py):
+        # its socket does not exist yet, so the filter can tell which is its own
+        self._filter = None
+        if lc is None:
+            lc = lcm.LCM(url)
+            self._filter = ChannelFilter(url)
+        self.lc = lc
         handle = slow.auv_lcm_sender_create(url.encode(), slots, spin_us)
         if not handle:
             raise SenderUnavailable(f"cannot start an LCM sender on {url!r}")
@@ -103,7 +110,13 @@ class ThreadedLcm:
         self._errors_reported = 0
         # the receiving side, bound once: the simulator polls fileno() every step
         self.fileno, self.handle, self.handle_timeout = lc.fileno, lc.handle, lc.handle_timeout
-        self.subscribe, self.unsubscribe = lc.subscribe, lc.unsubscribe
+        self.unsubscribe = lc.unsubscribe
+        if self._filter is None:
+            self.subscribe = lc.subscribe
+
+    def subscribe(self, channel: str, handler):
+        """lc.subscribe through the channel filter."""
+        return self._filter.subscribe(self.lc, channel, handler)
 
     # -------------------------------------------------------------- publish
     def publish(self, channel: str, data: bytes) -> None:
@@ -181,11 +194,10 @@ def open_lcm(url: str, threaded: bool = True, log=print) -> lcm.LCM | ThreadedLc
     """An lcm.LCM(url) that publishes from a sender thread, unless threaded is
     false or the library is not built (then it says so, and the caller
     publishes itself, as before)."""
-    lc = lcm.LCM(url)
     if not threaded:
-        return lc
+        return FilteredLcm(url)
     try:
-        return ThreadedLcm(url, lc)
+        return ThreadedLcm(url)
     except SenderUnavailable as exc:
         log(f"{exc}: publishing from the calling thread")
-        return lc
+        return FilteredLcm(url)

@@ -61,7 +61,7 @@ class SimSettings:
     duration_s: float = setting(0.0, ge=0.0)  # 0 = until stopped
     seed: int = setting(-1, ge=-1)  # sensor seed; -1 = the environment's seed
     lcm_url: str = ""  # "" = $LCM_DEFAULT_URL or the project default
-    publish_thread: bool = True  # messages go out from a sender thread (auvlcm.sender)
+    publish_thread: bool = False  # messages go out from a sender thread (auvlcm.sender)
 
 
 @dataclass

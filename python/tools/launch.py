@@ -31,6 +31,7 @@ from pathlib import Path
 import lcm
 
 from auv import lockstep_t
+from auvlcm.chanfilter import FilteredLcm
 from auvlcm.paths import ROOT, build_dir
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from confcheck import ConfigError
@@ -112,7 +113,8 @@ class Launcher:
         self.host = args.host
         self.out: Path = args.out
         self.build = args.build
-        self.lc = lcm.LCM(self.child_url)
+        # filtered: the launcher wakes for what it watches, not for every sensor
+        self.lc = FilteredLcm(self.child_url)
         self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT)
         self.mine = sc.vehicles_on(self.host)
         self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)

@@ -156,11 +156,17 @@ def test_threaded_lcm_delivers_every_message_in_order(lcm_url, listener):
 def test_the_simulator_sends_through_the_thread_what_the_loop_would(lcm_url, listener):
     """Fast time, 10 s: the threaded run's messages as received over LCM are the
     in-process run's, published from the loop, message for message in order."""
-    paced = Simulator(config(1.0, lcm_url, "scaled"))
+    threaded = config(1.0, lcm_url, "scaled")
+    threaded.sim.publish_thread = True  # off by default since the channel filter (docs/simulator.md)
+    paced = Simulator(threaded)
     assert not isinstance(paced.lc, ThreadedLcm)  # paced by the wall clock: the loop publishes
     paced.close()
+    default = Simulator(config(1.0, lcm_url, "scaled"), fast=True)
+    assert not isinstance(default.lc, ThreadedLcm)  # the default
+    default.close()
     rx = listener(lcm_url, r"(AUV1|SIM)\..*")
-    sim = Simulator(config(10.0, lcm_url, "scaled"), fast=True)
+    threaded.sim.duration_s = 10.0
+    sim = Simulator(threaded, fast=True)
     assert isinstance(sim.lc, ThreadedLcm)
     summary = run_quiet(sim)
     sim.close()
