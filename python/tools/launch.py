@@ -48,6 +48,7 @@ from tools.worldclock import WorldClock
 
 EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
 STARTUP_TIMEOUT_S = 90.0
+CHILD_CHECK_S = 0.05  # how often the loops look for a child that exited
 
 
 def nav_configs(
@@ -135,6 +136,7 @@ class Launcher:
             else None
         )
         self.logger: Child | None = None
+        self._next_child_check = 0.0
         self.children: list[Child] = []
         self.stop_reason = ""
         self.faults = list(sc.faults)  # planned, in time order (tools/scenario_faults.py)
@@ -286,6 +288,16 @@ class Launcher:
     def _dead(self) -> Child | None:
         return next((c for c in self.children if not c.stopping and c.poll() is not None), None)
 
+    def _dead_by_now(self) -> Child | None:
+        """_dead(), asked at most every CHILD_CHECK_S: the loops turn at every
+        message, and a poll of every child each turn cost a system call per
+        child per wake-up (5 per vehicle)."""
+        now = time.monotonic()
+        if now < self._next_child_check:
+            return None
+        self._next_child_check = now + CHILD_CHECK_S
+        return self._dead()
+
     def wait_ready(self, stop) -> str:
         """Hold time before step 0 until every participant of the world registered
         (the clock's host), or until every process reported (the other hosts)."""
@@ -294,7 +306,7 @@ class Launcher:
         while time.monotonic() < deadline:
             if stop():
                 return "interrupted"
-            if self._dead():
+            if self._dead_by_now():
                 return "died"
             self.watch.handle(0.1)
             if self.fault_step:
@@ -314,7 +326,7 @@ class Launcher:
         while True:
             if stop():
                 return "interrupted"
-            if self._dead():
+            if self._dead_by_now():
                 return "died"
             if self.clock:
                 self.clock.advance()

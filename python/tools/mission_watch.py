@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import lcm
 
-from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, nav_solution_t, sim_clock_t
+from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, sim_clock_t
 from auvlcm.rx import Receiver
 from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from tools.annotate import plan_files
@@ -105,9 +105,6 @@ class MissionWatch:
         self.seen: set[str] = set()
         self.expected: set[str] = set()
         self.sim_time_us = 0
-        self.manager_us: dict[str, int | None] = {}
-        self.nav_solution_us: dict[str, int | None] = {}  # each onboard filter's newest solution
-        self.nav_status_us: dict[str, int | None] = {}  # ... and status
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
             self.vehicles[v.id] = VehicleState(
@@ -117,12 +114,9 @@ class MissionWatch:
             self.rx.subscribe(f"{v.id}.ACTUATOR_STATE", actuator_state_t, self._on_sim, queue_capacity=1000)
             if v.nav.source == "ekf":
                 self.expected.add(f"{v.id}.NAV")
-                self.nav_solution_us[v.id] = self.nav_status_us[v.id] = None
                 self.rx.subscribe(f"{v.id}.NAV_STATUS", nav_filter_status_t, self._on_nav_status, queue_capacity=100)
-                self.rx.subscribe(f"{v.id}.NAV", nav_solution_t, self._on_nav, queue_capacity=1000)
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
-                self.manager_us[f"{v.id}.{m.name}"] = None
                 self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
@@ -145,22 +139,11 @@ class MissionWatch:
         if not self._fresh(ch, m.utime):
             return
         self.seen.add(f"{m.vehicle}.NAV")
-        if m.vehicle in self.nav_status_us:
-            self.nav_status_us[m.vehicle] = max(self.nav_status_us[m.vehicle] or 0, m.utime)
-
-    def _on_nav(self, ch: str, m) -> None:
-        if not self._fresh(f"{ch} (source {m.source})", m.utime):  # the INS may share it
-            return
-        if m.vehicle in self.nav_solution_us and m.source == nav_solution_t.SOURCE_EKF:
-            self.nav_solution_us[m.vehicle] = max(self.nav_solution_us[m.vehicle] or 0, m.utime)
 
     def _on_status(self, ch: str, m) -> None:
         if not self._fresh(ch, m.utime):
             return
-        key = f"{m.vehicle}.{m.manager}"
-        self.seen.add(key)
-        if key in self.manager_us:
-            self.manager_us[key] = m.utime
+        self.seen.add(f"{m.vehicle}.{m.manager}")
         v = self.vehicles.get(m.vehicle)
         if v is None or m.manager != v.end_manager:
             return

@@ -118,7 +118,7 @@ class WorldClock:
             return
         if (
             self.server.started
-            and not self.tracker.waiting_for(self.server.step)
+            and not self.tracker.owes(self.server.step)
             and not math.isinf(self.warp)
             and time.monotonic() < self._due(self.server.step + 1)
         ):
@@ -144,6 +144,6 @@ class WorldClock:
         until something could need repeating; a message wakes it earlier."""
         if not self.running:
             return 0.05
-        if self.server.started and not self.tracker.waiting_for(self.server.step) and not math.isinf(self.warp):
+        if self.server.started and not self.tracker.owes(self.server.step) and not math.isinf(self.warp):
             return max(0.0, min(RESEND_S, self._due(self.server.step + 1) - time.monotonic()))
         return RESEND_S

@@ -59,7 +59,6 @@ def test_hostile_stamps_neither_end_the_mission_nor_reach_the_watch(tmp_path):
     feed(watch, "AUV1.CHASM.WATCHER", status(900_000, "WATCHER"))  # out of order
     assert watch.sim_time_us == 1_000_000  # no time limit reached
     assert watch.vehicles["AUV1"].sim_us == 1_000_000  # no report from the future
-    assert watch.manager_us["AUV1.WATCHER"] == 1_000_000  # nor one out of order
     feed(watch, "SIM.CLOCK", clock(1_100_000))  # and the world goes on
     assert watch.sim_time_us == 1_100_000
     for sub in watch.rx.subscriptions:  # garbage on every channel

@@ -54,6 +54,12 @@ class LockstepTracker:
         self.dropped = 0
         self.repeats = 0  # STEP_DONE messages for a step already known done
         self.log = log
+        # The server asks "does anyone owe this step?" at every wake-up, and
+        # wakes for every report: a scan of every participant each time is
+        # O(N^2) per step. A participant known to owe answers it at once, and
+        # the newest repeat says whether missed_clock needs to look at all.
+        self._owing: Participant | None = None
+        self._newest_repeat = 0.0
 
     def on_message(self, msg) -> None:
         if msg.kind == lockstep_t.KIND_LEAVE:
@@ -64,23 +70,33 @@ class LockstepTracker:
             p = self.parts[msg.participant] = Participant(msg.participant)
         p.last_heard = time.monotonic()
         if msg.kind == lockstep_t.KIND_REGISTER:
-            p.repeat_at = p.last_heard  # still registering: it has heard no clock yet
+            p.repeat_at = self._newest_repeat = p.last_heard  # still registering: it has heard no clock yet
         elif msg.kind == lockstep_t.KIND_STEP_DONE:
             if msg.step <= p.last_done:
                 self.repeats += 1
-                p.repeat_at = p.last_heard
+                p.repeat_at = self._newest_repeat = p.last_heard
             p.last_done = max(p.last_done, msg.step)
 
     def missed_clock(self, step: int, since: float) -> bool:
         """A participant that owes step repeated an older report after `since`:
         it did not get the clock of step (lost), which must be published again."""
-        return any(self.parts[n].repeat_at > since for n in self.waiting_for(step))
+        if self._newest_repeat <= since:
+            return False
+        return any(p.repeat_at > since and p.last_done < step for p in self.parts.values())
 
     def remove(self, name: str) -> None:
         self.parts.pop(name, None)
 
+    def owes(self, step: int) -> bool:
+        """Someone has not reported step yet (waiting_for(step) is not empty)."""
+        p = self._owing
+        if p is not None and p.last_done < step and self.parts.get(p.name) is p:
+            return True
+        self._owing = next((p for p in self.parts.values() if p.last_done < step), None)
+        return self._owing is not None
+
     def waiting_for(self, step: int) -> list[str]:
-        return sorted(n for n, p in self.parts.items() if p.last_done < step)
+        return sorted(n for n, p in self.parts.items() if p.last_done < step) if self.owes(step) else []
 
     def drop_silent(self, step: int, since: float) -> None:
         """Drop participants that owe step and were not heard from for timeout_s."""

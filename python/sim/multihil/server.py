@@ -94,13 +94,13 @@ class LockstepServer:
                 self.published_at = time.monotonic()
                 return self.step
             return None
-        if self.tracker.waiting_for(self.step):
+        if self.tracker.owes(self.step):
             if self.tracker.missed_clock(self.step, self.published_at):
                 self.published_at = time.monotonic()
                 self.republished += 1
                 return self.step
             self.tracker.drop_silent(self.step, self.published_at)
-            if self.tracker.waiting_for(self.step) or not self.tracker.parts:
+            if self.tracker.owes(self.step) or not self.tracker.parts:
                 return None
         if not self.tracker.parts:
             return None
