@@ -190,10 +190,10 @@ class ThreadedLcm:
         return getattr(self.lc, name)
 
 
-def open_lcm(url: str, threaded: bool = True, log=print) -> lcm.LCM | ThreadedLcm:
-    """An lcm.LCM(url) that publishes from a sender thread, unless threaded is
-    false or the library is not built (then it says so, and the caller
-    publishes itself, as before)."""
+def open_lcm(url: str, threaded: bool = True, log=print) -> FilteredLcm | ThreadedLcm:
+    """An lcm.LCM(url) with a channel filter (auvlcm/chanfilter.py) that
+    publishes from a sender thread, unless threaded is false or the library is
+    not built (then it says so, and the caller publishes itself)."""
     if not threaded:
         return FilteredLcm(url)
     try:
