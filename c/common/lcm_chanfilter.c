@@ -2,17 +2,16 @@
  * (lcm_chanfilter.h) in step with its subscriptions. */
 #include "common/lcm_chanfilter.h"
 
-#include <dirent.h>
+#include "common/lcm_socket.h"
+
 #include <errno.h>
 #include <linux/filter.h>
-#include <netinet/in.h>
 #include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 
-#define DEFAULT_PORT 7667
 #define MAX_BEFORE 64
 #define MAX_PROGRAM BPF_MAXINSNS
 
@@ -32,56 +31,12 @@ struct auv_chanfilter {
     int state;
     int fd;
     ino_t ino;
+    int attached_n, attached_rc; /* the rules the socket's program has, and attach()'s answer */
     auv_chanfilter_rule_t *rules; /* owning copies */
     int n, cap;
 };
 
-/* The port of a udpm URL, 0 when the URL is not udpm. */
-static int udpm_port(const char *url)
-{
-    if (!url || !*url)
-        url = getenv("LCM_DEFAULT_URL");
-    if (!url || !*url)
-        return DEFAULT_PORT; /* liblcm's default is udpm on 7667 */
-    if (strncmp(url, "udpm://", 7) != 0)
-        return 0;
-    const char *host = url + 7, *end = host + strcspn(host, "?");
-    const char *colon = memchr(host, ':', (size_t)(end - host));
-    if (!colon)
-        return DEFAULT_PORT;
-    long port = strtol(colon + 1, NULL, 10);
-    return port > 0 && port < 65536 ? (int)port : 0;
-}
-
-/* Calls fn(fd, ino) for every UDP socket of this process bound to port. */
-static int each_socket_on(int port, void (*fn)(int fd, ino_t ino, void *), void *user)
-{
-    DIR *d = opendir("/proc/self/fd");
-    if (!d)
-        return -1;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        char *end;
-        long fd = strtol(e->d_name, &end, 10);
-        struct stat st;
-        if (*end || fd < 0 || fd == dirfd(d) || fstat((int)fd, &st) < 0 || !S_ISSOCK(st.st_mode))
-            continue;
-        int type = 0;
-        socklen_t tl = sizeof type;
-        struct sockaddr_in a;
-        socklen_t al = sizeof a;
-        if (getsockopt((int)fd, SOL_SOCKET, SO_TYPE, &type, &tl) < 0 || type != SOCK_DGRAM)
-            continue;
-        if (getsockname((int)fd, (struct sockaddr *)&a, &al) < 0 || a.sin_family != AF_INET ||
-            ntohs(a.sin_port) != port)
-            continue;
-        fn((int)fd, st.st_ino, user);
-    }
-    closedir(d);
-    return 0;
-}
-
-static void note_before(int fd, ino_t ino, void *user)
+static int note_before(int fd, ino_t ino, void *user)
 {
     (void)fd;
     auv_chanfilter_t *f = user;
@@ -89,6 +44,7 @@ static void note_before(int fd, ino_t ino, void *user)
         f->before[f->n_before++] = ino;
     else
         f->state = GAVE_UP;
+    return 0;
 }
 
 auv_chanfilter_t *auv_chanfilter_new(const char *url)
@@ -96,15 +52,16 @@ auv_chanfilter_t *auv_chanfilter_new(const char *url)
     const char *off = getenv("AUV_LCM_CHANFILTER");
     if (off && !strcmp(off, "0"))
         return NULL;
-    int port = udpm_port(url);
-    if (!port)
+    int port = lcm_url_port(url);
+    if (port < 0)
         return NULL;
     auv_chanfilter_t *f = calloc(1, sizeof *f);
     if (!f)
         return NULL;
     f->port = port;
     f->fd = -1;
-    if (each_socket_on(port, note_before, f) < 0)
+    f->attached_n = -1;
+    if (lcm_sockets_on_port(port, note_before, f) < 0)
         f->state = GAVE_UP; /* no /proc: filter nothing */
     return f;
 }
@@ -134,18 +91,19 @@ typedef struct {
     ino_t ino;
 } search_t;
 
-static void note_new(int fd, ino_t ino, void *user)
+static int note_new(int fd, ino_t ino, void *user)
 {
     search_t *s = user;
     for (int i = 0; i < s->f->n_before; i++)
         if (s->f->before[i] == ino)
-            return;
+            return 0;
     for (int i = 0; i < n_claimed; i++)
         if (claimed[i] == ino)
-            return;
+            return 0;
     s->fd = fd;
     s->ino = ino;
     s->count++;
+    return 0;
 }
 
 static int attach(auv_chanfilter_t *f)
@@ -175,6 +133,8 @@ static int attach(auv_chanfilter_t *f)
         setsockopt(f->fd, SOL_SOCKET, SO_DETACH_FILTER, NULL, 0);
         errno = saved;
     }
+    f->attached_n = f->n;
+    f->attached_rc = rc;
     return rc;
 }
 
@@ -227,10 +187,12 @@ int auv_chanfilter_apply(auv_chanfilter_t *f)
 {
     if (!f || f->state == GAVE_UP)
         return 0;
+    if (f->state == FOUND && f->attached_n == f->n)
+        return f->attached_rc; /* note() attached these rules already */
     if (f->state == SEARCHING) {
         search_t s = {f, -1, 0, 0};
         pthread_mutex_lock(&claimed_mu);
-        int rc = each_socket_on(f->port, note_new, &s);
+        int rc = lcm_sockets_on_port(f->port, note_new, &s);
         if (rc == 0 && s.count == 1 && n_claimed < MAX_CLAIMED)
             claimed[n_claimed++] = s.ino;
         pthread_mutex_unlock(&claimed_mu);

@@ -1,23 +1,19 @@
 #include "recorder/rec_socket.h"
 
-#include <dirent.h>
-#include <netinet/in.h>
-#include <stdio.h>
-#include <stdlib.h>
-#include <string.h>
-#include <sys/socket.h>
-#include <sys/stat.h>
+#include "common/lcm_socket.h"
 
-int rec_url_port(const char *url)
+#include <stdio.h>
+#include <sys/socket.h>
+
+/* The first socket on the port: the recorder has one LCM instance. */
+static int take_first(int fd, ino_t inode, void *user)
 {
-    if (strncmp(url, "udpm://", 7) != 0)
-        return -1;
-    const char *p = url + 7;
-    const char *end = p + strcspn(p, "?");
-    const char *colon = memchr(p, ':', (size_t)(end - p));
-    if (!colon)
-        return 7667;
-    return atoi(colon + 1);
+    rec_socket *s = user;
+    s->fd = fd;
+    s->inode = (unsigned long)inode;
+    socklen_t len = sizeof s->granted_bytes;
+    getsockopt(fd, SOL_SOCKET, SO_RCVBUF, &s->granted_bytes, &len);
+    return 1;
 }
 
 int rec_socket_find(rec_socket *s, int port)
@@ -25,36 +21,8 @@ int rec_socket_find(rec_socket *s, int port)
     s->fd = -1;
     s->inode = 0;
     s->granted_bytes = 0;
-    if (port <= 0)
+    if (port <= 0 || lcm_sockets_on_port(port, take_first, s) < 0)
         return -1;
-    DIR *d = opendir("/proc/self/fd");
-    if (!d)
-        return -1;
-    struct dirent *de;
-    while ((de = readdir(d)) != NULL) {
-        char *end;
-        long fd = strtol(de->d_name, &end, 10);
-        if (*end || fd < 0 || fd == dirfd(d))
-            continue;
-        struct stat st;
-        if (fstat((int)fd, &st) || !S_ISSOCK(st.st_mode))
-            continue;
-        int type = 0;
-        socklen_t len = sizeof type;
-        if (getsockopt((int)fd, SOL_SOCKET, SO_TYPE, &type, &len) || type != SOCK_DGRAM)
-            continue;
-        struct sockaddr_in a;
-        len = sizeof a;
-        if (getsockname((int)fd, (struct sockaddr *)&a, &len) || a.sin_family != AF_INET ||
-            ntohs(a.sin_port) != port)
-            continue;
-        s->fd = (int)fd;
-        s->inode = (unsigned long)st.st_ino;
-        len = sizeof s->granted_bytes;
-        getsockopt((int)fd, SOL_SOCKET, SO_RCVBUF, &s->granted_bytes, &len);
-        break;
-    }
-    closedir(d);
     return s->fd >= 0 ? 0 : -1;
 }
 

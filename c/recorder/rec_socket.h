@@ -1,6 +1,6 @@
 /* What the kernel did with the recorder's LCM receive socket. liblcm keeps
- * its socket to itself, so it is found among the process's descriptors (a
- * UDP socket bound to the URL's port): its granted receive buffer
+ * its socket to itself, so it is found among the process's descriptors
+ * (common/lcm_socket.h): its granted receive buffer
  * (SO_RCVBUF) and the datagrams the kernel dropped because that buffer was
  * full (the `drops` column of /proc/self/net/udp) - messages the recorder
  * missed before it could see them. */
@@ -15,9 +15,7 @@ typedef struct {
     int granted_bytes;          /* SO_RCVBUF as the kernel reports it */
 } rec_socket;
 
-/* The port of a udpm URL (7667 when it names none); -1 for other providers. */
-int rec_url_port(const char *url);
-/* 0 when found. */
+/* 0 when found (the port: lcm_url_port, common/lcm_socket.h). */
 int rec_socket_find(rec_socket *s, int port);
 /* Kernel drops on that socket so far; -1 when they cannot be read. */
 int64_t rec_socket_drops(const rec_socket *s);

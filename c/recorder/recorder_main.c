@@ -25,6 +25,7 @@
 #include <time.h>
 
 #include "auv/auv_sim_clock_t.h"
+#include "common/lcm_socket.h"
 #include "managers/mgr_lockstep.h"
 #include "recorder/rec_health.h"
 #include "recorder/rec_options.h"
@@ -168,7 +169,7 @@ int main(int argc, char **argv)
         return 1;
     }
     lcm_subscription_set_queue_capacity(sub, r.opt.lcm_queue);
-    if (rec_socket_find(&r.sock, rec_url_port(url)) == 0) {
+    if (rec_socket_find(&r.sock, lcm_url_port(url)) == 0) {
         r.drops0 = rec_socket_drops(&r.sock);
         if (r.drops0 < 0)
             r.drops0 = 0;

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import lcm
 
-from auvlcm.chanfilter import ChannelFilter, FilteredLcm
+from auvlcm.chanfilter import FilteredLcm
 from auvlcm.paths import build_dir
 
 LIBRARY = "libauvlcm_sender.so"
@@ -88,17 +88,14 @@ class ThreadedLcm:
     on one CPU only (a spinning sender would hold the publisher's only core).
     """
 
-    def __init__(self, url: str, lc: lcm.LCM | None = None, slots: int = 512, spin_us: int | None = None) -> None:
+    def __init__(
+        self, url: str, lc: lcm.LCM | FilteredLcm | None = None, slots: int = 512, spin_us: int | None = None
+    ) -> None:
         if spin_us is None:
             spin_us = DEFAULT_SPIN_US if len(os.sched_getaffinity(0)) > 1 else 0
         fast, slow = _load()
-        # an instance made here gets a channel filter (auvlcm/chanfilter.py):
-        # its socket does not exist yet, so the filter can tell which is its own
-        self._filter = None
-        if lc is None:
-            lc = lcm.LCM(url)
-            self._filter = ChannelFilter(url)
-        self.lc = lc
+        # an instance made here gets a channel filter (auvlcm/chanfilter.py)
+        self.lc = lc = lc if lc is not None else FilteredLcm(url)
         handle = slow.auv_lcm_sender_create(url.encode(), slots, spin_us)
         if not handle:
             raise SenderUnavailable(f"cannot start an LCM sender on {url!r}")
@@ -110,13 +107,7 @@ class ThreadedLcm:
         self._errors_reported = 0
         # the receiving side, bound once: the simulator polls fileno() every step
         self.fileno, self.handle, self.handle_timeout = lc.fileno, lc.handle, lc.handle_timeout
-        self.unsubscribe = lc.unsubscribe
-        if self._filter is None:
-            self.subscribe = lc.subscribe
-
-    def subscribe(self, channel: str, handler):
-        """lc.subscribe through the channel filter."""
-        return self._filter.subscribe(self.lc, channel, handler)
+        self.subscribe, self.unsubscribe = lc.subscribe, lc.unsubscribe
 
     # -------------------------------------------------------------- publish
     def publish(self, channel: str, data: bytes) -> None:
