@@ -106,21 +106,16 @@ static int note_new(int fd, ino_t ino, void *user)
     return 0;
 }
 
-static int attach(auv_chanfilter_t *f)
+int auv_chanfilter_attach_fd(int fd, const auv_chanfilter_rule_t *rules, int n)
 {
-    struct stat st;
-    if (fstat(f->fd, &st) < 0 || st.st_ino != f->ino) {
-        f->state = GAVE_UP; /* the instance closed its socket */
-        return 0;
-    }
     struct sock_filter *ins = malloc(MAX_PROGRAM * sizeof *ins);
     if (!ins)
         return -1;
-    int n = auv_chanfilter_compile(f->rules, f->n, ins, MAX_PROGRAM);
+    int len = auv_chanfilter_compile(rules, n, ins, MAX_PROGRAM);
     int rc = 1;
-    if (n > 0) {
-        struct sock_fprog prog = {(unsigned short)n, ins};
-        if (setsockopt(f->fd, SOL_SOCKET, SO_ATTACH_FILTER, &prog, sizeof prog) < 0)
+    if (len > 0) {
+        struct sock_fprog prog = {(unsigned short)len, ins};
+        if (setsockopt(fd, SOL_SOCKET, SO_ATTACH_FILTER, &prog, sizeof prog) < 0)
             rc = -1;
     } else {
         rc = 0; /* a pattern that is not a name, or too many: everything passes */
@@ -130,9 +125,20 @@ static int attach(auv_chanfilter_t *f)
         int saved = errno;
         /* A refused program leaves the old, narrower one in place: take it
          * off, so that the new subscription is not dropped. */
-        setsockopt(f->fd, SOL_SOCKET, SO_DETACH_FILTER, NULL, 0);
+        setsockopt(fd, SOL_SOCKET, SO_DETACH_FILTER, NULL, 0);
         errno = saved;
     }
+    return rc;
+}
+
+static int attach(auv_chanfilter_t *f)
+{
+    struct stat st;
+    if (fstat(f->fd, &st) < 0 || st.st_ino != f->ino) {
+        f->state = GAVE_UP; /* the instance closed its socket */
+        return 0;
+    }
+    int rc = auv_chanfilter_attach_fd(f->fd, f->rules, f->n);
     f->attached_n = f->n;
     f->attached_rc = rc;
     return rc;

@@ -56,6 +56,11 @@ int auv_chanfilter_note_rule(auv_chanfilter_t *f, const auv_chanfilter_rule_t *r
  * refused the program (errno set; the socket then filters nothing). */
 int auv_chanfilter_apply(auv_chanfilter_t *f);
 
+/* Attaches the program for rules to a socket of one's own (a process that
+ * reads the group itself: common/lcm_udpm_reader.h). Same returns as
+ * auv_chanfilter_apply; AUV_LCM_CHANFILTER=0 is the caller's to honour. */
+int auv_chanfilter_attach_fd(int fd, const auv_chanfilter_rule_t *rules, int n);
+
 /* Builds the program for rules (no socket involved): writes at most cap
  * instructions of struct sock_filter to out. Returns the count, 0 when a
  * rule cannot be expressed (accept everything), -1 when cap is too small.

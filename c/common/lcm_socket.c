@@ -8,21 +8,53 @@
 #include <sys/stat.h>
 
 #define DEFAULT_PORT 7667
+#define DEFAULT_GROUP "239.255.76.67"
 
-int lcm_url_port(const char *url)
+int lcm_udpm_url_parse(const char *url, char *group, size_t group_len, int *port, long *recv_buf)
 {
     if (!url || !*url)
         url = getenv("LCM_DEFAULT_URL");
     if (!url || !*url)
-        return DEFAULT_PORT;
+        url = "udpm://" DEFAULT_GROUP;
     if (strncmp(url, "udpm://", 7) != 0)
         return -1;
-    const char *host = url + 7, *end = host + strcspn(host, "?");
-    const char *colon = memchr(host, ':', (size_t)(end - host));
-    if (!colon)
-        return DEFAULT_PORT;
-    long port = strtol(colon + 1, NULL, 10);
-    return port > 0 && port < 65536 ? (int)port : -1;
+    const char *host = url + 7, *opts = host + strcspn(host, "?");
+    const char *colon = memchr(host, ':', (size_t)(opts - host));
+    const char *host_end = colon ? colon : opts;
+    size_t n = (size_t)(host_end - host);
+    if (n == 0) {
+        host = DEFAULT_GROUP;
+        n = strlen(DEFAULT_GROUP);
+    }
+    if (group_len <= n)
+        return -1;
+    memcpy(group, host, n);
+    group[n] = '\0';
+    *port = DEFAULT_PORT;
+    if (colon) {
+        char *end;
+        long p = strtol(colon + 1, &end, 10);
+        if (end != opts || p <= 0 || p >= 65536)
+            return -1;
+        *port = (int)p;
+    }
+    *recv_buf = 0;
+    /* options: key=value pairs joined by '&' */
+    for (const char *o = *opts ? opts + 1 : opts; *o;) {
+        size_t len = strcspn(o, "&");
+        if (len > 14 && !strncmp(o, "recv_buf_size=", 14))
+            *recv_buf = strtol(o + 14, NULL, 10);
+        o += len + (o[len] == '&');
+    }
+    return 0;
+}
+
+int lcm_url_port(const char *url)
+{
+    char group[64];
+    int port;
+    long rb;
+    return lcm_udpm_url_parse(url, group, sizeof group, &port, &rb) == 0 ? port : -1;
 }
 
 int lcm_sockets_on_port(int port, int (*fn)(int fd, ino_t inode, void *user), void *user)

@@ -31,6 +31,10 @@ int rec_queue_init(rec_queue *q, size_t capacity_bytes)
 {
     memset(q, 0, sizeof *q);
     q->capacity = capacity_bytes;
+    /* A wake-up per message was a third context switch for each datagram
+     * (after liblcm's thread and the handler); batches by time or size cost
+     * one per batch. Small enough that a burst never nears the capacity. */
+    q->wake_bytes = capacity_bytes / 16 > 0 ? capacity_bytes / 16 : 1;
     if (pthread_mutex_init(&q->mu, NULL) || init_cond(&q->cv) || init_cond(&q->drained))
         return -1;
     return 0;
@@ -85,7 +89,8 @@ int rec_queue_push(rec_queue *q, int64_t timestamp, const char *channel, const v
         q->pushed++;
         if (q->bytes > q->high_water)
             q->high_water = q->bytes;
-        pthread_cond_signal(&q->cv);
+        if (q->bytes >= q->wake_bytes && q->bytes - size < q->wake_bytes)
+            pthread_cond_signal(&q->cv);
     }
     pthread_mutex_unlock(&q->mu);
     return e ? 0 : -1;
@@ -96,7 +101,7 @@ rec_event *rec_queue_take_all(rec_queue *q, int timeout_ms, int *closed)
     struct timespec until;
     deadline_in(&until, timeout_ms);
     pthread_mutex_lock(&q->mu);
-    while (!q->head && !q->closed) {
+    while (q->bytes < q->wake_bytes && !q->closed && !(q->drain_wanted && q->head)) {
         if (pthread_cond_timedwait(&q->cv, &q->mu, &until) == ETIMEDOUT)
             break;
     }
@@ -132,9 +137,12 @@ int rec_queue_wait_below(rec_queue *q, size_t bytes, int timeout_ms)
     deadline_in(&until, timeout_ms);
     pthread_mutex_lock(&q->mu);
     while (q->bytes > bytes) {
+        q->drain_wanted = 1;
+        pthread_cond_signal(&q->cv);
         if (pthread_cond_timedwait(&q->drained, &q->mu, &until) == ETIMEDOUT)
             break;
     }
+    q->drain_wanted = 0;
     int ok = q->bytes <= bytes;
     pthread_mutex_unlock(&q->mu);
     return ok;

@@ -19,11 +19,13 @@ typedef struct rec_event {
 
 typedef struct {
     pthread_mutex_t mu;
-    pthread_cond_t cv;          /* an event arrived, or the queue closed */
+    pthread_cond_t cv;          /* the queue passed wake_bytes, a drain is wanted, or it closed */
     pthread_cond_t drained;     /* the writer took events out */
     rec_event *head, *tail;
     size_t bytes, capacity;     /* queued bytes, limit */
     size_t high_water;          /* most bytes ever queued */
+    size_t wake_bytes;          /* the writer is woken early past this many queued bytes */
+    int drain_wanted;           /* someone waits in rec_queue_wait_below */
     int64_t pushed, dropped;
     int closed;
 } rec_queue;
@@ -32,8 +34,10 @@ int rec_queue_init(rec_queue *q, size_t capacity_bytes);
 void rec_queue_destroy(rec_queue *q);
 /* 0 queued, -1 dropped (queue full or out of memory; counted). */
 int rec_queue_push(rec_queue *q, int64_t timestamp, const char *channel, const void *data, int32_t datalen);
-/* Every queued event as a list (oldest first), waiting up to timeout_ms for
- * one; NULL on timeout or when closed and empty. Caller frees each with free(). */
+/* Every queued event as a list (oldest first), after waiting up to
+ * timeout_ms for the queue to pass wake_bytes (or to close, or for a drain to
+ * be wanted): the writer takes events in batches instead of waking for each
+ * one. NULL when nothing is queued. Caller frees each with free(). */
 rec_event *rec_queue_take_all(rec_queue *q, int timeout_ms, int *closed);
 /* No more pushes; the writer drains what is left, then sees closed. */
 void rec_queue_close(rec_queue *q);

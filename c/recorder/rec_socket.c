@@ -1,29 +1,22 @@
 #include "recorder/rec_socket.h"
 
-#include "common/lcm_socket.h"
-
 #include <stdio.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 
-/* The first socket on the port: the recorder has one LCM instance. */
-static int take_first(int fd, ino_t inode, void *user)
-{
-    rec_socket *s = user;
-    s->fd = fd;
-    s->inode = (unsigned long)inode;
-    socklen_t len = sizeof s->granted_bytes;
-    getsockopt(fd, SOL_SOCKET, SO_RCVBUF, &s->granted_bytes, &len);
-    return 1;
-}
-
-int rec_socket_find(rec_socket *s, int port)
+int rec_socket_of(rec_socket *s, int fd)
 {
     s->fd = -1;
     s->inode = 0;
     s->granted_bytes = 0;
-    if (port <= 0 || lcm_sockets_on_port(port, take_first, s) < 0)
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) < 0)
         return -1;
-    return s->fd >= 0 ? 0 : -1;
+    s->fd = fd;
+    s->inode = (unsigned long)st.st_ino;
+    socklen_t len = sizeof s->granted_bytes;
+    getsockopt(fd, SOL_SOCKET, SO_RCVBUF, &s->granted_bytes, &len);
+    return 0;
 }
 
 int64_t rec_socket_drops(const rec_socket *s)

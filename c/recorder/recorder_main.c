@@ -25,9 +25,9 @@
 #include <time.h>
 
 #include "auv/auv_sim_clock_t.h"
-#include "common/lcm_socket.h"
 #include "managers/mgr_lockstep.h"
 #include "recorder/rec_health.h"
+#include "recorder/rec_input.h"
 #include "recorder/rec_options.h"
 #include "recorder/rec_queue.h"
 #include "recorder/rec_socket.h"
@@ -43,7 +43,8 @@ static void on_signal(int sig)
 
 typedef struct {
     rec_options opt;
-    lcm_t *lcm;
+    lcm_t *lcm;                 /* publishing (and receiving on a url that is not udpm) */
+    rec_input in;
     rec_queue q;
     rec_writer w;
     rec_socket sock;
@@ -60,14 +61,14 @@ static double mono_s(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
-static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *user)
+static void on_message(const char *channel, const void *data, int len, int64_t recv_utime, void *user)
 {
     recorder *r = user;
     r->received++;
-    rec_queue_push(&r->q, rbuf->recv_utime, channel, rbuf->data, (int32_t)rbuf->data_size);
+    rec_queue_push(&r->q, recv_utime, channel, data, (int32_t)len);
     if (!strcmp(channel, "SIM.CLOCK")) {
         auv_sim_clock_t c;
-        if (auv_sim_clock_t_decode(rbuf->data, 0, (int)rbuf->data_size, &c) >= 0) {
+        if (auv_sim_clock_t_decode(data, 0, len, &c) >= 0) {
             r->last_clock_utime = c.utime;
             if (r->opt.lockstep)
                 mgr_lockstep_on_clock(&r->ls, r->lcm, &c);
@@ -91,10 +92,13 @@ static void write_stats(const recorder *r, int64_t dropped, int64_t miss)
         perror(r->opt.stats);
         return;
     }
+    const lcm_udpm_counts *wire = r->in.all ? lcm_udpm_reader_counts(r->in.all) : NULL;
     fprintf(f, "{\"received\": %lld, \"written\": %lld, \"dropped\": %lld, \"missed\": %lld, "
+               "\"malformed\": %lld, \"incomplete\": %lld, "
                "\"write_errors\": %lld, \"bytes\": %lld, \"queue_high_water_bytes\": %zu, "
                "\"recv_buf_requested\": %ld, \"recv_buf_granted\": %d, \"rmem_max\": %ld}\n",
             (long long)r->received, (long long)r->w.written, (long long)dropped, (long long)miss,
+            (long long)(wire ? wire->malformed : 0), (long long)(wire ? wire->incomplete : 0),
             (long long)r->w.write_errors, (long long)r->w.bytes, r->q.high_water, r->opt.recv_buf,
             r->sock.granted_bytes, rec_rmem_max());
     fclose(f);
@@ -104,8 +108,11 @@ static void write_stats(const recorder *r, int64_t dropped, int64_t miss)
 static void drain(recorder *r)
 {
     double until = mono_s() + 2.0;
-    while (mono_s() < until && lcm_handle_timeout(r->lcm, 50) > 0)
-        ;
+    double quiet_until = mono_s() + 0.05;
+    while (mono_s() < until && mono_s() < quiet_until) {
+        if (rec_input_wait(&r->in, REC_INPUT_TICK_MS) > 0)
+            quiet_until = mono_s() + 0.05;
+    }
 }
 
 static void run(recorder *r)
@@ -115,12 +122,12 @@ static void run(recorder *r)
     double next_health = mono_s() + r->opt.health_period_s;
     int failures = 0;
     while (!g_stop) {
-        if (lcm_handle_timeout(r->lcm, 50) < 0) {
+        if (rec_input_wait(&r->in, 50) < 0) {
             /* a signal interrupts the wait (EINTR): the loop condition decides */
             if (g_stop || errno == EINTR)
                 continue;
             if (++failures == 100) {
-                fprintf(stderr, "auv-recorder: lcm_handle keeps failing: %s\n", strerror(errno));
+                fprintf(stderr, "auv-recorder: receiving keeps failing: %s\n", strerror(errno));
                 break;
             }
             continue;
@@ -163,13 +170,9 @@ int main(int argc, char **argv)
         return 1;
     }
     mgr_lockstep_init(&r.ls, "SIM", r.opt.name);
-    lcm_subscription_t *sub = lcm_subscribe(r.lcm, r.opt.channel, on_message, &r);
-    if (!sub) {
-        fprintf(stderr, "auv-recorder: cannot subscribe to '%s'\n", r.opt.channel);
+    if (rec_input_open(&r.in, url, r.opt.recv_buf, r.opt.channel, r.lcm, r.opt.lcm_queue, on_message, &r))
         return 1;
-    }
-    lcm_subscription_set_queue_capacity(sub, r.opt.lcm_queue);
-    if (rec_socket_find(&r.sock, lcm_url_port(url)) == 0) {
+    if (rec_socket_of(&r.sock, rec_input_socket(&r.in)) == 0) {
         r.drops0 = rec_socket_drops(&r.sock);
         if (r.drops0 < 0)
             r.drops0 = 0;
@@ -205,7 +208,11 @@ int main(int argc, char **argv)
            "(kernel socket drops)%s\n",
            (long long)r.received, (long long)r.w.written, (long long)dropped, miss < 0 ? "unknown " : "",
            (long long)(miss < 0 ? 0 : miss), r.w.write_errors ? ", WRITE ERRORS" : "");
-    lcm_unsubscribe(r.lcm, sub);
+    const lcm_udpm_counts *wire = r.in.all ? lcm_udpm_reader_counts(r.in.all) : NULL;
+    if (wire && (wire->malformed || wire->incomplete))
+        printf("auv-recorder: not recorded: %lld malformed datagrams, %lld fragmented messages never completed\n",
+               (long long)wire->malformed, (long long)wire->incomplete);
+    rec_input_close(&r.in);
     lcm_destroy(r.lcm);
     lcm_eventlog_destroy(log);
     rec_queue_destroy(&r.q);

@@ -1,0 +1,151 @@
+"""auv-recorder reads the udpm group on sockets of its own
+(c/common/lcm_udpm_reader.c, c/recorder/rec_input.c), not through liblcm:
+what liblcm did for it must still hold. Fragmented messages from several
+senders come out whole and in order, each event keeps its own receive time,
+--channel still selects, and datagrams that are not LCM (or fragments that
+never complete) are counted and dropped without losing anything after them.
+Over real LCM, both build variants."""
+
+from __future__ import annotations
+
+import json
+import random
+import signal
+import socket
+import struct
+import subprocess
+import threading
+import time
+
+import lcm
+from lcm_proc import stop
+from test_recorder import WARMUP, events, recorder_cmd, wait_logged
+
+
+def start(variant_dir, url, log, stats, child_env, *extra):
+    return subprocess.Popen(
+        recorder_cmd(variant_dir, url, log, stats, "--no-lockstep", *extra),
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+
+
+def finish(rec) -> str:
+    rc = stop(rec, signal.SIGINT)
+    out, err = rec.communicate()
+    assert rc == 0, out + err
+    assert err == "", err  # no sanitizer report
+    return out
+
+
+def group_port(url: str) -> tuple[str, int]:
+    host = url.split("//", 1)[1].split("?", 1)[0]
+    g, p = host.split(":")
+    return g, int(p)
+
+
+def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, child_env, variant_dir):
+    """Two publishers at once, each mixing messages of one datagram with ones
+    of up to 16 fragments: every message byte for byte, in each sender's order."""
+    url = lcm_url + "&recv_buf_size=8388608"
+    log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
+    rec = start(variant_dir, url, log, stats, child_env)
+    rng = random.Random(7)
+    sizes = [rng.choice([10, 1400, 70_000, 300_000, 1_000_000]) for _ in range(60)]
+    plans = {
+        name: [bytes([i % 251]) * 4 + rng.randbytes(n) for i, n in enumerate(sizes)] for name in ("BIG.A", "BIG.B")
+    }
+    try:
+        wait_logged(log, WARMUP, lcm.LCM(url), rec, "auv-recorder")
+        t0 = time.time()
+
+        def send(channel: str) -> None:
+            lc = lcm.LCM(url)
+            for body in plans[channel]:
+                lc.publish(channel, body)
+                time.sleep(0.003)  # a paced sender: the test is reassembly, not the kernel's buffer
+
+        threads = [threading.Thread(target=send, args=(ch,)) for ch in plans]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+        time.sleep(0.3)
+        t1 = time.time()
+    finally:
+        out = finish(rec)
+    log_events = list(lcm.EventLog(str(log), "r"))
+    for channel, bodies in plans.items():
+        got = [ev.data for ev in log_events if ev.channel == channel]
+        assert len(got) == len(bodies), (channel, len(got), out)
+        assert got == bodies, f"{channel}: a message came out different"
+    stamps = [ev.timestamp for ev in log_events if ev.channel in plans]
+    assert all(t0 * 1e6 - 1e6 <= s <= t1 * 1e6 + 1e6 for s in stamps), "receive stamps are not receive times"
+    counts = json.loads(stats.read_text())
+    assert counts["malformed"] == 0 and counts["incomplete"] == 0 and counts["missed"] == 0, counts
+
+
+def test_datagrams_that_are_not_lcm_are_counted_and_dropped(tmp_path, lcm_url, child_env, variant_dir):
+    """Garbage, cut-short headers, a channel without its end, a fragment that
+    points past its message, and a fragmented message whose sender moved on
+    before it completed: none is recorded, each is counted, and the message
+    sent after them all is recorded."""
+    log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
+    rec = start(variant_dir, lcm_url, log, stats, child_env)
+    group, port = group_port(lcm_url)
+    raw = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    raw.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)  # this machine only
+    lc2 = struct.pack(">II", 0x4C433032, 1)
+    lc3 = lambda seq, size, off, no, n: struct.pack(">IIIIHH", 0x4C433033, seq, size, off, no, n)  # noqa: E731
+    malformed = [
+        b"garbage that is not LCM",
+        b"LC0",
+        lc2,  # no channel at all
+        lc2 + b"X" * 80,  # a channel longer than LCM allows, never ended
+        lc3(5, 100, 0, 0, 2)[:12],  # a fragment header cut short
+        lc3(6, 100, 0, 0, 0) + b"CH\0" + b"x" * 10,  # zero fragments
+        lc3(7, 100, 0, 3, 2) + b"x" * 10,  # fragment 3 of 2
+        lc3(8, 100, 95, 1, 2) + b"x" * 10,  # past the message's end
+    ]
+    try:
+        lc = lcm.LCM(lcm_url)
+        wait_logged(log, WARMUP, lc, rec, "auv-recorder")
+        for d in malformed:
+            raw.sendto(d, (group, port))
+        # the first of two fragments, then the same sender's next message: the first can never complete
+        raw.sendto(lc3(9, 20, 0, 0, 2) + b"HALF\0" + b"a" * 10, (group, port))
+        raw.sendto(lc3(10, 6, 0, 0, 1) + b"WHOLE\0" + b"123456", (group, port))
+        lc.publish("AFTER", b"still recorded")
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not any(ch == "AFTER" for ch, _ in events(log)):
+            time.sleep(0.05)
+    finally:
+        out = finish(rec)
+        raw.close()
+    recorded = events(log)
+    assert ("AFTER", b"still recorded") in recorded
+    assert ("WHOLE", b"123456") in recorded  # a one-fragment LC03 message is a message
+    assert {ch for ch, _ in recorded} <= {WARMUP, "AFTER", "WHOLE"}, recorded
+    counts = json.loads(stats.read_text())
+    assert counts["malformed"] == len(malformed), counts
+    assert counts["incomplete"] == 1, counts
+    assert f"{len(malformed)} malformed datagrams, 1 fragmented messages never completed" in out, out
+
+
+def test_channel_selects_what_is_recorded(tmp_path, lcm_url, child_env, variant_dir):
+    log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
+    rec = start(variant_dir, lcm_url, log, stats, child_env, "--channel", r"AUV[12]\.TRUTH|TEST\..*")
+    lc = lcm.LCM(lcm_url)
+    try:
+        wait_logged(log, WARMUP, lc, rec, "auv-recorder")
+        for ch in ("AUV1.TRUTH", "AUV3.TRUTH", "AUV2.TRUTH", "AUV1.TRUTHX", "XAUV1.TRUTH", "TEST.END"):
+            lc.publish(ch, ch.encode())
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not any(ch == "TEST.END" for ch, _ in events(log)):
+            time.sleep(0.05)
+    finally:
+        finish(rec)
+    got = [ch for ch, _ in events(log) if ch != WARMUP]
+    assert got == ["AUV1.TRUTH", "AUV2.TRUTH", "TEST.END"]  # anchored, as lcm_subscribe anchors
