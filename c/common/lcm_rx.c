@@ -1,6 +1,7 @@
 #include "common/lcm_rx.h"
 
 #include "common/lcm_chanfilter.h"
+#include "common/lcm_rx_route.h"
 #include "common/lcm_validate.h"
 
 #include <errno.h>
@@ -10,7 +11,7 @@
 #include <string.h>
 
 struct rx_sub {
-    lcm_subscription_t *lcm_sub;
+    rx_raw_t *route;
     const auv_type_entry_t *type;
     rx_handler_t handler;
     void *user;
@@ -75,38 +76,98 @@ static void on_message(const lcm_recv_buf_t *rbuf, const char *channel, void *us
 lcm_t *rx_lcm_create(const char *url)
 {
     lcm_t *lcm = lcm_create(url);
-    if (lcm)
+    /* its own socket where it can (lcm_rx_own.c); else liblcm receives,
+     * behind a channel filter on liblcm's socket */
+    if (lcm && !rx_own_create(lcm, url))
         auv_chanfilter_register(lcm, auv_chanfilter_new(url));
     return lcm;
 }
 
 void rx_lcm_destroy(lcm_t *lcm)
 {
+    rx_own_destroy(lcm);
     auv_chanfilter_unregister(lcm);
     if (lcm)
         lcm_destroy(lcm);
 }
 
-lcm_subscription_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user)
+int rx_handle_timeout(lcm_t *lcm, int timeout_ms)
+{
+    rx_own_t *own = rx_own_of(lcm);
+    return own ? rx_own_handle_timeout(own, timeout_ms) : lcm_handle_timeout(lcm, timeout_ms);
+}
+
+rx_raw_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user)
 {
     return rx_subscribe_raw_where(lcm, channel, NULL, 0, 0, handler, user);
 }
 
-lcm_subscription_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
-                                           int payload_len, lcm_msg_handler_t handler, void *user)
+/* Through liblcm: its subscription, behind the filter on its socket. */
+static int subscribe_liblcm(lcm_t *lcm, rx_raw_t *r)
 {
     auv_chanfilter_t *f = auv_chanfilter_of(lcm);
-    const auv_chanfilter_rule_t rule = {channel, payload, payload_at, payload_len};
+    const auv_chanfilter_rule_t rule = {r->pattern, r->payload, r->payload_at, r->payload_len};
     if (auv_chanfilter_note_rule(f, &rule) < 0)
-        return NULL;
-    lcm_subscription_t *sub = lcm_subscribe(lcm, channel, handler, user);
-    if (sub && auv_chanfilter_apply(f) < 0) {
+        return -1;
+    r->lcm_sub = lcm_subscribe(lcm, r->pattern, r->fn, r->user);
+    if (r->lcm_sub && auv_chanfilter_apply(f) < 0) {
         static int told;
         if (!told++)
             fprintf(stderr, "lcm_rx: the kernel refused the channel filter (%s): this process receives every channel\n",
                     strerror(errno));
     }
-    return sub;
+    return r->lcm_sub ? 0 : -1;
+}
+
+rx_raw_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
+                                 int payload_len, lcm_msg_handler_t handler, void *user)
+{
+    if (!lcm || !channel || !handler || payload_len < 0 || (payload_len > 0 && !payload))
+        return NULL;
+    rx_raw_t *r = calloc(1, sizeof *r);
+    if (!r)
+        return NULL;
+    r->fn = handler;
+    r->user = user;
+    r->pattern = strdup(channel);
+    r->payload_at = payload_at;
+    r->payload_len = payload_len;
+    if (payload_len > 0 && (r->payload = malloc((size_t)payload_len)))
+        memcpy(r->payload, payload, (size_t)payload_len);
+    rx_own_t *own = rx_own_of(lcm);
+    int ok = r->pattern && (payload_len == 0 || r->payload) &&
+             (own ? rx_own_add(own, r) == 0 : subscribe_liblcm(lcm, r) == 0);
+    if (!ok) {
+        free(r->pattern);
+        free(r->payload);
+        free(r);
+        return NULL;
+    }
+    return r;
+}
+
+void rx_unsubscribe_raw(lcm_t *lcm, rx_raw_t *r)
+{
+    if (!r)
+        return;
+    if (r->own) {
+        rx_own_remove(r->own, r); /* frees it, or after the dispatch in progress */
+        return;
+    }
+    if (r->lcm_sub)
+        lcm_unsubscribe(lcm, r->lcm_sub);
+    else
+        regfree(&r->re); /* an own-socket route whose instance is gone */
+    free(r->pattern);
+    free(r->payload);
+    free(r);
+}
+
+int rx_raw_set_queue_capacity(rx_raw_t *r, int capacity)
+{
+    /* on an own socket nothing queues in the process: the kernel's receive
+     * buffer is the queue, and the url's recv_buf_size sizes it */
+    return r->lcm_sub ? lcm_subscription_set_queue_capacity(r->lcm_sub, capacity) : 0;
 }
 
 rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,
@@ -122,8 +183,8 @@ rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *
     s->handler = handler;
     s->user = user;
     if (s->scratch)
-        s->lcm_sub = rx_subscribe_raw(lcm, channel, on_message, s);
-    if (!s->lcm_sub) {
+        s->route = rx_subscribe_raw(lcm, channel, on_message, s);
+    if (!s->route) {
         free(s->scratch);
         free(s);
         return NULL;
@@ -135,14 +196,14 @@ void rx_unsubscribe(lcm_t *lcm, rx_sub_t *sub)
 {
     if (!sub)
         return;
-    lcm_unsubscribe(lcm, sub->lcm_sub);
+    rx_unsubscribe_raw(lcm, sub->route);
     free(sub->scratch);
     free(sub);
 }
 
 int rx_set_queue_capacity(rx_sub_t *sub, int capacity)
 {
-    return lcm_subscription_set_queue_capacity(sub->lcm_sub, capacity);
+    return rx_raw_set_queue_capacity(sub->route, capacity);
 }
 
 void rx_set_quiet_other_types(rx_sub_t *sub, int quiet)

@@ -28,25 +28,39 @@ typedef struct {
 typedef void (*rx_handler_t)(const char *channel, const void *msg, int64_t recv_utime, void *user);
 
 typedef struct rx_sub rx_sub_t;
+typedef struct rx_raw rx_raw_t;
 
-/* lcm_create(url) with a kernel-side channel filter (lcm_chanfilter.h): the
- * process then wakes only for the channels it subscribes to through
- * rx_subscribe and rx_subscribe_raw. Close it with rx_lcm_destroy. */
+/* lcm_create(url) whose receiving this module does: on a udpm url it reads
+ * the group on a socket of its own (one wake-up per datagram instead of
+ * liblcm's two: lcm_rx_own.c), with a kernel-side channel filter
+ * (lcm_chanfilter.h) built from its subscriptions, so the process wakes only
+ * for its own channels. Publish on it with liblcm as usual; receive with
+ * rx_handle_timeout, subscribe only through rx_subscribe and
+ * rx_subscribe_raw. AUV_LCM_READER=0 leaves receiving to liblcm (its socket
+ * still filtered; AUV_LCM_CHANFILTER=0 turns the filter off). Close it with
+ * rx_lcm_destroy. */
 lcm_t *rx_lcm_create(const char *url);
 void rx_lcm_destroy(lcm_t *lcm);
 
-/* lcm_subscribe that widens the instance's channel filter first. Every
- * subscription of an rx_lcm_create instance must come through here or
- * rx_subscribe: one made with lcm_subscribe is dropped by the filter. */
-lcm_subscription_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user);
+/* lcm_handle_timeout for any instance: handles one message (1), or none
+ * within timeout_ms (0; also when a signal interrupted the wait), -1 on a
+ * receive error. */
+int rx_handle_timeout(lcm_t *lcm, int timeout_ms);
+
+/* A subscription with liblcm's raw handler. */
+rx_raw_t *rx_subscribe_raw(lcm_t *lcm, const char *channel, lcm_msg_handler_t handler, void *user);
 
 /* rx_subscribe_raw for the messages that carry payload_len bytes of payload
  * at payload_at of their encoding (0: the fingerprint): the kernel drops the
  * others before the process wakes, where the filter is on. The handler must
  * still check: without a filter (another transport, AUV_LCM_CHANFILTER=0)
  * every message of the channel arrives. */
-lcm_subscription_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
-                                           int payload_len, lcm_msg_handler_t handler, void *user);
+rx_raw_t *rx_subscribe_raw_where(lcm_t *lcm, const char *channel, const void *payload, int payload_at,
+                                 int payload_len, lcm_msg_handler_t handler, void *user);
+void rx_unsubscribe_raw(lcm_t *lcm, rx_raw_t *raw);
+/* liblcm's subscription queue (its default is 30); nothing to size on an own
+ * socket, whose queue is the kernel's receive buffer. 0 ok. */
+int rx_raw_set_queue_capacity(rx_raw_t *raw, int capacity);
 
 /* Subscribe to channel (an LCM regex) expecting one type. NULL on failure. */
 rx_sub_t *rx_subscribe(lcm_t *lcm, const char *channel, const auv_type_entry_t *type,

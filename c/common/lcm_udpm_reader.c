@@ -43,6 +43,8 @@ struct lcm_udpm_reader {
     uint64_t clock;             /* slot ages */
     lcm_udpm_counts counts;
     frag_slot slots[SLOTS];
+    frag_slot *completed;       /* handed out by the last next(): freed by the one after */
+    int batch_n, batch_i;       /* datagrams read, and taken, of the current batch */
     struct mmsghdr msgs[BATCH];
     struct iovec iov[BATCH];
     struct sockaddr_in from[BATCH];
@@ -243,9 +245,9 @@ static int channel_len(const uint8_t *p, size_t avail)
     return nul ? (int)(nul - p) : -1;
 }
 
-/* 1 when a message was handed over. */
+/* 1 when the fragment completed a message (in m). */
 static int on_fragment(lcm_udpm_reader_t *r, const uint8_t *p, size_t len, const struct sockaddr_in *from,
-                       int64_t t, lcm_udpm_handler fn, void *user)
+                       lcm_udpm_msg *m)
 {
     if (len < FRAG_HEADER)
         return r->counts.malformed++, 0;
@@ -279,70 +281,102 @@ static int on_fragment(lcm_udpm_reader_t *r, const uint8_t *p, size_t len, const
         memcpy(s->channel, channel, sizeof channel);
     if (s->got < s->n)
         return 0;
-    int ok = s->got_bytes == s->size;
-    if (ok)
-        fn(s->channel, s->data, (int)s->size, t, user);
-    else
+    if (s->got_bytes != s->size) {
         r->counts.malformed++;
-    slot_free(s);
-    return ok;
+        slot_free(s);
+        return 0;
+    }
+    m->channel = s->channel;
+    m->data = s->data;
+    m->len = (int)s->size;
+    r->completed = s;
+    return 1;
 }
 
-/* 1 when a message was handed over. */
-static int on_datagram(lcm_udpm_reader_t *r, const uint8_t *p, size_t len, const struct sockaddr_in *from,
-                       int64_t t, lcm_udpm_handler fn, void *user)
+/* 1 when the datagram is (or completed) a message, in m. */
+static int on_datagram(lcm_udpm_reader_t *r, uint8_t *p, size_t len, const struct sockaddr_in *from, lcm_udpm_msg *m)
 {
     r->counts.datagrams++;
     uint32_t magic = len >= 4 ? be32(p) : 0;
     if (magic == MAGIC_FRAG)
-        return on_fragment(r, p, len, from, t, fn, user);
+        return on_fragment(r, p, len, from, m);
     if (magic != MAGIC_SHORT || len < SHORT_HEADER + 1)
         return r->counts.malformed++, 0;
     int cl = channel_len(p + SHORT_HEADER, len - SHORT_HEADER);
     if (cl < 0)
         return r->counts.malformed++, 0;
-    const uint8_t *data = p + SHORT_HEADER + cl + 1;
-    fn((const char *)p + SHORT_HEADER, data, (int)(len - SHORT_HEADER - (size_t)cl - 1), t, user);
+    m->channel = (const char *)p + SHORT_HEADER;
+    m->data = p + SHORT_HEADER + cl + 1;
+    m->len = (int)(len - SHORT_HEADER - (size_t)cl - 1);
     return 1;
+}
+
+/* Reads the next batch; 0 when nothing is queued, -1 on an error. */
+static int refill(lcm_udpm_reader_t *r)
+{
+    for (int i = 0; i < BATCH; i++) {
+        r->iov[i].iov_base = r->bufs[i];
+        r->iov[i].iov_len = DATAGRAM_MAX;
+        struct msghdr *h = &r->msgs[i].msg_hdr;
+        memset(h, 0, sizeof *h);
+        h->msg_iov = &r->iov[i];
+        h->msg_iovlen = 1;
+        h->msg_name = &r->from[i];
+        h->msg_namelen = sizeof r->from[i];
+        h->msg_control = r->ctrl[i];
+        h->msg_controllen = sizeof r->ctrl[i];
+    }
+    int got;
+    do
+        got = recvmmsg(r->fd, r->msgs, BATCH, MSG_DONTWAIT, NULL);
+    while (got < 0 && errno == EINTR);
+    if (got < 0)
+        return errno == EAGAIN || errno == EWOULDBLOCK ? 0 : -1;
+    r->batch_n = got;
+    r->batch_i = 0;
+    return got;
+}
+
+int lcm_udpm_reader_next(lcm_udpm_reader_t *r, lcm_udpm_msg *m)
+{
+    if (r->completed) {
+        slot_free(r->completed);
+        r->completed = NULL;
+    }
+    for (;;) {
+        if (r->batch_i == r->batch_n) {
+            int rc = refill(r);
+            if (rc <= 0)
+                return rc;
+        }
+        int i = r->batch_i++;
+        struct msghdr *h = &r->msgs[i].msg_hdr;
+        if (h->msg_flags & MSG_TRUNC) { /* cannot be LCM: a datagram is at most 64 KB */
+            r->counts.datagrams++;
+            r->counts.malformed++;
+            continue;
+        }
+        m->recv_utime = stamp_of(h, r);
+        if (on_datagram(r, r->bufs[i], r->msgs[i].msg_len, &r->from[i], m)) {
+            r->counts.messages++;
+            return 1;
+        }
+    }
+}
+
+int lcm_udpm_reader_pending(const lcm_udpm_reader_t *r)
+{
+    return r->batch_i < r->batch_n;
 }
 
 int lcm_udpm_reader_drain(lcm_udpm_reader_t *r, lcm_udpm_handler fn, void *user)
 {
     int delivered = 0;
-    for (;;) {
-        for (int i = 0; i < BATCH; i++) {
-            r->iov[i].iov_base = r->bufs[i];
-            r->iov[i].iov_len = DATAGRAM_MAX;
-            struct msghdr *h = &r->msgs[i].msg_hdr;
-            memset(h, 0, sizeof *h);
-            h->msg_iov = &r->iov[i];
-            h->msg_iovlen = 1;
-            h->msg_name = &r->from[i];
-            h->msg_namelen = sizeof r->from[i];
-            h->msg_control = r->ctrl[i];
-            h->msg_controllen = sizeof r->ctrl[i];
-        }
-        int got = recvmmsg(r->fd, r->msgs, BATCH, MSG_DONTWAIT, NULL);
-        if (got < 0) {
-            if (errno == EAGAIN || errno == EWOULDBLOCK)
-                return delivered;
-            if (errno == EINTR)
-                continue;
-            return delivered ? delivered : -1;
-        }
-        for (int i = 0; i < got; i++) {
-            struct msghdr *h = &r->msgs[i].msg_hdr;
-            if (h->msg_flags & MSG_TRUNC) { /* cannot be LCM: a datagram is at most 64 KB */
-                r->counts.datagrams++;
-                r->counts.malformed++;
-                continue;
-            }
-            int64_t t = stamp_of(h, r);
-            int k = on_datagram(r, r->bufs[i], r->msgs[i].msg_len, &r->from[i], t, fn, user);
-            delivered += k;
-            r->counts.messages += k;
-        }
-        if (got < BATCH)
-            return delivered;
+    lcm_udpm_msg m;
+    int rc;
+    while ((rc = lcm_udpm_reader_next(r, &m)) == 1) {
+        fn(m.channel, m.data, m.len, m.recv_utime, user);
+        delivered++;
     }
+    return rc < 0 && !delivered ? -1 : delivered;
 }

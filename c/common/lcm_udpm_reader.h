@@ -45,6 +45,22 @@ void lcm_udpm_reader_close(lcm_udpm_reader_t *r);
  * (common/lcm_chanfilter.h, auv_chanfilter_attach). Non-blocking. */
 int lcm_udpm_reader_fd(const lcm_udpm_reader_t *r);
 
+/* One message, valid until the next call on the reader. */
+typedef struct {
+    const char *channel;
+    const void *data;
+    int len;
+    int64_t recv_utime;
+} lcm_udpm_msg;
+
+/* The next message, without blocking: 1 (in m), 0 when nothing is queued,
+ * -1 on a receive error (errno set). One at a time, so a caller that acts
+ * between messages (a manager deciding a cycle after each) sees exactly the
+ * order it would see through liblcm. */
+int lcm_udpm_reader_next(lcm_udpm_reader_t *r, lcm_udpm_msg *m);
+/* 1 when datagrams already read wait to be taken (poll would not see them). */
+int lcm_udpm_reader_pending(const lcm_udpm_reader_t *r);
+
 /* Hands every message queued on the socket now to fn, in arrival order,
  * without blocking. Returns the number of messages, -1 on a receive error
  * other than "nothing queued" (errno set). */

@@ -60,7 +60,7 @@ static int wait_for_messages(manager_t *mg, int64_t next_cycle)
             wait_ms = 1000;
     }
     /* A signal interrupts the wait: that is how a stop arrives. */
-    if (lcm_handle_timeout(mg->lcm, (int)(wait_ms > 0 ? wait_ms : 0)) < 0 && !mg->stop) {
+    if (rx_handle_timeout(mg->lcm, (int)(wait_ms > 0 ? wait_ms : 0)) < 0 && !mg->stop) {
         fprintf(stderr, "%s: LCM receive failed\n", mg->opt.name);
         return -1;
     }

@@ -122,7 +122,7 @@ int run(nav::NavNode &node, lcm_t *lcm, const nav::NodeOptions &o)
                 wait_ms = static_cast<int>(std::min<int64_t>((next_cycle - node.now()) / 1000, 1000));
         }
         // A signal interrupts the wait: that is how a stop arrives.
-        if (lcm_handle_timeout(lcm, wait_ms > 0 ? wait_ms : 0) < 0 && !g_stop) {
+        if (rx_handle_timeout(lcm, wait_ms > 0 ? wait_ms : 0) < 0 && !g_stop) {
             std::fprintf(stderr, "auv-nav: LCM receive failed\n");
             return 2;
         }

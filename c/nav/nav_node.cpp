@@ -58,7 +58,7 @@ NavNode::~NavNode()
     rx_unsubscribe(lcm_, clock_sub_);
     rx_unsubscribe(lcm_, altimeter_sub_);
     if (lockstep_sub_)
-        lcm_unsubscribe(lcm_, lockstep_sub_);
+        rx_unsubscribe_raw(lcm_, lockstep_sub_);
 }
 
 bool NavNode::subscribe()
@@ -91,7 +91,7 @@ bool NavNode::subscribe()
                                                on_lockstep, this);
         if (!lockstep_sub_)
             return false;
-        lcm_subscription_set_queue_capacity(lockstep_sub_, 1000);
+        rx_raw_set_queue_capacity(lockstep_sub_, 1000);
     }
     return true;
 }

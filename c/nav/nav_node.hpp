@@ -89,7 +89,7 @@ private:
     rx_sub_t *subs_[kSensors] = {};
     rx_sub_t *clock_sub_ = nullptr;
     rx_sub_t *altimeter_sub_ = nullptr;
-    lcm_subscription_t *lockstep_sub_ = nullptr;   // raw: only its simulator's reports are decoded
+    rx_raw_t *lockstep_sub_ = nullptr;              // raw: only its simulator's reports are decoded
     uint64_t lockstep_decode_errors_ = 0;
     mgr_lockstep lockstep_;
     std::string sim_participant_;       // "<VEHICLE>.sim"
