@@ -45,6 +45,7 @@ struct lcm_udpm_reader {
     frag_slot slots[SLOTS];
     frag_slot *completed;       /* handed out by the last next(): freed by the one after */
     int batch_n, batch_i;       /* datagrams read, and taken, of the current batch */
+    int batch;                  /* datagrams to read at once (at most BATCH) */
     struct mmsghdr msgs[BATCH];
     struct iovec iov[BATCH];
     struct sockaddr_in from[BATCH];
@@ -123,6 +124,7 @@ lcm_udpm_reader_t *lcm_udpm_reader_open(const char *url, long recv_buf, char *er
         fail(err, errlen, "out of memory", -1);
         return NULL;
     }
+    r->batch = BATCH;
     r->fd = open_socket(group, port, url_buf > 0 ? url_buf : recv_buf, &r->granted, err, errlen);
     if (r->fd < 0) {
         free(r);
@@ -328,7 +330,7 @@ static int refill(lcm_udpm_reader_t *r)
     }
     int got;
     do
-        got = recvmmsg(r->fd, r->msgs, BATCH, MSG_DONTWAIT, NULL);
+        got = recvmmsg(r->fd, r->msgs, (unsigned)r->batch, MSG_DONTWAIT, NULL);
     while (got < 0 && errno == EINTR);
     if (got < 0)
         return errno == EAGAIN || errno == EWOULDBLOCK ? 0 : -1;
@@ -362,6 +364,11 @@ int lcm_udpm_reader_next(lcm_udpm_reader_t *r, lcm_udpm_msg *m)
             return 1;
         }
     }
+}
+
+void lcm_udpm_reader_set_batch(lcm_udpm_reader_t *r, int n)
+{
+    r->batch = n < 1 ? 1 : n > BATCH ? BATCH : n;
 }
 
 int lcm_udpm_reader_pending(const lcm_udpm_reader_t *r)

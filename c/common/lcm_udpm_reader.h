@@ -58,6 +58,10 @@ typedef struct {
  * between messages (a manager deciding a cycle after each) sees exactly the
  * order it would see through liblcm. */
 int lcm_udpm_reader_next(lcm_udpm_reader_t *r, lcm_udpm_msg *m);
+/* Datagrams read per system call (1..64, 64 by default). 1 for a caller
+ * that polls the socket itself between messages (Python's select loops):
+ * then the socket is readable exactly when a datagram waits. */
+void lcm_udpm_reader_set_batch(lcm_udpm_reader_t *r, int n);
 /* 1 when datagrams already read wait to be taken (poll would not see them). */
 int lcm_udpm_reader_pending(const lcm_udpm_reader_t *r);
 

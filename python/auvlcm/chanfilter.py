@@ -20,6 +20,7 @@ from typing import Any, Callable
 
 import lcm
 
+from auvlcm import own_socket
 from auvlcm.paths import build_dir
 
 _lib: ctypes.CDLL | None = None
@@ -41,6 +42,7 @@ def _load() -> ctypes.CDLL | None:
         lib.auv_chanfilter_apply.restype = ctypes.c_int
         lib.auv_chanfilter_free.argtypes = [p]
         lib.auv_chanfilter_free.restype = None
+        own_socket.bind(lib)
         _lib = lib
     return _lib
 
@@ -79,18 +81,60 @@ class ChannelFilter:
         self.close()
 
 
+def _off(name: str) -> bool:
+    return os.environ.get(name) == "0"
+
+
 class FilteredLcm:
-    """lcm.LCM(url) whose socket lets through only the channels subscribed
-    through it; everything else is the wrapped instance's."""
+    """lcm.LCM(url) that wakes only for the channels subscribed through it.
+
+    On a udpm url it receives on a socket of its own (auvlcm/own_socket.py:
+    one wake-up per message instead of liblcm's two) and lcm.LCM only
+    publishes; elsewhere, or with AUV_LCM_READER=0, liblcm receives behind a
+    ChannelFilter. Everything else is the wrapped instance's."""
 
     def __init__(self, url: str) -> None:
         self.lc = lcm.LCM(url)
-        self._filter = ChannelFilter(url)
+        self._own: own_socket.OwnReceiver | None = None
+        lib = _load()
+        if lib is not None and not _off("AUV_LCM_READER") and (url or "udpm://").startswith("udpm://"):
+            try:
+                self._own = own_socket.OwnReceiver(lib, url, filtering=not _off("AUV_LCM_CHANFILTER"))
+            except OSError as exc:
+                print(f"lcm: own socket on {url}: {exc}: liblcm receives", file=sys.stderr)
+        self._filter = ChannelFilter(url) if self._own is None else None
+
+    @property
+    def filtering(self) -> bool:
+        """The kernel drops the channels nobody here subscribed to."""
+        return self._own.filtering if self._own is not None else bool(self._filter and self._filter.filtering)
 
     def subscribe(self, channel: str, handler: Callable[[str, bytes], None]) -> Any:
+        if self._own is not None:
+            return self._own.subscribe(channel, handler)
         return self._filter.subscribe(self.lc, channel, handler)
 
+    def unsubscribe(self, sub: Any) -> None:
+        if self._own is not None:
+            self._own.unsubscribe(sub)
+        else:
+            self.lc.unsubscribe(sub)
+
+    def fileno(self) -> int:
+        return self._own.fd if self._own is not None else self.lc.fileno()
+
+    def handle(self) -> None:
+        if self._own is not None:
+            self._own.handle()
+        else:
+            self.lc.handle()
+
+    def handle_timeout(self, timeout_ms: int) -> int:
+        if self._own is not None:
+            return self._own.handle_timeout(timeout_ms)
+        return self.lc.handle_timeout(timeout_ms)
+
     def __getattr__(self, name: str) -> Any:
-        if name in ("lc", "_filter"):  # not set yet: __init__ failed part-way
+        if name in ("lc", "_filter", "_own"):  # not set yet: __init__ failed part-way
             raise AttributeError(name)
         return getattr(self.lc, name)

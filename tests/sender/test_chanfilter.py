@@ -181,6 +181,8 @@ def unfiltered(lc) -> lcm.LCM:
 
 @pytest.mark.parametrize("kind", [FilteredLcm, ThreadedLcm])
 def test_a_subscription_around_the_filter_is_dropped_by_the_kernel(lcm_url, kind, monkeypatch):
+    """liblcm receiving (AUV_LCM_READER=0), its socket filtered."""
+    monkeypatch.setenv("AUV_LCM_READER", "0")
     got: list[str] = []
     lc = kind(lcm_url)
     lc.subscribe("AUV1.NAV", lambda c, d: got.append(c))
@@ -220,7 +222,7 @@ def test_later_subscriptions_widen_the_filter_and_instances_keep_their_own(lcm_u
     drain(a, 0.3)
     drain(b, 0.3)
     assert got_a == ["A1", "A2"] and got_b == ["B1"]
-    assert a._filter.filtering and b._filter.filtering
+    assert a.filtering and b.filtering
 
 
 def test_an_instance_that_cannot_tell_its_socket_filters_nothing(lcm_url):
