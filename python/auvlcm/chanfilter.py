@@ -134,6 +134,16 @@ class FilteredLcm:
             return self._own.handle_timeout(timeout_ms)
         return self.lc.handle_timeout(timeout_ms)
 
+    def handle_all(self, timeout_ms: int) -> int:
+        """Waits up to timeout_ms for a message, then handles every one
+        queued; how many."""
+        if self._own is not None:
+            return self._own.handle_all(timeout_ms)
+        n = 0
+        while self.lc.handle_timeout(timeout_ms if n == 0 else 0) > 0:
+            n += 1
+        return n
+
     def __getattr__(self, name: str) -> Any:
         if name in ("lc", "_filter", "_own"):  # not set yet: __init__ failed part-way
             raise AttributeError(name)

@@ -149,6 +149,21 @@ class OwnReceiver:
         ready, _, _ = select.select([self.fd], [], [], max(0, timeout_ms) / 1000.0)
         return 1 if ready and self._handle_one() else 0
 
+    def handle_all(self, timeout_ms: int) -> int:
+        """Waits up to timeout_ms for a message, then handles every message
+        queued, reading them in batches (for a caller that acts only after
+        all of them, not between two). Returns how many it handled."""
+        if self.handle_timeout(timeout_ms) == 0:
+            return 0
+        n = 1
+        self._lib.lcm_udpm_reader_set_batch(self._r, 64)
+        try:
+            while self._handle_one():
+                n += 1
+        finally:  # everything read was taken: one at a time again
+            self._lib.lcm_udpm_reader_set_batch(self._r, 1)
+        return n
+
     def handle(self) -> None:
         """Blocks until one message has been handled."""
         while not self._handle_one():

@@ -81,6 +81,7 @@ class Receiver:
     def __init__(self, lc: lcm.LCM) -> None:
         self.lc = lc
         self.subscriptions: list[Subscription] = []
+        self._retired_decode_errors = 0  # of subscriptions given up
 
     def subscribe(
         self, channel: str, msg_type: type, handler: Handler, queue_capacity: int | None = None
@@ -98,7 +99,8 @@ class Receiver:
         # garbage collector: drop it, or sub and its handler's owner never go
         sub.lcm_sub = None
         self.subscriptions.remove(sub)
+        self._retired_decode_errors += sub.stats.decode_errors
 
     @property
     def decode_errors(self) -> int:
-        return sum(s.stats.decode_errors for s in self.subscriptions)
+        return self._retired_decode_errors + sum(s.stats.decode_errors for s in self.subscriptions)

@@ -105,6 +105,9 @@ class MissionWatch:
         self.seen: set[str] = set()
         self.expected: set[str] = set()
         self.sim_time_us = 0
+        # The other managers' status only says they run: once seen, the
+        # watch stops waking for it (each is a message per cycle).
+        self._until_seen: dict = {}
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
             self.vehicles[v.id] = VehicleState(
@@ -117,7 +120,9 @@ class MissionWatch:
                 self.rx.subscribe(f"{v.id}.NAV_STATUS", nav_filter_status_t, self._on_nav_status, queue_capacity=100)
             for m in v.managers:
                 self.expected.add(f"{v.id}.{m.name}")
-                self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
+                sub = self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
+                if m.name != v.end_manager:
+                    self._until_seen[f"{v.id}.{m.name}"] = sub
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
     def _fresh(self, channel: str, utime: int) -> bool:
@@ -143,9 +148,13 @@ class MissionWatch:
     def _on_status(self, ch: str, m) -> None:
         if not self._fresh(ch, m.utime):
             return
-        self.seen.add(f"{m.vehicle}.{m.manager}")
+        name = f"{m.vehicle}.{m.manager}"
+        self.seen.add(name)
         v = self.vehicles.get(m.vehicle)
         if v is None or m.manager != v.end_manager:
+            sub = self._until_seen.pop(name, None)
+            if sub is not None and ch == sub.channel:
+                self.rx.unsubscribe(sub)
             return
         v.run_state = m.run_state
         if m.path_len:
@@ -170,6 +179,10 @@ class MissionWatch:
 
     def handle(self, timeout_s: float) -> None:
         """Handle every message that is waiting, waiting up to timeout_s for the first."""
+        handle_all = getattr(self.lc, "handle_all", None)
+        if handle_all is not None:  # reads what is queued in batches (auvlcm/own_socket.py)
+            handle_all(round(timeout_s * 1000))
+            return
         fd = self.lc.fileno()
         ready, _, _ = select.select([fd], [], [], timeout_s)
         while ready:
