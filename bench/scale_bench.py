@@ -128,8 +128,16 @@ def as_baseline(scenario: Path) -> None:
     scenario.write_text(yaml.safe_dump(doc, sort_keys=False))
 
 
-def run_case(n: int, args, out: Path, baseline: bool = False) -> dict:
-    case = out / (f"v{n}-baseline" if baseline else f"v{n}")
+BASELINES = {
+    # before the channel filter (session 10): no filter, liblcm receiving, sender threads
+    "transport": {"AUV_LCM_CHANFILTER": "0", "AUV_LCM_READER": "0"},
+    # before the own sockets: filtered, but liblcm's thread receives (two wake-ups a message)
+    "liblcm": {"AUV_LCM_READER": "0"},
+}
+
+
+def run_case(n: int, args, out: Path, baseline: str = "") -> dict:
+    case = out / (f"v{n}-{baseline}" if baseline else f"v{n}")
     shutil.rmtree(case, ignore_errors=True)
     plan = subprocess.run(
         [
@@ -151,7 +159,7 @@ def run_case(n: int, args, out: Path, baseline: bool = False) -> dict:
     )
     if plan.returncode:
         return {"vehicles": n, "outcome": "plan failed", "error": plan.stderr.strip()}
-    if baseline:
+    if baseline == "transport":
         as_baseline(case / "plan" / f"scale{n}.yaml")
     launch = [
         sys.executable,
@@ -164,8 +172,7 @@ def run_case(n: int, args, out: Path, baseline: bool = False) -> dict:
         "0",
     ] + (["--url", args.url] if args.url else [])
     env = dict(os.environ)
-    if baseline:
-        env["AUV_LCM_CHANFILTER"] = "0"
+    env.update(BASELINES.get(baseline, {}))
     if args.cprofile:
         prof_dir = case / "cprofile"
         prof_dir.mkdir(parents=True, exist_ok=True)
@@ -241,23 +248,28 @@ def run_case(n: int, args, out: Path, baseline: bool = False) -> dict:
 
 
 # Loaded by every Python process of a --cprofile run (PYTHONPATH): a profile of the
-# whole process (wall time, so waiting shows), written at its normal exit.
+# whole process (CPU time: waiting for a message costs nothing and is not
+# shown), written at its normal exit. A `python -m sim` process is "sim".
 SITECUSTOMIZE = """import os
 _d = os.environ.get("SCALE_BENCH_PROFILE_DIR")
 if _d:
     import atexit, cProfile, sys
-    _p = cProfile.Profile()
+    import time
+    _p = cProfile.Profile(time.process_time)
     _p.enable()
     def _dump():
         _p.disable()
-        name = os.path.basename(sys.argv[0] or "python").replace(".py", "")
+        arg0 = sys.argv[0] or "python"
+        if os.path.basename(arg0) == "__main__.py":
+            arg0 = os.path.dirname(arg0)
+        name = os.path.basename(arg0).replace(".py", "")
         _p.dump_stats(os.path.join(_d, f"{name}.{os.getpid()}.prof"))
     atexit.register(_dump)
 """
 
 
 def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
-    """The functions each kind of Python process spent most wall time in (self time)."""
+    """The functions each kind of Python process spent most CPU time in (self time)."""
     import pstats
 
     lines = []
@@ -268,7 +280,7 @@ def cprofile_summary(folder: Path, top: int = 8) -> list[str]:
         st = pstats.Stats(*map(str, files))
         total = max(st.total_tt, 1e-9)
         rows = sorted(st.stats.items(), key=lambda kv: -kv[1][2])[:top]
-        lines.append(f"  cProfile {kind} ({len(files)} process(es), {total:.0f} s wall in all), self time:")
+        lines.append(f"  cProfile {kind} ({len(files)} process(es), {total:.0f} s CPU in all), self time:")
         lines += [f"    {100 * tt / total:5.1f} %  {fn}:{line} {name}" for (fn, line, name), (_, _, tt, _, _) in rows]
     return lines or ["  (no cProfile output: did the processes exit normally?)"]
 
@@ -313,13 +325,16 @@ def main() -> int:
         "--cprofile",
         action="store_true",
         help="cProfile every Python process of each run (the "
-        "simulators, the launcher): where their wall time goes, without py-spy",
+        "simulators, the launcher): where their CPU time goes, without py-spy",
     )
     ap.add_argument(
         "--baseline",
-        action="store_true",
-        help="also run each case as before the channel filter (AUV_LCM_CHANFILTER=0, "
-        "simulators publishing from a sender thread) and print the ratios",
+        nargs="?",
+        const="transport",
+        choices=sorted(BASELINES),
+        help="also run each case as before: 'transport' (the default) before the channel filter "
+        "and the own sockets (AUV_LCM_CHANFILTER=0, AUV_LCM_READER=0, simulators publishing from a "
+        "sender thread), 'liblcm' before the own sockets only (AUV_LCM_READER=0); prints the ratios",
     )
     ap.add_argument("--url", help="LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
@@ -342,10 +357,10 @@ def main() -> int:
     )
     results = []
     for n in counts:
-        for baseline in (False, True) if args.baseline else (False,):
+        for baseline in ("", args.baseline) if args.baseline else ("",):
             r = run_case(n, args, args.out, baseline)
             results.append(r)
-            report(r, n, "baseline" if baseline else "")
+            report(r, n, f"baseline: {baseline}" if baseline else "")
         if args.baseline and all(x.get("cpu_ms_per_vehicle_s") for x in results[-2:]):
             now, before = results[-2], results[-1]
             cpu = [sum(x["cpu_ms_per_vehicle_s"].values()) for x in (now, before)]

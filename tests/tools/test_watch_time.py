@@ -46,8 +46,12 @@ def test_hostile_stamps_neither_end_the_mission_nor_reach_the_watch(tmp_path):
     for k in range(11):
         feed(watch, "SIM.CLOCK", clock(k * 100_000))
         feed(watch, "AUV1.ACTUATOR_STATE", state(k * 100_000))
-        for m in ("NAVIGATOR", "WATCHER"):
-            feed(watch, f"AUV1.CHASM.{m}", status(k * 100_000, m))
+        feed(watch, "AUV1.CHASM.NAVIGATOR", status(k * 100_000, "NAVIGATOR"))
+        if k == 0:  # a manager that does not end the mission is read until it is seen, then dropped
+            assert "AUV1.WATCHER" in watch.not_ready()
+            feed(watch, "AUV1.CHASM.WATCHER", status(0, "WATCHER"))
+            assert "AUV1.WATCHER" not in watch.not_ready()
+            assert all(sub.channel != "AUV1.CHASM.WATCHER" for sub in watch.rx.subscriptions)
     assert watch.sim_time_us == 1_000_000
     for bad in (2**63 - 1, -(2**63), 10**18, -1):
         feed(watch, "SIM.CLOCK", clock(bad))
@@ -56,7 +60,7 @@ def test_hostile_stamps_neither_end_the_mission_nor_reach_the_watch(tmp_path):
     feed(watch, "SIM.CLOCK", clock(500_000))  # back in time
     feed(watch, "SIM.CLOCK", clock(1_000_000 + 3600 * 10**6))  # an hour ahead, once
     feed(watch, "AUV1.ACTUATOR_STATE", state(1_000_000 + 5_000_000))  # from the future
-    feed(watch, "AUV1.CHASM.WATCHER", status(900_000, "WATCHER"))  # out of order
+    feed(watch, "AUV1.CHASM.NAVIGATOR", status(900_000, "NAVIGATOR"))  # out of order
     assert watch.sim_time_us == 1_000_000  # no time limit reached
     assert watch.vehicles["AUV1"].sim_us == 1_000_000  # no report from the future
     feed(watch, "SIM.CLOCK", clock(1_100_000))  # and the world goes on
