@@ -30,7 +30,7 @@ import lcm
 
 from auv import lockstep_t, sim_clock_t
 from sim import clock_modes
-from sim.multihil.lockstep import RESEND_S, LockstepTracker
+from sim.multihil.lockstep import RESEND_S, LockstepTracker, decode_lockstep
 from sim.multihil.server import LockstepServer
 
 PACE = {clock_modes.REALTIME: 1.0, clock_modes.SCALED: None, clock_modes.LOCKSTEP: math.inf}
@@ -69,7 +69,7 @@ class WorldClock:
 
     def _on_lockstep(self, _ch: str, data: bytes) -> None:
         try:
-            m = lockstep_t.decode(data)
+            m = decode_lockstep(data)
         except ValueError:
             return
         if m.participant in self.gone:

@@ -11,7 +11,9 @@ from sim.environment import CurrentLayer, Environment, EnvParams
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
 from sim.multihil.election import Election, Timing, rank
-from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
+import pytest
+
+from sim.multihil.lockstep import LockstepTracker, Participation, decode_lockstep, lockstep_msg
 from sim.multihil.server import LockstepServer, evaluate
 
 
@@ -145,6 +147,30 @@ def test_steered_clock_never_runs_backwards():
         last = now
     clk.set(0.0)  # a set behind the clock is refused
     assert clk.now() >= last
+
+
+def test_the_fast_lockstep_decoder_agrees_with_the_generated_one_and_refuses_the_rest():
+    rng = random.Random(3)
+    for _ in range(200):
+        name = "".join(rng.choice("AUV1.simNAVIGATORé") for _ in range(rng.randint(0, 30)))
+        kind, step, utime = rng.choice((0, 1, 2)), rng.randint(-(2**63), 2**63 - 1), rng.randint(-(2**63), 2**63 - 1)
+        data = lockstep_msg(name, kind, step, utime).encode()
+        fast, slow = decode_lockstep(data), lockstep_t.decode(data)
+        assert (fast.participant, fast.kind, fast.step, fast.utime) == (slow.participant, slow.kind, slow.step, slow.utime)
+    good = lockstep_msg("AUV1.sim", 1, 7, 350_000).encode()
+    nul = 8 + 8 + 4 + len("AUV1.sim")  # fingerprint, utime, length, then the name
+    bad = [
+        b"",
+        good[:-1],  # cut short
+        good + b"\0",  # a byte more: another layout
+        b"\0" * 8 + good[8:],  # another type's fingerprint
+        good[:16] + (999).to_bytes(4, "big") + good[20:],  # a participant longer than the message
+        good[:16] + (0).to_bytes(4, "big") + good[20:],  # no room for the NUL
+        good[:nul] + b"X" + good[nul + 1 :],  # the participant's NUL overwritten
+    ]
+    for data in bad:
+        with pytest.raises(ValueError):
+            decode_lockstep(data)
 
 
 def test_lockstep_waits_for_every_participant_and_drops_the_silent():
