@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "common/lcm_chanfilter.h"
+#include "common/lcm_socket.h"
 
 static int wanted(const rec_input *in, const char *channel)
 {
@@ -55,6 +56,14 @@ static void count_clock(const char *channel, const void *data, int len, int64_t 
         in->clock_woken_utime = t;
 }
 
+/* liblcm's receive socket: the first on the port (the recorder has one instance). */
+static int take_first(int fd, ino_t inode, void *user)
+{
+    (void)inode;
+    *(int *)user = fd;
+    return 1;
+}
+
 static int compile_channel(rec_input *in, const char *channel)
 {
     if (!strcmp(channel, ".*"))
@@ -88,9 +97,11 @@ int rec_input_open(rec_input *in, const char *url, long recv_buf, const char *ch
     in->fn = fn;
     in->user = user;
     char err[160];
-    in->all = lcm_udpm_reader_open(url, recv_buf, err, sizeof err);
+    const char *reader = getenv("AUV_LCM_READER");
+    int own = !(reader && !strcmp(reader, "0")); /* 0: liblcm receives, as every process then */
+    in->all = own ? lcm_udpm_reader_open(url, recv_buf, err, sizeof err) : NULL;
     if (!in->all) {
-        if (url && !strncmp(url, "udpm://", 7)) {
+        if (own && url && !strncmp(url, "udpm://", 7)) {
             fprintf(stderr, "auv-recorder: cannot receive on %s: %s\n", url, err);
             return -1;
         }
@@ -100,6 +111,8 @@ int rec_input_open(rec_input *in, const char *url, long recv_buf, const char *ch
             return -1;
         }
         lcm_subscription_set_queue_capacity(in->sub, lcm_queue);
+        in->liblcm_fd = -1; /* found for its kernel drops; liblcm keeps it to itself */
+        lcm_sockets_on_port(lcm_url_port(url), take_first, &in->liblcm_fd);
         return 0;
     }
     if (compile_channel(in, channel))
@@ -165,5 +178,5 @@ int rec_input_wait(rec_input *in, int timeout_ms)
 
 int rec_input_socket(const rec_input *in)
 {
-    return in->all ? lcm_udpm_reader_fd(in->all) : -1;
+    return in->all ? lcm_udpm_reader_fd(in->all) : in->liblcm_fd;
 }

@@ -10,7 +10,8 @@
  * (its receive thread, then the handler): a third of all the context
  * switches of an 8-vehicle run.
  *
- * Any other url goes through liblcm, as before. */
+ * Any other url goes through liblcm, as before, and so does every url with
+ * AUV_LCM_READER=0 in the environment. */
 #ifndef REC_INPUT_H
 #define REC_INPUT_H
 
@@ -28,6 +29,7 @@ typedef struct {
     lcm_udpm_reader_t *all, *clock;  /* NULL: through liblcm */
     lcm_t *lcm;                      /* publishing; receiving when all is NULL */
     lcm_subscription_t *sub;
+    int liblcm_fd;                   /* liblcm's receive socket, -1 unknown */
     void *regex;                     /* the --channel pattern; NULL: every channel */
     rec_input_fn fn;
     void *user;
@@ -48,7 +50,8 @@ void rec_input_close(rec_input *in);
 int rec_input_wait(rec_input *in, int timeout_ms);
 
 /* The socket that takes every datagram (its kernel drops are the recorder's
- * misses), -1 when liblcm receives. */
+ * misses): its own, or liblcm's found among the process's descriptors; -1
+ * when there is none. */
 int rec_input_socket(const rec_input *in);
 
 #endif

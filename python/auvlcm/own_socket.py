@@ -37,10 +37,12 @@ class _Msg(ctypes.Structure):
     ]
 
 
-class _Rule(ctypes.Structure):
+class Rule(ctypes.Structure):
+    """auv_chanfilter_rule_t (c/common/lcm_chanfilter.h)."""
+
     _fields_ = [
         ("channel", ctypes.c_char_p),
-        ("payload", ctypes.c_void_p),
+        ("payload", ctypes.c_char_p),
         ("payload_at", ctypes.c_int),
         ("payload_len", ctypes.c_int),
     ]
@@ -59,7 +61,7 @@ def bind(lib: ctypes.CDLL) -> None:
     lib.lcm_udpm_reader_set_batch.restype = None
     lib.lcm_udpm_reader_next.argtypes = [p, ctypes.POINTER(_Msg)]
     lib.lcm_udpm_reader_next.restype = ctypes.c_int
-    lib.auv_chanfilter_attach_fd.argtypes = [ctypes.c_int, ctypes.POINTER(_Rule), ctypes.c_int]
+    lib.auv_chanfilter_attach_fd.argtypes = [ctypes.c_int, ctypes.POINTER(Rule), ctypes.c_int]
     lib.auv_chanfilter_attach_fd.restype = ctypes.c_int
 
 
@@ -101,7 +103,7 @@ class OwnReceiver:
     def _refilter(self) -> None:
         if not self.filtering:
             return
-        rules = (_Rule * max(1, len(self.subs)))()
+        rules = (Rule * max(1, len(self.subs)))()
         keep = []  # the encoded patterns must outlive the call
         for i, s in enumerate(self.subs):
             keep.append(s.channel.encode())

@@ -6,13 +6,13 @@ from __future__ import annotations
 import random
 import time
 
+import pytest
+
 from auv import env_needs_t, env_sample_t, lockstep_t
 from sim.environment import CurrentLayer, Environment, EnvParams
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
 from sim.multihil.election import Election, Timing, rank
-import pytest
-
 from sim.multihil.lockstep import LockstepTracker, Participation, decode_lockstep, lockstep_msg
 from sim.multihil.server import LockstepServer, evaluate
 
@@ -156,7 +156,12 @@ def test_the_fast_lockstep_decoder_agrees_with_the_generated_one_and_refuses_the
         kind, step, utime = rng.choice((0, 1, 2)), rng.randint(-(2**63), 2**63 - 1), rng.randint(-(2**63), 2**63 - 1)
         data = lockstep_msg(name, kind, step, utime).encode()
         fast, slow = decode_lockstep(data), lockstep_t.decode(data)
-        assert (fast.participant, fast.kind, fast.step, fast.utime) == (slow.participant, slow.kind, slow.step, slow.utime)
+        assert (fast.participant, fast.kind, fast.step, fast.utime) == (
+            slow.participant,
+            slow.kind,
+            slow.step,
+            slow.utime,
+        )
     good = lockstep_msg("AUV1.sim", 1, 7, 350_000).encode()
     nul = 8 + 8 + 4 + len("AUV1.sim")  # fingerprint, utime, length, then the name
     bad = [

@@ -23,18 +23,10 @@ import pytest
 
 from auvlcm import chanfilter
 from auvlcm.chanfilter import ChannelFilter, FilteredLcm
+from auvlcm.own_socket import Rule
 from auvlcm.sender import ThreadedLcm
 
 SO_ATTACH_FILTER = 26
-
-
-class Rule(ctypes.Structure):
-    _fields_ = [
-        ("channel", ctypes.c_char_p),
-        ("payload", ctypes.c_char_p),
-        ("payload_at", ctypes.c_int),
-        ("payload_len", ctypes.c_int),
-    ]
 
 
 def compile_rules(rules: list[tuple]) -> tuple[int, ctypes.Array]:

@@ -18,14 +18,15 @@ import threading
 import time
 
 import lcm
+import pytest
 from lcm_proc import stop
 from test_recorder import WARMUP, events, recorder_cmd, wait_logged
 
 
-def start(variant_dir, url, log, stats, child_env, *extra):
+def start(variant_dir, url, log, stats, child_env, *extra, env=None):
     return subprocess.Popen(
         recorder_cmd(variant_dir, url, log, stats, "--no-lockstep", *extra),
-        env=child_env,
+        env={**child_env, **(env or {})},
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -46,12 +47,14 @@ def group_port(url: str) -> tuple[str, int]:
     return g, int(p)
 
 
-def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, child_env, variant_dir):
+@pytest.mark.parametrize("reader", ["own", "liblcm"])
+def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, child_env, variant_dir, reader):
     """Two publishers at once, each mixing messages of one datagram with ones
-    of up to 16 fragments: every message byte for byte, in each sender's order."""
+    of up to 16 fragments: every message byte for byte, in each sender's order
+    (on its own socket, and through liblcm with AUV_LCM_READER=0)."""
     url = lcm_url + "&recv_buf_size=8388608"
     log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
-    rec = start(variant_dir, url, log, stats, child_env)
+    rec = start(variant_dir, url, log, stats, child_env, env={"AUV_LCM_READER": "0"} if reader == "liblcm" else {})
     rng = random.Random(7)
     sizes = [rng.choice([10, 1400, 70_000, 300_000, 1_000_000]) for _ in range(60)]
     plans = {
