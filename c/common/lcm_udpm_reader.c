@@ -238,13 +238,38 @@ static int64_t stamp_of(const struct msghdr *h, lcm_udpm_reader_t *r)
     return t;
 }
 
+/* 1 when the n bytes at p are UTF-8 (no overlong forms, no surrogates). */
+static int utf8_ok(const uint8_t *p, int n)
+{
+    for (int i = 0; i < n;) {
+        uint8_t c = p[i];
+        int more = c < 0x80 ? 0 : (c & 0xE0) == 0xC0 ? 1 : (c & 0xF0) == 0xE0 ? 2 : (c & 0xF8) == 0xF0 ? 3 : -1;
+        if (more < 0 || i + more >= n) /* not a lead byte, or cut short */
+            return 0;
+        uint32_t cp = more == 0 ? c : more == 1 ? c & 0x1Fu : more == 2 ? c & 0x0Fu : c & 0x07u;
+        for (int k = 1; k <= more; k++) {
+            if ((p[i + k] & 0xC0) != 0x80)
+                return 0;
+            cp = cp << 6 | (p[i + k] & 0x3Fu);
+        }
+        static const uint32_t least[4] = {0, 0x80, 0x800, 0x10000};
+        if (cp < least[more] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF))
+            return 0;
+        i += more + 1;
+    }
+    return 1;
+}
+
 /* The channel at p (at most `avail` bytes): its length, -1 when it has no
- * terminator within LCM's limit. */
+ * terminator within LCM's limit, is empty or is not UTF-8 (every reader of
+ * the log - lcm.EventLog, lcm-spy - takes channel names as text). */
 static int channel_len(const uint8_t *p, size_t avail)
 {
     size_t max = avail < CHANNEL_MAX + 1 ? avail : CHANNEL_MAX + 1;
     const uint8_t *nul = memchr(p, 0, max);
-    return nul ? (int)(nul - p) : -1;
+    if (!nul || nul == p || !utf8_ok(p, (int)(nul - p)))
+        return -1;
+    return (int)(nul - p);
 }
 
 /* 1 when the fragment completed a message (in m). */

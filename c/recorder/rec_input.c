@@ -35,6 +35,7 @@ static void on_udpm(const char *channel, const void *data, int len, int64_t recv
     int64_t t = clock_utime(channel, data, len);
     if (t > in->clock_all_utime)
         in->clock_all_utime = t;
+    in->last_bytes += len;
     if (wanted(in, channel))
         in->fn(channel, data, len, recv_utime, in->user);
 }
@@ -149,26 +150,26 @@ int rec_input_wait(rec_input *in, int timeout_ms)
 {
     if (!in->all)
         return lcm_handle_timeout(in->lcm, timeout_ms);
-    if (in->clock) {
-        struct pollfd p = {.fd = lcm_udpm_reader_fd(in->clock), .events = POLLIN};
-        int rc = poll(&p, 1, timeout_ms < REC_INPUT_TICK_MS ? timeout_ms : REC_INPUT_TICK_MS);
-        if (rc < 0)
-            return -1;
-        if (rc > 0 && lcm_udpm_reader_drain(in->clock, count_clock, in) < 0)
-            return -1;
-    } else {
-        struct pollfd p = {.fd = -1};
-        if (poll(&p, 0, REC_INPUT_TICK_MS) < 0)
-            return -1;
-    }
+    /* Busy (the last read took over an eighth of the socket's buffer: a
+     * burst, or a world not paced by a clock): wake for the data itself, so
+     * the buffer never fills between two ticks. Otherwise sleep on the clock. */
+    int busy = in->last_bytes > lcm_udpm_reader_granted(in->all) / 8;
+    struct pollfd p[2] = {{.fd = in->clock ? lcm_udpm_reader_fd(in->clock) : -1, .events = POLLIN},
+                          {.fd = busy ? lcm_udpm_reader_fd(in->all) : -1, .events = POLLIN}};
+    int rc = poll(p, 2, timeout_ms < REC_INPUT_TICK_MS ? timeout_ms : REC_INPUT_TICK_MS);
+    if (rc < 0)
+        return -1;
+    if ((p[0].revents & POLLIN) && lcm_udpm_reader_drain(in->clock, count_clock, in) < 0)
+        return -1;
     /* After the clock, every message sent before it has been queued on the
      * other socket too. The kernel hands one datagram to the group's sockets
      * one after the other, so the clock itself may still be on its way there:
      * wait for it briefly (a datagram the kernel dropped must not hold us). */
+    in->last_bytes = 0;
     int n = lcm_udpm_reader_drain(in->all, on_udpm, in);
     for (int tries = 0; n >= 0 && in->clock_all_utime < in->clock_woken_utime && tries < 5; tries++) {
-        struct pollfd p = {.fd = lcm_udpm_reader_fd(in->all), .events = POLLIN};
-        if (poll(&p, 1, 1) < 0)
+        struct pollfd q = {.fd = lcm_udpm_reader_fd(in->all), .events = POLLIN};
+        if (poll(&q, 1, 1) < 0)
             return -1;
         int more = lcm_udpm_reader_drain(in->all, on_udpm, in);
         n = more < 0 ? -1 : n + more;

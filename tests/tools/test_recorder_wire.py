@@ -68,7 +68,8 @@ def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, 
             lc = lcm.LCM(url)
             for body in plans[channel]:
                 lc.publish(channel, body)
-                time.sleep(0.003)  # a paced sender: the test is reassembly, not the kernel's buffer
+                # paced at 20 MB/s: the test is reassembly, not the kernel's buffer
+                time.sleep(0.002 + len(body) / 20e6)
 
         threads = [threading.Thread(target=send, args=(ch,)) for ch in plans]
         for t in threads:
@@ -91,7 +92,8 @@ def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, 
 
 
 def test_datagrams_that_are_not_lcm_are_counted_and_dropped(tmp_path, lcm_url, child_env, variant_dir):
-    """Garbage, cut-short headers, a channel without its end, a fragment that
+    """Garbage, cut-short headers, a channel without its end (or empty, or not
+    UTF-8), a fragment that
     points past its message, and a fragmented message whose sender moved on
     before it completed: none is recorded, each is counted, and the message
     sent after them all is recorded."""
@@ -107,6 +109,9 @@ def test_datagrams_that_are_not_lcm_are_counted_and_dropped(tmp_path, lcm_url, c
         b"LC0",
         lc2,  # no channel at all
         lc2 + b"X" * 80,  # a channel longer than LCM allows, never ended
+        lc2 + b"\0payload",  # an empty channel
+        lc2 + b"AUV\xff\xfe\0payload",  # a channel that is not UTF-8 (no log reader could read it)
+        lc2 + b"AUV\xc0\xae\0payload",  # an overlong UTF-8 form
         lc3(5, 100, 0, 0, 2)[:12],  # a fragment header cut short
         lc3(6, 100, 0, 0, 0) + b"CH\0" + b"x" * 10,  # zero fragments
         lc3(7, 100, 0, 3, 2) + b"x" * 10,  # fragment 3 of 2
@@ -152,3 +157,60 @@ def test_channel_selects_what_is_recorded(tmp_path, lcm_url, child_env, variant_
         finish(rec)
     got = [ch for ch, _ in events(log) if ch != WARMUP]
     assert got == ["AUV1.TRUTH", "AUV2.TRUTH", "TEST.END"]  # anchored, as lcm_subscribe anchors
+
+
+def test_random_datagrams_never_crash_it_nor_reach_the_log(tmp_path, lcm_url, child_env, variant_dir):
+    """2000 random datagrams, half of them with an LC02 or LC03 magic and
+    random header fields (offsets, counts, sizes up to LCM's limit), from two
+    senders: the recorder (both builds: ASan and UBSan watch it) keeps running,
+    records none of them as a message it cannot be, and records what comes after."""
+    log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"
+    rec = start(variant_dir, lcm_url, log, stats, child_env)
+    group, port = group_port(lcm_url)
+    rng = random.Random(99)
+    senders = [socket.socket(socket.AF_INET, socket.SOCK_DGRAM) for _ in range(2)]
+    for s in senders:
+        s.setsockopt(socket.IPPROTO_IP, socket.IP_MULTICAST_TTL, 0)  # this machine only
+    try:
+        lc = lcm.LCM(lcm_url)
+        wait_logged(log, WARMUP, lc, rec, "auv-recorder")
+        for i in range(2000):
+            kind = rng.random()
+            if kind < 0.25:
+                head = struct.pack(">II", 0x4C433032, rng.getrandbits(32))
+            elif kind < 0.5:
+                n = rng.choice([1, 2, 3, rng.getrandbits(16)])
+                head = struct.pack(
+                    ">IIIIHH",
+                    0x4C433033,
+                    rng.getrandbits(3),  # few sequence numbers: fragments of "one" message collide
+                    rng.choice([0, 10, 1000, 70_000, 1 << 28, rng.getrandbits(32)]),
+                    rng.choice([0, 5, 995, rng.getrandbits(32)]),
+                    rng.randrange(n + 1),
+                    n,
+                )
+            else:
+                head = b""
+            body = rng.randbytes(rng.randrange(0, 1400))
+            if rng.random() < 0.3:
+                body = b"JUNK\0" + body  # a plausible channel
+            senders[i % 2].sendto(head + body, (group, port))
+            if i % 200 == 0:
+                time.sleep(0.01)  # paced: the test is the parser, not the socket buffer
+        lc.publish("AFTER", b"still recorded")
+        deadline = time.monotonic() + 10
+        while time.monotonic() < deadline and not any(ch == "AFTER" for ch, _ in events(log)):
+            assert rec.poll() is None, rec.communicate()
+            time.sleep(0.05)
+    finally:
+        out = finish(rec)
+        for s in senders:
+            s.close()
+    recorded = events(log)
+    assert ("AFTER", b"still recorded") in recorded
+    counts = json.loads(stats.read_text())
+    assert counts["missed"] == 0, counts
+    # every datagram was judged: a message (a random LC02 with a UTF-8 channel), or counted
+    assert counts["malformed"] >= 1000, counts
+    assert counts["received"] == len(recorded), counts
+    assert "malformed datagrams" in out, out
