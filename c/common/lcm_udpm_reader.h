@@ -29,7 +29,7 @@ typedef void (*lcm_udpm_handler)(const char *channel, const void *data, int len,
 typedef struct {
     int64_t datagrams;          /* read from the socket */
     int64_t messages;           /* complete messages handed over */
-    int64_t malformed;          /* not LCM, or a header that does not add up */
+    int64_t malformed;          /* not LCM, a header that does not add up, a channel empty or not UTF-8 */
     int64_t incomplete;         /* fragmented messages given up (a fragment lost) */
 } lcm_udpm_counts;
 
