@@ -47,10 +47,15 @@ static int note_before(int fd, ino_t ino, void *user)
     return 0;
 }
 
-auv_chanfilter_t *auv_chanfilter_new(const char *url)
+int auv_chanfilter_enabled(void)
 {
     const char *off = getenv("AUV_LCM_CHANFILTER");
-    if (off && !strcmp(off, "0"))
+    return !(off && !strcmp(off, "0"));
+}
+
+auv_chanfilter_t *auv_chanfilter_new(const char *url)
+{
+    if (!auv_chanfilter_enabled())
         return NULL;
     int port = lcm_url_port(url);
     if (port < 0)

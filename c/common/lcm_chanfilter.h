@@ -38,6 +38,9 @@ typedef struct {
     int payload_at, payload_len;
 } auv_chanfilter_rule_t;
 
+/* 0 when AUV_LCM_CHANFILTER=0 in the environment turns every filter off. */
+int auv_chanfilter_enabled(void);
+
 /* Right after lcm_create(url) (url NULL: LCM_DEFAULT_URL, else liblcm's
  * default). NULL when there is nothing to filter (not udpm, turned off). */
 auv_chanfilter_t *auv_chanfilter_new(const char *url);

@@ -60,15 +60,9 @@ rx_own_t *rx_own_of(const lcm_t *lcm)
     return own;
 }
 
-static int env_off(const char *name)
-{
-    const char *v = getenv(name);
-    return v && !strcmp(v, "0");
-}
-
 rx_own_t *rx_own_create(lcm_t *lcm, const char *url)
 {
-    if (!lcm || env_off("AUV_LCM_READER"))
+    if (!lcm || !lcm_udpm_reader_enabled())
         return NULL;
     char err[160];
     lcm_udpm_reader_t *reader = lcm_udpm_reader_open(url, 0, err, sizeof err);
@@ -81,7 +75,7 @@ rx_own_t *rx_own_create(lcm_t *lcm, const char *url)
     }
     own->lcm = lcm;
     own->reader = reader;
-    own->filter_on = !env_off("AUV_LCM_CHANFILTER");
+    own->filter_on = auv_chanfilter_enabled();
     pthread_mutex_lock(&registry_mu);
     int slot = -1;
     for (int i = 0; i < MAX_INSTANCES && slot < 0; i++)
@@ -182,14 +176,7 @@ static void refilter(rx_own_t *own)
 
 int rx_own_add(rx_own_t *own, struct rx_raw *r)
 {
-    size_t n = strlen(r->pattern) + 5;
-    char *anchored = malloc(n);
-    if (!anchored)
-        return -1;
-    snprintf(anchored, n, "^(%s)$", r->pattern);
-    int rc = regcomp(&r->re, anchored, REG_EXTENDED | REG_NOSUB);
-    free(anchored);
-    if (rc) {
+    if (lcm_udpm_pattern_compile(&r->re, r->pattern) != 0) {
         fprintf(stderr, "lcm_rx: '%s' is not a channel pattern\n", r->pattern);
         return -1;
     }

@@ -53,6 +53,24 @@ struct lcm_udpm_reader {
     uint8_t bufs[BATCH][DATAGRAM_MAX];
 };
 
+int lcm_udpm_reader_enabled(void)
+{
+    const char *v = getenv("AUV_LCM_READER");
+    return !(v && !strcmp(v, "0"));
+}
+
+int lcm_udpm_pattern_compile(regex_t *re, const char *pattern)
+{
+    size_t n = strlen(pattern) + 5;
+    char *anchored = malloc(n);
+    if (!anchored)
+        return REG_ESPACE;
+    snprintf(anchored, n, "^(%s)$", pattern);
+    int rc = regcomp(re, anchored, REG_EXTENDED | REG_NOSUB);
+    free(anchored);
+    return rc;
+}
+
 static uint32_t be32(const uint8_t *p)
 {
     return (uint32_t)p[0] << 24 | (uint32_t)p[1] << 16 | (uint32_t)p[2] << 8 | p[3];

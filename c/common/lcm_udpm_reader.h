@@ -17,6 +17,7 @@
 #ifndef AUV_LCM_UDPM_READER_H
 #define AUV_LCM_UDPM_READER_H
 
+#include <regex.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -32,6 +33,13 @@ typedef struct {
     int64_t malformed;          /* not LCM, a header that does not add up, a channel empty or not UTF-8 */
     int64_t incomplete;         /* fragmented messages given up (a fragment lost) */
 } lcm_udpm_counts;
+
+/* 0 when AUV_LCM_READER=0 in the environment leaves receiving to liblcm. */
+int lcm_udpm_reader_enabled(void);
+
+/* Compiles a subscription pattern as lcm_subscribe means it: anchored at
+ * both ends (POSIX extended syntax). 0, or regcomp's error code. */
+int lcm_udpm_pattern_compile(regex_t *re, const char *pattern);
 
 /* Opens a socket bound to the url's port and joined to its group (url NULL
  * or empty: LCM_DEFAULT_URL, else udpm://239.255.76.67:7667), with a receive

@@ -69,18 +69,10 @@ static int compile_channel(rec_input *in, const char *channel)
 {
     if (!strcmp(channel, ".*"))
         return 0;
-    /* anchored as lcm_subscribe anchors it */
-    size_t n = strlen(channel) + 8;
-    char *anchored = malloc(n);
     in->regex = malloc(sizeof(regex_t));
-    if (!anchored || !in->regex) {
-        free(anchored);
+    if (!in->regex)
         return -1;
-    }
-    snprintf(anchored, n, "^(%s)$", channel);
-    int rc = regcomp(in->regex, anchored, REG_EXTENDED | REG_NOSUB);
-    free(anchored);
-    if (rc) {
+    if (lcm_udpm_pattern_compile(in->regex, channel) != 0) {
         fprintf(stderr, "auv-recorder: --channel '%s' is not a regular expression\n", channel);
         free(in->regex);
         in->regex = NULL;
@@ -98,8 +90,7 @@ int rec_input_open(rec_input *in, const char *url, long recv_buf, const char *ch
     in->fn = fn;
     in->user = user;
     char err[160];
-    const char *reader = getenv("AUV_LCM_READER");
-    int own = !(reader && !strcmp(reader, "0")); /* 0: liblcm receives, as every process then */
+    int own = lcm_udpm_reader_enabled(); /* off: liblcm receives, as in every process then */
     in->all = own ? lcm_udpm_reader_open(url, recv_buf, err, sizeof err) : NULL;
     if (!in->all) {
         if (own && url && !strncmp(url, "udpm://", 7)) {
@@ -123,9 +114,8 @@ int rec_input_open(rec_input *in, const char *url, long recv_buf, const char *ch
         fprintf(stderr, "auv-recorder: cannot receive on %s: %s\n", url, err);
         return -1;
     }
-    const char *off = getenv("AUV_LCM_CHANFILTER");
     auv_chanfilter_rule_t clock_only = {.channel = "SIM\\.CLOCK"};
-    if (!(off && !strcmp(off, "0")) && auv_chanfilter_attach_fd(lcm_udpm_reader_fd(in->clock), &clock_only, 1) != 1) {
+    if (auv_chanfilter_enabled() && auv_chanfilter_attach_fd(lcm_udpm_reader_fd(in->clock), &clock_only, 1) != 1) {
         /* without the filter it would wake for every datagram, as liblcm did */
         lcm_udpm_reader_close(in->clock);
         in->clock = NULL;

@@ -106,7 +106,7 @@ class MissionWatch:
         self.expected: set[str] = set()
         self.sim_time_us = 0
         # The other managers' status only says they run: once seen, the
-        # watch stops waking for it (each is a message per cycle).
+        # watch stops waking for it (each is a message per cycle). By channel.
         self._until_seen: dict = {}
         for v in sc.vehicles:
             end = next(m for m in v.managers if m.name == v.end_manager)
@@ -122,7 +122,7 @@ class MissionWatch:
                 self.expected.add(f"{v.id}.{m.name}")
                 sub = self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
                 if m.name != v.end_manager:
-                    self._until_seen[f"{v.id}.{m.name}"] = sub
+                    self._until_seen[sub.channel] = sub
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
     def _fresh(self, channel: str, utime: int) -> bool:
@@ -152,8 +152,9 @@ class MissionWatch:
         self.seen.add(name)
         v = self.vehicles.get(m.vehicle)
         if v is None or m.manager != v.end_manager:
-            sub = self._until_seen.pop(name, None)
-            if sub is not None and ch == sub.channel:
+            # only the manager's own report on its own channel ends the wait
+            sub = self._until_seen.pop(ch, None) if ch == f"{m.vehicle}.CHASM.{m.manager}" else None
+            if sub is not None:
                 self.rx.unsubscribe(sub)
             return
         v.run_state = m.run_state

@@ -41,6 +41,21 @@ def finish(rec) -> str:
     return out
 
 
+def wait_recorded(log, rec, channel: str, timeout: float = 20.0) -> None:
+    """Until the recorder's log holds a message on channel (it is read in
+    arrival order: everything sent before it is in too), the recorder alive."""
+    deadline = time.monotonic() + timeout
+    while True:
+        try:
+            if any(ch == channel for ch, _ in events(log)):
+                return
+        except (OSError, ValueError):
+            pass  # a half-written event: read again
+        assert rec.poll() is None, f"auv-recorder exited: {rec.communicate()}"
+        assert time.monotonic() < deadline, f"{channel} never recorded"
+        time.sleep(0.05)
+
+
 def group_port(url: str) -> tuple[str, int]:
     host = url.split("//", 1)[1].split("?", 1)[0]
     g, p = host.split(":")
@@ -76,7 +91,8 @@ def test_fragmented_messages_from_two_senders_come_out_whole(tmp_path, lcm_url, 
             t.start()
         for t in threads:
             t.join()
-        time.sleep(0.3)
+        lcm.LCM(url).publish("TEST.END", b"")
+        wait_recorded(log, rec, "TEST.END")
         t1 = time.time()
     finally:
         out = finish(rec)
@@ -126,9 +142,7 @@ def test_datagrams_that_are_not_lcm_are_counted_and_dropped(tmp_path, lcm_url, c
         raw.sendto(lc3(9, 20, 0, 0, 2) + b"HALF\0" + b"a" * 10, (group, port))
         raw.sendto(lc3(10, 6, 0, 0, 1) + b"WHOLE\0" + b"123456", (group, port))
         lc.publish("AFTER", b"still recorded")
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and not any(ch == "AFTER" for ch, _ in events(log)):
-            time.sleep(0.05)
+        wait_recorded(log, rec, "AFTER")
     finally:
         out = finish(rec)
         raw.close()
@@ -150,9 +164,7 @@ def test_channel_selects_what_is_recorded(tmp_path, lcm_url, child_env, variant_
         wait_logged(log, WARMUP, lc, rec, "auv-recorder")
         for ch in ("AUV1.TRUTH", "AUV3.TRUTH", "AUV2.TRUTH", "AUV1.TRUTHX", "XAUV1.TRUTH", "TEST.END"):
             lc.publish(ch, ch.encode())
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and not any(ch == "TEST.END" for ch, _ in events(log)):
-            time.sleep(0.05)
+        wait_recorded(log, rec, "TEST.END")
     finally:
         finish(rec)
     got = [ch for ch, _ in events(log) if ch != WARMUP]
@@ -198,10 +210,7 @@ def test_random_datagrams_never_crash_it_nor_reach_the_log(tmp_path, lcm_url, ch
             if i % 200 == 0:
                 time.sleep(0.01)  # paced: the test is the parser, not the socket buffer
         lc.publish("AFTER", b"still recorded")
-        deadline = time.monotonic() + 10
-        while time.monotonic() < deadline and not any(ch == "AFTER" for ch, _ in events(log)):
-            assert rec.poll() is None, rec.communicate()
-            time.sleep(0.05)
+        wait_recorded(log, rec, "AFTER")
     finally:
         out = finish(rec)
         for s in senders:

@@ -49,6 +49,8 @@ def test_hostile_stamps_neither_end_the_mission_nor_reach_the_watch(tmp_path):
         feed(watch, "AUV1.CHASM.NAVIGATOR", status(k * 100_000, "NAVIGATOR"))
         if k == 0:  # a manager that does not end the mission is read until it is seen, then dropped
             assert "AUV1.WATCHER" in watch.not_ready()
+            feed(watch, "AUV1.CHASM.WATCHER", status(0, "OTHER"))  # another's name on its channel
+            assert any(sub.channel == "AUV1.CHASM.WATCHER" for sub in watch.rx.subscriptions)
             feed(watch, "AUV1.CHASM.WATCHER", status(0, "WATCHER"))
             assert "AUV1.WATCHER" not in watch.not_ready()
             assert all(sub.channel != "AUV1.CHASM.WATCHER" for sub in watch.rx.subscriptions)
