@@ -107,7 +107,7 @@ int manager_create(manager_t *mg, const manager_options *opt)
         return status;
     }
     mgr_errors_free(&errs);
-    mgr_status_init(&mg->status, mg->opt.vehicle, mg->opt.name, mg->opt.plan_path);
+    mgr_status_init(&mg->status, mg->opt.vehicle, mg->opt.name, mg->opt.plan_path, mg->opt.status_rate_hz);
     mgr_lockstep_init(&mg->lockstep, mg->opt.vehicle, mg->opt.name);
     if (mgr_bindings_subscribe(&mg->plan.bindings, mg->lcm) != 0 || mgr_commands_subscribe(mg) != 0 ||
         (mg->opt.sim_clock && mgr_clock_subscribe(mg) != 0)) {

@@ -12,13 +12,15 @@
 
 static void usage(FILE *out)
 {
-    fprintf(out, "usage: chasm-manager --plan FILE --bind FILE --vehicle ID --name NAME [--rate HZ]\n"
+    fprintf(out, "usage: chasm-manager --plan FILE --bind FILE --vehicle ID --name NAME [--rate HZ] [--status-rate HZ]\n"
                  "       [--clock sim|system] [--lcm-url URL] [--exit-on-end] [--wait-start]\n"
                  "       [--plugin-path DIR]... [--plugin-dir DIR --allowlist FILE] [-D name=value]...\n"
                  "       [--future-tolerance S] [--max-clock-jump S]\n"
                  "  --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
                  "                         --url is the old spelling of it\n"
                  "  --rate HZ              cycles per second of mission time, 0 < HZ <= %d (default 10)\n"
+                 "  --status-rate HZ       status messages per second of mission time at most, besides one\n"
+                 "                         at once on every change of state or count (default 0: every cycle)\n"
                  "  --plugin-path DIR      where plugins are found (default: the build's plugins,\n"
                  "                         <this program's folder>/../plugins)\n"
                  "  -D name=value          override a plan parameter: one value of its type and unit\n"
@@ -52,13 +54,15 @@ static int id_ok(const char *s)
     return 1;
 }
 
-/* --rate, --future-tolerance, --max-clock-jump: 1 taken, 0 none of them,
+/* --rate, --status-rate, --future-tolerance, --max-clock-jump: 1 taken, 0 none of them,
  * -1 out of range (said). */
 static int number_option(manager_options *o, const char *a, const char *v)
 {
     double x;
     if (!strcmp(a, "--rate"))
         return number_arg(a, v, 1e-3, MGR_MAX_RATE_HZ, &o->rate_hz) ? -1 : 1;
+    if (!strcmp(a, "--status-rate"))
+        return number_arg(a, v, 0, MGR_MAX_RATE_HZ, &o->status_rate_hz) ? -1 : 1;
     if (!strcmp(a, "--future-tolerance")) {
         if (number_arg(a, v, 0, MGR_MAX_FUTURE_TOLERANCE_S, &x))
             return -1;

@@ -13,6 +13,7 @@ typedef struct {
     const char *plan_path, *bind_path, *vehicle, *name, *url;
     int sim_clock;              /* 1: SIM.CLOCK drives the cycle; 0: system clock */
     double rate_hz;
+    double status_rate_hz;      /* --status-rate: 0, a status every cycle */
     int exit_on_end;            /* leave when the plan is done/aborted/failed */
     int wait_start;             /* start only on a CMD_START */
     const char *plugin_dir;     /* where uploads are written; also searched first */

@@ -42,7 +42,7 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
 static void publish_status(manager_t *mg, double cost)
 {
     mgr_drop_counts d = drop_counts(mg);
-    mgr_status_publish(&mg->status, mg->lcm, mg->plan.machine, mg->now_us, &d, cost);
+    mgr_status_update(&mg->status, mg->lcm, mg->plan.machine, mg->now_us, &d, cost);
 }
 
 /* Handles LCM messages (inputs, commands, the clock) for up to 20 ms, or on
@@ -94,7 +94,7 @@ static int cycle_due(manager_t *mg, int64_t *next_cycle, int64_t period_us)
     return mg->now_us >= *next_cycle;
 }
 
-/* One cycle: step, publish the outputs, then the status with the step's cost. */
+/* One cycle: step, publish the outputs, then the status (when due) with the step's cost. */
 static chasm_run_state cycle(manager_t *mg)
 {
     double t0 = cpu_us();

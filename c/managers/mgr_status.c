@@ -9,8 +9,10 @@
 /* Counters are 64-bit here and 32-bit on the wire: saturate, never wrap. */
 static int32_t clamp32(int64_t v) { return v > INT32_MAX ? INT32_MAX : v < 0 ? 0 : (int32_t)v; }
 
-void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan)
+void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan, double rate_hz)
 {
+    memset(s, 0, sizeof *s);
+    s->period_us = rate_hz > 0 ? (int64_t)(1e6 / rate_hz) : 0;
     s->vehicle = vehicle;
     s->manager = manager;
     const char *slash = strrchr(plan, '/');
@@ -18,31 +20,29 @@ void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager
     snprintf(s->channel, sizeof s->channel, "%s.CHASM.%s", vehicle, manager);
 }
 
-void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
-                        const mgr_drop_counts *drops, double cycle_cost_us)
+static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_status *st, int64_t now_us,
+                    const mgr_drop_counts *drops, double cycle_cost_us)
 {
-    chasm_status st;
-    chasm_status_get(m, now_us, &st);
     auv_chasm_status_t msg;
     memset(&msg, 0, sizeof msg);
     msg.utime = now_us;
     msg.vehicle = (char *)s->vehicle;
     msg.manager = (char *)s->manager;
     msg.plan = (char *)s->plan;
-    msg.run_state = (int8_t)st.run_state;
-    msg.cycle = st.cycle;
-    msg.path_len = (int16_t)st.path_len;
-    msg.active_path = (char **)st.active_path;
-    msg.time_in_state_s = st.time_in_state_s;
-    msg.last_transition_utime = st.last_transition_us;
-    msg.last_from = (char *)(st.last_from ? st.last_from : "");
-    msg.last_to = (char *)(st.last_to ? st.last_to : "");
-    msg.last_condition = (char *)(st.last_condition ? st.last_condition : "");
-    msg.n_tests = (int16_t)st.n_tests;
-    msg.test_name = (char **)st.test_name;
+    msg.run_state = (int8_t)st->run_state;
+    msg.cycle = st->cycle;
+    msg.path_len = (int16_t)st->path_len;
+    msg.active_path = (char **)st->active_path;
+    msg.time_in_state_s = (double *)st->time_in_state_s;
+    msg.last_transition_utime = st->last_transition_us;
+    msg.last_from = (char *)(st->last_from ? st->last_from : "");
+    msg.last_to = (char *)(st->last_to ? st->last_to : "");
+    msg.last_condition = (char *)(st->last_condition ? st->last_condition : "");
+    msg.n_tests = (int16_t)st->n_tests;
+    msg.test_name = (char **)st->test_name;
     int8_t values[CHASM_STATUS_MAX_TESTS];
-    for (int i = 0; i < st.n_tests; i++)
-        values[i] = st.test_value[i];
+    for (int i = 0; i < st->n_tests; i++)
+        values[i] = st->test_value[i];
     msg.test_value = values;
     msg.decode_errors = clamp32(drops->decode_errors);
     msg.dropped_invalid_time = clamp32(drops->dropped_invalid_time);
@@ -60,4 +60,47 @@ void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine
     msg.posts_refused = clamp32(drops->posts_refused);
     msg.cycle_cost_us = cycle_cost_us;
     auv_chasm_status_t_publish(lcm, s->channel, &msg);
+}
+
+/* Whether a count of something dropped or refused moved (the flow counts,
+ * messages in and out, move every cycle and say nothing new). */
+static int faults_changed(const mgr_drop_counts *a, const mgr_drop_counts *b)
+{
+    mgr_drop_counts x = *a, y = *b;
+    x.messages_in = y.messages_in = 0;
+    x.messages_out = y.messages_out = 0;
+    return memcmp(&x, &y, sizeof x) != 0;
+}
+
+/* Whether what an operator acts on differs from the last status; remembers it. */
+static int changed(mgr_status_ctx *s, const chasm_status *st, const mgr_drop_counts *drops)
+{
+    const char *leaf = st->leaf_path ? st->leaf_path : "";
+    int diff = !s->published || s->run_state != (int)st->run_state ||
+               s->last_transition_us != st->last_transition_us || s->path_len != st->path_len ||
+               strncmp(s->leaf, leaf, sizeof s->leaf - 1) != 0 || faults_changed(&s->drops, drops);
+    s->run_state = (int)st->run_state;
+    s->last_transition_us = st->last_transition_us;
+    s->path_len = st->path_len;
+    snprintf(s->leaf, sizeof s->leaf, "%s", leaf);
+    s->drops = *drops;
+    return diff;
+}
+
+int mgr_status_update(mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
+                      const mgr_drop_counts *drops, double cycle_cost_us)
+{
+    if (cycle_cost_us > s->max_cost_us)
+        s->max_cost_us = cycle_cost_us;
+    chasm_status st;
+    chasm_status_get(m, now_us, &st);
+    int due = changed(s, &st, drops) || s->period_us <= 0 || now_us - s->last_us >= s->period_us ||
+              now_us < s->last_us; /* a clock that went back (a new world): start over */
+    if (!due)
+        return 0;
+    publish(s, lcm, &st, now_us, drops, s->max_cost_us);
+    s->published = 1;
+    s->last_us = now_us;
+    s->max_cost_us = 0;
+    return 1;
 }

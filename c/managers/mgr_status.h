@@ -7,13 +7,6 @@
 #include "chasm/chasm.h"
 #include "managers/mgr_limits.h"
 
-typedef struct {
-    const char *vehicle;
-    const char *manager;
-    const char *plan;
-    char channel[MGR_MAX_CHANNEL + 1]; /* <VEHICLE>.CHASM.<MANAGER> */
-} mgr_status_ctx;
-
 /* What the manager counted and dropped, for the status message. */
 typedef struct {
     int64_t decode_errors;
@@ -23,8 +16,38 @@ typedef struct {
     int64_t messages_in, messages_out, messages_missed, posts_refused;
 } mgr_drop_counts;
 
-void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan);
-void mgr_status_publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
-                        const mgr_drop_counts *drops, double cycle_cost_us);
+typedef struct {
+    const char *vehicle;
+    const char *manager;
+    const char *plan;
+    char channel[MGR_MAX_CHANNEL + 1]; /* <VEHICLE>.CHASM.<MANAGER> */
+    /* --status-rate: at most one status per period of mission time, plus one
+     * at once whenever something an operator acts on changed; 0: every cycle. */
+    int64_t period_us;
+    int published;          /* a status went out since init */
+    int64_t last_us;        /* its mission time */
+    double max_cost_us;     /* the costliest step since then */
+    /* what the last status said that, changed, sends the next one at once */
+    int run_state;
+    int64_t last_transition_us;
+    int path_len;
+    char leaf[256];         /* leaf path, cut to fit: the transition time tells changes apart too */
+    mgr_drop_counts drops;
+} mgr_status_ctx;
+
+/* rate_hz 0: a status every cycle (the default). */
+void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan, double rate_hz);
+
+/* Called every cycle (and every LOADING tick): publishes the status when it
+ * is due. At rate 0, always. Otherwise when the run state, the active path,
+ * the last transition or any count changed since the last status, or a
+ * period of mission time has passed since it (a cycle whose time reaches
+ * the period's end), so what a status says is never more than a period old
+ * and a change is never late. Which cycles publish depends on mission time
+ * and the plan alone: lockstep reruns publish the same statuses. The
+ * status's cycle_cost_us is the costliest step since the previous one.
+ * 1 when it published. */
+int mgr_status_update(mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int64_t now_us,
+                      const mgr_drop_counts *drops, double cycle_cost_us);
 
 #endif

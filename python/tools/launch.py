@@ -245,6 +245,8 @@ class Launcher:
             m.name,
             "--rate",
             f"{m.rate_hz:g}",
+            "--status-rate",
+            f"{m.status_rate_hz:g}",
             "--clock",
             "sim",
             "--lcm-url",

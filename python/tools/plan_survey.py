@@ -28,7 +28,7 @@ import yaml
 
 from auvlcm.paths import ROOT, build_dir
 from sim import clock_modes
-from tools.plan_team import add_team_options, write_team
+from tools.plan_team import STATUS_RATE_HZ, add_team_options, vehicle_managers, write_team
 from tools.plan_text import Limits, estimated_duration_s, plan_text
 from tools.plugin_limits import LimitsError, check_plan, polygon_limits
 from tools.survey_geometry import GeometryError, format_polygon, parse_polygon
@@ -103,15 +103,7 @@ def scenario_dict(name: str, out: Path, ids, sv: Survey, starts, args, lim: Limi
                     },
                 },
                 **({"nav": args.nav} if args.nav != "ins" else {}),
-                "managers": [
-                    {
-                        "name": "PILOT",
-                        "plan": _rel(args.pilot_plan, out),
-                        "bind": _rel(args.pilot_bind, out),
-                        "rate": 20,
-                    },
-                    {"name": "NAVIGATOR", "plan": f"{vid}.chasm", "bind": _rel(args.nav_bind, out), "rate": 10},
-                ],
+                "managers": vehicle_managers(args, out, f"{vid}.chasm", args.nav_bind),
             }
         )
     world = read_world(args.world) if args.world else {}
@@ -150,6 +142,13 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--ids", help="vehicle ids, comma-separated (default AUV1, AUV2, ...)")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--world", type=Path, help="YAML file: the scenario's world section")
+    ap.add_argument(
+        "--status-rate",
+        type=float,
+        default=STATUS_RATE_HZ,
+        help="managers' status messages per second of mission time, besides one on every change; "
+        f"0: every cycle (default {STATUS_RATE_HZ:g})",
+    )
     ap.add_argument(
         "--nav",
         choices=("ins", "ekf"),
@@ -192,6 +191,9 @@ def main(argv: list[str] | None = None) -> int:
             print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)", file=sys.stderr)
             return 2
         args.vehicles = args.team
+    if not 0.0 <= args.status_rate <= 1000.0:  # what chasm-manager --status-rate takes
+        print(f"plan_survey: --status-rate {args.status_rate:g}: out of range (0 to 1000 per second)", file=sys.stderr)
+        return 2
     try:
         text = Path(args.polygon[1:]).read_text() if args.polygon.startswith("@") else args.polygon
         polygon = parse_polygon(text)

@@ -40,6 +40,21 @@ TEAM_DEFAULTS = {
 }
 
 
+# Status messages per second of mission time of the managers a planner writes
+# (and one at once on every change): an operator's display needs no more, and
+# at every cycle they were a tenth of a fleet's LCM traffic (docs/performance.md).
+STATUS_RATE_HZ = 2.0
+
+
+def vehicle_managers(args, out: Path, nav_plan: str, nav_bind: Path) -> list[dict]:
+    """A vehicle's PILOT (20 Hz) and NAVIGATOR (10 Hz) as a scenario lists them."""
+    status = {"status_rate": getattr(args, "status_rate", STATUS_RATE_HZ)}
+    return [
+        {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20, **status},
+        {"name": "NAVIGATOR", "plan": nav_plan, "bind": _rel(nav_bind, out), "rate": 10, **status},
+    ]
+
+
 def add_team_options(ap) -> None:
     g = ap.add_argument_group('team scenario (docs/missions.md, "Team mission")')
     g.add_argument(
@@ -188,20 +203,9 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
             {
                 "id": vid,
                 "sim": sim,
-                "managers": [
-                    {
-                        "name": "PILOT",
-                        "plan": _rel(args.pilot_plan, out),
-                        "bind": _rel(args.pilot_bind, out),
-                        "rate": 20,
-                    },
-                    {
-                        "name": "NAVIGATOR",
-                        "plan": f"{vid}.chasm",
-                        "bind": _rel(args.ri_bind if vid in ri_ids else args.team_bind, out),
-                        "rate": 10,
-                    },
-                ],
+                "managers": vehicle_managers(
+                    args, out, f"{vid}.chasm", args.ri_bind if vid in ri_ids else args.team_bind
+                ),
             }
         )
     limit = round(timeout + 120)

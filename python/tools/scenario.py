@@ -45,6 +45,9 @@ class Manager:
     plan: Path = Path()
     bind: Path = Path()
     rate_hz: float = setting(10.0, gt=0.0, key="rate")
+    # <V>.CHASM.<NAME> per second of mission time at most, plus one at once on every
+    # change of state or of a drop count; 0: every cycle (chasm-manager --status-rate)
+    status_rate_hz: float = setting(0.0, ge=0.0, le=1000.0, key="status_rate")
     params: dict[str, str] = field(default_factory=dict)  # -D name=value
     plugin_path: list[Path] = field(default_factory=list)
     where: str = ""
@@ -192,7 +195,10 @@ class _Scenario:
     def manager(self, node, key: str) -> Manager | None:
         c = self.c
         items = self.section(
-            node, key, ("name", "plan", "bind", "rate", "params", "plugin_path"), ("name", "plan", "bind")
+            node,
+            key,
+            ("name", "plan", "bind", "rate", "status_rate", "params", "plugin_path"),
+            ("name", "plan", "bind"),
         )
         if items is None:
             return None
@@ -200,6 +206,7 @@ class _Scenario:
         m.name = self.get(items, "name", key, "", rule_of(Manager, "name"))
         plan, bind = self.file(items, "plan", key), self.file(items, "bind", key)
         m.rate_hz = self.get(items, "rate", key, 10.0, rule_of(Manager, "rate_hz"))
+        m.status_rate_hz = self.get(items, "status_rate", key, 0.0, rule_of(Manager, "status_rate_hz"))
         if "params" in items:
             m.params = self.params(items["params"][1], join(key, "params"), plan)
         pp: list = []

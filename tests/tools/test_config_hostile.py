@@ -97,6 +97,8 @@ def test_misspelt_param_newline_in_a_value_and_reserved_vehicle_ids(tmp_path):
         assert f"{tmp_path / 's.yaml'}:4:9: vehicles[0].id: '{vid}' is reserved" in err
     err = _launch_errors(_scenario(tmp_path, vehicle_extra="    nav: {source: ekf, rate: 0}\n"), tmp_path)
     assert "vehicles[0].nav.rate: must be > 0" in err
+    err = _launch_errors(_scenario(tmp_path, manager_extra="        status_rate: -2\n"), tmp_path)
+    assert f"{tmp_path / 's.yaml'}:10:22: vehicles[0].managers[0].status_rate: must be in [0, 1000]" in err
 
 
 def test_sim_config_refusals_name_file_line_col(tmp_path):

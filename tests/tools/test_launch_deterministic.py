@@ -15,7 +15,7 @@ import yaml
 from logcompare import compare, cut, messages
 from test_launch import launch, vehicle, write_scenario
 
-from auv import ground_truth_t
+from auv import chasm_status_t, ground_truth_t
 
 LOST_AT = 2.0
 
@@ -23,6 +23,8 @@ LOST_AT = 2.0
 def test_fast_time_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):
     ekf = vehicle("AUV2", east=40.0, cycles=50)
     ekf["nav"] = "ekf"
+    for m in ekf["managers"]:  # a status twice a second and on every change (chasm-manager --status-rate)
+        m["status_rate"] = 2
     path = write_scenario(tmp_path, [vehicle("AUV1", cycles=40), ekf, vehicle("AUV3", east=80.0)], limit=30)
     sc = yaml.safe_load(path.read_text())
     sc["faults"] = [{"at": LOST_AT, "vehicle": "AUV3", "do": "lose"}]
@@ -52,4 +54,8 @@ def test_fast_time_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):
     ):
         assert len(a.get(key, [])) > 20, (key, len(a.get(key, [])))
     assert len(a["AUV2.NAV_STATUS"]) >= 4  # once a second
+    # rate-limited statuses: which cycles publish depends on mission time and the
+    # plan alone, so the two runs still agree (compare); at least one per 0.5 s
+    rated = [chasm_status_t.decode(d).utime for d in a["AUV2.CHASM.NAVIGATOR"]]
+    assert 8 <= len(rated) < 20 and all(y - x <= 500_000 for x, y in zip(rated, rated[1:])), rated
     compare(a, b)

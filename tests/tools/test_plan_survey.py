@@ -100,6 +100,8 @@ def test_scenario_names_the_plans_and_starts(tmp_path):
             survey["vehicles"][v["id"]]["start"], abs=0.051
         )
     assert "param fix_every    = 10 min" in (tmp_path / "demo" / "AUV2.chasm").read_text()
+    # managers report twice a second of mission time and on every change, not every cycle
+    assert {m["status_rate"] for v in sc["vehicles"] for m in v["managers"]} == {2.0}
     missing = [
         p
         for v in sc["vehicles"]
@@ -140,6 +142,8 @@ def test_plans_pass_chasm_check(tmp_path):
         (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--ids", "A1"], "--ids names 1"),
         (["--polygon", POLY, "--range", "40", "--vehicles", "2", "--starts", "0,0"], "--starts gives 1"),
         (["--polygon", "@/nonexistent/poly.txt", "--range", "40"], "No such file"),
+        (["--polygon", POLY, "--range", "40", "--status-rate", "-1"], "--status-rate -1: out of range"),
+        (["--polygon", POLY, "--range", "40", "--status-rate", "nan"], "--status-rate nan: out of range"),
     ],
 )
 def test_bad_input_exits_2(tmp_path, args, msg):
