@@ -292,6 +292,7 @@ def test_a_required_input_holds_the_start(lcm_url, child_env, tmp_path):
     [
         ("input gps ${VEHICLE}.GPS gps_fix_t maybe", "strict.bind:1:36: the only flag after the type is `optional`"),
         ("output gps ${VEHICLE}.GPS gps_fix_t optional", "strict.bind:1:37: only an input can be optional"),
+        ("input gps ${VEHICLE}.GPS gps_fix_t on_change", "strict.bind:1:36: only an output can be on_change"),
     ],
 )
 def test_bad_binding_flags_are_refused(tmp_path, lcm_url, child_env, line, error):

@@ -121,3 +121,60 @@ def test_a_bad_status_rate_is_refused(value, lcm_url, child_env):
     cmd = manager_cmd(HERE / "dive.chasm", HERE / "vehicle.bind", lcm_url, "--status-rate", value)
     r = subprocess.run(cmd, env=child_env, capture_output=True, text=True, timeout=30)
     assert r.returncode == 2 and "--status-rate wants a number from 0 to 1000" in r.stderr, r.stderr
+
+
+def test_an_on_change_output_goes_out_when_it_changes_and_once_a_second(lcm_url, child_env, tmp_path):
+    """`on_change` after an output's type: the setpoint (set on each state's
+    entry) is published at the cycle it changes, else once a second of mission
+    time, with that cycle's utime; the status (every cycle) marks the cycles."""
+    bind = tmp_path / "on_change.bind"
+    bind.write_text((HERE / "vehicle.bind").read_text().replace("setpoint_t", "setpoint_t  on_change"))
+    assert "on_change" in bind.read_text()
+    lc = lcm.LCM(with_receive_buffer(lcm_url))
+    rx = Receiver(lc)
+    setpoints: list = []
+    status: list = []
+    rx.subscribe("AUV1.SETPOINT", setpoint_t, lambda c, m: setpoints.append(m), 1000)
+    rx.subscribe("AUV1.CHASM.NAVIGATOR", chasm_status_t, lambda c, m: status.append(m), 1000)
+    mgr = subprocess.Popen(
+        manager_cmd(HERE / "dive.chasm", bind, lcm_url), env=child_env, stderr=subprocess.PIPE, text=True
+    )
+    utime = 0
+
+    def cycle(depth: float) -> None:
+        nonlocal utime
+        utime += CYCLE_US
+        nav = nav_solution_t()
+        nav.utime, nav.vehicle, nav.depth_m = utime, "AUV1", depth
+        lc.publish("AUV1.NAV", nav.encode())
+        clock = sim_clock_t()
+        clock.utime, clock.server_id, clock.step_us = utime, "test", CYCLE_US
+        lc.publish("SIM.CLOCK", clock.encode())
+        t = utime
+        pump(lc, lambda: bool(status) and status[-1].utime >= t, timeout=30 if status else 0.05)
+
+    try:
+        for _ in range(600):
+            cycle(0.0)
+            if status and status[-1].run_state == chasm_status_t.RUN_RUNNING:
+                break
+        start = status[-1].utime
+        for _ in range(25):  # `dive`: the same setpoint for 2.5 s
+            cycle(1.0)
+        cycle(9.0)  # `hold`: the speed changes at once
+        hold_at = utime
+        for _ in range(30):  # 2 s later `finish`
+            cycle(9.0)
+        assert status[-1].active_path[-1] == "finish"
+    finally:
+        stop(mgr, signal.SIGTERM)
+    sent = [(m.utime, m.speed_mps, m.depth_m) for m in setpoints if m.utime >= start]
+    times = [t for t, _, _ in sent]
+    # never two within a second unless the second one changed something
+    for (t0, *v0), (t1, *v1) in zip(sent, sent[1:]):
+        assert t1 - t0 >= 1_000_000 or v1 != v0, (t0, t1, v0, v1)
+        assert t1 - t0 <= 1_000_000, (t0, t1)  # and at least one a second
+    assert hold_at in times and next(s for t, s, _ in sent if t == hold_at) == 1.0
+    finish = [t for t, s, d in sent if s == 0.0 and d == 0.0]
+    assert finish and finish[0] == next(st.last_transition_utime for st in status if st.active_path[-1] == "finish")
+    assert len(sent) <= 10, sent  # 6 s of cycles at 10 Hz: 60 without the flag

@@ -84,17 +84,24 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
     if (n == 0)
         return 0;
     if (n < 4 || n > 5 || (!word_is(&w[0], "input") && !word_is(&w[0], "output"))) {
-        mgr_errors_add(errs, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE [optional]`", path, lineno, w[0].col);
+        mgr_errors_add(errs, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE [optional|on_change]`", path,
+                       lineno, w[0].col);
         return 1;
     }
     int is_output = word_is(&w[0], "output");
     /* `optional`: an input that may be absent when the plan starts (GPS
      * only exists at the surface); the plan sees its variables as never
-     * written until the first message. */
-    if (n == 5 && (!word_is(&w[4], "optional") || is_output)) {
-        mgr_errors_add(errs, "%s:%d:%d: %s", path, lineno, w[4].col,
-                       !word_is(&w[4], "optional") ? "the only flag after the type is `optional`"
-                                                   : "only an input can be optional");
+     * written until the first message. `on_change`: an output published
+     * only when it changed, and once a second (a status, not a command). */
+    const char *flag_error = NULL;
+    if (n == 5 && !word_is(&w[4], "optional") && !word_is(&w[4], "on_change"))
+        flag_error = "the only flag after the type is `optional` (an input), or `on_change` (an output)";
+    else if (n == 5 && word_is(&w[4], "optional") && is_output)
+        flag_error = "only an input can be optional";
+    else if (n == 5 && word_is(&w[4], "on_change") && !is_output)
+        flag_error = "only an output can be on_change";
+    if (flag_error) {
+        mgr_errors_add(errs, "%s:%d:%d: %s", path, lineno, w[4].col, flag_error);
         return 1;
     }
     char *type = word_dup(&w[3]);
@@ -118,7 +125,8 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
     mgr_message_binding *mb = &b->msgs[b->n_msgs++];
     memset(mb, 0, sizeof *mb);
     mb->is_output = is_output;
-    mb->optional = n == 5;
+    mb->optional = n == 5 && !is_output;
+    mb->on_change = n == 5 && is_output;
     mb->prefix = prefix;
     mb->type = t;
     mb->line = lineno;

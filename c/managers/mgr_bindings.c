@@ -124,6 +124,12 @@ static int bind_all(mgr_bindings *b, const char *path, chasm_machine *m, mgr_err
                     chasm_var_name(m, mb->vars[0].var));
             errors++;
         }
+        if (mb->on_change && mb->stream_var >= 0) {
+            /* a stream's messages are events: each one is published */
+            mgr_errors_add(errs, "%s:%d:1: '%s' carries whole messages: `on_change` is for outputs of fields", path,
+                    mb->line, mb->prefix);
+            errors++;
+        }
         if (!mb->is_output)
             mb->has_utime = field_path_resolve(mb->type, "utime", &mb->utime, err, sizeof err) == 0;
         else
@@ -196,6 +202,43 @@ mgr_stream_counts mgr_bindings_stream_counts(const mgr_bindings *b)
     return c;
 }
 
+/* `on_change`: whether the output, filled for this cycle, differs from the
+ * last one published (its utime aside), or a second of mission time passed
+ * since (so a listener that joins late, or checks its age, still hears it).
+ * Remembers what it says goes out. Out of memory: publish every cycle. */
+static int changed_or_due(mgr_message_binding *mb, int64_t now_us)
+{
+    if (mb->has_utime)
+        *(int64_t *)((char *)mb->scratch + mb->utime.offset) = 0;
+    const lcm_type_info_t *info = mb->type->info();
+    int size = info->encoded_size(mb->scratch);
+    uint8_t *enc = malloc((size_t)size);
+    if (!enc || info->encode(enc, 0, size, mb->scratch) != size) {
+        free(enc);
+        return 1;
+    }
+    int same = mb->last_sent && mb->last_sent_len == size && !memcmp(mb->last_sent, enc, (size_t)size);
+    int due = !same || now_us - mb->last_sent_us >= MGR_ON_CHANGE_PERIOD_US || now_us < mb->last_sent_us;
+    if (due) {
+        free(mb->last_sent);
+        mb->last_sent = enc;
+        mb->last_sent_len = size;
+        mb->last_sent_us = now_us;
+    } else {
+        free(enc);
+    }
+    return due;
+}
+
+uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
+{
+    uint64_t n = 0;
+    for (int i = 0; i < b->n_msgs; i++)
+        if (b->msgs[i].sub)
+            n += rx_decode_errors(b->msgs[i].sub);
+    return n;
+}
+
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
 {
     for (int i = 0; i < b->n_msgs; i++) {
@@ -213,6 +256,8 @@ void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
             else
                 field_ref_set_double(&v->field, mb->scratch, chasm_var_get_double(b->machine, v->var));
         }
+        if (mb->on_change && !changed_or_due(mb, now_us))
+            continue;
         if (mb->has_utime)
             *(int64_t *)((char *)mb->scratch + mb->utime.offset) = now_us;
         const lcm_type_info_t *info = mb->type->info();
@@ -226,15 +271,6 @@ void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
     }
 }
 
-uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
-{
-    uint64_t n = 0;
-    for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub)
-            n += rx_decode_errors(b->msgs[i].sub);
-    return n;
-}
-
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
 {
     for (int i = 0; i < b->n_msgs; i++) {
@@ -243,6 +279,7 @@ void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
             rx_unsubscribe(lcm, mb->sub);
         if (mb->is_output)
             free(mb->scratch);
+        free(mb->last_sent);
         free(mb->vars);
         free(mb->prefix);
     }

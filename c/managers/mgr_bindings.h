@@ -30,6 +30,7 @@ typedef struct {
 typedef struct {
     int is_output;
     int optional;           /* input the plan may start without (`optional`) */
+    int on_change;          /* output published when it changed, else once a second (`on_change`) */
     char *prefix;           /* any length: plan names have no limit */
     char channel[MGR_MAX_CHANNEL + 1];
     const auv_type_entry_t *type;
@@ -52,6 +53,10 @@ typedef struct {
     uint64_t messages_in;       /* appended to the stream */
     uint64_t posts_refused;     /* posted bytes that do not decode as the type */
     uint64_t messages_out;      /* published */
+    /* `on_change`: the last encoding published, its utime zeroed, and when */
+    uint8_t *last_sent;
+    int last_sent_len;
+    int64_t last_sent_us;
 } mgr_message_binding;
 
 typedef struct mgr_bindings {

@@ -12,6 +12,7 @@
 /* Command line. */
 #define MGR_MAX_PARAMS 64                   /* -D overrides */
 #define MGR_MAX_RATE_HZ 1000                /* --rate */
+#define MGR_ON_CHANGE_PERIOD_US 1000000     /* an `on_change` output unchanged goes out once per this */
 #define MGR_MAX_PLUGIN_PATH 16              /* --plugin-path folders (with --plugin-dir) */
 #define MGR_MAX_FUTURE_TOLERANCE_S 3600     /* --future-tolerance */
 #define MGR_MAX_CLOCK_JUMP_S 86400          /* --max-clock-jump */

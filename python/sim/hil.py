@@ -111,6 +111,9 @@ class Simulator:
             s.publish_thread and (fast or s.clock == LOCKSTEP),
             lambda line: print(f"sim: {self.vid}: {line}", flush=True),
         )
+        # publish() of the instance itself, looked up once: through a wrapper's
+        # __getattr__ (auvlcm.chanfilter.FilteredLcm) it costs a Python call each time
+        self.publish_raw: Callable[[str, bytes], None] = self.lc.publish
         # a sender thread's flush(): called before the loop waits (see _drain)
         self._flush = getattr(self.lc, "flush", None)
         self.rx = Receiver(self.lc)
@@ -264,7 +267,7 @@ class Simulator:
 
     # -------------------------------------------------------------- output
     def _publish(self, channel: str, data: bytes) -> None:
-        self.lc.publish(channel, data)
+        self.publish_raw(channel, data)
         self.published += 1
 
     def _check_stale(self) -> None:

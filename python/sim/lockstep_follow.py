@@ -18,14 +18,17 @@ from __future__ import annotations
 
 import bisect
 
-from auv import sim_clock_t
+from auv import lockstep_t, sim_clock_t
 from sim.multihil.lockstep import Participation
+from sim.wire import Encoder
 
 
 class LockstepFollower:
     def __init__(self, sim) -> None:
         self.sim = sim
-        self.part = Participation(f"{sim.vid}.sim", lambda m: sim.lc.publish("SIM.LOCKSTEP", m.encode()))
+        name = f"{sim.vid}.sim"
+        pack = Encoder(lockstep_t, participant=name).pack  # a report each step: no BytesIO encode
+        self.part = Participation(name, lambda m: sim.publish_raw("SIM.LOCKSTEP", pack(m.utime, m.kind, m.step)))
         self.active = False  # the clock followed is a lockstep clock
         self._clock: tuple[int, int] | None = None  # (step, utime) not yet passed on
         self._held: list[tuple[float, int, tuple]] = []  # (t, seq, (channel, msg))
@@ -52,7 +55,8 @@ class LockstepFollower:
     def poll(self) -> None:
         """Each turn of the simulator's loop."""
         sim, part = self.sim, self.part
-        part.poll()
+        if part.pending is None or not part.seen_clock:  # registering, or a report may be repeated
+            part.poll()
         while self._held and self._held[0][0] <= sim.model.t + 1e-9:
             _, _, (channel, msg) = self._held.pop(0)
             sim.apply_command(channel, msg)
