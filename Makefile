@@ -155,9 +155,18 @@ SAN_OUTPUTS := $(addprefix $(BUILD)/san/,$(C_PROGRAMS) $(C_LIBS))
 HAVE_JAVAC := $(shell command -v javac >/dev/null 2>&1 && echo yes)
 JAR_TARGET := $(if $(HAVE_JAVAC),$(TYPES_JAR))
 
+# The Python byte-compiled once, here: where PYTHONDONTWRITEBYTECODE is set
+# (some CI environments set it) every process would otherwise compile each
+# module it imports, at every start (0.1 s of CPU for a simulator, and a
+# test run starts hundreds of processes). Python reads the files either way.
+PYC_STAMP := $(BUILD)/.pyc.stamp
+$(PYC_STAMP): $(GEN_PY_STAMP) $(shell find python -name '*.py' 2>/dev/null)
+	$(VPY) -m compileall -q python $(GEN)/python >/dev/null
+	@touch $@
+
 .PHONY: all build sanitize test lint format demo spy bench clean distclean setup validate stress chromium
 setup: $(VENV_STAMP)
-build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET)
+build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET) $(PYC_STAMP)
 sanitize: $(SAN_OUTPUTS)
 all: build
 
