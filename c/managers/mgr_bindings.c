@@ -205,38 +205,32 @@ mgr_stream_counts mgr_bindings_stream_counts(const mgr_bindings *b)
 /* `on_change`: whether the output, filled for this cycle, differs from the
  * last one published (its utime aside), or a second of mission time passed
  * since (so a listener that joins late, or checks its age, still hears it).
- * Remembers what it says goes out. Out of memory: publish every cycle. */
+ * Remembers what it says goes out; memory is only taken then, never on the
+ * cycles that publish nothing. Out of memory: publish every cycle. */
 static int changed_or_due(mgr_message_binding *mb, int64_t now_us)
 {
     if (mb->has_utime)
         *(int64_t *)((char *)mb->scratch + mb->utime.offset) = 0;
     const lcm_type_info_t *info = mb->type->info();
     int size = info->encoded_size(mb->scratch);
-    uint8_t *enc = malloc((size_t)size);
-    if (!enc || info->encode(enc, 0, size, mb->scratch) != size) {
-        free(enc);
-        return 1;
+    uint8_t stackbuf[4096];
+    uint8_t *enc = size <= (int)sizeof stackbuf ? stackbuf : malloc((size_t)size);
+    int due = 1;
+    if (enc && info->encode(enc, 0, size, mb->scratch) == size) {
+        int same = mb->last_sent && mb->last_sent_len == size && !memcmp(mb->last_sent, enc, (size_t)size);
+        due = !same || now_us - mb->last_sent_us >= MGR_ON_CHANGE_PERIOD_US || now_us < mb->last_sent_us;
+        uint8_t *keep = due && !same ? realloc(mb->last_sent, (size_t)size) : mb->last_sent;
+        if (keep && due) {
+            if (!same)
+                memcpy(keep, enc, (size_t)size);
+            mb->last_sent = keep;
+            mb->last_sent_len = size;
+            mb->last_sent_us = now_us;
+        }
     }
-    int same = mb->last_sent && mb->last_sent_len == size && !memcmp(mb->last_sent, enc, (size_t)size);
-    int due = !same || now_us - mb->last_sent_us >= MGR_ON_CHANGE_PERIOD_US || now_us < mb->last_sent_us;
-    if (due) {
-        free(mb->last_sent);
-        mb->last_sent = enc;
-        mb->last_sent_len = size;
-        mb->last_sent_us = now_us;
-    } else {
+    if (enc != stackbuf)
         free(enc);
-    }
     return due;
-}
-
-uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
-{
-    uint64_t n = 0;
-    for (int i = 0; i < b->n_msgs; i++)
-        if (b->msgs[i].sub)
-            n += rx_decode_errors(b->msgs[i].sub);
-    return n;
 }
 
 void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
@@ -269,6 +263,15 @@ void mgr_bindings_publish(mgr_bindings *b, lcm_t *lcm, int64_t now_us)
         if (buf != stackbuf)
             free(buf);
     }
+}
+
+uint64_t mgr_bindings_decode_errors(const mgr_bindings *b)
+{
+    uint64_t n = 0;
+    for (int i = 0; i < b->n_msgs; i++)
+        if (b->msgs[i].sub)
+            n += rx_decode_errors(b->msgs[i].sub);
+    return n;
 }
 
 void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)

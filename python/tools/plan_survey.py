@@ -27,10 +27,12 @@ from pathlib import Path
 import yaml
 
 from auvlcm.paths import ROOT, build_dir
+from confcheck import rule_of
 from sim import clock_modes
 from tools.plan_team import STATUS_RATE_HZ, add_team_options, vehicle_managers, write_team
 from tools.plan_text import Limits, estimated_duration_s, plan_text
 from tools.plugin_limits import LimitsError, check_plan, polygon_limits
+from tools.scenario import Manager
 from tools.survey_geometry import GeometryError, format_polygon, parse_polygon
 from tools.survey_plan import Sonar, Survey, plan_survey
 
@@ -191,8 +193,9 @@ def main(argv: list[str] | None = None) -> int:
             print(f"plan_survey: {', '.join(bad)}: out of range (guard, linger >= 0 s, silent > 0 s)", file=sys.stderr)
             return 2
         args.vehicles = args.team
-    if not 0.0 <= args.status_rate <= 1000.0:  # what chasm-manager --status-rate takes
-        print(f"plan_survey: --status-rate {args.status_rate:g}: out of range (0 to 1000 per second)", file=sys.stderr)
+    problem = rule_of(Manager, "status_rate_hz").problem(args.status_rate)  # what the launcher takes
+    if problem:
+        print(f"plan_survey: --status-rate {args.status_rate:g}: out of range ({problem})", file=sys.stderr)
         return 2
     try:
         text = Path(args.polygon[1:]).read_text() if args.polygon.startswith("@") else args.polygon

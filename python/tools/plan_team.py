@@ -48,7 +48,7 @@ STATUS_RATE_HZ = 2.0
 
 def vehicle_managers(args, out: Path, nav_plan: str, nav_bind: Path) -> list[dict]:
     """A vehicle's PILOT (20 Hz) and NAVIGATOR (10 Hz) as a scenario lists them."""
-    status = {"status_rate": getattr(args, "status_rate", STATUS_RATE_HZ)}
+    status = {"status_rate": args.status_rate}
     return [
         {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20, **status},
         {"name": "NAVIGATOR", "plan": nav_plan, "bind": _rel(nav_bind, out), "rate": 10, **status},
