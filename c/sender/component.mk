@@ -2,7 +2,7 @@
 # and the own-socket reader: a shared library Python loads with ctypes, and
 # the sender's C test, built in both variants (the sanitized test checks the
 # queue and the thread under ASan/UBSan).
-SENDER_SRCS := $(sort $(wildcard c/sender/*.c)) c/common/lcm_chanfilter.c c/common/chanfilter_compile.c c/common/lcm_socket.c c/common/lcm_udpm_reader.c
+SENDER_SRCS := $(sort $(wildcard c/sender/*.c)) c/common/lcm_chanfilter.c c/common/chanfilter_compile.c c/common/lcm_socket.c c/common/lcm_udpm_reader.c c/common/lockstep_board.c
 SENDER_TEST_SRCS := $(sort $(wildcard tests/sender/*.c))
 
 define sender_rules

@@ -91,6 +91,7 @@ class OwnReceiver:
         self._lib, self._r = lib, r
         lib.lcm_udpm_reader_set_batch(r, 1)
         self._next = lib.lcm_udpm_reader_next
+        self._wait: Callable | None = None
         self._msg = _Msg()
         self._msg_ref = ctypes.byref(self._msg)
         self.fd = lib.lcm_udpm_reader_fd(r)
@@ -129,10 +130,14 @@ class OwnReceiver:
         """Hands the next queued message to its subscriptions; False when
         nothing complete is queued."""
         rc = self._next(self._r, self._msg_ref)
-        if rc <= 0:
-            if rc < 0:
-                raise OSError(ctypes.get_errno(), "LCM receive failed")
-            return False
+        if rc == 1:
+            self._dispatch()
+            return True
+        if rc < 0:
+            raise OSError(ctypes.get_errno(), "LCM receive failed")
+        return rc == 2  # a board took the report its clock waited for (read_with)
+
+    def _dispatch(self) -> None:
         m = self._msg
         channel = m.channel.decode(errors="replace")
         data = ctypes.string_at(m.data, m.len)
@@ -142,10 +147,26 @@ class OwnReceiver:
         for s in tuple(routes):  # a handler may subscribe or unsubscribe
             if s in self.subs:
                 s.handler(channel, data)
-        return True
+
+    def read_with(self, next_fn: Callable, wait_fn: Callable, keep: object) -> None:
+        """Read through next_fn(reader, msg) instead of lcm_udpm_reader_next,
+        and wait through wait_fn(reader, msg, timeout_ms) instead of select:
+        functions that take some messages themselves and return 2 when one of
+        those is what the caller waits for (auvlcm/lockstep_board.py). keep:
+        what they need alive as long as this receiver."""
+        self._next = next_fn
+        self._wait = wait_fn
+        self._keep = keep
 
     def handle_timeout(self, timeout_ms: int) -> int:
         """1 when a message was handled, 0 when none came within timeout_ms."""
+        if self._wait is not None:
+            rc = self._wait(self._r, self._msg_ref, max(0, timeout_ms))
+            if rc < 0:
+                raise OSError(ctypes.get_errno(), "LCM receive failed")
+            if rc == 1:
+                self._dispatch()
+            return 1 if rc else 0
         if self._handle_one():
             return 1
         ready, _, _ = select.select([self.fd], [], [], max(0, timeout_ms) / 1000.0)

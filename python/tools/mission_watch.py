@@ -208,9 +208,12 @@ class MissionWatch:
     def outcome(self) -> str | None:
         """None while any vehicle runs; else the worst vehicle outcome (a
         vehicle lost by a planned fault counts as over, not as a failure)."""
-        outs = [v.outcome for v in self.vehicles.values()]
-        if any(o is None for o in outs):
-            return None
+        outs = []
+        for v in self.vehicles.values():  # called at every wake-up of the launcher: stop at the first running
+            o = v.outcome
+            if o is None:
+                return None
+            outs.append(o)
         for worst in ("failed", "aborted"):
             if worst in outs:
                 return worst

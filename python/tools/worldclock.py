@@ -29,7 +29,9 @@ from typing import Callable
 import lcm
 
 from auv import lockstep_t, sim_clock_t
+from auvlcm import lockstep_board
 from sim import clock_modes
+from sim.multihil.board_tracker import BoardTracker
 from sim.multihil.lockstep import RESEND_S, LockstepTracker, decode_lockstep
 from sim.multihil.server import LockstepServer
 
@@ -54,7 +56,15 @@ class WorldClock:
         self.mode = mode
         self.warp = PACE[mode] if PACE[mode] is not None else warp
         self.step_us = max(1, round(step_s * 1e6))
-        self.tracker = LockstepTracker(timeout_s=None, log=log)
+        # On its own socket the clock lets a board in C take the participants'
+        # ordinary reports (auvlcm/lockstep_board.py): half of its CPU was
+        # decoding and tracking them in Python, one per participant per step.
+        self.board = lockstep_board.attach(lc, "SIM.LOCKSTEP", lockstep_t._get_packed_fingerprint())
+        self.tracker = (
+            LockstepTracker(timeout_s=None, log=log)
+            if self.board is None
+            else BoardTracker(self.board, timeout_s=None, log=log)
+        )
         self.server = LockstepServer(
             self.tracker, self.step_us, len(participants or ()), log, expect_names=participants
         )
@@ -85,6 +95,9 @@ class WorldClock:
         c.mode = sim_clock_t.MODE_LOCKSTEP
         c.warp = 0.0 if math.isinf(self.warp) else self.warp
         c.step, c.step_us = step, self.step_us
+        if self.board is not None:  # what _on_lockstep accepts: no report of a step never published
+            self.board.set_limit(self.server.step + 1)
+            self.board.set_watch(self.server.step)
         self.lc.publish("SIM.CLOCK", c.encode())
         self.ticks += 1
 
