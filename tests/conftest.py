@@ -73,6 +73,17 @@ def lcm_url() -> str:
     return fresh_url()
 
 
+@pytest.fixture
+def own_lcm(lcm_url):
+    """A FilteredLcm on lcm_url that receives on a socket of its own (auvlcm/own_socket.py)."""
+    from auvlcm.chanfilter import FilteredLcm
+
+    lc = FilteredLcm(lcm_url)
+    if lc._own is None:
+        pytest.skip("no own socket here (libauvlcm_sender.so not built, or AUV_LCM_READER=0)")
+    return lc
+
+
 def child_environment() -> dict[str, str]:
     """Environment for child processes: the build's message types, sanitizer options."""
     env = dict(os.environ)

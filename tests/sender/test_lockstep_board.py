@@ -124,12 +124,12 @@ def test_its_decisions_agree_with_pythons_decoder_on_hostile_input(lib):
     assert taken > 30  # the property was tested on takes too, not only on refusals
 
 
-def test_python_gets_every_message_the_board_does_not_take_in_order(rx, lcm_url):
-    board = lockstep_board.attach(rx, "SIM.LOCKSTEP", FP)
+def test_python_gets_every_message_the_board_does_not_take_in_order(own_lcm, lcm_url):
+    board = lockstep_board.attach(own_lcm, "SIM.LOCKSTEP", FP)
     assert board is not None
     got: list[tuple[str, object]] = []
-    rx.subscribe("SIM.LOCKSTEP", lambda c, d: got.append((c, decode_lockstep(d).participant)))
-    rx.subscribe("OTHER", lambda c, d: got.append((c, d)))
+    own_lcm.subscribe("SIM.LOCKSTEP", lambda c, d: got.append((c, decode_lockstep(d).participant)))
+    own_lcm.subscribe("OTHER", lambda c, d: got.append((c, d)))
     board.put("A", -1)
     board.put("B", -1)
     board.set_limit(1)
@@ -143,15 +143,15 @@ def test_python_gets_every_message_the_board_does_not_take_in_order(rx, lcm_url)
     results = []
     deadline = time.monotonic() + 10
     while board.last_done("B") != 0 and time.monotonic() < deadline:
-        results.append(rx.handle_timeout(2000))
+        results.append(own_lcm.handle_timeout(2000))
     assert got == [("OTHER", b"x"), ("SIM.LOCKSTEP", "C"), ("SIM.LOCKSTEP", "A")]
     assert results[-1] == 1 and board.taken == 2 and board.owing(0) == 0
 
 
-def test_a_wait_ends_at_the_watched_steps_last_report_not_before(rx, lcm_url):
-    board = lockstep_board.attach(rx, "SIM.LOCKSTEP", FP)
+def test_a_wait_ends_at_the_watched_steps_last_report_not_before(own_lcm, lcm_url):
+    board = lockstep_board.attach(own_lcm, "SIM.LOCKSTEP", FP)
     seen: list[bytes] = []
-    rx.subscribe("SIM.LOCKSTEP", lambda c, d: seen.append(d))
+    own_lcm.subscribe("SIM.LOCKSTEP", lambda c, d: seen.append(d))
     board.put("A", 0)
     board.put("B", 0)
     board.set_limit(2)
@@ -159,10 +159,10 @@ def test_a_wait_ends_at_the_watched_steps_last_report_not_before(rx, lcm_url):
     pub = lcm.LCM(lcm_url)
     pub.publish("SIM.LOCKSTEP", report("A", 1))
     t0 = time.monotonic()
-    assert rx.handle_timeout(300) == 0  # A's report woke only the C loop: B owes step 1
+    assert own_lcm.handle_timeout(300) == 0  # A's report woke only the C loop: B owes step 1
     assert time.monotonic() - t0 >= 0.25
     assert board.last_done("A") == 1 and seen == []
     pub.publish("SIM.LOCKSTEP", report("B", 1))
     t0 = time.monotonic()
-    assert rx.handle_timeout(5000) == 1
+    assert own_lcm.handle_timeout(5000) == 1
     assert time.monotonic() - t0 < 4 and board.owing(1) == 0 and seen == []

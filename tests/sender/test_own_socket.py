@@ -39,64 +39,64 @@ def bound_sockets(port: int) -> int:
     return len(inodes & mine)
 
 
-def test_it_reads_its_own_socket_and_liblcm_receives_nothing(rx, lcm_url):
+def test_it_reads_its_own_socket_and_liblcm_receives_nothing(own_lcm, lcm_url):
     got: list[tuple[str, bytes]] = []
-    rx.subscribe("A", lambda c, d: got.append((c, d)))
-    assert rx.fileno() == rx._own.fd
+    own_lcm.subscribe("A", lambda c, d: got.append((c, d)))
+    assert own_lcm.fileno() == own_lcm._own.fd
     lcm.LCM(lcm_url).publish("A", b"1")
-    assert rx.handle_timeout(2000) == 1
+    assert own_lcm.handle_timeout(2000) == 1
     assert got == [("A", b"1")]
-    assert rx.filtering
+    assert own_lcm.filtering
     # one socket of this process on the port: its own; liblcm made none (no receive thread)
     assert bound_sockets(int(lcm_url.split(":")[2].split("?")[0])) == 1
 
 
-def test_fileno_is_readable_exactly_while_a_message_waits(rx, lcm_url):
+def test_fileno_is_readable_exactly_while_a_message_waits(own_lcm, lcm_url):
     got: list[bytes] = []
-    rx.subscribe("A", lambda c, d: got.append(d))
+    own_lcm.subscribe("A", lambda c, d: got.append(d))
     tx = lcm.LCM(lcm_url)
     for i in range(3):
         tx.publish("A", bytes([i]))
-    assert readable(rx, 2.0)
+    assert readable(own_lcm, 2.0)
     for i in range(3):
-        assert readable(rx, 2.0), f"message {i} waits but the descriptor says nothing"
-        rx.handle()  # one message per call, as lcm.LCM
+        assert readable(own_lcm, 2.0), f"message {i} waits but the descriptor says nothing"
+        own_lcm.handle()  # one message per call, as lcm.LCM
         assert got == [bytes([k]) for k in range(i + 1)]
-    assert not readable(rx, 0.1)
+    assert not readable(own_lcm, 0.1)
 
 
-def test_handlers_run_in_subscription_order_and_may_unsubscribe(rx, lcm_url):
+def test_handlers_run_in_subscription_order_and_may_unsubscribe(own_lcm, lcm_url):
     order: list[str] = []
     subs = {}
 
     def once(c, d):
         order.append("once")
-        rx.unsubscribe(subs["once"])  # during the dispatch of this very message
+        own_lcm.unsubscribe(subs["once"])  # during the dispatch of this very message
 
-    subs["first"] = rx.subscribe("A.*", lambda c, d: order.append("first"))
-    subs["once"] = rx.subscribe("A", once)
-    subs["last"] = rx.subscribe("A", lambda c, d: order.append("last"))
+    subs["first"] = own_lcm.subscribe("A.*", lambda c, d: order.append("first"))
+    subs["once"] = own_lcm.subscribe("A", once)
+    subs["last"] = own_lcm.subscribe("A", lambda c, d: order.append("last"))
     tx = lcm.LCM(lcm_url)
     tx.publish("A", b"")
     tx.publish("A", b"")
-    assert rx.handle_timeout(2000) == 1 and rx.handle_timeout(2000) == 1
+    assert own_lcm.handle_timeout(2000) == 1 and own_lcm.handle_timeout(2000) == 1
     assert order == ["first", "once", "last", "first", "last"]
 
 
-def test_the_filter_narrows_again_on_unsubscribe(rx, lcm_url):
+def test_the_filter_narrows_again_on_unsubscribe(own_lcm, lcm_url):
     """After unsubscribing A the kernel drops A: the first message handled
     is the B sent after three As (liblcm's filter never narrowed)."""
     got: list[str] = []
-    a = rx.subscribe("A", lambda c, d: got.append(c))
-    rx.subscribe("B", lambda c, d: got.append(c))
-    rx.unsubscribe(a)
+    a = own_lcm.subscribe("A", lambda c, d: got.append(c))
+    own_lcm.subscribe("B", lambda c, d: got.append(c))
+    own_lcm.unsubscribe(a)
     tx = lcm.LCM(lcm_url)
     for _ in range(3):
         tx.publish("A", b"")
     tx.publish("B", b"")
-    assert rx.handle_timeout(2000) == 1
+    assert own_lcm.handle_timeout(2000) == 1
     assert got == ["B"]
-    assert not readable(rx, 0.1)
+    assert not readable(own_lcm, 0.1)
 
 
 def test_a_fragmented_message_comes_out_whole(lcm_url):
@@ -112,17 +112,17 @@ def test_a_fragmented_message_comes_out_whole(lcm_url):
     assert got == [body]
 
 
-def test_handle_all_takes_everything_queued(rx, lcm_url):
+def test_handle_all_takes_everything_queued(own_lcm, lcm_url):
     got: list[bytes] = []
-    rx.subscribe("A", lambda c, d: got.append(d))
+    own_lcm.subscribe("A", lambda c, d: got.append(d))
     tx = lcm.LCM(lcm_url)
     for i in range(200):
         tx.publish("A", i.to_bytes(2, "big"))
     handled, deadline = 0, time.monotonic() + 10
     while handled < 200 and time.monotonic() < deadline:  # all may not be queued at once
-        handled += rx.handle_all(1000)
+        handled += own_lcm.handle_all(1000)
     assert handled == 200
     assert got == [i.to_bytes(2, "big") for i in range(200)]
-    assert not readable(rx, 0.1)  # nothing left behind in a half-read batch
+    assert not readable(own_lcm, 0.1)  # nothing left behind in a half-read batch
     tx.publish("A", b"\xff\xff")
-    assert rx.handle_timeout(2000) == 1 and got[-1] == b"\xff\xff"  # one at a time again
+    assert own_lcm.handle_timeout(2000) == 1 and got[-1] == b"\xff\xff"  # one at a time again
