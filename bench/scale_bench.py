@@ -133,7 +133,10 @@ BASELINES = {
     "transport": {"AUV_LCM_CHANFILTER": "0", "AUV_LCM_READER": "0"},
     # before the own sockets: filtered, but liblcm's thread receives (two wake-ups a message)
     "liblcm": {"AUV_LCM_READER": "0"},
+    # before SCHED_BATCH (session 13): the default scheduling, wake-ups preempt (launch --sched normal)
+    "sched": {},
 }
+BASELINE_LAUNCH_ARGS = {"sched": ["--sched", "normal"]}
 
 
 def run_case(n: int, args, out: Path, baseline: str = "") -> dict:
@@ -170,6 +173,7 @@ def run_case(n: int, args, out: Path, baseline: str = "") -> dict:
         str(case / "run"),
         "--progress",
         "0",
+        *BASELINE_LAUNCH_ARGS.get(baseline, []),
     ] + (["--url", args.url] if args.url else [])
     env = dict(os.environ)
     env.update(BASELINES.get(baseline, {}))
@@ -334,7 +338,8 @@ def main() -> int:
         choices=sorted(BASELINES),
         help="also run each case as before: 'transport' (the default) before the channel filter "
         "and the own sockets (AUV_LCM_CHANFILTER=0, AUV_LCM_READER=0, simulators publishing from a "
-        "sender thread), 'liblcm' before the own sockets only (AUV_LCM_READER=0); prints the ratios",
+        "sender thread), 'liblcm' before the own sockets only (AUV_LCM_READER=0), 'sched' with the "
+        "default CPU scheduling instead of SCHED_BATCH (launch --sched normal); prints the ratios",
     )
     ap.add_argument("--url", help="LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")

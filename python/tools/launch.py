@@ -43,6 +43,8 @@ from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
 from tools.procs import Child
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
+from tools.sched_policy import CHOICES as SCHED_CHOICES
+from tools.sched_policy import policy_name, use_batch, wants_batch
 from tools.simconfig import write_configs
 from tools.worldclock import WorldClock
 
@@ -452,6 +454,13 @@ def main(argv: list[str] | None = None) -> int:
         "slowest process; scaled: at most warp x; realtime)",
     )
     ap.add_argument("--seed", type=int, help="override the scenario's seed (tools/montecarlo.py)")
+    ap.add_argument(
+        "--sched",
+        choices=SCHED_CHOICES,
+        default="auto",
+        help="CPU scheduling of the launcher and the processes it starts: batch (no preemption on "
+        "wake-up: throughput), normal, or auto (batch for time lockstep, normal when paced)",
+    )
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument(
         "--recorder",
@@ -527,11 +536,15 @@ def main(argv: list[str] | None = None) -> int:
         args.stop_flag = flag
         result, run = run_on_agents(sc, args, url, sim_configs, navs)
         return _finish(run, args, result)
+    if wants_batch(sc.time.mode, args.sched):  # inherited by every child started from here
+        why_not = use_batch()
+        if why_not:
+            print(f"launch: {why_not}", file=sys.stderr)
     run = Launcher(sc, args, url, sim_configs, navs)
     print(
         f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
         f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
-        f"over {url}; run folder {args.out}",
+        f"{policy_name()}, over {url}; run folder {args.out}",
         flush=True,
     )
     result = "died"

@@ -6,6 +6,7 @@ on their own after a few sim seconds, in fast time."""
 from __future__ import annotations
 
 import json
+import os
 import signal
 import subprocess
 import sys
@@ -188,6 +189,8 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
             _wait_for_line(proc, "launch: t=", 90)  # running: the clock has started
             kids = _children(proc.pid)
             assert len(kids) == 4, kids  # logger, sim, 2 managers
+            # lockstep: the launcher and its world run without wake-up preemption (tools/sched_policy.py)
+            assert {os.sched_getscheduler(p) for p in [proc.pid, *kids]} == {os.SCHED_BATCH}
             proc.send_signal(sig)
             rc = proc.wait(60)
         finally:
@@ -209,6 +212,28 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
             assert json.loads(ends[0])["outcome"] == "interrupted"
         else:
             assert rc == -signal.SIGKILL
+
+
+def test_a_paced_world_or_sched_normal_keeps_the_default_scheduling(tmp_path, lcm_url, child_env):
+    path = write_scenario(tmp_path, [vehicle("AUV1", cycles=100000)], limit=100000)
+    for name, extra in (("realtime", ["--time", "realtime"]), ("normal", ["--sched", "normal"])):
+        proc = subprocess.Popen(
+            LAUNCH + [str(path), "--out", str(tmp_path / name), "--url", lcm_url, "--progress", "0.5", *extra],
+            env=child_env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.STDOUT,
+            text=True,
+        )
+        try:
+            _wait_for_line(proc, "launch: t=", 90)
+            kids = _children(proc.pid)
+            assert len(kids) == 4, kids
+            assert {os.sched_getscheduler(p) for p in [proc.pid, *kids]} == {os.SCHED_OTHER}, name
+            proc.send_signal(signal.SIGINT)
+            assert proc.wait(60) == 130
+        finally:
+            if proc.poll() is None:
+                proc.kill()
 
 
 def test_host_split_runs_each_part_on_its_own(tmp_path, lcm_url, child_env):
