@@ -41,10 +41,10 @@ from tools.annotate import Annotator
 from tools.fault_step import FaultStepper, takes_part
 from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
-from tools.procs import Child
+from tools.procs import Child, children_batch
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
 from tools.sched_policy import CHOICES as SCHED_CHOICES
-from tools.sched_policy import policy_name, use_batch, wants_batch
+from tools.sched_policy import batch_available, wants_batch
 from tools.simconfig import write_configs
 from tools.worldclock import WorldClock
 
@@ -459,7 +459,8 @@ def main(argv: list[str] | None = None) -> int:
         choices=SCHED_CHOICES,
         default="auto",
         help="CPU scheduling of the launcher and the processes it starts: batch (no preemption on "
-        "wake-up: throughput), normal, or auto (batch for time lockstep, normal when paced)",
+        "wake-up: throughput), normal, or auto (batch for time lockstep with up to 8 vehicles on "
+        "this host, normal otherwise)",
     )
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument(
@@ -536,15 +537,16 @@ def main(argv: list[str] | None = None) -> int:
         args.stop_flag = flag
         result, run = run_on_agents(sc, args, url, sim_configs, navs)
         return _finish(run, args, result)
-    if wants_batch(sc.time.mode, args.sched):  # inherited by every child started from here
-        why_not = use_batch()
-        if why_not:
-            print(f"launch: {why_not}", file=sys.stderr)
+    batch = wants_batch(sc.time.mode, len(mine), args.sched)
+    if batch and batch_available():
+        print(f"launch: {batch_available()}", file=sys.stderr)
+        batch = False
+    children_batch(batch)  # every process started from here on
     run = Launcher(sc, args, url, sim_configs, navs)
     print(
         f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
         f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "
-        f"{policy_name()}, over {url}; run folder {args.out}",
+        f"{'SCHED_BATCH' if batch else 'default'} scheduling, over {url}; run folder {args.out}",
         flush=True,
     )
     result = "died"

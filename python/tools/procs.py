@@ -21,11 +21,29 @@ PR_SET_PDEATHSIG = 1
 _libc = ctypes.CDLL(None, use_errno=True)
 
 
+# Children started from now on run SCHED_BATCH (tools/sched_policy.py); the
+# launcher itself keeps its policy: it is the lockstep clock, and the last
+# report of a step must get it the core at once.
+_children_batch = False
+
+
+def children_batch(on: bool) -> None:
+    global _children_batch
+    _children_batch = on
+
+
 def _die_with(parent_pid: int):
+    batch = _children_batch
+
     def setup() -> None:  # runs in the child between fork and exec
         _libc.prctl(PR_SET_PDEATHSIG, signal.SIGTERM, 0, 0, 0)
         if os.getppid() != parent_pid:  # the parent died before prctl took effect
             os._exit(1)
+        if batch:
+            try:
+                os.sched_setscheduler(0, os.SCHED_BATCH, os.sched_param(0))
+            except OSError:
+                pass  # an unprivileged process may always take it; if not, default scheduling
 
     return setup
 

@@ -6,12 +6,17 @@ datagram's receiver, once woken, preempts its sender: a simulator publishing
 its step's five sensor messages hands the core to the filter five times, and
 the filter wakes twice or more per step where once would do. Under
 SCHED_BATCH the kernel does not preempt on wake-up: the sender finishes its
-step, and the receivers read what has queued in one go. Measured on 2 cores
-with 8 vehicles: +4 to +8 % vehicle-seconds per wall second.
+step, and the receivers read what has queued in one go. Measured on 2 cores,
+same run against the default policy: 8 vehicles x1.05 and x1.09 vehicle-seconds
+per wall second; 16 vehicles x0.95 and x0.96 (the simulators took 16 % more
+CPU in one of those runs). So `auto` takes it for worlds of up to
+BATCH_MAX_VEHICLES vehicles on the host, where it was measured faster.
 
 A paced world (realtime, scaled) keeps the default policy: there a wake-up's
-latency is what the clock is about. The policy is inherited by every process
-the launcher starts.
+latency is what the clock is about. The launcher itself, the lockstep clock,
+keeps the default policy too: the last report of a step must get it the core
+at once (with the clock under SCHED_BATCH as well, 16 vehicles ran 5 % slower
+and the clock took twice the CPU).
 """
 
 from __future__ import annotations
@@ -21,28 +26,23 @@ import os
 from sim import clock_modes
 
 CHOICES = ("auto", "batch", "normal")
+BATCH_MAX_VEHICLES = 8
 
 
-def wants_batch(time_mode: str, choice: str = "auto") -> bool:
-    """Whether the world runs SCHED_BATCH: `auto` means for a lockstep clock
-    that runs as fast as the slowest process, never for a paced one."""
+def wants_batch(time_mode: str, vehicles: int, choice: str = "auto") -> bool:
+    """Whether the world's processes run SCHED_BATCH: `auto` means for a
+    lockstep clock that runs as fast as the slowest process, with at most
+    BATCH_MAX_VEHICLES vehicles on this host; never for a paced clock."""
     if choice not in CHOICES:
         raise ValueError(f"--sched {choice}: expected one of {', '.join(CHOICES)}")
     if choice == "auto":
-        return time_mode == clock_modes.LOCKSTEP
+        return time_mode == clock_modes.LOCKSTEP and vehicles <= BATCH_MAX_VEHICLES
     return choice == "batch"
 
 
-def use_batch() -> str | None:
-    """This process (and what it starts from now on) under SCHED_BATCH; None,
-    or why not (the policy needs Linux; an unprivileged process may take it)."""
-    try:
-        os.sched_setscheduler(0, os.SCHED_BATCH, os.sched_param(0))
-    except (AttributeError, OSError) as exc:
-        return f"SCHED_BATCH not available here ({exc}): default scheduling"
+def batch_available() -> str | None:
+    """None, or why SCHED_BATCH cannot be had here (it needs Linux; any
+    process may take it for itself)."""
+    if not hasattr(os, "SCHED_BATCH"):
+        return "SCHED_BATCH not available on this system: default scheduling"
     return None
-
-
-def policy_name(pid: int = 0) -> str:
-    names = {getattr(os, n): n for n in ("SCHED_OTHER", "SCHED_BATCH", "SCHED_IDLE", "SCHED_FIFO", "SCHED_RR")}
-    return names.get(os.sched_getscheduler(pid), "unknown")

@@ -189,8 +189,10 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
             _wait_for_line(proc, "launch: t=", 90)  # running: the clock has started
             kids = _children(proc.pid)
             assert len(kids) == 4, kids  # logger, sim, 2 managers
-            # lockstep: the launcher and its world run without wake-up preemption (tools/sched_policy.py)
-            assert {os.sched_getscheduler(p) for p in [proc.pid, *kids]} == {os.SCHED_BATCH}
+            # lockstep: the world runs without wake-up preemption, the clock (the launcher)
+            # keeps the default policy (tools/sched_policy.py)
+            assert {os.sched_getscheduler(p) for p in kids} == {os.SCHED_BATCH}
+            assert os.sched_getscheduler(proc.pid) == os.SCHED_OTHER
             proc.send_signal(sig)
             rc = proc.wait(60)
         finally:

@@ -4,41 +4,51 @@ default, a paced one never unless asked; an unknown choice is refused."""
 from __future__ import annotations
 
 import os
-import subprocess
 import sys
+import time
 
 import pytest
 
 from sim import clock_modes
-from tools.sched_policy import wants_batch
+from tools import procs
+from tools.sched_policy import BATCH_MAX_VEHICLES, wants_batch
 
 
 @pytest.mark.parametrize(
-    "mode, choice, batch",
+    "mode, vehicles, choice, batch",
     [
-        (clock_modes.LOCKSTEP, "auto", True),
-        (clock_modes.REALTIME, "auto", False),
-        (clock_modes.SCALED, "auto", False),
-        (clock_modes.REALTIME, "batch", True),
-        (clock_modes.LOCKSTEP, "normal", False),
+        (clock_modes.LOCKSTEP, 1, "auto", True),
+        (clock_modes.LOCKSTEP, BATCH_MAX_VEHICLES, "auto", True),
+        (clock_modes.LOCKSTEP, BATCH_MAX_VEHICLES + 1, "auto", False),  # measured slower with 16
+        (clock_modes.REALTIME, 1, "auto", False),
+        (clock_modes.SCALED, 1, "auto", False),
+        (clock_modes.REALTIME, 16, "batch", True),
+        (clock_modes.LOCKSTEP, 1, "normal", False),
     ],
 )
-def test_the_choice(mode, choice, batch):
-    assert wants_batch(mode, choice) is batch
+def test_the_choice(mode, vehicles, choice, batch):
+    assert wants_batch(mode, vehicles, choice) is batch
 
 
 def test_an_unknown_choice_is_refused():
     with pytest.raises(ValueError, match="--sched fastest"):
-        wants_batch(clock_modes.LOCKSTEP, "fastest")
+        wants_batch(clock_modes.LOCKSTEP, 1, "fastest")
 
 
-def test_the_policy_is_taken_and_inherited():
-    code = (
-        "import os, subprocess, sys; from tools.sched_policy import use_batch, policy_name; "
-        "assert use_batch() is None; "
-        "child = subprocess.run([sys.executable, '-c', 'import os; print(os.sched_getscheduler(0))'], "
-        "capture_output=True, text=True, check=True); "
-        "print(policy_name(), int(child.stdout))"
-    )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout.split()
-    assert out == ["SCHED_BATCH", str(os.SCHED_BATCH)]
+def test_the_launchers_children_take_it_and_the_launcher_does_not(tmp_path):
+    probe = [sys.executable, "-c", "import os, time; print(os.sched_getscheduler(0), flush=True); time.sleep(5)"]
+    try:
+        for on, want in ((True, os.SCHED_BATCH), (False, os.SCHED_OTHER)):
+            procs.children_batch(on)
+            child = procs.Child("probe", probe, tmp_path / f"probe{on}.out").start()
+            try:
+                deadline = time.monotonic() + 20
+                while not child.out.read_text().strip() and time.monotonic() < deadline:
+                    time.sleep(0.05)
+                assert int(child.out.read_text()) == want
+                assert os.sched_getscheduler(child.pid) == want
+            finally:
+                child.stop()
+            assert os.sched_getscheduler(0) == os.SCHED_OTHER  # the starting process keeps its own
+    finally:
+        procs.children_batch(False)
