@@ -458,7 +458,7 @@ def main(argv: list[str] | None = None) -> int:
         "--sched",
         choices=SCHED_CHOICES,
         default="auto",
-        help="CPU scheduling of the launcher and the processes it starts: batch (no preemption on "
+        help="CPU scheduling of the processes the launcher starts: batch (no preemption on "
         "wake-up: throughput), normal, or auto (batch for time lockstep with up to 8 vehicles on "
         "this host, normal otherwise)",
     )
