@@ -459,8 +459,7 @@ def main(argv: list[str] | None = None) -> int:
         choices=SCHED_CHOICES,
         default="auto",
         help="CPU scheduling of the processes the launcher starts: batch (no preemption on "
-        "wake-up: throughput), normal, or auto (batch for time lockstep with up to 8 vehicles on "
-        "this host, normal otherwise)",
+        "wake-up: throughput), normal, or auto (batch for time lockstep, normal when paced)",
     )
     ap.add_argument("--progress", type=float, default=5.0, help="wall seconds between progress lines (0: none)")
     ap.add_argument(
@@ -537,7 +536,7 @@ def main(argv: list[str] | None = None) -> int:
         args.stop_flag = flag
         result, run = run_on_agents(sc, args, url, sim_configs, navs)
         return _finish(run, args, result)
-    batch = wants_batch(sc.time.mode, len(mine), args.sched)
+    batch = wants_batch(sc.time.mode, args.sched)
     if batch and batch_available():
         print(f"launch: {batch_available()}", file=sys.stderr)
         batch = False

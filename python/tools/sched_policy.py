@@ -7,10 +7,9 @@ its step's sensor messages hands the core to the filter after the first and
 takes it back, and the filter woke 2.3 times per step where once would do. Under
 SCHED_BATCH the kernel does not preempt on wake-up: the sender finishes its
 step, and the receivers read what has queued in one go. Measured on 2 cores,
-same run against the default policy: 8 vehicles x1.05 and x1.09 vehicle-seconds
-per wall second; 16 vehicles x0.95 and x0.96 (the simulators took 16 % more
-CPU in one of those runs). So `auto` takes it for worlds of up to
-BATCH_MAX_VEHICLES vehicles on the host, where it was measured faster.
+same run against the default policy (docs/performance.md): 4 vehicles x1.10,
+8 vehicles x1.05 and x1.09, 16 vehicles x0.96, x1.06 and x1.17 vehicle-seconds
+per wall second.
 
 A paced world (realtime, scaled) keeps the default policy: there a wake-up's
 latency is what the clock is about. The launcher itself, the lockstep clock,
@@ -26,17 +25,16 @@ import os
 from sim import clock_modes
 
 CHOICES = ("auto", "batch", "normal")
-BATCH_MAX_VEHICLES = 8
 
 
-def wants_batch(time_mode: str, vehicles: int, choice: str = "auto") -> bool:
+def wants_batch(time_mode: str, choice: str = "auto") -> bool:
     """Whether the world's processes run SCHED_BATCH: `auto` means for a
-    lockstep clock that runs as fast as the slowest process, with at most
-    BATCH_MAX_VEHICLES vehicles on this host; never for a paced clock."""
+    lockstep clock that runs as fast as the slowest process, never for a
+    paced one."""
     if choice not in CHOICES:
         raise ValueError(f"--sched {choice}: expected one of {', '.join(CHOICES)}")
     if choice == "auto":
-        return time_mode == clock_modes.LOCKSTEP and vehicles <= BATCH_MAX_VEHICLES
+        return time_mode == clock_modes.LOCKSTEP
     return choice == "batch"
 
 

@@ -11,28 +11,26 @@ import pytest
 
 from sim import clock_modes
 from tools import procs
-from tools.sched_policy import BATCH_MAX_VEHICLES, wants_batch
+from tools.sched_policy import wants_batch
 
 
 @pytest.mark.parametrize(
-    "mode, vehicles, choice, batch",
+    "mode, choice, batch",
     [
-        (clock_modes.LOCKSTEP, 1, "auto", True),
-        (clock_modes.LOCKSTEP, BATCH_MAX_VEHICLES, "auto", True),
-        (clock_modes.LOCKSTEP, BATCH_MAX_VEHICLES + 1, "auto", False),  # measured slower with 16
-        (clock_modes.REALTIME, 1, "auto", False),
-        (clock_modes.SCALED, 1, "auto", False),
-        (clock_modes.REALTIME, 16, "batch", True),
-        (clock_modes.LOCKSTEP, 1, "normal", False),
+        (clock_modes.LOCKSTEP, "auto", True),
+        (clock_modes.REALTIME, "auto", False),
+        (clock_modes.SCALED, "auto", False),
+        (clock_modes.REALTIME, "batch", True),
+        (clock_modes.LOCKSTEP, "normal", False),
     ],
 )
-def test_the_choice(mode, vehicles, choice, batch):
-    assert wants_batch(mode, vehicles, choice) is batch
+def test_the_choice(mode, choice, batch):
+    assert wants_batch(mode, choice) is batch
 
 
 def test_an_unknown_choice_is_refused():
     with pytest.raises(ValueError, match="--sched fastest"):
-        wants_batch(clock_modes.LOCKSTEP, 1, "fastest")
+        wants_batch(clock_modes.LOCKSTEP, "fastest")
 
 
 def test_the_launchers_children_take_it_and_the_launcher_does_not(tmp_path):
