@@ -103,7 +103,7 @@ void lockstep_board_remove(lockstep_board_t *b, const char *name)
     if (!e)
         return;
     free(e->name);
-    /* keep the order the participants were put in (the first owing is reported) */
+    /* keep the order the participants were put in (owing_at lists them so) */
     memmove(e, e + 1, (size_t)(b->parts + b->n - (e + 1)) * sizeof *e);
     b->n--;
 }
@@ -133,12 +133,11 @@ static void copy_name(const entry *e, char *out, int out_len)
     out[n] = '\0';
 }
 
-int lockstep_board_owing(const lockstep_board_t *b, int64_t step, char *first, int first_len)
+int lockstep_board_owing(const lockstep_board_t *b, int64_t step)
 {
     int owing = 0;
     for (int i = 0; i < b->n; i++)
-        if (b->parts[i].last_done < step && owing++ == 0)
-            copy_name(&b->parts[i], first, first_len);
+        owing += b->parts[i].last_done < step;
     return owing;
 }
 
@@ -177,21 +176,13 @@ int lockstep_board_take(lockstep_board_t *b, const char *channel, const void *da
     return 1;
 }
 
-static int owes_watched(const lockstep_board_t *b)
-{
-    for (int i = 0; i < b->n; i++)
-        if (b->parts[i].last_done < b->watch)
-            return 1;
-    return 0;
-}
-
 int lockstep_board_next(lockstep_board_t *b, lcm_udpm_reader_t *r, lcm_udpm_msg *m)
 {
     int took = 0;
     for (;;) {
         int rc = lcm_udpm_reader_next(r, m);
         if (rc != 1)
-            return rc == 0 && took && !owes_watched(b) ? 2 : rc;
+            return rc == 0 && took && lockstep_board_owing(b, b->watch) == 0 ? 2 : rc;
         if (!lockstep_board_take(b, m->channel, m->data, m->len))
             return 1;
         took = 1;

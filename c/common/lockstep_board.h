@@ -44,10 +44,10 @@ void lockstep_board_set_limit(lockstep_board_t *b, int64_t limit);
  * the last report it owed (nobody on the board owes it any more). */
 void lockstep_board_set_watch(lockstep_board_t *b, int64_t step);
 
-/* How many participants have not reported step yet; the first of them (in
- * the order they were put) is copied to first when first_len > 0. */
-int lockstep_board_owing(const lockstep_board_t *b, int64_t step, char *first, int first_len);
-/* The i-th participant that owes step (0-based), copied to out: 1, or 0 past the end. */
+/* How many participants have not reported step yet. */
+int lockstep_board_owing(const lockstep_board_t *b, int64_t step);
+/* The i-th participant that owes step (0-based, in the order they were put),
+ * copied to out: 1, or 0 past the end. */
 int lockstep_board_owing_at(const lockstep_board_t *b, int64_t step, int i, char *out, int out_len);
 
 /* Reports the board took itself since it was made. */

@@ -36,7 +36,7 @@ def _bind(lib: ctypes.CDLL) -> None:
     lib.lockstep_board_last_done.restype = i64
     lib.lockstep_board_set_limit.argtypes = [p, i64]
     lib.lockstep_board_set_limit.restype = None
-    lib.lockstep_board_owing.argtypes = [p, i64, ctypes.c_char_p, ctypes.c_int]
+    lib.lockstep_board_owing.argtypes = [p, i64]
     lib.lockstep_board_owing.restype = ctypes.c_int
     lib.lockstep_board_owing_at.argtypes = [p, i64, ctypes.c_int, ctypes.c_char_p, ctypes.c_int]
     lib.lockstep_board_owing_at.restype = ctypes.c_int
@@ -90,7 +90,7 @@ class LockstepBoard:
 
     def owing(self, step: int) -> int:
         """How many participants have not reported step."""
-        return self._owing(self._b, step, None, 0)
+        return self._owing(self._b, step)
 
     def owing_names(self, step: int) -> list[str]:
         names = []

@@ -537,8 +537,9 @@ def main(argv: list[str] | None = None) -> int:
         result, run = run_on_agents(sc, args, url, sim_configs, navs)
         return _finish(run, args, result)
     batch = wants_batch(sc.time.mode, args.sched)
-    if batch and batch_available():
-        print(f"launch: {batch_available()}", file=sys.stderr)
+    why_not = batch_available() if batch else None
+    if why_not:
+        print(f"launch: {why_not}", file=sys.stderr)
         batch = False
     children_batch(batch)  # every process started from here on
     run = Launcher(sc, args, url, sim_configs, navs)
