@@ -37,11 +37,11 @@ from auvlcm.url import check_local, default_url, with_receive_buffer
 from confcheck import ConfigError
 from sim import clock_modes
 from sim.multihil.lockstep import lockstep_msg
-from tools.annotate import Annotator
+from tools.annotate import PACE_S, Annotator
 from tools.fault_step import FaultStepper, takes_part
 from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
-from tools.procs import Child, children_batch
+from tools.procs import Child, children_batch, stop_together
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
 from tools.sched_policy import CHOICES as SCHED_CHOICES
 from tools.sched_policy import batch_available, wants_batch
@@ -118,13 +118,16 @@ class Launcher:
         self.build = args.build
         # filtered: the launcher wakes for what it watches, not for every sensor
         self.lc = FilteredLcm(self.child_url)
-        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT)
         self.mine = sc.vehicles_on(self.host)
         self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
         # with --agents the log host's agent records (lcm-logger), not this process
         self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
         self.recorder = args.recorder or sc.log_recorder
+        # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it
+        # (and for an agent's recorder, lcm-logger); auv-recorder takes a burst whole
+        pace = not (self.own_log and self.recorder == "auv-recorder")
+        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT, PACE_S if pace else 0.0)
         self.clock = (
             WorldClock(
                 self.lc,
@@ -193,15 +196,21 @@ class Launcher:
             ]
         self.logger = Child("logger", cmd, self.out / "logger.out")
         self.logger.start()
-        # Listening once its file exists; recording once our probe shows up in it.
+        # lcm-logger: listening once its file exists; recording once our probe shows up in
+        # it. auv-recorder: recording once the first message is in the file (its own
+        # lockstep registration, sent as it starts), asked every 10 ms.
         deadline = time.monotonic() + 20
+        noted = False
         while time.monotonic() < deadline and self.logger.poll() is None:
             if self.log_path.exists():
-                self.notes.event("logger", f"{self.recorder} pid {self.logger.pid} recording {self.log_path.name}")
-                time.sleep(0.3)
+                if not noted:
+                    self.notes.event("logger", f"{self.recorder} pid {self.logger.pid} recording {self.log_path.name}")
+                    noted = True
+                if self.recorder == "lcm-logger":
+                    time.sleep(0.3)
                 if self.log_path.stat().st_size > 0:
                     return
-            time.sleep(0.05)
+            time.sleep(0.01 if self.recorder == "auv-recorder" else 0.05)
         raise RuntimeError(f"{self.recorder} did not start recording: {self.logger.tail()}")
 
     def recorder_counts(self) -> dict | None:
@@ -279,14 +288,16 @@ class Launcher:
         if self.own_log:
             self.start_logger()
             self.annotate()
+        # tiers: stop_all() stops the managers, then the filters, then the simulators
         for v in self.mine:
-            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out"))
+            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out", tier=0))
         for v in self.mine:  # the onboard filter, before the managers that read it
             if v.id in self.nav_configs:
-                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out"))
+                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out", tier=1))
         for v in self.mine:
             for m in v.managers:
-                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), self.out / f"{v.id}.{m.name}.out"))
+                out = self.out / f"{v.id}.{m.name}.out"
+                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), out, tier=2))
 
     # ------------------------------------------------------------ supervise
     def _dead(self) -> Child | None:
@@ -409,10 +420,12 @@ class Launcher:
             self.stop_reason = (
                 f"{dead.name} (pid {dead.pid}) exited with status {dead.poll()}; last output:\n{dead.tail()}"
             )
+        codes = stop_together(self.children)
         for c in reversed(self.children):
-            rc = c.stop()
             if c is not dead:
-                self.notes.event("exit", f"{c.name} pid {c.pid} stopped, status {rc}", utime=self.watch.sim_time_us)
+                self.notes.event(
+                    "exit", f"{c.name} pid {c.pid} stopped, status {codes[c.name]}", utime=self.watch.sim_time_us
+                )
         self.notes.event("end", json.dumps(self.summary(result)), utime=self.watch.sim_time_us)
         if self.logger is not None:
             # lcm-logger flushes every 100 ms: let the end reach the file (auv-recorder

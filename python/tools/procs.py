@@ -56,6 +56,7 @@ class Child:
     proc: subprocess.Popen | None = None
     stopping: bool = False  # we asked it to stop: its exit is not a death
     started_wall: float = field(default_factory=time.monotonic)
+    tier: int = 0  # stop_together() stops the higher tiers first (the launcher: managers)
 
     @property
     def pid(self) -> int:
@@ -86,19 +87,28 @@ class Child:
 
     def stop(self, timeout: float = 10.0) -> int | None:
         """SIGINT to the whole group, then SIGKILL if it does not end in time."""
+        self.ask_stop()
+        return self.finish_stop(time.monotonic() + timeout)
+
+    def ask_stop(self) -> None:
+        """SIGINT to the whole group, if it still runs; finish_stop() waits."""
         if self.proc is None:
-            return None
+            return
         self.stopping = True
         if self.proc.poll() is None:
             _signal_group(self.proc.pid, signal.SIGINT)
-            try:
-                self.proc.wait(timeout)
-            except subprocess.TimeoutExpired:
-                _signal_group(self.proc.pid, signal.SIGKILL)
-                self.proc.wait()
-        else:
-            _signal_group(self.proc.pid, signal.SIGKILL)  # anything it left in its group
-        return self.proc.returncode
+
+    def finish_stop(self, deadline: float) -> int | None:
+        """Wait for the exit asked by ask_stop() until deadline (monotonic), then
+        SIGKILL; SIGKILL to anything the process left in its group."""
+        if self.proc is None:
+            return None
+        try:
+            self.proc.wait(max(deadline - time.monotonic(), 0.0))
+        except subprocess.TimeoutExpired:
+            pass
+        _signal_group(self.proc.pid, signal.SIGKILL)
+        return self.proc.wait()
 
     def kill(self) -> int | None:
         """SIGKILL to the whole group at once (a planned fault: no goodbye)."""
@@ -107,6 +117,22 @@ class Child:
         self.stopping = True
         _signal_group(self.proc.pid, signal.SIGKILL)
         return self.proc.wait()
+
+
+def stop_together(children: list[Child], timeout: float = 10.0) -> dict[str, int | None]:
+    """Stop children a tier at a time, the highest first (the order they must go
+    in), and the children of one tier together: all asked, then all waited for
+    with one deadline. One after another, a 40-process world took a second to
+    stop (each Python exit waited for alone); together it takes the slowest."""
+    codes: dict[str, int | None] = {}
+    for tier in sorted({c.tier for c in children}, reverse=True):
+        group = [c for c in children if c.tier == tier]
+        for c in group:
+            c.ask_stop()
+        deadline = time.monotonic() + timeout
+        for c in group:
+            codes[c.name] = c.finish_stop(deadline)
+    return codes
 
 
 def _signal_group(pgid: int, sig: int) -> None:
