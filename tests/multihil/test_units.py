@@ -8,7 +8,7 @@ import time
 
 import pytest
 
-from auv import env_needs_t, env_sample_t, lockstep_t
+from auv import env_election_t, env_needs_t, env_sample_t, lockstep_t
 from sim.environment import CurrentLayer, Environment, EnvParams
 from sim.multihil.clock import LocalClock, SteeredClock
 from sim.multihil.clocksync import SyncEstimator
@@ -260,3 +260,33 @@ def test_a_clock_of_another_mode_is_refused_with_a_message():
     lc.handle_timeout(100)
     assert node.last_clock is None and node.mode_conflicts == 1
     assert "every simulator of a world needs the same mode" in log[-1]
+
+
+def test_a_server_stopped_after_its_loop_check_sends_nothing_more_of_its_term():
+    """SIGSTOP can land anywhere, also after the loop's gap check and before a
+    heartbeat or a clock goes out: on SIGCONT the server must not send them (the
+    world has a newer term by then), whatever it was about to do."""
+    log: list[str] = []
+    lc, node = memq_node(log, mode="scaled")
+    sent: list[str] = []
+    for ch in ("SIM.ENV_HEARTBEAT", "SIM.CLOCK", "SIM.ENV_ELECTION"):
+        lc.subscribe(ch, lambda c, _d: sent.append(c))
+    deadline = time.monotonic() + 10.0
+    while node.role != "server":  # alone: it serves after its join window
+        assert time.monotonic() < deadline, log
+        node.poll()
+        lc.handle_timeout(20)
+    while lc.handle_timeout(0) > 0:  # what it sent as it took the role
+        pass
+    assert "SIM.ENV_HEARTBEAT" in sent
+    sent.clear()
+    node.election.check_gap()  # the loop's check passed ...
+    node.election.last_active -= 3.0  # ... then the process was stopped for 3 s
+    node._heartbeat()
+    node._publish_clock(10_000_000, 0)
+    node._election_msg(env_election_t.KIND_ELECTED, node.term)
+    while lc.handle_timeout(0) > 0:
+        pass
+    assert sent == [] and node.role == "reconfirming", (sent, node.role)
+    node.poll()  # what it says of the gap
+    assert any("stopped serving term" in line for line in log), log

@@ -159,6 +159,15 @@ class EnvNode:
     def _publish(self, channel: str, msg) -> None:
         self.lc.publish(channel, msg.encode())
 
+    def _publish_served(self, channel: str, msg) -> None:
+        """What only the server sends (heartbeat, clock, the world), asked again
+        just before it goes: a process can be stopped anywhere, also after the
+        loop's own gap check, and a server resumed there would otherwise send one
+        more message of its old term after another node took a newer one."""
+        if self.election.check_gap() or self.role != "server":
+            return
+        self._publish(channel, msg)
+
     # ------------------------------------------------------------ polling
     def poll(self) -> None:
         now = time.monotonic()
@@ -219,7 +228,7 @@ class EnvNode:
         g = self.global_now_us()
         if g is not None and g >= self._next_env_us:
             self._next_env_us = g + 1e6
-            self._publish("SIM.ENV", self.env.to_env_model(int(g), self.cfg.client_id, self.term))
+            self._publish_served("SIM.ENV", self.env.to_env_model(int(g), self.cfg.client_id, self.term))
 
     def _client(self, now: float) -> None:
         if now >= self._next["sync"]:
@@ -334,7 +343,10 @@ class EnvNode:
         m.utime = int(g) if g is not None else 0
         m.candidate_id, m.priority, m.term, m.kind = self.cfg.client_id, self.cfg.priority, term, kind
         m.last_global_utime = self.last_clock.utime if self.last_clock else 0
-        self._publish("SIM.ENV_ELECTION", m)
+        if kind == env_election_t.KIND_ELECTED:  # claims the role: only while it holds
+            self._publish_served("SIM.ENV_ELECTION", m)
+        else:
+            self._publish("SIM.ENV_ELECTION", m)
 
     def _heartbeat(self) -> None:
         m = env_heartbeat_t()
@@ -345,7 +357,7 @@ class EnvNode:
         now = time.monotonic()
         m.clients = sorted(c for c, t in self.clients.items() if now - t <= self.cfg.timing.peer_timeout_s)
         m.n_clients = len(m.clients)
-        self._publish("SIM.ENV_HEARTBEAT", m)
+        self._publish_served("SIM.ENV_HEARTBEAT", m)
 
     def _publish_clock(self, utime: int, step: int) -> None:
         c = sim_clock_t()
@@ -353,7 +365,7 @@ class EnvNode:
         c.mode = clock_modes.WIRE[self.cfg.mode]
         c.warp = self.clock.warp if self.cfg.mode == "scaled" else 1.0
         c.step, c.step_us = step, self.stepper.step_us if self.lockstep else 0
-        self._publish("SIM.CLOCK", c)
+        self._publish_served("SIM.CLOCK", c)
 
     # ---------------------------------------------------------- handlers
     def _on_heartbeat(self, _ch: str, m: env_heartbeat_t) -> None:
