@@ -1,8 +1,8 @@
 """One host's part of a scenario, as a host agent runs it (docs/hosts.md).
 
 The same processes `launch.py --host HOST` would start (simulators, onboard
-filters, managers, with the same command lines), plus lcm-logger when the
-scenario logs on this host; every check the launcher makes comes first, and
+filters, managers, with the same command lines), plus the recorder the
+scenario names (tools/recorder_cmd.py) when it logs on this host; every check the launcher makes comes first, and
 any failure refuses the whole part. What the agent does not run is the
 launcher's clock and mission watch: `agentctl watch` runs those when the
 scenario keeps time on the launcher (time.source: launcher).
@@ -13,11 +13,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-import lcm
-
-from auvlcm.url import check_local, with_receive_buffer
+from auvlcm.url import check_local
 from confcheck import ConfigError
 from tools.launch import Launcher, check_plans, nav_configs
+from tools.recorder_cmd import recorder_cmd, recorder_takes_part
 from tools.scenario import Scenario, load_scenario
 from tools.simconfig import write_configs
 
@@ -75,7 +74,8 @@ def host_part(
     missing = [b for b in ("bin/chasm", "bin/chasm-manager", "bin/auv-nav") if not (build / b).exists()]
     if missing:
         raise PartError([f"{build}: {', '.join(missing)} not built on host {host} (make build)"])
-    sim_configs, errors = write_configs(sc, mine.vehicles, run_dir)
+    # the same participants as on the clock's host: the recorder too, wherever it runs
+    sim_configs, errors = write_configs(sc, mine.vehicles, run_dir, recorder_takes_part(sc, sc.log_recorder))
     navs, nav_errors = nav_configs(mine, sim_configs, run_dir, build)
     errors += nav_errors + check_plans(mine, build)
     if errors:
@@ -83,21 +83,9 @@ def host_part(
     cmds = _Commands(sc, url, sim_configs, navs, build)
     procs = []
     if sc.log_enabled and sc.log_host == host:
-        logger = Path(lcm.LCM_BIN_DIR).resolve() / "lcm-logger"
-        procs.append(
-            ProcSpec(
-                "logger",
-                [
-                    str(logger),
-                    f"--lcm-url={with_receive_buffer(url)}",
-                    "--quiet",
-                    "--flush-interval=100",
-                    "-f",
-                    str(run_dir / sc.log_file),
-                ],
-                run_dir / "logger.out",
-            )
-        )
+        log, stats = run_dir / sc.log_file, run_dir / "recorder.json"
+        cmd = recorder_cmd(sc.log_recorder, url, log, stats, build)
+        procs.append(ProcSpec("logger", cmd, run_dir / "logger.out"))
     for v in mine.vehicles:
         procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out"))
     for v in mine.vehicles:

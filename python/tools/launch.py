@@ -28,8 +28,6 @@ import sys
 import time
 from pathlib import Path
 
-import lcm
-
 from auv import lockstep_t
 from auvlcm.chanfilter import FilteredLcm
 from auvlcm.paths import ROOT, build_dir
@@ -42,6 +40,7 @@ from tools.fault_step import FaultStepper, takes_part
 from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
 from tools.procs import Child, children_batch, stop_together
+from tools.recorder_cmd import recorder_cmd, recorder_takes_part
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
 from tools.sched_policy import CHOICES as SCHED_CHOICES
 from tools.sched_policy import batch_available, wants_batch
@@ -123,10 +122,11 @@ class Launcher:
         # with --agents the log host's agent records (lcm-logger), not this process
         self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
-        self.recorder = args.recorder or sc.log_recorder
-        # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it
-        # (and for an agent's recorder, lcm-logger); auv-recorder takes a burst whole
-        pace = not (self.own_log and self.recorder == "auv-recorder")
+        # with agents the log host's agent records what the scenario names
+        self.recorder = sc.log_recorder if agents else (args.recorder or sc.log_recorder)
+        # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it;
+        # auv-recorder takes a burst whole
+        pace = self.recorder == "lcm-logger"
         self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT, PACE_S if pace else 0.0)
         self.clock = (
             WorldClock(
@@ -134,7 +134,7 @@ class Launcher:
                 sc.time.mode,
                 args.warp or sc.time.warp,
                 sc.time.step_s,
-                participants(sc, self.own_log and self.recorder == "auv-recorder"),
+                participants(sc, recorder_takes_part(sc, self.recorder)),
                 before_step=self.apply_faults,
             )
             if self.own_clock
@@ -172,28 +172,8 @@ class Launcher:
         counts what it could not) or lcm-logger (its subscription queue holds
         30 messages and drops 1-2 % of a busy fast-time run)."""
         self.log_path.unlink(missing_ok=True)
-        url = with_receive_buffer(self.url)
-        if self.recorder == "lcm-logger":
-            lcm_bin = Path(lcm.LCM_BIN_DIR).resolve()
-            cmd = [
-                str(lcm_bin / "lcm-logger"),
-                f"--lcm-url={url}",
-                "--quiet",
-                "--flush-interval=100",
-                "-f",
-                str(self.log_path),
-            ]
-        else:
-            self.recorder_stats.unlink(missing_ok=True)
-            cmd = [
-                str(self.build / "bin" / "auv-recorder"),
-                "--url",
-                url,
-                "-f",
-                str(self.log_path),
-                "--stats",
-                str(self.recorder_stats),
-            ]
+        self.recorder_stats.unlink(missing_ok=True)
+        cmd = recorder_cmd(self.recorder, self.url, self.log_path, self.recorder_stats, self.build)
         self.logger = Child("logger", cmd, self.out / "logger.out")
         self.logger.start()
         # lcm-logger: listening once its file exists; recording once our probe shows up in
@@ -529,8 +509,15 @@ def main(argv: list[str] | None = None) -> int:
     args.out = (args.out or ROOT / "build" / "runs" / sc.name).resolve()
     args.out.mkdir(parents=True, exist_ok=True)
     mine = sc.vehicles_on(args.host)
-    # the recorder takes part in a lockstep world; with agents the log host's lcm-logger records
-    records = not args.agents and sc.log_enabled and (args.recorder or sc.log_recorder) == "auv-recorder"
+    if args.agents and args.recorder and args.recorder != sc.log_recorder:
+        print(
+            f"launch: --recorder {args.recorder}: with --agents the log host's agent records, with the "
+            f"scenario's logging.recorder ({sc.log_recorder}): set it there",
+            file=sys.stderr,
+        )
+        return 2
+    # the recorder takes part in a lockstep world, whichever host records
+    records = recorder_takes_part(sc, args.recorder or sc.log_recorder)
     sim_configs, errors = write_configs(sc, sc.vehicles, args.out, records)
     navs, nav_errors = nav_configs(Scenario(**{**sc.__dict__, "vehicles": mine}), sim_configs, args.out, args.build)
     errors += nav_errors

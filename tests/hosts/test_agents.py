@@ -9,6 +9,7 @@ import os
 import signal
 import time
 
+import numpy as np
 import pytest
 from agents import AgentProc, Tables, alive, ctl, vehicle, wait_until, write_scenario
 
@@ -290,8 +291,17 @@ def test_launch_through_agents_runs_the_mission_on_its_clock(tmp_path, lcm_url, 
     log = tmp_path / "agents" / "alpha" / "via" / "run.lcmlog"  # recorded by alpha's agent
     from auvlcm.arrays import load_log
 
-    arrays = load_log(log, keep_messages="SIM.ANNOTATION")
+    arrays = load_log(log, keep_messages=r"SIM\.(ANNOTATION|LOCKSTEP)")
     assert len(arrays["AUV2.TRUTH"]) > 50
+    # the agent records with auv-recorder, a participant of the lockstep world
+    # (the clock on the launcher's host waited for it): nothing lost, no gap
+    for vid in ("AUV1", "AUV2"):
+        steps = np.diff(arrays[f"{vid}.TRUTH"].columns["utime"])
+        assert steps.size and np.all(steps == steps[0]), (vid, sorted(set(steps.tolist())))
+    counts = json.loads((log.parent / "recorder.json").read_text())
+    assert counts["dropped"] == 0 and counts["missed"] == 0 and counts["written"] == counts["received"], counts
+    reporters = {m.participant for m in arrays.messages["SIM.LOCKSTEP"]}
+    assert "SIM.RECORDER" in reporters, reporters
     assert any(n.name == "end" for n in arrays.messages["SIM.ANNOTATION"])
 
 
