@@ -101,9 +101,14 @@ def _json(text: str) -> dict | None:
     return value if isinstance(value, dict) else None
 
 
+def vehicle_order(vid: str) -> tuple:
+    """Sort key for vehicle ids: AUV2 before AUV10 (the numbers as numbers)."""
+    return tuple(int(part) if part.isdigit() else part for part in re.split(r"(\d+)", vid))
+
+
 def load_run(log_path: str | Path, survey_path: str | Path | None = None) -> RunData:
     log = load_log(log_path, keep_messages=KEEP)
-    vehicles = sorted(c.split(".")[0] for c in log.matching(r"[A-Z][A-Z0-9]*\.TRUTH"))
+    vehicles = sorted((c.split(".")[0] for c in log.matching(r"[A-Z][A-Z0-9]*\.TRUTH")), key=vehicle_order)
     run = RunData(log, vehicles)
     for a in log.messages.get("SIM.ANNOTATION", []):
         if a.kind == 0 and a.name.endswith("survey.json") and run.survey is None:

@@ -214,3 +214,10 @@ def test_report_bad_input(tmp_path):
     log.close()
     run = subprocess.run(REPORT + [str(tmp_path / "empty.lcmlog")], capture_output=True, text=True, timeout=60)
     assert run.returncode == 2 and "no vehicle ground truth" in run.stderr
+
+
+def test_vehicles_are_listed_in_number_order():
+    from tools.run_data import vehicle_order
+
+    ids = ["AUV10", "RI", "AUV2", "AUV1", "AUV16", "AUV3"]
+    assert sorted(ids, key=vehicle_order) == ["AUV1", "AUV2", "AUV3", "AUV10", "AUV16", "RI"]
