@@ -36,6 +36,7 @@ from auvlcm.rx import Receiver
 from auvlcm.url import check_local, default_url
 from tools.agent_part import PartError, host_part
 from tools.agent_procs import BACKOFF, RUNNING, Supervised, policy_for, rule_errors
+from tools.procs import stop_together
 from tools.scenario import HOST_NAME
 
 C = agent_command_t
@@ -137,7 +138,9 @@ class Agent:
             return agent_ack_t.RESULT_REJECTED, "\n".join(exc.errors)
         run = cmd.run or sc.name
         self.run, self.deadman_s, self.last_heard, self.status = run, cmd.deadman_s, time.monotonic(), "running"
-        self.procs = [Supervised(s.name, s.cmd, s.out, policy_for(s.name, cmd.restart), self.log) for s in specs]
+        self.procs = [
+            Supervised(s.name, s.cmd, s.out, policy_for(s.name, cmd.restart), self.log, s.tier) for s in specs
+        ]
         started = []
         for p in self.procs:
             try:
@@ -156,8 +159,7 @@ class Agent:
 
     def stop_run(self, why: str) -> int:
         n = len(self.active())
-        for p in reversed(self.procs):  # managers first, the logger last
-            p.stop()
+        stop_together(self.procs, timeout=5.0)  # managers first, the logger last
         if self.run:
             self.status = f"stopped: {why}"
             self.log(f"run '{self.run}' {self.status}")

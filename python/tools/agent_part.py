@@ -26,6 +26,7 @@ class ProcSpec:
     name: str
     cmd: list[str]
     out: Path
+    tier: int = 0  # stop order, higher first: managers, filters, simulators, the recorder
 
 
 class _Commands(Launcher):
@@ -87,11 +88,12 @@ def host_part(
         cmd = recorder_cmd(sc.log_recorder, url, log, stats, build)
         procs.append(ProcSpec("logger", cmd, run_dir / "logger.out"))
     for v in mine.vehicles:
-        procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out"))
+        procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out", 1))
     for v in mine.vehicles:
         if v.id in navs:
-            procs.append(ProcSpec(f"{v.id}.NAV", cmds.nav_cmd(v), run_dir / f"{v.id}.nav.out"))
+            procs.append(ProcSpec(f"{v.id}.NAV", cmds.nav_cmd(v), run_dir / f"{v.id}.nav.out", 2))
     for v in mine.vehicles:
         for m in v.managers:
-            procs.append(ProcSpec(f"{v.id}.{m.name}", cmds.manager_cmd(v.id, m), run_dir / f"{v.id}.{m.name}.out"))
+            out = run_dir / f"{v.id}.{m.name}.out"
+            procs.append(ProcSpec(f"{v.id}.{m.name}", cmds.manager_cmd(v.id, m), out, 3))
     return sc, procs

@@ -68,8 +68,9 @@ def proc_usage(pid: int) -> tuple[float, int]:
 
 
 class Supervised:
-    def __init__(self, name: str, cmd: list[str], out: Path, policy: Policy, log) -> None:
+    def __init__(self, name: str, cmd: list[str], out: Path, policy: Policy, log, tier: int = 0) -> None:
         self.name, self.cmd, self.out, self.policy, self.log = name, cmd, out, policy, log
+        self.tier = tier  # stop order (tools.procs.stop_together): higher first
         self.child: Child | None = None
         self.state = STOPPED
         self.exit_code = 0
@@ -85,7 +86,7 @@ class Supervised:
 
     def start(self) -> None:
         out = self.out if self.restarts == 0 else self.out.with_suffix(f".{self.restarts}.out")
-        self.child = Child(self.name, self.cmd, out, stopping=False).start()
+        self.child = Child(self.name, self.cmd, out, stopping=False, tier=self.tier).start()
         self.state, self._last, self.cpu_load = RUNNING, (time.monotonic(), 0.0), 0.0
         self.log(
             f"{self.name}: started pid {self.child.pid}"
@@ -128,8 +129,18 @@ class Supervised:
         return now - self.child.started_wall if self.state == RUNNING and self.child else 0.0
 
     def stop(self, timeout: float = 5.0) -> None:
+        self.ask_stop()
+        self.finish_stop(time.monotonic() + timeout)
+
+    def ask_stop(self) -> None:
+        """The first half of a stop (tools.procs.stop_together asks a tier at once)."""
         if self.child is not None and self.state == RUNNING:
-            self.exit_code = self.child.stop(timeout) or 0
+            self.child.ask_stop()
+
+    def finish_stop(self, deadline: float) -> int | None:
+        if self.child is not None and self.state == RUNNING:
+            self.exit_code = self.child.finish_stop(deadline) or 0
             self.log(f"{self.name}: pid {self.child.pid} stopped, status {self.exit_code}")
         if self.state in (RUNNING, BACKOFF):  # a failed or exited process keeps saying so
             self.state = STOPPED
+        return self.exit_code

@@ -14,8 +14,10 @@ import os
 import signal
 import subprocess
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Protocol
 
 PR_SET_PDEATHSIG = 1
 _libc = ctypes.CDLL(None, use_errno=True)
@@ -119,11 +121,20 @@ class Child:
         return self.proc.wait()
 
 
-def stop_together(children: list[Child], timeout: float = 10.0) -> dict[str, int | None]:
-    """Stop children a tier at a time, the highest first (the order they must go
-    in), and the children of one tier together: all asked, then all waited for
-    with one deadline. One after another, a 40-process world took a second to
-    stop (each Python exit waited for alone); together it takes the slowest."""
+class Stoppable(Protocol):
+    name: str
+    tier: int
+
+    def ask_stop(self) -> None: ...
+    def finish_stop(self, deadline: float) -> int | None: ...
+
+
+def stop_together(children: Sequence[Stoppable], timeout: float = 10.0) -> dict[str, int | None]:
+    """Stop children (a Child, or what wraps one: an agent's Supervised) a tier at
+    a time, the highest first (the order they must go in), and the children of
+    one tier together: all asked, then all waited for with one deadline. One
+    after another, a 40-process world took a second to stop (each Python exit
+    waited for alone); together it takes the slowest."""
     codes: dict[str, int | None] = {}
     for tier in sorted({c.tier for c in children}, reverse=True):
         group = [c for c in children if c.tier == tier]
