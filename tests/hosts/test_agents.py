@@ -388,3 +388,19 @@ def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, 
     assert "the agent of host beta is silent for 5 s" in out
     assert "alpha: ok: stopped" in out and "beta: no answer" in out  # the rest stopped all the same
     assert all(p.state == STOPPED for p in tables.latest("alpha").procs)
+
+
+def test_launch_through_agents_refuses_another_recorder_than_the_scenarios(tmp_path, lcm_url, child_env):
+    """With --agents the log host's agent records with the scenario's
+    logging.recorder: a --recorder that says otherwise is refused before any
+    agent is asked (no agent runs here: none is needed to refuse)."""
+    import subprocess
+    import sys
+
+    sc = write_scenario(tmp_path / "rec.yaml", [vehicle("AUV1", "alpha")], ["alpha"])
+    argv = [sys.executable, "-m", "tools.launch", str(sc), "--agents", "--out", str(tmp_path / "run")]
+    run = subprocess.run(
+        [*argv, "--url", lcm_url, "--recorder", "lcm-logger"], env=child_env, capture_output=True, text=True, timeout=60
+    )
+    assert run.returncode == 2, run.stdout + run.stderr
+    assert "--recorder lcm-logger" in run.stderr and "logging.recorder (auv-recorder)" in run.stderr, run.stderr
