@@ -2,8 +2,8 @@
 
 The same processes `launch.py --host HOST` would start (simulators, onboard
 filters, managers, with the same command lines), plus the recorder the
-scenario names (tools/recorder_cmd.py) when it logs on this host; every check the launcher makes comes first, and
-any failure refuses the whole part. What the agent does not run is the
+scenario names (tools/recorder_cmd.py) when it logs on this host; every check
+the launcher makes comes first, and any failure refuses the whole part. What the agent does not run is the
 launcher's clock and mission watch: `agentctl watch` runs those when the
 scenario keeps time on the launcher (time.source: launcher).
 """
@@ -16,6 +16,7 @@ from pathlib import Path
 from auvlcm.url import check_local
 from confcheck import ConfigError
 from tools.launch import Launcher, check_plans, nav_configs
+from tools.procs import TIER_FILTER, TIER_MANAGER, TIER_RECORDER, TIER_SIMULATOR
 from tools.recorder_cmd import recorder_cmd, recorder_takes_part
 from tools.scenario import Scenario, load_scenario
 from tools.simconfig import write_configs
@@ -26,7 +27,7 @@ class ProcSpec:
     name: str
     cmd: list[str]
     out: Path
-    tier: int = 0  # stop order, higher first: managers, filters, simulators, the recorder
+    tier: int = TIER_RECORDER  # stop order (tools.procs.TIER_*)
 
 
 class _Commands(Launcher):
@@ -88,12 +89,12 @@ def host_part(
         cmd = recorder_cmd(sc.log_recorder, url, log, stats, build)
         procs.append(ProcSpec("logger", cmd, run_dir / "logger.out"))
     for v in mine.vehicles:
-        procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out", 1))
+        procs.append(ProcSpec(f"{v.id}.sim", cmds.sim_cmd(v.id), run_dir / f"{v.id}.sim.out", TIER_SIMULATOR))
     for v in mine.vehicles:
         if v.id in navs:
-            procs.append(ProcSpec(f"{v.id}.NAV", cmds.nav_cmd(v), run_dir / f"{v.id}.nav.out", 2))
+            procs.append(ProcSpec(f"{v.id}.NAV", cmds.nav_cmd(v), run_dir / f"{v.id}.nav.out", TIER_FILTER))
     for v in mine.vehicles:
         for m in v.managers:
             out = run_dir / f"{v.id}.{m.name}.out"
-            procs.append(ProcSpec(f"{v.id}.{m.name}", cmds.manager_cmd(v.id, m), out, 3))
+            procs.append(ProcSpec(f"{v.id}.{m.name}", cmds.manager_cmd(v.id, m), out, TIER_MANAGER))
     return sc, procs

@@ -44,8 +44,8 @@ def display_name(path: Path, root: Path) -> str:
 
 
 class Annotator:
-    def __init__(self, lc: lcm.LCM, source: str, root: Path, pace_s: float = PACE_S) -> None:
-        self.lc, self.source, self.root, self.pace_s = lc, source, root, pace_s
+    def __init__(self, lc: lcm.LCM, source: str, root: Path, paced: bool = True) -> None:
+        self.lc, self.source, self.root, self.paced = lc, source, root, paced
         self.count = 0
 
     def note(self, kind: int, name: str, text: str, vehicle: str = "", utime: int = 0) -> None:
@@ -55,8 +55,8 @@ class Annotator:
         self.count += 1
         # A burst of ~60 files at start overran lcm-logger on a loaded 2-core
         # machine (half the type definitions went missing): pace them for it.
-        if self.pace_s > 0.0:
-            time.sleep(self.pace_s)
+        if self.paced:
+            time.sleep(PACE_S)
 
     def file(self, kind: int, path: Path, vehicle: str = "") -> None:
         self.note(kind, display_name(path, self.root), path.read_text(), vehicle)

@@ -35,11 +35,11 @@ from auvlcm.url import check_local, default_url, with_receive_buffer
 from confcheck import ConfigError
 from sim import clock_modes
 from sim.multihil.lockstep import lockstep_msg
-from tools.annotate import PACE_S, Annotator
+from tools.annotate import Annotator
 from tools.fault_step import FaultStepper, takes_part
 from tools.lockstep_names import participants
 from tools.mission_watch import MissionWatch
-from tools.procs import Child, children_batch, stop_together
+from tools.procs import TIER_FILTER, TIER_MANAGER, TIER_SIMULATOR, Child, children_batch, stop_together
 from tools.recorder_cmd import recorder_cmd, recorder_takes_part
 from tools.scenario import RECORDERS, TIME_MODES, Scenario, load_scenario
 from tools.sched_policy import CHOICES as SCHED_CHOICES
@@ -119,15 +119,14 @@ class Launcher:
         self.lc = FilteredLcm(self.child_url)
         self.mine = sc.vehicles_on(self.host)
         self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
-        # with --agents the log host's agent records (lcm-logger), not this process
+        # with --agents the log host's agent records, not this process
         self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
         self.watch = MissionWatch(self.lc, sc)
         # with agents the log host's agent records what the scenario names
         self.recorder = sc.log_recorder if agents else (args.recorder or sc.log_recorder)
         # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it;
         # auv-recorder takes a burst whole
-        pace = self.recorder == "lcm-logger"
-        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT, PACE_S if pace else 0.0)
+        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT, paced=self.recorder == "lcm-logger")
         self.clock = (
             WorldClock(
                 self.lc,
@@ -268,16 +267,15 @@ class Launcher:
         if self.own_log:
             self.start_logger()
             self.annotate()
-        # tiers: stop_all() stops the managers, then the filters, then the simulators
         for v in self.mine:
-            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out", tier=0))
+            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out", tier=TIER_SIMULATOR))
         for v in self.mine:  # the onboard filter, before the managers that read it
             if v.id in self.nav_configs:
-                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out", tier=1))
+                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out", tier=TIER_FILTER))
         for v in self.mine:
             for m in v.managers:
                 out = self.out / f"{v.id}.{m.name}.out"
-                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), out, tier=2))
+                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), out, tier=TIER_MANAGER))
 
     # ------------------------------------------------------------ supervise
     def _dead(self) -> Child | None:

@@ -20,6 +20,9 @@ from pathlib import Path
 from typing import Protocol
 
 PR_SET_PDEATHSIG = 1
+# The order a world's processes stop in (stop_together: the highest first): the
+# managers, then the filters they read, the simulators, the recorder last.
+TIER_RECORDER, TIER_SIMULATOR, TIER_FILTER, TIER_MANAGER = range(4)
 _libc = ctypes.CDLL(None, use_errno=True)
 
 
@@ -58,7 +61,7 @@ class Child:
     proc: subprocess.Popen | None = None
     stopping: bool = False  # we asked it to stop: its exit is not a death
     started_wall: float = field(default_factory=time.monotonic)
-    tier: int = 0  # stop_together() stops the higher tiers first (the launcher: managers)
+    tier: int = 0  # stop_together() stops the higher tiers first: one of TIER_*
 
     @property
     def pid(self) -> int:

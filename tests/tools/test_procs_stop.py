@@ -58,8 +58,8 @@ def test_a_tier_stops_together_and_the_higher_tier_first(tmp_path: Path) -> None
     for c in children:
         c.start()
     _wait_ready(tmp_path, sims + managers)
-    # 3 s: a child of a tier stopped one by one would wait 20 s for its siblings
-    codes = stop_together(children, timeout=3.0)
+    # 10 s: a child of a tier stopped one by one would wait 20 s for its siblings
+    codes = stop_together(children, timeout=10.0)
     assert codes == {n: 0 for n in sims + managers}, [c.tail() for c in children]
     assert all(c.stopping for c in children)
 

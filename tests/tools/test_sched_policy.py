@@ -34,7 +34,7 @@ def test_an_unknown_choice_is_refused():
 
 
 def test_the_launchers_children_take_it_and_the_launcher_does_not(tmp_path):
-    probe = [sys.executable, "-c", "import os, time; print(os.sched_getscheduler(0), flush=True); time.sleep(5)"]
+    probe = [sys.executable, "-c", "import os, time; print(os.sched_getscheduler(0), flush=True); time.sleep(600)"]
     try:
         for on, want in ((True, os.SCHED_BATCH), (False, os.SCHED_OTHER)):
             procs.children_batch(on)
