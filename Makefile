@@ -39,9 +39,9 @@ $(VENV_STAMP): requirements.txt pyproject.toml
 	@touch $@
 
 # Paths inside the lcm and cmeel-eigen wheels, found once after install.
-$(BUILD)/config.mk: $(VENV_STAMP) python/tools/wheel_paths.py
+$(BUILD)/config.mk: $(VENV_STAMP) python/tools/codegen/wheel_paths.py
 	@mkdir -p $(BUILD)
-	$(VPY) python/tools/wheel_paths.py > $@
+	$(VPY) python/tools/codegen/wheel_paths.py > $@
 
 ifeq ($(filter clean distclean,$(MAKECMDGOALS)),)
 -include $(BUILD)/config.mk
@@ -58,11 +58,11 @@ GEN_C_STAMP := $(GEN)/c.stamp
 GEN_PY_STAMP := $(GEN)/python.stamp
 GEN_C_SRCS := $(patsubst %,$(GEN)/c/auv_%.c,$(LCM_TYPES)) $(GEN)/c/auv_type_table.c
 
-$(GEN_C_STAMP): $(LCM_FILES) $(BUILD)/config.mk python/tools/gen_type_table.py
+$(GEN_C_STAMP): $(LCM_FILES) $(BUILD)/config.mk python/tools/codegen/gen_type_table.py
 	@rm -rf $(GEN)/c && mkdir -p $(GEN)/c/auv
 	@echo "lcm-gen C    -> $(GEN)/c"
 	@$(LCM_GEN) -c --c-typeinfo --c-cpath $(GEN)/c --c-hpath $(GEN)/c/auv --cinclude auv $(LCM_FILES)
-	@$(VPY) python/tools/gen_type_table.py $(LCM_FILES) > $(GEN)/c/auv_type_table.c
+	@$(VPY) python/tools/codegen/gen_type_table.py $(LCM_FILES) > $(GEN)/c/auv_type_table.c
 	@touch $@
 $(GEN_C_SRCS): $(GEN_C_STAMP) ;
 
@@ -185,8 +185,14 @@ chromium:
 	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1; }; }; } || \
 	  echo "note: chromium is not installed (not root, or apt-get failed): the console's browser tests will skip"
 
+# The suite runs on TEST_JOBS pytest-xdist workers (default: one per core, at
+# least 2: most tests wait on processes they start), each in a network
+# namespace of its own (tests/conftest.py); `make test TEST_JOBS=0` runs it in
+# one process. A test file is one unit of work, so its fixtures run once.
+TEST_JOBS ?= $(shell n=$$(nproc 2>/dev/null || echo 2); [ $$n -lt 2 ] && n=2; echo $$n)
+TEST_PARALLEL = $(if $(filter 0,$(TEST_JOBS)),-p no:xdist,-n $(TEST_JOBS) --dist loadgroup)
 test: build sanitize chromium lint
-	tests/isolated_net.sh $(VPY) -m pytest $(PYTEST_ARGS)
+	tests/isolated_net.sh $(VPY) -m pytest $(TEST_PARALLEL) $(PYTEST_ARGS)
 
 # The Python's lint and format (ruff, settings in pyproject.toml). `make format`
 # rewrites the files; `make lint` only checks, and fails on a difference.

@@ -1,6 +1,6 @@
 """Console server benchmark: prints figures, asserts nothing.
 
-The console (python/tools/console.py) serves pages while 8 vehicles publish
+The console (python/tools/console/cli.py) serves pages while 8 vehicles publish
 their state over LCM (ttl=0): TRUTH, NAV, NAV_STATUS, two managers' CHASM
 status and MODEM_STATUS per vehicle at RATE Hz, SIM.CLOCK at 20 Hz, a contact
 a second per vehicle and a modem frame heard every 2 s. PAGES event streams
@@ -112,7 +112,10 @@ def read_page(port: int, stats: dict, stop: threading.Event) -> None:
 def run(rate: float, pages: int) -> None:
     env = dict(os.environ)
     proc = subprocess.Popen(
-        [sys.executable, "-m", "tools.console", "--url", URL, "--port", "0"], env=env, stdout=subprocess.PIPE, text=True
+        [sys.executable, "-m", "tools.console", "--lcm-url", URL, "--port", "0"],
+        env=env,
+        stdout=subprocess.PIPE,
+        text=True,
     )
     port = int(proc.stdout.readline().split("http://", 1)[1].split("/")[0].rsplit(":", 1)[1])
     stop = threading.Event()

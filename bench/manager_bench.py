@@ -35,6 +35,7 @@ from pathlib import Path
 import lcm
 
 from auv import actuators_t, chasm_status_t, nav_solution_t, setpoint_t, sim_clock_t
+from auvlcm import programs
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -129,25 +130,17 @@ def stop(p: subprocess.Popen) -> None:
 
 def manager(url: str, clock: str, rate: float) -> subprocess.Popen:
     return start(
-        [
-            str(BUILD / "bin" / "chasm-manager"),
-            "--plan",
-            str(ROOT / "missions" / "pilot" / "pilot.chasm"),
-            "--bind",
-            str(ROOT / "missions" / "bindings" / "pilot.bind"),
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "PILOT",
-            "--rate",
-            str(rate),
-            "--clock",
-            clock,
-            "--url",
-            url,
-            "--plugin-path",
-            str(BUILD / "plugins"),
-        ],
+        programs.chasm_manager(
+            BUILD,
+            plan=ROOT / "missions" / "pilot" / "pilot.chasm",
+            bind=ROOT / "missions" / "bindings" / "pilot.bind",
+            vehicle="AUV1",
+            name="PILOT",
+            lcm_url=url,
+            rate_hz=rate,
+            clock=clock,
+            plugin_path=[BUILD / "plugins"],
+        ),
         "PILOT: running",
     )
 
@@ -245,7 +238,7 @@ def bench_system(c: Client, url: str, rate: float, seconds: float) -> None:
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--url", default=URL)
+    programs.add_lcm_url_argument(ap, "LCM URL", default=URL)
     ap.add_argument("-n", type=int, default=2000, help="round trips per latency measurement")
     ap.add_argument("--seconds", type=float, default=15.0, help="length of each system-clock run")
     ap.add_argument("--echo", metavar="URL", help=argparse.SUPPRESS)

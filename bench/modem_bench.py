@@ -47,7 +47,7 @@ def relay_run(extra: list[str], n: int, pace_s: float) -> tuple[float, int, floa
     import lcm
 
     relay = subprocess.Popen(
-        [sys.executable, "-m", "tools.lcm_relay", "--in", URL_A, "--out", URL_B, "--channel", "BENCH", *extra],
+        [sys.executable, "-m", "tools.bridges.lcm_relay", "--in", URL_A, "--out", URL_B, "--channel", "BENCH", *extra],
         stdout=subprocess.PIPE,
         text=True,
     )

@@ -10,7 +10,7 @@ Prints figures, asserts nothing. Cases:
      (tens of ms) and drifts (+-100 ppm); error of each client's global
      estimate against the server's global time at the same instant, after
      10 s to converge (goal p99 < 200 us).
-  3. the same through the link-impairment relay (python/tools/lcm_relay.py),
+  3. the same through the link-impairment relay (python/tools/bridges/lcm_relay.py),
      2 ms +- 1 ms each way and 5 % loss (goal p99 < 1 ms).
   4. lockstep: 3 simulators, each with its navigator manager, 0.1 s steps;
      steps per second of wall time once running.
@@ -33,7 +33,7 @@ import lcm
 
 from auv import sim_clock_t
 from sim.multihil.probe import load_probe, percentile, probe_errors
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -68,7 +68,7 @@ def node(out: Path, node_id: str, url: str, prio: int, *extra) -> subprocess.Pop
             "node",
             "--id",
             node_id,
-            "--url",
+            "--lcm-url",
             url,
             "--priority",
             str(prio),
@@ -144,7 +144,7 @@ def sync(out: Path, url: str, seconds: float, relay: bool) -> None:
                 [
                     sys.executable,
                     "-m",
-                    "tools.lcm_relay",
+                    "tools.bridges.lcm_relay",
                     "--in",
                     url,
                     "--out",

@@ -2,7 +2,7 @@
 time run backwards?
 
 Two simulators (python/sim with multi-HIL, scaled time x2, the damped REMUS),
-each with its navigator manager (as `python -m sim.multihil world`), share one
+each with its navigator manager (as `auv-multihil world`), share one
 world. Each try SIGSTOPs whichever simulator serves for --freeze
 seconds (3 s: longer than the failover timeout, so the other takes over),
 SIGCONTs it, and listens for a few seconds. Over the SIM.CLOCK stream as
@@ -28,7 +28,8 @@ from pathlib import Path
 import lcm
 
 from auv import sim_clock_t
-from sim.multihil.world import VehicleSpec, World
+from auvlcm import programs
+from tools.launch.world import VehicleSpec, World
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -66,7 +67,7 @@ def main() -> int:
     ap.add_argument("--freeze", type=float, default=3.0, help="wall seconds stopped")
     ap.add_argument("--python-root", type=Path, default=ROOT / "python")
     ap.add_argument("--no-managers", action="store_true", help="simulators only")
-    ap.add_argument("--url", default="udpm://239.255.76.67:7791?ttl=0")
+    programs.add_lcm_url_argument(ap, "LCM URL", default="udpm://239.255.76.67:7791?ttl=0")
     a = ap.parse_args()
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(a.python_root), str(ROOT / "build" / "gen" / "python")])}
     out = Path(tempfile.mkdtemp(prefix="freeze-bench-"))

@@ -7,7 +7,7 @@ The standard survey (missions/sim/remus100_survey.yaml, every sensor at the
 simulator's default specification: compass bias 1 deg, noise 0.5 deg; DVL
 0.01 m/s; GPS 2 m; LBL 1.25 m, 5 % long outliers): 4 lines of 460 m, 50 m
 apart, at 12 m depth after a minute on the surface, about 2 km travelled.
-Recorded with python/tools/survey_log.py (real simulator, stepped), then
+Recorded with python/tools/nav/survey_log.py (real simulator, stepped), then
 replayed with build/bin/auv-nav-replay under different aids:
 
   DR             GPS while on the surface, then compass + DVL only: scored
@@ -29,6 +29,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from auvlcm import programs
 from auvlcm.url import default_url
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -43,13 +44,13 @@ def record(out: Path, url: str, extra: list[str], reuse: bool) -> tuple[Path, Pa
     if not (reuse and log.exists() and nav.exists()):
         env = dict(os.environ, PYTHONPATH=str(ROOT / "build" / "gen" / "python"))
         subprocess.run(
-            [sys.executable, "-m", "tools.survey_log", "--out", log, "--url", url, *SURVEY, *extra],
+            [sys.executable, "-m", "tools.nav.survey_log", "--out", log, "--lcm-url", url, *SURVEY, *extra],
             check=True,
             env=env,
             stdout=subprocess.DEVNULL,
         )
         subprocess.run(
-            [sys.executable, "-m", "tools.navconf", log.with_suffix(".sim.yaml"), "-o", nav], check=True, env=env
+            [sys.executable, "-m", "tools.nav.navconf", log.with_suffix(".sim.yaml"), "-o", nav], check=True, env=env
         )
     return log, nav
 
@@ -76,7 +77,7 @@ def row(name: str, aids: str, s: dict[str, float]) -> str:
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "nav")
-    ap.add_argument("--url", default=default_url())
+    programs.add_lcm_url_argument(ap, "LCM URL", default=default_url())
     ap.add_argument("--reuse", action="store_true", help="reuse logs recorded by an earlier run")
     args = ap.parse_args()
     if not REPLAY.exists():

@@ -1,7 +1,7 @@
 """Scaling benchmark: the full stack with 1, 2, 4, 8, 16 vehicles.
 
 For each N, a survey of N equal shares (N x the area of one) is planned by
-python/tools/plan_survey.py with the demo's settings and flown by the
+python/tools/plan/plan_survey.py with the demo's settings and flown by the
 launcher in fast time: simulators, PILOT and NAVIGATOR managers, auv-nav,
 the recorder, the launcher's clock. Prints per N: sim time, wall time,
 real-time factor, vehicle-seconds per wall second, outcome, and the CPU
@@ -31,6 +31,7 @@ from pathlib import Path
 
 import yaml
 
+from auvlcm import programs
 from tools.demo import PLAN_ARGS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -50,7 +51,7 @@ def kind_of(cmd: str) -> str:
         return "filter"
     if "auv-recorder" in cmd or "lcm-logger" in cmd:
         return "recorder"
-    if "launch.py" in cmd or "tools.launch" in cmd:
+    if "auv-launch" in cmd or "tools.launch" in cmd:
         return "clock"
     return "other"
 
@@ -146,7 +147,7 @@ def run_case(n: int, args, out: Path, baseline: str = "") -> dict:
         [
             sys.executable,
             "-m",
-            "tools.plan_survey",
+            "tools.plan.plan_survey",
             "--polygon",
             polygon(n, args.length, args.width),
             "--vehicles",
@@ -174,7 +175,7 @@ def run_case(n: int, args, out: Path, baseline: str = "") -> dict:
         "--progress",
         "0",
         *BASELINE_LAUNCH_ARGS.get(baseline, []),
-    ] + (["--url", args.url] if args.url else [])
+    ] + (["--lcm-url", args.url] if args.url else [])
     env = dict(os.environ)
     env.update(BASELINES.get(baseline, {}))
     if args.cprofile:
@@ -341,7 +342,7 @@ def main() -> int:
         "sender thread), 'liblcm' before the own sockets only (AUV_LCM_READER=0), 'sched' with the "
         "default CPU scheduling instead of SCHED_BATCH (launch --sched normal); prints the ratios",
     )
-    ap.add_argument("--url", help="LCM URL for the launcher")
+    programs.add_lcm_url_argument(ap, "LCM URL for the launcher")
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "bench" / "scale")
     args = ap.parse_args()
     try:

@@ -4,7 +4,7 @@ class, measured from a run's log; and what links of given capacity carry
 
 Runs the MCM demo scenario (3 vehicles, PILOT + NAVIGATOR + auv-nav each,
 sidescan, the launcher's clock) for --limit sim seconds in fast time through
-launch.py, or reads an existing --log. Rates are per second of sim time, so a
+auv-launch, or reads an existing --log. Rates are per second of sim time, so a
 fast-time run measures what a real-time one sends. Wire size of a message:
 Ethernet framing 38 + IPv4 20 + UDP 8 + LCM short header 8 + channel name + 1
 + payload (one datagram per message up to 64 KB; larger ones fragment).

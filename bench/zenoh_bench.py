@@ -2,7 +2,7 @@
 and a 6-vehicle world split between two sites (docs/zenoh.md).
 
 Two sites on this machine: two LCM worlds on different ports (ttl=0: two
-multicast domains that never meet), each with its zenoh_bridge.py, joined
+multicast domains that never meet), each with its auv-zenoh-bridge, joined
 by TCP on 127.0.0.1 (site A's bridge listens, site B's connects). Prints
 figures, asserts nothing. Cases:
   1. clock sync across the bridge: the server node at site A, two client
@@ -32,7 +32,7 @@ from pathlib import Path
 from multihil_bench import ENV, Clocks, end, node, wait_for
 
 from sim.multihil.probe import load_probe, percentile, probe_errors
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -42,7 +42,7 @@ EP = "tcp/127.0.0.1:17460"
 
 
 def bridges(out: Path) -> list[subprocess.Popen]:
-    cmd = [sys.executable, "-m", "tools.zenoh_bridge", "--realm", "bench", "--stats-period", "2"]
+    cmd = [sys.executable, "-m", "tools.bridges.zenoh_bridge", "--realm", "bench", "--stats-period", "2"]
     return [
         subprocess.Popen(
             cmd + args,
@@ -52,8 +52,8 @@ def bridges(out: Path) -> list[subprocess.Popen]:
             start_new_session=True,
         )
         for name, args in (
-            ("A", ["--site", "A", "--url", URL_A, "--listen", EP]),
-            ("B", ["--site", "B", "--url", URL_B, "--connect", EP]),
+            ("A", ["--site", "A", "--lcm-url", URL_A, "--listen", EP]),
+            ("B", ["--site", "B", "--lcm-url", URL_B, "--connect", EP]),
         )
     ]
 

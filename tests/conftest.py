@@ -15,6 +15,8 @@ from pathlib import Path
 
 import pytest
 
+from auvlcm import programs
+
 ROOT = Path(__file__).resolve().parent.parent
 BUILD = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
 if not BUILD.is_absolute():
@@ -22,6 +24,36 @@ if not BUILD.is_absolute():
 
 if str(BUILD / "gen" / "python") not in sys.path:
     sys.path.insert(0, str(BUILD / "gen" / "python"))
+
+
+def _own_network_namespace() -> str:
+    """Give this xdist worker a network namespace of its own, with loopback
+    multicast as tests/isolated_net.sh sets it up: the workers of one run then
+    never hear each other's LCM traffic, whatever ports or groups their tests
+    use. Only inside the run's private namespace (where this process is root of
+    its user namespace); returns why not, or ''."""
+    import ctypes
+    import subprocess
+
+    if os.environ.get("AUV_IN_ISOLATED_NET") != "1":
+        return "not inside tests/isolated_net.sh"
+    libc = ctypes.CDLL(None, use_errno=True)
+    if libc.unshare(0x40000000) != 0:  # CLONE_NEWNET, for the calling (main) thread, which runs the tests
+        return f"unshare(CLONE_NEWNET): {os.strerror(ctypes.get_errno())}"
+    for cmd in ("link set lo up", "link set lo multicast on", "route add 224.0.0.0/4 dev lo"):
+        run = subprocess.run(["ip", *cmd.split()], capture_output=True, text=True)
+        if run.returncode != 0:
+            return f"ip {cmd}: {run.stderr.strip()}"
+    return ""
+
+
+def pytest_configure(config):
+    worker = os.environ.get("PYTEST_XDIST_WORKER")
+    if worker:
+        why = _own_network_namespace()
+        if why:  # the per-test ports below still keep most tests apart
+            print(f"conftest: worker {worker} shares the network of the others: {why}", file=sys.stderr)
+
 
 # Every test gets its own multicast port, so tests never hear each other even
 # when the suite runs on a host network instead of a private namespace.
@@ -58,8 +90,10 @@ def manager_cmd(
     rate: int = 10,
 ) -> list:
     """A chasm-manager on the simulation clock (SIM.CLOCK), as the tests start one."""
-    return [c_program("bin/chasm-manager", sanitized), "--plan", plan, "--bind", bind, "--vehicle", vehicle,
-            "--name", name, "--rate", str(rate), "--clock", "sim", "--url", url, *extra]  # fmt: skip
+    build = c_program("bin/chasm-manager", sanitized).parents[1]
+    return programs.chasm_manager(
+        build, plan=plan, bind=bind, vehicle=vehicle, name=name, lcm_url=url, rate_hz=rate, extra=extra
+    )
 
 
 def fresh_url() -> str:
@@ -96,3 +130,29 @@ def child_environment() -> dict[str, str]:
 @pytest.fixture
 def child_env() -> dict[str, str]:
     return child_environment()
+
+
+# ------------------------------------------------------------ parallel runs
+# `make test` runs the suite on pytest-xdist workers with `--dist loadgroup`:
+# each test file is one unit of work (its module fixtures run once), and files
+# that share a session fixture are one unit together (the fixture runs once).
+SHARED_SESSION = {
+    "nav/test_nav_replay.py": "nav survey",  # nav_fixtures.survey: a recorded survey
+    "nav/test_nav_live.py": "nav survey",
+}
+# The longest units start first, so no worker is left with a long one at the
+# end (measured: `make test PYTEST_ARGS=--durations=0`, docs/contributing.md).
+LONGEST_FIRST: list[str] = []
+
+
+@pytest.hookimpl(tryfirst=True)  # before xdist reads the groups
+def pytest_collection_modifyitems(config, items):
+    tests = ROOT / "tests"
+    groups = {}
+    for item in items:
+        rel = item.path.relative_to(tests).as_posix() if item.path.is_relative_to(tests) else item.nodeid
+        groups[item.nodeid] = SHARED_SESSION.get(rel, rel)
+        item.add_marker(pytest.mark.xdist_group(groups[item.nodeid]))
+    rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
+    # stable: within a rank the collection order stays
+    items.sort(key=lambda it: rank.get(groups[it.nodeid], len(rank)))

@@ -14,7 +14,7 @@ from conftest import ROOT
 from auv import sim_clock_t
 from sim import clock_modes
 from sim.config import loads
-from tools.scenario import load_scenario
+from tools.scenario.scenario_file import load_scenario
 
 
 def test_the_three_modes_are_the_wires_three():

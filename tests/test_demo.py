@@ -17,7 +17,7 @@ POLYGON = "140,120; 240,110; 250,200; 150,210"  # six of the seeded mines are in
 
 def demo(out, url: str, env: dict, *args: str, timeout: float) -> subprocess.CompletedProcess:
     """`auv-demo` (as a module of this venv) into out, on this test's LCM URL."""
-    cmd = [sys.executable, "-m", "tools.demo", "--out", out, "--url", url, "--build", BUILD, *args]
+    cmd = [sys.executable, "-m", "tools.demo", "--out", out, "--lcm-url", url, "--build", BUILD, *args]
     return subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=timeout)
 
 

@@ -8,7 +8,7 @@ build/bin program, a console command of pyproject.toml such as
   `python/tools/X.py` (which needs the venv's python to run);
 - `make TARGET`: the Makefile has the target;
 - offline commands whose files all exist (`chasm check|dot|describe` on
-  shipped plans, `lcmlog.py --help` and the like) run, exit 0;
+  shipped plans, `auv-lcmlog --help` and the like) run, exit 0;
 - a command that needs a running system (LCM traffic, a vehicle) or is a
   synopsis with placeholders (PLAN, DIR, [...]) runs as `PROGRAM --help`,
   which must exit 0 and name the subcommand the doc uses.

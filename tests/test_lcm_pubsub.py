@@ -31,7 +31,7 @@ def test_c_publisher_python_subscriber(lcm_url, child_env, sanitized):
         [
             c_program("bin/auv-lcm-probe", sanitized),
             "publish-track",
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--vehicle",
             "AUV7",
@@ -66,7 +66,7 @@ def test_python_publisher_c_subscriber_counts_bad_messages(lcm_url, child_env, s
         [
             c_program("bin/auv-lcm-probe", sanitized),
             "listen",
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--channel",
             "AUV2.NAV",

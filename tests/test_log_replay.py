@@ -51,7 +51,7 @@ def record(url: str, path, child_env) -> None:
             [
                 c_program("bin/auv-lcm-probe"),
                 "publish-track",
-                "--url",
+                "--lcm-url",
                 url,
                 "--vehicle",
                 "AUV5",

@@ -10,6 +10,8 @@ import subprocess
 import pytest
 from conftest import ROOT, c_program
 
+from auvlcm import programs
+
 HERE = ROOT / "tests" / "managers"
 CORPUS = HERE / "bind_corpus"
 
@@ -51,19 +53,14 @@ def test_hostile_binding_files(tmp_path, lcm_url, child_env, sanitized, text, co
     bind = tmp_path / "b.bind"
     bind.write_bytes(text.encode("utf-8"))
     # A good file: the manager loads it and runs (then is stopped); a bad one: exit 1.
-    cmd = [
-        c_program("bin/chasm-manager", sanitized),
-        "--plan",
-        HERE / "dive.chasm",
-        "--bind",
-        bind,
-        "--vehicle",
-        "AUV1",
-        "--name",
-        "NAVIGATOR",
-        "--lcm-url",
-        lcm_url,
-    ]
+    cmd = programs.chasm_manager(
+        c_program("bin/chasm-manager", sanitized).parents[1],
+        plan=HERE / "dive.chasm",
+        bind=bind,
+        vehicle="AUV1",
+        name="NAVIGATOR",
+        lcm_url=lcm_url,
+    )
     if code is None:
         p = subprocess.Popen(cmd, env=child_env, stderr=subprocess.PIPE, text=True)
         try:

@@ -1,7 +1,7 @@
 // The navigation filter's configuration: sensor specifications, process
 // noise, gating and trust limits, and the LBL net (transponder positions,
 // turnaround times, sound speed). Read from a nav config file (see
-// docs/navigation.md); python/tools/navconf.py writes one from a simulator
+// docs/navigation.md); python/tools/nav/navconf.py writes one from a simulator
 // configuration so a simulated vehicle's filter knows what its
 // instruments' datasheets would say and where the transponders were laid.
 #ifndef NAV_CONFIG_HPP

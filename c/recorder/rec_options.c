@@ -8,11 +8,12 @@
 static void usage(FILE *f)
 {
     fprintf(f,
-            "usage: auv-recorder -f FILE [--url URL] [--channel REGEX] [--recv-buf BYTES]\n"
+            "usage: auv-recorder -f FILE [--lcm-url URL] [--channel REGEX] [--recv-buf BYTES]\n"
             "       [--queue-mb MB] [--lcm-queue N] [--flush-ms MS] [--health-period S]\n"
             "       [--stats FILE.json] [--name NAME] [--no-lockstep] [--quiet]\n"
             "Records every LCM message (or those matching REGEX) to an LCM event log that\n"
-            "lcm-logplayer replays. SIGINT/SIGTERM: write out everything received, then exit.\n");
+            "lcm-logplayer replays. SIGINT/SIGTERM: write out everything received, then exit.\n"
+            "--url is the old spelling of --lcm-url.\n");
 }
 
 static int number(const char *opt, const char *v, double lo, double hi, double *out)
@@ -56,7 +57,7 @@ int rec_parse_args(rec_options *o, int argc, char **argv)
         }
         i++;
         if (!strcmp(a, "-f") || !strcmp(a, "--file")) o->file = v;
-        else if (!strcmp(a, "--url")) o->url = v;
+        else if (!strcmp(a, "--lcm-url") || !strcmp(a, "--url")) o->url = v;
         else if (!strcmp(a, "--channel")) o->channel = v;
         else if (!strcmp(a, "--stats")) o->stats = v;
         else if (!strcmp(a, "--name")) o->name = v;

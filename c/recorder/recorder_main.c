@@ -1,6 +1,6 @@
 /* auv-recorder: the project's LCM recorder, which loses nothing it receives.
  *
- *   auv-recorder -f run.lcmlog [--url URL] [--stats stats.json] ...
+ *   auv-recorder -f run.lcmlog [--lcm-url URL] [--stats stats.json] ...
  *
  * Why not lcm-logger: its subscription queue holds 30 messages and cannot be
  * sized, so a logger descheduled for a moment on a busy machine drops

@@ -1,6 +1,6 @@
 # The team-link codec (docs/modem.md, "The team-link codec").
 #
-# c/plugins/team/team_link.schema -> python/tools/gen_team_codec.py ->
+# c/plugins/team/team_link.schema -> python/tools/codegen/gen_team_codec.py ->
 # build/gen/team/team_codec.h/.c. Code includes "team/team_codec.h" (-I$(GEN)).
 # The generated codec and the bit writer/reader (c/teamlink/team_bits.c) are
 # compiled into the team plugin (plugins/chasm_team.so) and its unit tests;
@@ -11,9 +11,9 @@ TEAM_GEN := $(GEN)/team
 TEAM_GEN_STAMP := $(TEAM_GEN)/codec.stamp
 CFLAGS_ALL += -I$(GEN)
 
-$(TEAM_GEN_STAMP): $(TEAM_SCHEMA) python/tools/gen_team_codec.py python/auvlcm/team_schema.py | $(VENV_STAMP)
+$(TEAM_GEN_STAMP): $(TEAM_SCHEMA) python/tools/codegen/gen_team_codec.py python/auvlcm/team_schema.py | $(VENV_STAMP)
 	@echo "gen_team_codec -> $(TEAM_GEN)"
-	@$(VPY) -m tools.gen_team_codec $(TEAM_SCHEMA) $(TEAM_GEN)
+	@$(VPY) -m tools.codegen.gen_team_codec $(TEAM_SCHEMA) $(TEAM_GEN)
 	@touch $@
 $(TEAM_GEN)/team_codec.h $(TEAM_GEN)/team_codec.c: $(TEAM_GEN_STAMP) ;
 

@@ -5,10 +5,10 @@
  *       DIR/<type>.bin (each prefixed by a 4-byte big-endian length), encode
  *       them again and require identical bytes; then require that every
  *       truncation and a corrupted fingerprint are refused, not misread.
- *   auv-lcm-probe publish-track --url URL --vehicle V --count N --rate HZ
+ *   auv-lcm-probe publish-track --lcm-url URL --vehicle V --count N --rate HZ
  *       Publish a synthetic vehicle (a 50 m circle at 1.5 m/s) on V.NAV,
  *       V.DEPTH and V.ACTUATORS, built here in C.
- *   auv-lcm-probe listen --url URL --channel REGEX --type TYPE [--count N] [--timeout-ms MS]
+ *   auv-lcm-probe listen --lcm-url URL --channel REGEX --type TYPE [--count N] [--timeout-ms MS]
  *       Print each message that decodes as one `field=value` line, then the
  *       receive counters; bad messages are counted and dropped.
  *   auv-lcm-probe field TYPE PATH MSGFILE

@@ -1,7 +1,7 @@
 """The team-link schema (c/plugins/team/team_link.schema): parsed and checked.
 
 One parser for both readers of the schema: the C generator
-(python/tools/gen_team_codec.py) and the run-time Python codec
+(python/tools/codegen/gen_team_codec.py) and the run-time Python codec
 (auvlcm.team_codec). Every fault is reported at once, each as
 `file:line:col: message`, so the two can never disagree on what a schema means.
 

@@ -2,7 +2,7 @@
 
 Not the project's pilot (that is a CHASM manager, whose control law with the
 plan's gains is sim.pilot_model, used by the validation): a stateless PD that
-tools and tests call at any rate to script a vehicle (tools/survey_pilot.py,
+tools and tests call at any rate to script a vehicle (tools/nav/survey_pilot.py,
 tests/sim/test_sim_sender.py). It holds heading well; with no integrator it
 leaves the positively buoyant REMUS some way shallow of a depth target.
 Positive rudder turns the bow to starboard; positive stern plane pitches the

@@ -86,7 +86,7 @@ class MultiHil:
     enabled: bool = False  # join a multi-HIL world (server or client)
     step_s: float = setting(0.1, gt=0.0)  # lockstep step (simulation.clock: lockstep)
     lockstep_participants: int = setting(0, ge=0)  # wait for this many participants before step 0
-    # ... and for each of these by name (the launcher lists the world's: tools/lockstep_names.py)
+    # ... and for each of these by name (the launcher lists the world's: tools/launch/lockstep_names.py)
     lockstep_names: list = setting(
         factory=list,
         pattern=r"[A-Za-z0-9_.-]{1,95}",

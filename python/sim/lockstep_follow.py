@@ -1,7 +1,7 @@
 """A stepped simulator's part in a lockstep world (docs/multihil.md, "Lockstep").
 
 Whoever steps the world -- the multi-HIL environment server or the launcher's
-clock (tools/worldclock.py) -- publishes SIM.CLOCK with MODE_LOCKSTEP and a
+clock (tools/launch/worldclock.py) -- publishes SIM.CLOCK with MODE_LOCKSTEP and a
 step number, and waits for every participant's STEP_DONE. The simulator is
 the participant "<VEHICLE>.sim": it integrates up to the step's time, publishes
 what is due, then reports the step. Two rules make a run repeatable:

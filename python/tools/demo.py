@@ -26,6 +26,7 @@ import sys
 import time
 from pathlib import Path
 
+from auvlcm import programs
 from auvlcm.paths import ROOT
 from sim import clock_modes
 
@@ -180,7 +181,7 @@ def _main(argv: list[str] | None) -> int:
     ap.add_argument("--polygon", help='plan this survey area instead ("n,e; n,e; ..." metres)')
     ap.add_argument("--vehicles", type=int, help="with --polygon: a plain survey by this many vehicles (default 3)")
     ap.add_argument("--team", type=int, help="with --polygon: a team of this many search vehicles and one RI vehicle")
-    ap.add_argument("--url", help="LCM URL for the launcher (ttl=0)")
+    programs.add_lcm_url_argument(ap, "LCM URL for the launcher (ttl=0)")
     ap.add_argument("--build", type=Path, help="build folder (default: the repository's)")
     ap.add_argument("--no-plots", action="store_true")
     ap.add_argument(
@@ -227,7 +228,7 @@ def _main(argv: list[str] | None) -> int:
             else ["--vehicles", args.vehicles or 3, *PLAN_ARGS]
         )
         rc = run(
-            [PY, "-m", "tools.plan_survey", "--polygon", args.polygon, *how, "--name", name, "--out", plan_dir]
+            [PY, "-m", "tools.plan.plan_survey", "--polygon", args.polygon, *how, "--name", name, "--out", plan_dir]
             + (["--build", args.build] if args.build else []),
             "planning the survey",
         )
@@ -236,7 +237,7 @@ def _main(argv: list[str] | None) -> int:
         scenario = plan_dir / f"{name}.yaml"
     run_dir = args.out / "run"
     launch = [PY, "-m", "tools.launch", scenario, "--out", run_dir, "--progress", "15"]
-    launch += (["--url", args.url] if args.url else []) + (["--build", args.build] if args.build else [])
+    launch += (["--lcm-url", args.url] if args.url else []) + (["--build", args.build] if args.build else [])
     launch += (["--time", args.time] if args.time else []) + (["--warp", args.warp] if args.warp else [])
     launch_rc = run(launch, f"running {scenario.relative_to(ROOT) if scenario.is_relative_to(ROOT) else scenario}")
     log = run_dir / "run.lcmlog"

@@ -1,4 +1,4 @@
-"""auvctl.py over real LCM against a real chasm-manager (both builds): status,
+"""auvctl over real LCM against a real chasm-manager (both builds): status,
 pause and resume with their acks, a rejected plan and a rejected upload with
 exit 1, nobody answering with exit 3, bad files with exit 2."""
 
@@ -11,12 +11,16 @@ import sys
 import pytest
 from manager_world import HERE, ManagerWorld
 
-AUVCTL = [sys.executable, "-m", "tools.auvctl"]
+AUVCTL = [sys.executable, "-m", "tools.console.auvctl"]
 
 
 def ctl(url: str, env: dict, *args: str, timeout: float = 5.0) -> subprocess.CompletedProcess:
     return subprocess.run(
-        AUVCTL + ["--url", url, "--timeout", str(timeout), *args], env=env, capture_output=True, text=True, timeout=60
+        AUVCTL + ["--lcm-url", url, "--timeout", str(timeout), *args],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=60,
     )
 
 
@@ -68,7 +72,7 @@ def test_usage_and_file_errors_exit_2(tmp_path, lcm_url, child_env):
         run = ctl(lcm_url, child_env, *args)
         assert run.returncode == 2 and "Traceback" not in run.stderr, (args, run.stderr)
     run = subprocess.run(
-        AUVCTL + ["--url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"],
+        AUVCTL + ["--lcm-url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"],
         env=child_env,
         capture_output=True,
         text=True,

@@ -32,7 +32,7 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
     )
     out = tmp_path / "run"
     launcher = subprocess.Popen(
-        LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "1"],
+        LAUNCH + [str(path), "--out", str(out), "--lcm-url", lcm_url, "--progress", "1"],
         env=child_env,
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
@@ -41,14 +41,14 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
     )
     # a host agent beside it: the page lists its process table
     agent = subprocess.Popen(
-        [sys.executable, "-m", "tools.agent", "--host", "alpha", "--url", lcm_url],
+        [sys.executable, "-m", "tools.hosts.agent", "--host", "alpha", "--lcm-url", lcm_url],
         env=child_env,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.DEVNULL,
     )
     console = browser = None
     try:
-        console = Console(["--url", lcm_url, "--scenario", str(path)], child_env)
+        console = Console(["--lcm-url", lcm_url, "--scenario", str(path)], child_env)
         read_until(launcher, "launch: t=")
         browser = Browser(chromium)
         browser.open(console.url)

@@ -15,8 +15,8 @@ from conftest import ROOT
 from console_fixtures import Console
 from manager_world import ManagerWorld
 
-from tools.live.model import Model, Series, Trail
-from tools.live.world import WorldBuilder, WorldError
+from tools.console.model import Model, Series, Trail
+from tools.console.world import WorldBuilder, WorldError
 
 
 class Page:
@@ -126,7 +126,7 @@ def test_a_bad_scenario_is_a_clear_error(tmp_path, child_env):
 
 def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env):
     world = ManagerWorld(lcm_url, child_env)
-    console = Console(["--url", lcm_url], child_env)
+    console = Console(["--lcm-url", lcm_url], child_env)
     try:
         page = Page(console.url)
         now = page.until(
@@ -230,7 +230,7 @@ def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
     from lcm_proc import lcm_tool
 
     _write_run_log(tmp_path / "r.lcmlog")
-    console = Console(["--url", lcm_url], child_env)
+    console = Console(["--lcm-url", lcm_url], child_env)
     player = None
     try:
         page = Page(console.url)
@@ -332,12 +332,12 @@ def test_the_page_shows_a_live_agents_table(lcm_url, child_env):
     import sys
 
     agent = subprocess.Popen(
-        [sys.executable, "-m", "tools.agent", "--host", "alpha", "--url", lcm_url],
+        [sys.executable, "-m", "tools.hosts.agent", "--host", "alpha", "--lcm-url", lcm_url],
         env=child_env,
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
     )
-    console = Console(["--url", lcm_url], child_env)
+    console = Console(["--lcm-url", lcm_url], child_env)
     try:
         page = Page(console.url)
         now = page.until(lambda n: "alpha" in n.get("agents", {}), what="the agent of host alpha")

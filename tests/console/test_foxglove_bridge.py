@@ -23,7 +23,7 @@ from console_fixtures import read_until
 from auv import env_model_t, log_annotation_t, nav_solution_t
 from auvlcm.json_schema import schema_of
 
-BRIDGE = [sys.executable, "-m", "tools.foxglove_bridge"]
+BRIDGE = [sys.executable, "-m", "tools.bridges.foxglove_bridge"]
 SURVEY = {"polygon": [[0, 0], [100, 0], [100, 80]], "vehicles": {}}
 
 
@@ -72,7 +72,7 @@ class Ws:
 
 def test_the_bridge_serves_every_channel_with_its_schema(lcm_url, child_env):
     proc = subprocess.Popen(
-        BRIDGE + ["--url", lcm_url, "--port", "0"],
+        BRIDGE + ["--lcm-url", lcm_url, "--port", "0"],
         env=child_env,
         text=True,
         stdout=subprocess.PIPE,

@@ -1,5 +1,5 @@
 """Fuzz the configuration readers: the simulator config (sim.config) and the
-scenario (tools.scenario), by seeded mutation of the shipped files.
+scenario (tools.scenario.scenario_file), by seeded mutation of the shipped files.
 
 Every input must end in success or a ConfigError whose lines are
 `file:line:col: ...` (or `file: ...`); any other exception, or one input
@@ -116,9 +116,9 @@ def check_one(kind: str, data: bytes, folder: Path) -> None:
     path = folder / f"input_{kind}.yaml"
     path.write_bytes(data)
     try:
-        if kind == "set":  # a survey_log.py --set override: an argv string (undecodable bytes escaped)
+        if kind == "set":  # a auv-survey-log --set override: an argv string (undecodable bytes escaped)
             from sim.config import loads
-            from tools.survey_log import DEFAULT_CONFIG, apply_overrides
+            from tools.nav.survey_log import DEFAULT_CONFIG, apply_overrides
 
             item = data.decode("utf-8", errors="surrogateescape")
             path = Path(f"--set {item.partition('=')[0]}")
@@ -129,7 +129,7 @@ def check_one(kind: str, data: bytes, folder: Path) -> None:
 
             load(path)
         else:
-            from tools.scenario import load_scenario
+            from tools.scenario.scenario_file import load_scenario
 
             load_scenario(path)
     except ConfigError as exc:

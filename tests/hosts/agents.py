@@ -12,8 +12,8 @@ from pathlib import Path
 import yaml
 from conftest import ROOT
 
-AGENT = [sys.executable, "-m", "tools.agent"]
-AGENTCTL = [sys.executable, "-m", "tools.agentctl"]
+AGENT = [sys.executable, "-m", "tools.hosts.agent"]
+AGENTCTL = [sys.executable, "-m", "tools.hosts.agentctl"]
 SCEN = ROOT / "tests" / "tools" / "scenarios"
 SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
 BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
@@ -51,7 +51,7 @@ class AgentProc:
         self.host, self.log = host, out / f"agent.{host}.out"
         out.mkdir(parents=True, exist_ok=True)
         self.p = subprocess.Popen(
-            [*(prefix or []), *AGENT, "--host", host, "--url", url, "--out", str(out / host), *extra],
+            [*(prefix or []), *AGENT, "--host", host, "--lcm-url", url, "--out", str(out / host), *extra],
             stdout=open(self.log, "w"),
             stderr=subprocess.STDOUT,
             env=env,
@@ -74,7 +74,7 @@ class AgentProc:
 
 def ctl(url: str, env: dict, *args: str, prefix: list | None = None, timeout: float = 90.0):
     return subprocess.run(
-        [*(prefix or []), *AGENTCTL, *args, "--url", url], env=env, capture_output=True, text=True, timeout=timeout
+        [*(prefix or []), *AGENTCTL, *args, "--lcm-url", url], env=env, capture_output=True, text=True, timeout=timeout
     )
 
 

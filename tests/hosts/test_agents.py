@@ -121,7 +121,7 @@ def ack_for(tables, host, seq):
 
 
 def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_agents, capsys):
-    from tools import agentctl
+    from tools.hosts import agentctl
 
     agents, tables = two_agents
     good = write_scenario(tmp_path / "one.yaml", [vehicle("AUV1", "alpha")], ["alpha", "beta"])
@@ -158,7 +158,7 @@ def test_refusals_change_nothing_and_say_why(tmp_path, lcm_url, child_env, two_a
         ["--deadman", "-1"],
         ["--restart", "*=on-failure:1:nan"],
     ):
-        assert agentctl.main(["start", str(good), "--url", lcm_url, *bad_args]) == 2
+        assert agentctl.main(["start", str(good), "--lcm-url", lcm_url, *bad_args]) == 2
         err = capsys.readouterr().err
         assert err.startswith("agentctl: ") and "Traceback" not in err, err
 
@@ -271,7 +271,7 @@ def test_launch_through_agents_runs_the_mission_on_its_clock(tmp_path, lcm_url, 
             "--agents",
             "--out",
             str(tmp_path / "run"),
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--progress",
             "0",
@@ -324,7 +324,7 @@ def test_a_killed_agent_launcher_leaves_its_parts_to_the_deadman(tmp_path, lcm_u
             "3",
             "--out",
             str(tmp_path / "run"),
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--progress",
             "0",
@@ -367,7 +367,7 @@ def test_an_agent_launcher_outlives_a_dead_agent_and_says_so(tmp_path, lcm_url, 
             "5",
             "--out",
             str(tmp_path / "run"),
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--progress",
             "0",
@@ -400,7 +400,11 @@ def test_launch_through_agents_refuses_another_recorder_than_the_scenarios(tmp_p
     sc = write_scenario(tmp_path / "rec.yaml", [vehicle("AUV1", "alpha")], ["alpha"])
     argv = [sys.executable, "-m", "tools.launch", str(sc), "--agents", "--out", str(tmp_path / "run")]
     run = subprocess.run(
-        [*argv, "--url", lcm_url, "--recorder", "lcm-logger"], env=child_env, capture_output=True, text=True, timeout=60
+        [*argv, "--lcm-url", lcm_url, "--recorder", "lcm-logger"],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=60,
     )
     assert run.returncode == 2, run.stdout + run.stderr
     assert "--recorder lcm-logger" in run.stderr and "logging.recorder (auv-recorder)" in run.stderr, run.stderr

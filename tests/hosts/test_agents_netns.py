@@ -30,7 +30,7 @@ def hosts():
 
 def ctl(hosts, env, *args, timeout=90):
     return subprocess.run(
-        [*hosts.prefix(3), *AGENTCTL, *args, "--url", URL, "--netns"],
+        [*hosts.prefix(3), *AGENTCTL, *args, "--lcm-url", URL, "--netns"],
         env=env,
         capture_output=True,
         text=True,

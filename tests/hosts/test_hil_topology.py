@@ -11,7 +11,7 @@ emergency tells the team; AUV3 falls silent; AUV2 flies on and takes over both
 teammates' lines, AUV3's simulator goes on simulating a vehicle whose software
 is gone, and AUV1's simulation ends with its PC.
 
-Command lines come from the host agents' part builder (tools/agent_part.py),
+Command lines come from the host agents' part builder (tools/hosts/agent_part.py),
 so each process is exactly what an agent or the launcher would run; the test
 places them itself because an agent runs a whole vehicle on one host.
 Needs network namespaces (tests/isolated_net.sh, as `make test` runs it).
@@ -32,7 +32,7 @@ from agents import wait_until
 from conftest import ROOT
 from netns import Hosts, hosts_or_skip
 
-from tools.agent_part import host_part
+from tools.hosts.agent_part import host_part
 
 URL = "udpm://239.255.76.67:7667?ttl=1"
 MCM = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"

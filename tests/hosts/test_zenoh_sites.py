@@ -21,9 +21,9 @@ import pytest
 from agents import wait_until
 from netns import Hosts, hosts_or_skip
 
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
-BRIDGE = [sys.executable, "-m", "tools.zenoh_bridge"]
+BRIDGE = [sys.executable, "-m", "tools.bridges.zenoh_bridge"]
 SITE_URL = "udpm://239.255.76.67:7667?ttl=0"  # never leaves its site's machine
 WARP = 2.0
 
@@ -58,7 +58,7 @@ def test_two_sites_share_one_world_and_one_clock_through_zenoh(hosts, tmp_path, 
                     site,
                     "--realm",
                     "test",
-                    "--url",
+                    "--lcm-url",
                     SITE_URL,
                     "--connect",
                     router_ep,

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import signal
 import subprocess
-import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -26,6 +25,7 @@ from conftest import BUILD, ROOT
 from lcm_proc import pump, stop
 
 from auv import chasm_status_t, ground_truth_t, nav_solution_t, sim_clock_t
+from auvlcm import programs
 from auvlcm.rx import Receiver
 
 MISSIONS = ROOT / "missions"
@@ -160,43 +160,36 @@ class Mission:
             time.sleep(0.05)
 
     def __enter__(self) -> "Mission":
-        manager = BUILD / "bin" / "chasm-manager"
-        common = ["--vehicle", "AUV1", "--clock", "sim", "--url", self.url, "--plugin-path", BUILD / "plugins"]
+        plugins = [BUILD / "plugins"]
         self._start(
             "pilot",
-            [
-                manager,
-                "--plan",
-                MISSIONS / "pilot" / "pilot.chasm",
-                "--bind",
-                MISSIONS / "bindings" / "pilot.bind",
-                "--name",
-                "PILOT",
-                "--rate",
-                "20",
-                *common,
-            ],
+            programs.chasm_manager(
+                BUILD,
+                plan=MISSIONS / "pilot" / "pilot.chasm",
+                bind=MISSIONS / "bindings" / "pilot.bind",
+                vehicle="AUV1",
+                name="PILOT",
+                lcm_url=self.url,
+                rate_hz=20,
+                plugin_path=plugins,
+            ),
             "PILOT: running",
         )
-        defines = [a for k, v in self.params.items() for a in ("-D", f"{k}={v}")]
         self._start(
             "navigator",
-            [
-                manager,
-                "--plan",
-                self.plan,
-                "--bind",
-                self.bind,
-                "--name",
-                "NAVIGATOR",
-                "--rate",
-                "10",
-                *common,
-                *defines,
-            ],
+            programs.chasm_manager(
+                BUILD,
+                plan=self.plan,
+                bind=self.bind,
+                vehicle="AUV1",
+                name="NAVIGATOR",
+                lcm_url=self.url,
+                plugin_path=plugins,
+                params=self.params,
+            ),
             "NAVIGATOR: running",
         )
-        self._start("sim", [sys.executable, "-m", "sim", self.sim_cfg, "--lcm-url", self.url], "running")
+        self._start("sim", programs.simulator(self.sim_cfg, lcm_url=self.url), "running")
         return self
 
     def fly(self, until: Callable[[Record], bool], max_sim_s: float) -> Record:

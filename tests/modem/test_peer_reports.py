@@ -13,31 +13,22 @@ from conftest import ROOT, c_program
 from test_modem_lcm import LOSSLESS, world  # noqa: F401  (fixture)
 
 from auv import peer_report_t
+from auvlcm import programs
 
 PLANS = ROOT / "tests" / "modem" / "plans"
 
 
 def manager(world, vehicle: str, plan: str, name: str, sanitized: bool) -> None:
     proc = subprocess.Popen(
-        [
-            c_program("bin/chasm-manager", sanitized),
-            "--plan",
-            PLANS / f"{plan}.chasm",
-            "--bind",
-            PLANS / f"{plan}.bind",
-            "--vehicle",
-            vehicle,
-            "--name",
-            name,
-            "--rate",
-            "10",
-            "--clock",
-            "sim",
-            "--url",
-            world.url,
-            "--plugin-path",
-            c_program("plugins/chasm_comms.so", sanitized).parent,
-        ],
+        programs.chasm_manager(
+            c_program("bin/chasm-manager", sanitized).parents[1],
+            plan=PLANS / f"{plan}.chasm",
+            bind=PLANS / f"{plan}.bind",
+            vehicle=vehicle,
+            name=name,
+            lcm_url=world.url,
+            plugin_path=[c_program("plugins/chasm_comms.so", sanitized).parent],
+        ),
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,
         text=True,

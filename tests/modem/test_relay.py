@@ -20,7 +20,7 @@ from lcm_proc import stop, wait_for_line
 from auv import link_stats_t
 from auvlcm.rx import Receiver
 
-RELAY = ("-m", "tools.lcm_relay")
+RELAY = ("-m", "tools.bridges.lcm_relay")
 
 
 @pytest.fixture
@@ -158,7 +158,7 @@ def test_loss_duplication_reordering_statistics_and_repeatability(child_env, url
 def test_a_message_meets_the_same_fate_on_every_run(child_env, urls):
     """The fate of a message is a function of the seed and the message: the test
     predicts it from the relay's own draw function, whatever reached the relay."""
-    from tools.lcm_relay import draws, message_digest
+    from tools.bridges.lcm_relay import draws, message_digest
 
     def send(a, b, seq):
         a.send("AUV1.DATA", seq, stamp=False)  # the same bytes on every run

@@ -15,6 +15,7 @@ import lcm
 import pytest
 from conftest import ROOT
 
+from auvlcm import programs
 from auvlcm.rx import Receiver
 from auvlcm.types import by_name
 from auvlcm.url import with_receive_buffer
@@ -67,7 +68,7 @@ def node_cmd(node_id: str, url: str, priority: int = 0, *extra) -> list:
         "node",
         "--id",
         node_id,
-        "--url",
+        "--lcm-url",
         url,
         "--priority",
         str(priority),
@@ -76,7 +77,7 @@ def node_cmd(node_id: str, url: str, priority: int = 0, *extra) -> list:
 
 
 def sim_cmd(config: Path, url: str, *extra) -> list:
-    return [sys.executable, "-m", "sim", config, "--lcm-url", url, "--multihil", *extra]
+    return programs.simulator(config, lcm_url=url, extra=["--multihil", *extra])
 
 
 def vehicle_config(tmp: Path, vehicle: str, extra: str = "", base: str = "remus100_multihil.yaml", **initial) -> Path:

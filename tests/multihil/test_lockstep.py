@@ -31,7 +31,7 @@ from mh_util import Listener, Recorder
 from auv import chasm_status_t, lockstep_t
 from auvlcm.decode import decode_strict
 from auvlcm.types import type_of
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 CONTROL_PLANE = ("SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION", "SIM.CLOCK_SYNC")
 REPEATED = ("SIM.CLOCK", "SIM.LOCKSTEP")  # repeated, byte for byte, when a datagram may be lost

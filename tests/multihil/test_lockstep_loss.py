@@ -4,7 +4,7 @@ repeated, never waited for for ever.
 - the protocol alone (no network): a lost STEP_DONE is repeated by its
   participant; a lost clock shows as a participant repeating the step before,
   and the server publishes the step again; repeats change nothing;
-- the launcher's clock (tools/worldclock.py) over real LCM with two Python
+- the launcher's clock (tools/launch/worldclock.py) over real LCM with two Python
   participants whose traffic a test hook drops (a REGISTER, a clock, a report):
   time still reaches its end;
 - the C participants (a manager, auv-nav, normal and sanitized builds) repeat
@@ -22,10 +22,11 @@ import pytest
 from conftest import ROOT, c_program, manager_cmd
 
 from auv import lockstep_t, sim_clock_t
+from auvlcm import programs
 from auvlcm.chanfilter import FilteredLcm
 from sim.multihil.lockstep import LockstepTracker, Participation, lockstep_msg
 from sim.multihil.server import LockstepServer
-from tools.worldclock import WorldClock
+from tools.launch.worldclock import WorldClock
 
 K = lockstep_t
 
@@ -171,20 +172,12 @@ def test_c_participants_repeat_reports_and_the_filter_waits_for_its_simulator(lc
     )
     nav_conf = tmp_path / "AUV1.nav"
     from sim.config import load
-    from tools.navconf import nav_config_text
+    from tools.nav.navconf import nav_config_text
 
     nav_conf.write_text(nav_config_text(load(ROOT / "missions/sim/remus100.yaml")))
-    nav = [
-        c_program("bin/auv-nav", sanitized),
-        "--config",
-        nav_conf,
-        "--vehicle",
-        "AUV1",
-        "--clock",
-        "sim",
-        "--lcm-url",
-        lcm_url,
-    ]
+    nav = programs.auv_nav(
+        c_program("bin/auv-nav", sanitized).parents[1], config=nav_conf, vehicle="AUV1", lcm_url=lcm_url
+    )
     lc = lcm.LCM(lcm_url)
     reports: list = []
     lc.subscribe("SIM.LOCKSTEP", lambda _c, d: reports.append(lockstep_t.decode(d))).set_queue_capacity(1000)

@@ -16,7 +16,7 @@ import pytest
 from netns import Hosts, hosts_or_skip
 
 from auvlcm.log import read_events
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 # Free-running at 2x: a starved process (a loaded CI machine) lags the global
 # clock by wall time x warp, and the plan aborts on navigation older than 5 s.

@@ -158,7 +158,7 @@ def test_clocks_converge_under_offset_and_drift_directly_and_through_an_impaired
             [
                 sys.executable,
                 "-m",
-                "tools.lcm_relay",
+                "tools.bridges.lcm_relay",
                 "--in",
                 lcm_url,
                 "--out",

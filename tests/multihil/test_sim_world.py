@@ -8,7 +8,7 @@ import time
 
 from mh_util import Listener
 
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 
 def test_simulators_share_the_world_and_survive_the_servers_death(tmp_path, lcm_url, child_env, build_dir):

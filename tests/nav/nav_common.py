@@ -15,8 +15,8 @@ from conftest import BUILD, ROOT
 
 from auvlcm.log import read_events
 
-SURVEY_LOG = ("-m", "tools.survey_log")
-NAVCONF = ("-m", "tools.navconf")
+SURVEY_LOG = ("-m", "tools.nav.survey_log")
+NAVCONF = ("-m", "tools.nav.navconf")
 SURVEY_CONFIG = ROOT / "missions" / "sim" / "remus100_survey.yaml"
 SANITIZER_EXITS = (86, 87)
 
@@ -38,14 +38,14 @@ def record_survey(
     nav_channel: str = "AUV1.NAV_EKF",
     timeout: float = 600,
 ) -> Recording:
-    """survey_log.py with `args`; if live_nav is a binary, auv-nav runs beside it."""
+    """auv-survey-log with `args`; if live_nav is a binary, auv-nav runs beside it."""
     out_dir.mkdir(parents=True, exist_ok=True)
     log = out_dir / "survey.lcmlog"
     sets = [a for i, a in enumerate(args) if i > 0 and args[i - 1] == "--set"]
     sim_yaml = out_dir / "survey.sim.yaml"
     # the nav config the filter gets: derived from the same (overridden) world
     from auvlcm.url import with_receive_buffer
-    from tools.survey_log import apply_overrides
+    from tools.nav.survey_log import apply_overrides
 
     sim_yaml.write_text(apply_overrides(SURVEY_CONFIG.read_text(), sets))
     nav_cfg = out_dir / "survey.nav"
@@ -65,7 +65,7 @@ def record_survey(
                 "sim",
                 "--rate",
                 "10",
-                "--url",
+                "--lcm-url",
                 with_receive_buffer(url),
             ],
             env=env,
@@ -74,7 +74,7 @@ def record_survey(
         )
     try:
         run = subprocess.run(
-            [sys.executable, *SURVEY_LOG, "--out", log, "--url", url, *args],
+            [sys.executable, *SURVEY_LOG, "--out", log, "--lcm-url", url, *args],
             env=env,
             capture_output=True,
             text=True,

@@ -18,9 +18,10 @@ from closed_loop import MISSIONS, TICK_US, Mission, Record
 from conftest import BUILD
 
 from auv import chasm_status_t, nav_filter_status_t, nav_solution_t
+from auvlcm import programs
 
 PLAN = MISSIONS / "nav" / "box_survey_ekf.chasm"
-NAVCONF = ("-m", "tools.navconf")
+NAVCONF = ("-m", "tools.nav.navconf")
 # As tests/missions/test_missions.py: calm sea (the pilot's dive from the
 # surface in the default yaw-unstable hull does not survive the swell).
 SIM = {"environment": {"waves": None}, "sensors": {"ins": {"channel": "NAV_INS"}}}
@@ -52,19 +53,7 @@ class EkfMission(Mission):
     def __enter__(self) -> "EkfMission":
         self._start(
             "nav",
-            [
-                BUILD / "bin" / "auv-nav",
-                "--config",
-                self.nav_cfg,
-                "--vehicle",
-                "AUV1",
-                "--clock",
-                "sim",
-                "--rate",
-                "20",
-                "--url",
-                self.url,
-            ],
+            programs.auv_nav(BUILD, config=self.nav_cfg, vehicle="AUV1", lcm_url=self.url, rate_hz=20),
             "auv-nav: AUV1",
         )
         return super().__enter__()

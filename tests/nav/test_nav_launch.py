@@ -35,7 +35,7 @@ def vehicle(vid, nav, east=0.0):
 
 def launch(path, out, url, env):
     return subprocess.run(
-        LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0"],
+        LAUNCH + [str(path), "--out", str(out), "--lcm-url", url, "--progress", "0"],
         env=env,
         capture_output=True,
         text=True,
@@ -86,8 +86,8 @@ def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_ur
     import lcm
 
     from auv import actuator_state_t, chasm_status_t, nav_filter_status_t
-    from tools.mission_watch import MissionWatch
-    from tools.scenario import load_scenario
+    from tools.launch.mission_watch import MissionWatch
+    from tools.scenario.scenario_file import load_scenario
 
     sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf"), vehicle("AUV2", "ins", east=30.0)]))
     lc = lcm.LCM(lcm_url)
@@ -112,15 +112,15 @@ def test_the_launcher_holds_the_clock_until_each_filter_reports(tmp_path, lcm_ur
 
 def test_the_clock_waits_for_a_filter_that_falls_behind(tmp_path, lcm_url):
     """A filter starved of CPU holds the clock like a starved manager does: it is
-    a lockstep participant of the launcher's clock (tools/worldclock.py), which
+    a lockstep participant of the launcher's clock (tools/launch/worldclock.py), which
     starts only once it registered and publishes no step it has not finished."""
     import lcm
 
     from auv import lockstep_t, sim_clock_t
     from sim.multihil.lockstep import lockstep_msg
-    from tools.lockstep_names import participants
-    from tools.scenario import load_scenario
-    from tools.worldclock import WorldClock
+    from tools.launch.lockstep_names import participants
+    from tools.launch.worldclock import WorldClock
+    from tools.scenario.scenario_file import load_scenario
 
     sc = load_scenario(scenario(tmp_path, [vehicle("AUV1", "ekf"), vehicle("AUV2", "ins", east=30.0)]))
     names = participants(sc, recorder=True)

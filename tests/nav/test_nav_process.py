@@ -27,6 +27,7 @@ from auv import (
     process_health_t,
     sim_clock_t,
 )
+from auvlcm import programs
 
 NAV_CFG = ROOT / "missions" / "nav" / "remus100_survey.nav"
 BAD = """compass_noise_rad 0.01
@@ -129,7 +130,7 @@ class World:
 
 def test_live_alignment_bad_messages_and_clean_stop(variant_dir, lcm_url, child_env):
     nav = subprocess.Popen(
-        [variant_dir / "bin" / "auv-nav", "--config", NAV_CFG, "--vehicle", "AUV1", "--clock", "sim", "--url", lcm_url],
+        programs.auv_nav(variant_dir, config=NAV_CFG, vehicle="AUV1", lcm_url=lcm_url),
         stderr=subprocess.PIPE,
         text=True,
         env=child_env,

@@ -14,15 +14,16 @@ from lcm_proc import stop
 from test_nav_process import NAV_CFG, World
 
 from auv import depth_t, sim_clock_t
+from auvlcm import programs
 
 INT64_MIN, INT64_MAX = -(2**63), 2**63 - 1
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_bad_stamps_are_counted_in_nav_status_and_dropped(lcm_url, child_env, sanitized, build_dir):
-    exe = (build_dir / "san" if sanitized else build_dir) / "bin" / "auv-nav"
+    variant = build_dir / "san" if sanitized else build_dir
     nav = subprocess.Popen(
-        [exe, "--config", NAV_CFG, "--vehicle", "AUV1", "--clock", "sim", "--url", lcm_url],
+        programs.auv_nav(variant, config=NAV_CFG, vehicle="AUV1", lcm_url=lcm_url),
         stderr=subprocess.PIPE,
         text=True,
         env=child_env,

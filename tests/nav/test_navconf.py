@@ -1,4 +1,4 @@
-"""navconf.py: the nav config a simulated vehicle's filter gets."""
+"""auv-navconf: the nav config a simulated vehicle's filter gets."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import sys
 import pytest
 from conftest import ROOT
 
-NAVCONF = ("-m", "tools.navconf")
+NAVCONF = ("-m", "tools.nav.navconf")
 
 
 def navconf(*args, env=None):
@@ -22,7 +22,7 @@ def test_shipped_nav_configs_are_what_the_generator_writes(name, child_env):
     p = navconf(ROOT / "missions" / "sim" / f"{name}.yaml", env=child_env)
     assert p.returncode == 0, p.stderr
     assert p.stdout == (ROOT / "missions" / "nav" / f"{name}.nav").read_text(), (
-        f"regenerate: python/tools/navconf.py missions/sim/{name}.yaml -o missions/nav/{name}.nav"
+        f"regenerate: python/tools/nav/navconf.py missions/sim/{name}.yaml -o missions/nav/{name}.nav"
     )
 
 

@@ -22,6 +22,7 @@ import yaml
 from lcm_proc import pump, stop, wait_for_line
 
 from auv import actuators_t, chasm_status_t, ground_truth_t, pilot_status_t, setpoint_t, sim_clock_t
+from auvlcm import programs
 from auvlcm.rx import Receiver
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -92,26 +93,17 @@ class World:
         self.procs: list[subprocess.Popen] = []
         self.utime = 0
         self.samples: list[Sample] = []
-        mgr = [
-            str(self.build / "bin" / "chasm-manager"),
-            "--plan",
-            str(PLAN),
-            "--bind",
-            str(BIND),
-            "--vehicle",
-            "AUV1",
-            "--name",
-            "PILOT",
-            "--rate",
-            str(round(1 / self.tick_s)),
-            "--clock",
-            "sim",
-            "--url",
-            self.url,
-            "--plugin-path",
-            str(self.build / "plugins"),
-            *self.manager_args,
-        ]
+        mgr = programs.chasm_manager(
+            self.build,
+            plan=PLAN,
+            bind=BIND,
+            vehicle="AUV1",
+            name="PILOT",
+            lcm_url=self.url,
+            rate_hz=round(1 / self.tick_s),
+            plugin_path=[self.build / "plugins"],
+            extra=self.manager_args,
+        )
         self.pilot = self._start(mgr, "PILOT: running")
         self.sim = self._start([sys.executable, "-m", "sim", str(self._config())], "running")
         return self

@@ -1,5 +1,5 @@
 """A small team scenario for the full-stack team tests: the planner's team
-plans (plan_survey.py --team N --ri 1) over a corner of the committed MCM
+plans (auv-plan-survey --team N --ri 1) over a corner of the committed MCM
 world, short enough to fly in a few minutes of sim time, with the variants a
 test needs (modem settings, plan parameters, start positions, planned faults)
 written beside it. Every run is the real launcher over real LCM, lockstep."""
@@ -26,7 +26,7 @@ def plan(out: Path, search: int = 2, ri: int = 1, polygon: str = POLYGON) -> Pat
         [
             sys.executable,
             "-m",
-            "tools.plan_survey",
+            "tools.plan.plan_survey",
             "--polygon",
             polygon,
             "--team",
@@ -90,7 +90,7 @@ def fly(scenario: Path, run_dir: Path, lcm_url: str, env: dict, expect_rc: int |
             scenario,
             "--out",
             run_dir,
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--build",
             BUILD,
@@ -107,7 +107,7 @@ def fly(scenario: Path, run_dir: Path, lcm_url: str, env: dict, expect_rc: int |
 
 
 def report(run_dir: Path, out: Path, env: dict) -> dict:
-    """report.py's JSON of the run (no plots)."""
+    """auv-report's JSON of the run (no plots)."""
     p = subprocess.run(
         [sys.executable, "-m", "tools.report", run_dir / "run.lcmlog", "--out", out, "--no-plots"],
         env=env,

@@ -24,7 +24,7 @@ WALL_PACED = ("SIM.CLOCK_SYNC", "SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION")
 #   (c/managers/mgr_held.h, tests/managers/test_manager_lockstep_order.py);
 # - the world's count of participants (3 per vehicle) was met by the recorder
 #   with one simulator still starting, which joined at step 1: the world now
-#   waits for every participant by name (tools/lockstep_names.py).
+#   waits for every participant by name (tools/launch/lockstep_names.py).
 # With two demos running beside it: 13 of 14 pairs the same; the one that
 # differed was the second race, before its fix.
 def test_the_team_runs_twice_to_the_same_log(tmp_path, lcm_url, child_env):

@@ -44,7 +44,7 @@ def test_the_launcher_kills_the_lost_vehicles_and_the_others_finish(lost_run):
     d, out, rep = lost_run
     assert rep["vehicle_outcomes"] == {"AUV1": "done", "AUV2": "lost", "AUV3": "lost"}, rep["vehicle_outcomes"]
     # The world is stepped by the simulators; the launcher takes part in its
-    # lockstep (tools/fault_step.py) and kills a vehicle between two steps: it
+    # lockstep (tools/launch/fault_step.py) and kills a vehicle between two steps: it
     # did every step before the planned time and none from it on, however
     # loaded the machine (multi-HIL lockstep step: 0.1 s).
     for vid, at in (("AUV2", LOST_SEARCH_AT), ("AUV3", LOST_RI_AT)):

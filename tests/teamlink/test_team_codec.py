@@ -14,7 +14,7 @@ from conftest import c_program
 from auvlcm.team_codec import EncodeError, FrameFull, TeamCodec
 from auvlcm.team_schema import DEFAULT_SCHEMA, SchemaError, load, parse_text
 
-GEN = ("-m", "tools.gen_team_codec")
+GEN = ("-m", "tools.codegen.gen_team_codec")
 
 STATUS = dict(
     vehicle=3,

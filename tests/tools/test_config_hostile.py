@@ -1,6 +1,6 @@
 """A hostile corpus of configuration files and scenarios: every one ends in
 `file:line:col: message` lines, exit status 2 and no traceback, fast, from
-the launcher (scenarios), navconf.py and the simulator (sim configs)."""
+the launcher (scenarios), auv-navconf and the simulator (sim configs)."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from confcheck import ConfigError
 HERE = ROOT / "tests" / "tools" / "scenarios"
 SIM = ROOT / "missions" / "sim" / "remus100_multihil.yaml"
 LAUNCH = [sys.executable, "-m", "tools.launch"]
-NAVCONF = [sys.executable, "-m", "tools.navconf"]
+NAVCONF = [sys.executable, "-m", "tools.nav.navconf"]
 BOMB = (
     b"a: &a [x, x, x, x, x, x, x, x, x]\nb: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a]\n"
     b"c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b]\nd: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c]\n"
@@ -129,7 +129,7 @@ def test_command_line_overrides_are_checked(tmp_path):
         timeout=60,
     )
     assert run.returncode == 2 and "--warp must be a number > 0" in run.stderr and "Traceback" not in run.stderr
-    from tools.survey_log import DEFAULT_CONFIG, apply_overrides
+    from tools.nav.survey_log import DEFAULT_CONFIG, apply_overrides
 
     text = DEFAULT_CONFIG.read_text()
     for item, want in (

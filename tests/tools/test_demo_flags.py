@@ -1,4 +1,4 @@
-"""demo.py and report.py: every flag and path ends in a result or a clear
+"""demo.py and auv-report: every flag and path ends in a result or a clear
 error with exit status 2, never a traceback (issue 14: `demo.py --no-plots`
 ended in one). The full run is tests/test_demo.py; here the paths around it."""
 

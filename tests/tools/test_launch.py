@@ -18,7 +18,7 @@ from conftest import ROOT
 
 from auvlcm.arrays import load_log
 from auvlcm.log import read_events
-from tools.timeline import state_timeline
+from tools.logs.timeline import state_timeline
 
 HERE = Path(__file__).resolve().parent / "scenarios"
 LAUNCH = [sys.executable, "-m", "tools.launch"]
@@ -53,7 +53,7 @@ def write_scenario(tmp_path, vehicles, hosts=("local",), limit=60, name="t"):
 
 def launch(path, out, url, env, *extra, timeout=180):
     return subprocess.run(
-        LAUNCH + [str(path), "--out", str(out), "--url", url, "--progress", "0", *extra],
+        LAUNCH + [str(path), "--out", str(out), "--lcm-url", url, "--progress", "0", *extra],
         env=env,
         capture_output=True,
         text=True,
@@ -179,7 +179,7 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
     for sig, name in ((signal.SIGINT, "int"), (signal.SIGKILL, "kill")):
         out = tmp_path / name
         proc = subprocess.Popen(
-            LAUNCH + [str(path), "--out", str(out), "--url", lcm_url, "--progress", "0.5"],
+            LAUNCH + [str(path), "--out", str(out), "--lcm-url", lcm_url, "--progress", "0.5"],
             env=child_env,
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
@@ -190,7 +190,7 @@ def test_sigint_stops_all_and_sigkill_of_the_launcher_orphans_nothing(tmp_path, 
             kids = _children(proc.pid)
             assert len(kids) == 4, kids  # logger, sim, 2 managers
             # lockstep: the world runs without wake-up preemption, the clock (the launcher)
-            # keeps the default policy (tools/sched_policy.py)
+            # keeps the default policy (tools/launch/sched_policy.py)
             assert {os.sched_getscheduler(p) for p in kids} == {os.SCHED_BATCH}
             assert os.sched_getscheduler(proc.pid) == os.SCHED_OTHER
             proc.send_signal(sig)
@@ -220,7 +220,7 @@ def test_a_paced_world_or_sched_normal_keeps_the_default_scheduling(tmp_path, lc
     path = write_scenario(tmp_path, [vehicle("AUV1", cycles=100000)], limit=100000)
     for name, extra in (("realtime", ["--time", "realtime"]), ("normal", ["--sched", "normal"])):
         proc = subprocess.Popen(
-            LAUNCH + [str(path), "--out", str(tmp_path / name), "--url", lcm_url, "--progress", "0.5", *extra],
+            LAUNCH + [str(path), "--out", str(tmp_path / name), "--lcm-url", lcm_url, "--progress", "0.5", *extra],
             env=child_env,
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,
@@ -244,7 +244,7 @@ def test_host_split_runs_each_part_on_its_own(tmp_path, lcm_url, child_env):
     )
     procs = [
         subprocess.Popen(
-            LAUNCH + [str(path), "--host", h, "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
+            LAUNCH + [str(path), "--host", h, "--out", str(tmp_path / "run"), "--lcm-url", lcm_url, "--progress", "0"],
             env=child_env,
             stdout=subprocess.PIPE,
             stderr=subprocess.STDOUT,

@@ -6,7 +6,7 @@ The second run is paced (`--time scaled`): the pace changes nothing else.
 
 Two vehicles, one on the onboard filter (auv-nav), each with two managers, a
 few seconds of sim time; a third is lost by a planned fault at 2 s, which the
-launcher applies between two steps (tools/fault_step.py): the same in both runs.
+launcher applies between two steps (tools/launch/fault_step.py): the same in both runs.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """A multi-HIL lockstep world waits before step 0 for every participant by
-name (tools/lockstep_names.py, issue 14: the same run under any load).
+name (tools/launch/lockstep_names.py, issue 14: the same run under any load).
 
 The team scenario counts its simulators, pilots and navigators (12), but the
 recorder takes part too: under load the world began with one simulator still
@@ -19,8 +19,8 @@ from sim.config import load
 from sim.multihil.hook import node_config
 from sim.multihil.lockstep import LockstepTracker, lockstep_msg
 from sim.multihil.server import LockstepServer
-from tools.scenario import load_scenario
-from tools.simconfig import write_configs
+from tools.launch.simconfig import write_configs
+from tools.scenario.scenario_file import load_scenario
 
 TEAM = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
 

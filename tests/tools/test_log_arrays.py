@@ -17,7 +17,7 @@ from auv import chasm_status_t, depth_t, nav_solution_t, target_field_t
 from auvlcm.arrays import load_log
 from auvlcm.types import all_types
 
-LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
+LCMLOG = [sys.executable, "-m", "tools.logs.lcmlog"]
 
 
 def _leaves(msg, prefix=""):

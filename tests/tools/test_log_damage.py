@@ -1,5 +1,5 @@
 """A hostile corpus of log files, generated from a real small log: every log
-reader (auvlcm.log, lcmlog.py's subcommands, report.py) reads past damage,
+reader (auvlcm.log, auv-lcmlog's subcommands, auv-report) reads past damage,
 says what it skipped and exits with the documented status, never a traceback.
 
 The source log is synthetic_log() of test_report (written by lcm.EventLog).
@@ -17,7 +17,7 @@ from test_report import synthetic_log
 from auvlcm.eventlog import HEADER, SYNC_BYTES, read_raw
 from auvlcm.log import EXIT_EVENTS_LOST, LogStats, read_events
 
-LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
+LCMLOG = [sys.executable, "-m", "tools.logs.lcmlog"]
 REPORT = [sys.executable, "-m", "tools.report"]
 
 

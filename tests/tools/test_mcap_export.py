@@ -1,4 +1,4 @@
-"""`lcmlog.py mcap`: a log of every message type, read back from the MCAP: the
+"""`auv-lcmlog mcap`: a log of every message type, read back from the MCAP: the
 same channels with the same counts, every message valid against its schema
 (generated from lcmtypes/), values that survive, derived map topics, and
 events that do not decode counted and left out."""
@@ -21,7 +21,7 @@ from auv import env_model_t, log_annotation_t, nav_solution_t
 from auvlcm.json_schema import all_schemas, to_json
 from auvlcm.types import all_types
 
-LCMLOG = [sys.executable, "-m", "tools.lcmlog"]
+LCMLOG = [sys.executable, "-m", "tools.logs.lcmlog"]
 SURVEY = {
     "polygon": [[0, 0], [100, 0], [100, 80], [0, 80]],
     "operating_area": [[-50, -50], [150, -50], [150, 130]],

@@ -53,7 +53,7 @@ def test_the_summary_outcome_and_report_name_what_fired(tmp_path, lcm_url, child
     path = tmp_path / "cause.yaml"
     path.write_text(yaml.safe_dump(sc, sort_keys=False))
     run = subprocess.run(
-        LAUNCH + [str(path), "--out", str(tmp_path / "run"), "--url", lcm_url, "--progress", "0"],
+        LAUNCH + [str(path), "--out", str(tmp_path / "run"), "--lcm-url", lcm_url, "--progress", "0"],
         env=child_env,
         capture_output=True,
         text=True,

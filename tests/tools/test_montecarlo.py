@@ -1,4 +1,4 @@
-"""montecarlo.py: a short survey over two seeds on a local Dask cluster (two
+"""auv-montecarlo: a short survey over two seeds on a local Dask cluster (two
 worker processes), each run in its own network namespace, summarised as
 mean and 95 % interval with a plot; the statistics on their own; usage."""
 
@@ -13,7 +13,7 @@ import pytest
 from conftest import BUILD, ROOT
 
 from auv import ground_truth_t
-from tools.montecarlo_summary import interval, summarize
+from tools.montecarlo.summary import interval, summarize
 
 MC = [sys.executable, "-m", "tools.montecarlo"]
 # One vehicle, two short lines over part of the demo's target field: a few minutes of sim time.
@@ -91,7 +91,18 @@ def _truth_and_targets(log):
 
 def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
     plan = subprocess.run(
-        [sys.executable, "-m", "tools.plan_survey", *PLAN, "--out", tmp_path / "sc", "--name", "mc", "--build", BUILD],
+        [
+            sys.executable,
+            "-m",
+            "tools.plan.plan_survey",
+            *PLAN,
+            "--out",
+            tmp_path / "sc",
+            "--name",
+            "mc",
+            "--build",
+            BUILD,
+        ],
         capture_output=True,
         text=True,
         timeout=120,

@@ -16,8 +16,8 @@ import sys
 import pytest
 from conftest import BUILD, c_program
 
-from tools.plugin_limits import LimitsError, check_plan, polygon_limits
-from tools.survey_geometry import area, buffer_convex, convex_hull, parse_polygon, simplify_convex_outer
+from tools.plan.plugin_limits import LimitsError, check_plan, polygon_limits
+from tools.plan.survey_geometry import area, buffer_convex, convex_hull, parse_polygon, simplify_convex_outer
 
 DEMO = [sys.executable, "-m", "tools.demo"]
 # The demo's target-field box, and a larger, irregular area with many vertices.
@@ -109,7 +109,7 @@ def test_a_plan_the_plugins_refuse_is_never_written_into_a_scenario(tmp_path):
         [
             sys.executable,
             "-m",
-            "tools.plan_survey",
+            "tools.plan.plan_survey",
             "--polygon",
             BOX,
             "--vehicles",

@@ -1,4 +1,4 @@
-"""plan_survey.py end to end: the plans it writes have the contract's shape
+"""auv-plan-survey end to end: the plans it writes have the contract's shape
 and match the geometry; they pass `chasm check` when the guidance and checks
 plugins are built; the scenario loads; bad input exits 2."""
 
@@ -14,7 +14,7 @@ import pytest
 import yaml
 from conftest import BUILD, ROOT
 
-PLAN = [sys.executable, "-m", "tools.plan_survey"]
+PLAN = [sys.executable, "-m", "tools.plan.plan_survey"]
 POLY = "0,0; 500,-50; 600,300; 250,420; -20,300"
 
 
@@ -110,7 +110,7 @@ def test_scenario_names_the_plans_and_starts(tmp_path):
         if not (tmp_path / "demo" / p).exists()
     ]
     assert not missing, f"the scenario names files that do not exist: {sorted(set(missing))}"
-    from tools.scenario import load_scenario
+    from tools.scenario.scenario_file import load_scenario
 
     assert len(load_scenario(tmp_path / "demo" / "demo.yaml").vehicles) == 3
 

@@ -1,4 +1,4 @@
-"""plan_survey.py --team: the team scenario's plans (one roster, one lines string,
+"""auv-plan-survey --team: the team scenario's plans (one roster, one lines string,
 TDMA slots from the modem), bindings, configs and time; the committed mcm_team
 scenario is what the planner writes; bad input exits 2; the committed plans load
 with the built plugins (the team plugin included)."""
@@ -18,7 +18,7 @@ from conftest import ROOT
 
 from tools.demo import TEAM_PLAN_ARGS
 
-PLAN = [sys.executable, "-m", "tools.plan_survey"]
+PLAN = [sys.executable, "-m", "tools.plan.plan_survey"]
 POLY = "20,20; 220,20; 220,200; 20,200"
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team"
 
@@ -93,7 +93,7 @@ def test_team_plans_share_roster_and_lines_and_get_one_slot_each(tmp_path):
         assert v["sim"]["multihil"] == {"enabled": True, "lockstep_participants": 12}
         nav = next(m for m in v["managers"] if m["name"] == "NAVIGATOR")
         assert nav["bind"].endswith("team_ri.bind" if ri else "team_search.bind")
-    from tools.scenario import load_scenario
+    from tools.scenario.scenario_file import load_scenario
 
     loaded = load_scenario(out / "t.yaml")
     assert [v.id for v in loaded.vehicles] == team["roster"]  # the launcher's own checks accept it
@@ -190,8 +190,8 @@ def test_one_target_field_publisher_and_one_field_in_the_lockstep_team():
     from confcheck.reader import dump_yaml
     from sim.config import loads
     from sim.sonar.publisher import build_field
-    from tools.scenario import load_scenario
-    from tools.simconfig import vehicle_config
+    from tools.launch.simconfig import vehicle_config
+    from tools.scenario.scenario_file import load_scenario
 
     sc = load_scenario(SCENARIO / "mcm_team.yaml")
     cfgs = {v.id: vehicle_config(sc, v, k) for k, v in enumerate(sc.vehicles)}

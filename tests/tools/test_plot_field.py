@@ -1,4 +1,4 @@
-"""plot_field.py: any CHANNEL.FIELD of a log against sim time, channels with
+"""auv-plot-field: any CHANNEL.FIELD of a log against sim time, channels with
 dots in their names, nested array columns, and clear refusals."""
 
 from __future__ import annotations
@@ -10,7 +10,7 @@ import lcm
 
 from auv import chasm_status_t, nav_solution_t
 
-PLOT = [sys.executable, "-m", "tools.plot_field"]
+PLOT = [sys.executable, "-m", "tools.report.plot_field"]
 
 
 def _log(path):
@@ -51,7 +51,7 @@ def test_fields_of_any_channel_are_plotted(tmp_path, child_env):
 
 
 def test_unknown_channels_and_fields_are_refused_with_a_hint(tmp_path, capsys):
-    from tools import plot_field  # in-process: one matplotlib import for every case
+    from tools.report import plot_field  # in-process: one matplotlib import for every case
 
     _log(tmp_path / "r.lcmlog")
     for spec, text in (

@@ -6,8 +6,8 @@ from __future__ import annotations
 
 from types import SimpleNamespace as NS
 
-from tools.association import associate
-from tools.plots import state_colour, vehicle_colour
+from tools.report.association import associate
+from tools.report.plots import state_colour, vehicle_colour
 
 
 def test_missed_targets_and_false_alarms():

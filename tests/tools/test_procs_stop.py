@@ -1,4 +1,4 @@
-"""tools.procs.stop_together: a tier at a time, the highest first, and the
+"""tools.launch.procs.stop_together: a tier at a time, the highest first, and the
 children of one tier together (the launcher's stop at the end of every run)."""
 
 from __future__ import annotations
@@ -6,7 +6,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
-from tools.procs import Child, stop_together
+from tools.launch.procs import Child, stop_together
 
 # A child that, on SIGINT, marks that it was asked, then exits 0 only when
 # every name in WAIT_ASKED was asked too (a one-by-one stop would leave them

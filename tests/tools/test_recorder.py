@@ -24,7 +24,7 @@ WARMUP = "TEST.WARMUP"
 
 
 def recorder_cmd(variant_dir, url, log, stats, *extra):
-    return [str(variant_dir / "bin" / "auv-recorder"), "--url", url, "-f", str(log), "--stats", str(stats), *extra]
+    return [str(variant_dir / "bin" / "auv-recorder"), "--lcm-url", url, "-f", str(log), "--stats", str(stats), *extra]
 
 
 def truth(vid: int, i: int) -> bytes:

@@ -13,7 +13,7 @@ import time
 import lcm
 
 from auv import ground_truth_t, sim_clock_t
-from sim.multihil.world import VehicleSpec, World
+from tools.launch.world import VehicleSpec, World
 
 
 def _clock_us(lst: list) -> int:
@@ -34,7 +34,7 @@ def test_time_waits_for_a_stopped_recorder(tmp_path, lcm_url, child_env, build_d
         return until()
 
     rec = subprocess.Popen(
-        [str(build_dir / "bin" / "auv-recorder"), "--url", lcm_url, "-f", str(log), "--stats", str(stats)],
+        [str(build_dir / "bin" / "auv-recorder"), "--lcm-url", lcm_url, "-f", str(log), "--stats", str(stats)],
         env=child_env,
         stdout=subprocess.PIPE,
         stderr=subprocess.STDOUT,

@@ -166,7 +166,7 @@ def test_report_on_a_real_launcher_run(tmp_path, lcm_url, child_env):
             str(sc),
             "--out",
             str(tmp_path / "run"),
-            "--url",
+            "--lcm-url",
             lcm_url,
             "--progress",
             "0",
@@ -217,7 +217,7 @@ def test_report_bad_input(tmp_path):
 
 
 def test_vehicles_are_listed_in_number_order():
-    from tools.run_data import vehicle_order
+    from tools.report.run_data import vehicle_order
 
     ids = ["AUV10", "RI", "AUV2", "AUV1", "AUV16", "AUV3"]
     assert sorted(ids, key=vehicle_order) == ["AUV1", "AUV2", "AUV3", "AUV10", "AUV16", "RI"]

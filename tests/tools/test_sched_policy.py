@@ -1,4 +1,4 @@
-"""Which worlds run SCHED_BATCH (tools/sched_policy.py): a lockstep clock by
+"""Which worlds run SCHED_BATCH (tools/launch/sched_policy.py): a lockstep clock by
 default, a paced one never unless asked; an unknown choice is refused."""
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ import time
 import pytest
 
 from sim import clock_modes
-from tools import procs
-from tools.sched_policy import wants_batch
+from tools.launch import procs
+from tools.launch.sched_policy import wants_batch
 
 
 @pytest.mark.parametrize(

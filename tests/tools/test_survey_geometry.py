@@ -9,8 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from tools.survey_geometry import GeometryError, area, parse_polygon
-from tools.survey_plan import Sonar, plan_survey
+from tools.plan.survey_geometry import GeometryError, area, parse_polygon
+from tools.plan.survey_plan import Sonar, plan_survey
 
 CONVEX = [(0, 0), (400, -60), (520, 250), (200, 420), (-30, 300)]
 L_SHAPE = [(0, 0), (600, 0), (600, 150), (200, 150), (200, 450), (0, 450)]

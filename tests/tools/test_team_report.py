@@ -104,7 +104,7 @@ def write_log(path):
 
 
 def test_team_section_figures_and_plots(tmp_path):
-    from tools.team_report import contact_bits
+    from tools.report.team_report import contact_bits
 
     log = tmp_path / "run.lcmlog"
     write_log(log)
@@ -167,7 +167,7 @@ def test_team_section_figures_and_plots(tmp_path):
 
 def test_contact_size_from_a_schema_file(tmp_path):
     """The spec's contact layout: 4-bit id + 4 + 10 + 14 + 14 + 7 + 7 + 4 + 14 = 78 bits."""
-    from tools.team_report import contact_bits
+    from tools.report.team_report import contact_bits
 
     schema = tmp_path / "s.schema"
     schema.write_text(
@@ -177,7 +177,7 @@ def test_contact_size_from_a_schema_file(tmp_path):
         "  sigma_m fixed 0 12.7 0.1\n  score fixed 0 1 0.01   # comment\n  looks int 0 15\n"
         "  time_s int 0 16383\nmessage ack 3 max_bytes 4\n  to int 0 15\n"
     )
-    import tools.team_report as tr
+    import tools.report.team_report as tr
 
     old = tr.ROOT
     tr.ROOT = tmp_path

@@ -10,8 +10,8 @@ from test_launch import vehicle, write_scenario
 
 from auv import actuator_state_t, chasm_status_t, sim_clock_t
 from auvlcm.offline import OfflineLcm
-from tools.mission_watch import MissionWatch
-from tools.scenario import load_scenario
+from tools.launch.mission_watch import MissionWatch
+from tools.scenario.scenario_file import load_scenario
 
 
 def feed(watch: MissionWatch, channel: str, msg) -> None:

@@ -34,7 +34,7 @@ enum { POLYGON, NORTH, EAST, LENGTH, WIDTH, HEADING, MARGIN, AT_NORTH, AT_EAST, 
 
 static const chasm_param_spec params[NPARAMS] = {
     /* The limits are in the description so that planners read them from
-     * `chasm describe checks` (python/tools/plugin_limits.py), not a copy. */
+     * `chasm describe checks` (python/tools/plan/plugin_limits.py), not a copy. */
     [POLYGON] = CHASM_PARAM_STRING("polygon", "",
                                    "vertices \"north,east; ...\" in metres (or give a box); at most " STR(PU_POLYGON_MAX)
                                    " vertices and " STR(TEXT_MAX_CHARS) " characters"),

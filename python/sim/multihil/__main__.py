@@ -1,22 +1,18 @@
-"""`auv-multihil node ...` / `auv-multihil world ...` (also `python -m sim.multihil`):
-see sim.multihil.standalone and sim.multihil.world."""
+"""`python -m sim.multihil node ...`: one multi-HIL node (sim.multihil.standalone).
+
+`auv-multihil` (tools/launch/multihil_cli.py) also starts whole worlds; a world
+is a starter of processes, so it lives with the launcher, above the simulator.
+"""
 
 from __future__ import annotations
 
 import sys
 
-USAGE = (
-    "usage: auv-multihil node --id ID --url URL [options]     (node --help)\n"
-    "       auv-multihil world [--vehicles N] [--clock MODE] ...  (world --help)"
-)
+USAGE = "usage: python -m sim.multihil node --id ID --lcm-url URL [options]     (node --help)"
 
 
 def main(argv: list[str] | None = None) -> int:
     argv = sys.argv[1:] if argv is None else argv
-    if argv and argv[0] == "world":
-        from sim.multihil.world import main as world_main
-
-        return world_main(argv[1:])
     if argv and argv[0] == "node":
         from sim.multihil.standalone import main as node_main
 

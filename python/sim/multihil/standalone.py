@@ -18,6 +18,7 @@ import time
 
 import lcm
 
+from auvlcm import programs
 from auvlcm.url import check_local
 from sim import clock_modes
 from sim.environment import Environment, EnvParams
@@ -34,7 +35,7 @@ def parse(argv: list[str]) -> argparse.Namespace:
     ap.add_argument("--id", required=True, help="client id, e.g. AUV1-sim")
     ap.add_argument("--vehicle", default="", help="vehicle id (default: the id up to '-')")
     ap.add_argument("--priority", type=int, default=0)
-    ap.add_argument("--url", required=True, help="LCM URL (ttl=0; ttl=1 only inside a test netns)")
+    programs.add_lcm_url_argument(ap, "LCM URL (ttl=0; ttl=1 only inside a test netns)", required=True)
     ap.add_argument("--mode", choices=clock_modes.MODES, default="realtime")
     ap.add_argument("--warp", type=float, default=1.0)
     ap.add_argument("--step", type=float, default=0.1, help="lockstep step [s]")

@@ -1,0 +1,118 @@
+"""One builder per program's command line: chasm-manager, auv-nav, the simulator,
+the recorders.
+
+Every process that starts one of these (the launcher, the host agents through the
+launcher's core, the multi-HIL world, tests, benchmarks) builds its command here,
+so a flag is spelled in one place. The LCM URL is `--lcm-url` for every program
+of the project, as LCM's own tools spell it (lcm-logger, lcm-logplayer, lcm-spy);
+`add_lcm_url_argument` gives the Python command lines the same flag.
+
+`build` is a build tree (`build/`, or `build/san/` for the sanitized programs).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Iterable, Mapping
+from pathlib import Path
+
+from auvlcm.url import with_receive_buffer
+
+PathLike = str | Path
+
+
+def chasm_manager(
+    build: Path,
+    *,
+    plan: PathLike,
+    bind: PathLike,
+    vehicle: str,
+    name: str,
+    lcm_url: str,
+    rate_hz: float = 10.0,
+    status_rate_hz: float | None = None,
+    clock: str = "sim",
+    plugin_path: Iterable[PathLike] = (),
+    params: Mapping[str, object] | None = None,
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """A manager running `plan` with `bind` as `<vehicle>`'s `<name>` on the given
+    clock (`sim`: SIM.CLOCK; `system`: this machine's)."""
+    cmd = [str(build / "bin" / "chasm-manager"), "--plan", str(plan), "--bind", str(bind)]
+    cmd += ["--vehicle", vehicle, "--name", name, "--rate", f"{rate_hz:g}"]
+    if status_rate_hz is not None:
+        cmd += ["--status-rate", f"{status_rate_hz:g}"]
+    cmd += ["--clock", clock, "--lcm-url", lcm_url]
+    for d in plugin_path:
+        cmd += ["--plugin-path", str(d)]
+    for k, v in (params or {}).items():
+        cmd += ["-D", f"{k}={v}"]
+    return cmd + [str(x) for x in extra]
+
+
+def auv_nav(
+    build: Path,
+    *,
+    config: PathLike,
+    vehicle: str,
+    lcm_url: str,
+    rate_hz: float | None = None,
+    clock: str = "sim",
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """The onboard navigation filter of `vehicle` with its nav config."""
+    cmd = [str(build / "bin" / "auv-nav"), "--config", str(config), "--vehicle", vehicle]
+    if rate_hz is not None:
+        cmd += ["--rate", f"{rate_hz:g}"]
+    return cmd + ["--clock", clock, "--lcm-url", lcm_url] + [str(x) for x in extra]
+
+
+def simulator(
+    config: PathLike,
+    *,
+    lcm_url: str,
+    clock: str | None = None,
+    warp: float | None = None,
+    duration: float | None = None,
+    python: PathLike = sys.executable,
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """One vehicle's simulator (`python -m sim`); the clock, warp and duration
+    override its configuration's when given."""
+    cmd = [str(python), "-m", "sim", str(config), "--lcm-url", lcm_url]
+    if clock is not None:
+        cmd += ["--clock", clock]
+    if warp is not None:
+        cmd += ["--warp", f"{warp:g}"]
+    if duration is not None:
+        cmd += ["--duration", f"{duration:g}"]
+    return cmd + [str(x) for x in extra]
+
+
+def auv_recorder(build: Path, *, lcm_url: str, log: PathLike, stats: PathLike | None = None) -> list[str]:
+    """auv-recorder (c/recorder), with a large receive buffer; its counts go to
+    `stats` at exit."""
+    cmd = [str(build / "bin" / "auv-recorder"), "--lcm-url", with_receive_buffer(lcm_url), "-f", str(log)]
+    return cmd + (["--stats", str(stats)] if stats is not None else [])
+
+
+def lcm_logger(lcm_bin: Path, *, lcm_url: str, log: PathLike) -> list[str]:
+    """LCM's own lcm-logger (its binary in the wheel, not its Python wrapper, so
+    a signal reaches the logger itself), with a large receive buffer."""
+    url = with_receive_buffer(lcm_url)
+    return [str(lcm_bin / "lcm-logger"), f"--lcm-url={url}", "--quiet", "--flush-interval=100", "-f", str(log)]
+
+
+class _OldUrlSpelling(argparse.Action):
+    """`--url`, the old spelling: still understood, with a note once."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        print(f"{parser.prog}: --url is now spelled --lcm-url", file=sys.stderr)
+        setattr(namespace, self.dest, values)
+
+
+def add_lcm_url_argument(ap: argparse.ArgumentParser, help: str, **kwargs) -> None:
+    """The LCM URL option of a Python command: `--lcm-url` into `args.url`."""
+    ap.add_argument("--lcm-url", dest="url", metavar="URL", help=help, **kwargs)
+    ap.add_argument("--url", dest="url", action=_OldUrlSpelling, help=argparse.SUPPRESS)

@@ -1,0 +1,1 @@
+"""Live bridges from LCM: Foxglove, Zenoh between sites, the link-impairment relay."""

@@ -1,0 +1,1 @@
+"""Host agents: `auv-agent` runs a host's part on command, `auv-agentctl` commands the agents."""

@@ -1,0 +1,400 @@
+"""The launcher's core: start and supervise one host's part of a scenario.
+
+`Launcher` starts the recorder (auv-recorder, or lcm-logger if chosen), the files
+the run uses annotated into the log, the simulators, the onboard navigation
+filters (vehicles with `nav: ekf`), the managers; then the global clock starts.
+The mission ends when every vehicle's navigator is done, aborted or failed, or at
+the time limit; Ctrl-C, SIGTERM or any process dying ends it too. Everything is
+stopped a kind at a time (managers, filters, simulators), the recorder last, so
+the log holds the end.
+
+A scenario's planned faults (`faults:`, tools/scenario/faults.py) are applied
+at their sim time: a lost vehicle's processes are killed and it counts as
+over ("lost"), not as a death.
+
+This module is what other front ends reuse (the host agents' part,
+tools/hosts/agent_part.py, starts the same processes); the command line is
+tools/launch/cli.py, which may import the agents, never the other way round.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import time
+from pathlib import Path
+
+from auv import lockstep_t
+from auvlcm import programs
+from auvlcm.chanfilter import FilteredLcm
+from auvlcm.paths import ROOT
+from auvlcm.url import with_receive_buffer
+from sim.multihil.lockstep import lockstep_msg
+from tools.launch.annotate import Annotator
+from tools.launch.fault_step import FaultStepper, takes_part
+from tools.launch.lockstep_names import participants
+from tools.launch.mission_watch import MissionWatch
+from tools.launch.procs import TIER_FILTER, TIER_MANAGER, TIER_SIMULATOR, Child, stop_together
+from tools.launch.recorder_cmd import recorder_cmd, recorder_takes_part
+from tools.launch.worldclock import WorldClock
+from tools.scenario.scenario_file import Scenario
+
+# the exit status of each result (auv-launch exits with it)
+EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
+STARTUP_TIMEOUT_S = 90.0
+CHILD_CHECK_S = 0.05  # how often the loops look for a child that exited
+
+
+def nav_configs(
+    sc: Scenario, sim_configs: dict[str, Path], out: Path, build: Path
+) -> tuple[dict[str, Path], list[str]]:
+    """The nav config of each vehicle flown on the onboard filter (`nav: ekf`):
+    the scenario's file, or one derived from the vehicle's merged simulator
+    configuration (python/tools/nav/navconf.py); each checked by auv-nav itself."""
+    from sim.config import load
+    from tools.nav.navconf import nav_config_text
+
+    paths, errors = {}, []
+    for v in sc.vehicles:
+        if v.nav.source != "ekf" or v.id not in sim_configs:
+            continue
+        path = v.nav.config
+        if path is None:
+            path = out / f"{v.id}.nav"
+            path.write_text(nav_config_text(load(sim_configs[v.id])))
+        run = subprocess.run(
+            [str(build / "bin" / "auv-nav"), "--config", str(path), "--check"], capture_output=True, text=True
+        )
+        if run.returncode != 0:
+            errors.append(f"{v.where}: {v.id}.nav: {path} does not load:")
+            errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
+        paths[v.id] = path
+    return paths, errors
+
+
+def check_plans(sc: Scenario, build: Path) -> list[str]:
+    """`chasm check` every plan with its parameters before anything starts."""
+    errors, done = [], set()
+    for v in sc.vehicles:
+        for m in v.managers:
+            key = (m.plan, tuple(sorted(m.params.items())), tuple(m.plugin_path))
+            if key in done:
+                continue
+            done.add(key)
+            cmd = [str(build / "bin" / "chasm"), "check"]
+            for d in m.plugin_path or [build / "plugins"]:
+                cmd += ["-P", str(d)]
+            for k, val in m.params.items():
+                cmd += ["-D", f"{k}={val}"]
+            run = subprocess.run(cmd + [str(m.plan)], capture_output=True, text=True)
+            if run.returncode != 0:
+                errors.append(f"{m.where}: {v.id}.{m.name}: plan {m.plan} does not load:")
+                errors += ["  " + ln for ln in (run.stdout + run.stderr).strip().splitlines()]
+    return errors
+
+
+class Launcher:
+    def __init__(
+        self,
+        sc: Scenario,
+        args,
+        url: str,
+        sim_configs: dict[str, Path],
+        nav_configs: dict[str, Path] | None = None,
+        agents: bool = False,
+    ) -> None:
+        self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
+        self.nav_configs = nav_configs or {}
+        self.host = args.host
+        self.out: Path = args.out
+        self.build = args.build
+        # filtered: the launcher wakes for what it watches, not for every sensor
+        self.lc = FilteredLcm(self.child_url)
+        self.mine = sc.vehicles_on(self.host)
+        self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
+        # with --agents the log host's agent records, not this process
+        self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
+        self.watch = MissionWatch(self.lc, sc)
+        # with agents the log host's agent records what the scenario names
+        self.recorder = sc.log_recorder if agents else (args.recorder or sc.log_recorder)
+        # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it;
+        # auv-recorder takes a burst whole
+        self.notes = Annotator(self.lc, f"launcher@{self.host or 'all'}", ROOT, paced=self.recorder == "lcm-logger")
+        self.clock = (
+            WorldClock(
+                self.lc,
+                sc.time.mode,
+                args.warp or sc.time.warp,
+                sc.time.step_s,
+                participants(sc, recorder_takes_part(sc, self.recorder)),
+                before_step=self.apply_faults,
+            )
+            if self.own_clock
+            else None
+        )
+        self.logger: Child | None = None
+        self._next_child_check = 0.0
+        self.children: list[Child] = []
+        self.stop_reason = ""
+        self.faults = list(sc.faults)  # planned, in time order (tools/scenario/faults.py)
+        # a world stepped by the simulators: the launcher takes part, to kill between steps
+        self.fault_step = (
+            FaultStepper(self.lc, self._lost_by, self._settled, self.apply_faults)
+            if not self.clock and takes_part(sc, self.host, sim_configs.values())
+            else None
+        )
+        self.log_path = self.out / sc.log_file
+        self.recorder_stats = self.out / "recorder.json"
+
+    @property
+    def child_url(self) -> str:
+        """Every process hears the whole world: a large receive buffer, so a busy
+        moment does not make the kernel drop what the process has not read yet."""
+        return with_receive_buffer(self.url)
+
+    # ------------------------------------------------------------ start
+    def _start(self, child: Child) -> Child:
+        child.start()
+        self.children.append(child)
+        self.notes.event("start", f"{child.name} pid {child.pid}: {' '.join(child.cmd)}", utime=self.watch.sim_time_us)
+        return child
+
+    def start_logger(self) -> None:
+        """The recorder: auv-recorder (c/recorder, loses nothing it receives,
+        counts what it could not) or lcm-logger (its subscription queue holds
+        30 messages and drops 1-2 % of a busy fast-time run)."""
+        self.log_path.unlink(missing_ok=True)
+        self.recorder_stats.unlink(missing_ok=True)
+        cmd = recorder_cmd(self.recorder, self.url, self.log_path, self.recorder_stats, self.build)
+        self.logger = Child("logger", cmd, self.out / "logger.out")
+        self.logger.start()
+        # lcm-logger: listening once its file exists; recording once our probe shows up in
+        # it. auv-recorder: recording once the first message is in the file (its own
+        # lockstep registration, sent as it starts), asked every 10 ms.
+        deadline = time.monotonic() + 20
+        noted = False
+        while time.monotonic() < deadline and self.logger.poll() is None:
+            if self.log_path.exists():
+                if not noted:
+                    self.notes.event("logger", f"{self.recorder} pid {self.logger.pid} recording {self.log_path.name}")
+                    noted = True
+                if self.recorder == "lcm-logger":
+                    time.sleep(0.3)
+                if self.log_path.stat().st_size > 0:
+                    return
+            time.sleep(0.01 if self.recorder == "auv-recorder" else 0.05)
+        raise RuntimeError(f"{self.recorder} did not start recording: {self.logger.tail()}")
+
+    def recorder_counts(self) -> dict | None:
+        """auv-recorder's counts at exit (received, written, dropped, missed), if it ran."""
+        try:
+            return json.loads(self.recorder_stats.read_text())
+        except (OSError, ValueError):
+            return None
+
+    def annotate(self) -> None:
+        from auv import log_annotation_t as A
+
+        self.notes.note(A.KIND_SCENARIO, self.sc.path.name, self.sc.text)
+        if self.sc.survey is not None:
+            self.notes.note(A.KIND_NOTE, self.sc.survey.name, self.sc.survey.read_text())
+        for v in self.sc.vehicles:
+            if v.id in self.sim_configs:
+                cfg = self.sim_configs[v.id]
+                self.notes.note(A.KIND_SCENARIO, cfg.name, cfg.read_text(), v.id)
+            if v.id in self.nav_configs:
+                nav = self.nav_configs[v.id]
+                self.notes.note(A.KIND_SCENARIO, nav.name, nav.read_text(), v.id)
+            for m in v.managers:
+                self.notes.plan(m.plan, v.id)
+                self.notes.binding(m.bind, v.id)
+        self.notes.types()
+
+    def sim_cmd(self, vid: str) -> list[str]:
+        # On the launcher's clock every simulator runs lockstep; otherwise their configuration decides.
+        clock = "lockstep" if self.sc.time.source == "launcher" else None
+        return programs.simulator(self.sim_configs[vid], lcm_url=self.child_url, clock=clock)
+
+    def manager_cmd(self, vid: str, m) -> list[str]:
+        return programs.chasm_manager(
+            self.build,
+            plan=m.plan,
+            bind=m.bind,
+            vehicle=vid,
+            name=m.name,
+            lcm_url=self.child_url,
+            rate_hz=m.rate_hz,
+            status_rate_hz=m.status_rate_hz,
+            plugin_path=m.plugin_path or [self.build / "plugins"],
+            params=m.params,
+        )
+
+    def nav_cmd(self, v) -> list[str]:
+        return programs.auv_nav(
+            self.build, config=self.nav_configs[v.id], vehicle=v.id, lcm_url=self.child_url, rate_hz=v.nav.rate_hz
+        )
+
+    def start_all(self) -> None:
+        if self.own_log:
+            self.start_logger()
+            self.annotate()
+        for v in self.mine:
+            self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out", tier=TIER_SIMULATOR))
+        for v in self.mine:  # the onboard filter, before the managers that read it
+            if v.id in self.nav_configs:
+                self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out", tier=TIER_FILTER))
+        for v in self.mine:
+            for m in v.managers:
+                out = self.out / f"{v.id}.{m.name}.out"
+                self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), out, tier=TIER_MANAGER))
+
+    # ------------------------------------------------------------ supervise
+    def _dead(self) -> Child | None:
+        return next((c for c in self.children if not c.stopping and c.poll() is not None), None)
+
+    def _dead_by_now(self) -> Child | None:
+        """_dead(), asked at most every CHILD_CHECK_S: the loops turn at every
+        message, and a poll of every child each turn cost a system call per
+        child per wake-up (5 per vehicle)."""
+        now = time.monotonic()
+        if now < self._next_child_check:
+            return None
+        self._next_child_check = now + CHILD_CHECK_S
+        return self._dead()
+
+    def wait_ready(self, stop) -> str:
+        """Hold time before step 0 until every participant of the world registered
+        (the clock's host), or until every process reported (the other hosts)."""
+        deadline = time.monotonic() + STARTUP_TIMEOUT_S
+        ready = self.clock.ready if self.clock else self.watch.all_ready
+        while time.monotonic() < deadline:
+            if stop():
+                return "interrupted"
+            if self._dead_by_now():
+                return "died"
+            self.watch.handle(0.1)
+            if self.fault_step:
+                self.fault_step.poll()  # registers before step 0
+            if ready():
+                return ""
+        missing = self.clock.not_ready() if self.clock else self.watch.not_ready()
+        self.stop_reason = f"not ready after {STARTUP_TIMEOUT_S:.0f} s: {', '.join(missing)}"
+        return "died"
+
+    def supervise(self, stop) -> str:
+        t = self.sc.time
+        wall0 = time.monotonic()
+        next_progress = wall0 + self.args.progress
+        if self.clock:
+            self.clock.start()
+        while True:
+            if stop():
+                return "interrupted"
+            if self._dead_by_now():
+                return "died"
+            if self.clock:
+                self.clock.advance()
+            # blocks until a message comes (a report, a status) or the next step is due
+            self.watch.handle(self.clock.wait_s() if self.clock else 0.1)
+            if self.fault_step:
+                self.fault_step.poll()
+            elif not self.clock:  # free-running: when the watch sees the time
+                self.apply_faults(self.watch.sim_time_us)
+            outcome = self.watch.outcome()
+            if outcome:
+                return outcome
+            now = time.monotonic()
+            if self.watch.sim_time_us / 1e6 >= t.limit_s:
+                self.stop_reason = f"mission time limit {t.limit_s:g} s reached"
+                return "time limit"
+            if t.wall_limit_s and now - wall0 >= t.wall_limit_s:
+                self.stop_reason = f"wall-clock limit {t.wall_limit_s:g} s reached"
+                return "time limit"
+            if self.args.progress > 0 and now >= next_progress:
+                next_progress = now + self.args.progress
+                sim_s = self.watch.sim_time_us / 1e6
+                waits = self.clock.waiting_for() if self.clock else []
+                print(
+                    f"launch: t={sim_s:8.1f} s (x{sim_s / max(now - wall0, 1e-9):.1f})  "
+                    + "  ".join(self.watch.progress())
+                    + (f"  (step waits for {', '.join(waits)})" if waits else ""),
+                    flush=True,
+                )
+
+    def _lost_by(self, t_us: int) -> set[str]:
+        """The participants of the vehicles lost at or before t_us (sim time)."""
+        vids = {f.vehicle for f in self.faults if f.do == "lose" and f.at_s * 1e6 <= t_us + 0.5}
+        return {n for n in participants(self.sc, False) if n.split(".", 1)[0] in vids}
+
+    def _settled(self, name: str) -> bool:
+        """That participant's process is not running here (gone, or on another host)."""
+        c = next((c for c in self.children if c.name == name), None)
+        return c is None or c.poll() is not None
+
+    def apply_faults(self, t_us: int) -> None:
+        """The planned faults due by sim time t_us (docs/scenarios.md, "Faults").
+        Every host's launcher applies each one to its watch and clock; the host
+        that runs the vehicle kills its processes. Lockstep: called between the
+        steps (tools/launch/fault_step.py), t_us the first step the vehicle misses."""
+        while self.faults and self.faults[0].at_s * 1e6 <= t_us + 0.5:
+            f = self.faults.pop(0)
+            t = t_us / 1e6
+            if f.do != "lose":  # the simulator applies it (its configuration has the time)
+                text = f"{f.vehicle} {f.do} at t={t:.1f} s (planned at {f.at_s:g} s, {f.where})"
+                print(f"launch: fault: {text}", flush=True)
+                self.notes.event("fault", text, vehicle=f.vehicle, utime=t_us)
+                continue
+            prefix = f"{f.vehicle}."
+            names = {n for n in participants(self.sc, False) if n.startswith(prefix)}
+            killed = [c for c in self.children if c.name.startswith(prefix) and not c.stopping]
+            for c in killed:
+                c.kill()
+            if self.clock:
+                self.clock.lose(names)
+            for n in sorted(names):  # a world stepped by the simulators stops waiting for them too
+                self.lc.publish("SIM.LOCKSTEP", lockstep_msg(n, lockstep_t.KIND_LEAVE, 0, 0).encode())
+            self.watch.lose(f.vehicle, t)
+            text = (
+                f"{f.vehicle} lost at t={t:.1f} s (planned at {f.at_s:g} s, "
+                f"{f.where}): killed {', '.join(c.name for c in killed) or 'nothing on this host'}"
+            )
+            print(f"launch: fault: {text}", flush=True)
+            self.notes.event("fault", text, vehicle=f.vehicle, utime=t_us)
+
+    def stop_all(self, result: str) -> None:
+        if self.fault_step:
+            self.fault_step.close()  # the world must not wait for the launcher while it stops
+        dead = self._dead()
+        if dead is not None:
+            self.stop_reason = (
+                f"{dead.name} (pid {dead.pid}) exited with status {dead.poll()}; last output:\n{dead.tail()}"
+            )
+        codes = stop_together(self.children)
+        for c in reversed(self.children):
+            if c is not dead:
+                self.notes.event(
+                    "exit", f"{c.name} pid {c.pid} stopped, status {codes[c.name]}", utime=self.watch.sim_time_us
+                )
+        self.notes.event("end", json.dumps(self.summary(result)), utime=self.watch.sim_time_us)
+        if self.logger is not None:
+            # lcm-logger flushes every 100 ms: let the end reach the file (auv-recorder
+            # itself takes in everything on its way before it writes out and exits)
+            if self.recorder == "lcm-logger":
+                time.sleep(0.3)
+            self.logger.stop()
+
+    def summary(self, result: str) -> dict:
+        vehicles = self.watch.vehicle_summary()
+        # an aborted or failed mission names what fired: "AUV1 nav_stale; AUV3 leak"
+        causes = "; ".join(f"{vid} {v['cause']}" for vid, v in vehicles.items() if v["cause"])
+        return {
+            "scenario": self.sc.name,
+            "host": self.host,
+            "outcome": result,
+            "exit_code": EXIT[result],
+            "reason": self.stop_reason or causes,
+            "sim_time_s": self.watch.sim_time_us / 1e6,
+            "vehicles": vehicles,
+            "log": str(self.log_path) if self.own_log else None,
+            "dropped": self.watch.dropped(),
+        }

@@ -1,0 +1,1 @@
+"""Log tools (`auv-lcmlog`): summary, csv, npz, annotations, state timelines, MCAP for Foxglove."""

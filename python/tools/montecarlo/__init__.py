@@ -1,0 +1,1 @@
+"""Monte Carlo: one scenario over many seeds, locally or on a Dask cluster (`auv-montecarlo`)."""

@@ -1,0 +1,95 @@
+"""auvlcm.programs builds each program's command line in one place: every flag a
+builder writes is one the program itself documents in its --help, and the LCM URL
+is `--lcm-url` everywhere (the old spelling `--url` still understood)."""
+
+from __future__ import annotations
+
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import lcm
+import pytest
+from conftest import BUILD, ROOT, c_program
+
+from auvlcm import programs
+
+
+def _flags(cmd: list[str]) -> set[str]:
+    return {a.split("=")[0] for a in cmd[1:] if a.startswith("-") and not re.fullmatch(r"-?[\d.]+", a)}
+
+
+def _help(cmd: list[str]) -> str:
+    p = subprocess.run([*cmd, "--help"], capture_output=True, text=True, timeout=60)
+    return p.stdout + p.stderr
+
+
+def _every_flag_documented(cmd: list[str], help_cmd: list[str]) -> None:
+    text = _help(help_cmd)
+    missing = sorted(f for f in _flags(cmd) if not re.search(re.escape(f) + r"\b", text))
+    assert not missing, f"{help_cmd[-1]}: its --help does not know {missing}:\n{text}"
+
+
+def test_manager_nav_recorder_and_simulator_builders_use_documented_flags(tmp_path):
+    manager = programs.chasm_manager(
+        BUILD,
+        plan="p.chasm",
+        bind="b.bind",
+        vehicle="AUV1",
+        name="PILOT",
+        lcm_url="udpm://239.255.76.67:7667?ttl=0",
+        rate_hz=20,
+        status_rate_hz=2,
+        plugin_path=[BUILD / "plugins"],
+        params={"depth_kp": 0.5},
+    )
+    assert manager[0] == str(c_program("bin/chasm-manager"))
+    assert manager[manager.index("--lcm-url") + 1] == "udpm://239.255.76.67:7667?ttl=0"
+    assert manager[manager.index("-D") + 1] == "depth_kp=0.5" and manager[manager.index("--rate") + 1] == "20"
+    _every_flag_documented(manager, [manager[0]])
+    nav = programs.auv_nav(BUILD, config="a.nav", vehicle="AUV1", lcm_url="udpm://x", rate_hz=20)
+    _every_flag_documented(nav, [str(c_program("bin/auv-nav"))])
+    rec = programs.auv_recorder(BUILD, lcm_url="udpm://239.255.76.67:7667?ttl=0", log=tmp_path / "l", stats="s")
+    assert "recv_buf_size=" in rec[rec.index("--lcm-url") + 1]
+    _every_flag_documented(rec, [str(c_program("bin/auv-recorder"))])
+    sim = programs.simulator("v.yaml", lcm_url="udpm://x", clock="scaled", warp=4, duration=60)
+    assert sim[:3] == [sys.executable, "-m", "sim"] and sim[sim.index("--warp") + 1] == "4"
+    _every_flag_documented(sim, sim[:3])
+    logger = programs.lcm_logger(Path(lcm.LCM_BIN_DIR).resolve(), lcm_url="udpm://x", log="l")
+    _every_flag_documented(logger, [logger[0]])
+
+
+@pytest.mark.parametrize("program", ["chasm-manager", "auv-nav", "auv-recorder"])
+def test_c_programs_document_lcm_url(program):
+    assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])
+
+
+def test_python_commands_take_lcm_url_and_the_old_spelling():
+    out = _help([sys.executable, "-m", "tools.console.auvctl"])
+    assert "--lcm-url" in out and "--url " not in out
+    p = subprocess.run(
+        [sys.executable, "-m", "tools.console.auvctl", "--url", "udpm://239.255.76.67:7667?ttl=3", "pause", "AUV1"],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    # the old spelling is taken (and named), and the URL it carried is checked like any other
+    assert "--url is now spelled --lcm-url" in p.stderr and "ttl=3" in p.stderr and p.returncode != 0
+
+
+def test_no_program_spells_the_url_flag_the_old_way():
+    """The docs, tests and benches write --lcm-url; --url is only the old spelling
+    the programs still parse."""
+    files = subprocess.run(["git", "ls-files"], cwd=ROOT, capture_output=True, text=True, check=True).stdout.split()
+    offenders = []
+    for f in files:
+        if f.endswith((".py", ".md", ".yaml", ".sh")) and f not in (
+            "tests/test_programs.py",
+            "python/auvlcm/programs.py",
+        ):
+            text = (ROOT / f).read_text(errors="replace")
+            offenders += [
+                f"{f}:{n}" for n, line in enumerate(text.splitlines(), 1) if re.search(r"[\"' ]--url\b", line)
+            ]
+    assert not offenders, offenders
