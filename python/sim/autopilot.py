@@ -1,12 +1,26 @@
-"""A minimal heading / depth / pitch autopilot in the actuators_t sign convention.
+"""A minimal stateless heading / depth / pitch controller for scripting survey logs.
 
-Not the project's pilot (that is a CHASM manager, whose control law with the
-plan's gains is sim.pilot_model, used by the validation): a stateless PD that
-tools and tests call at any rate to script a vehicle (tools/nav/survey_pilot.py,
-tests/sim/test_sim_sender.py). It holds heading well; with no integrator it
-leaves the positively buoyant REMUS some way shallow of a depth target.
-Positive rudder turns the bow to starboard; positive stern plane pitches the
-bow down.
+Not the project's pilot. The pilot is a CHASM manager (c/plugins/pilot,
+missions/pilot/pilot.chasm), and whatever flies a vehicle in-process in
+its place (the validation report, tests) flies its own C loops through
+sim.pilot. This PD is a deliberately different controller with one user,
+tools/nav/survey_pilot.py, which makes the navigation test logs
+(tools/nav/survey_log.py), and it stays for these reasons:
+
+- survey_pilot asks for what the pilot would refuse: 20 deg bow-up to
+  surface, where the plan clamps pitch commands to its max_pitch (15 deg),
+  then runs awash on the surface for GPS fixes.
+- survey_pilot switches between the depth and pitch loops from one call
+  to the next, and calls at whatever rate its NAV arrives. This PD has no
+  state, so it copes. The pilot's loops integrate and slew, and would need
+  restarting on every switch and the time between calls.
+- The navigation tests and bench (tests/nav, bench/nav_bench.py) are
+  measured on the trajectories it flies. Changing the controller would
+  re-baseline those figures, which is a change of its own.
+
+It holds heading well; with no integrator it leaves the positively buoyant
+REMUS some way shallow of a depth target. Positive rudder turns the bow to
+starboard; positive stern plane pitches the bow down (actuators_t).
 """
 
 from __future__ import annotations

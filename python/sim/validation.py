@@ -1,8 +1,8 @@
 """Validation runs on the bare physics: no LCM, no clock, in-process.
 
 Each function flies one case (sim.model.VehicleModel, RK4 at DT) with the
-pilot's control law where a case needs it (sim.pilot_model, gains from
-missions/pilot/pilot.chasm) and returns what it measured. The report that
+pilot where a case needs it (sim.pilot: the pilot plugin's own C loops,
+gains from missions/pilot/pilot.chasm) and returns what it measured. The report that
 holds these against published and theoretical figures is sim.validate;
 tests/sim/test_validation.py runs a fast subset.
 """
@@ -17,7 +17,7 @@ from sim.actuators import Command
 from sim.dynamics import Dynamics
 from sim.environment import Environment, EnvParams
 from sim.model import VehicleModel
-from sim.pilot_model import PilotModel
+from sim.pilot import Pilot
 from sim.vehicle import REMUS100, VehicleParams
 
 DT = 0.02
@@ -112,16 +112,16 @@ def fly(
     rudder: float | None = None,
     plane: float | None = None,
     pitch: float | None = None,
-    pilot: PilotModel | None = None,
+    pilot: Pilot | None = None,
 ) -> np.ndarray:
     """Fly for `seconds`; a fixed value (rudder, plane, rpm) overrides the
     pilot's loop for that actuator. The pilot reads depth as the pressure
     gauge does (the waves' dynamic pressure included). Returns the history
     (columns T..ZP)."""
     if pilot is None:
-        pilot = PilotModel(dt=DT * PILOT_EVERY)
+        pilot = Pilot(dt=DT * PILOT_EVERY)
         x = m.dyn.x
-        pilot.start(x[4], m.act.stern, m.act.rpm)
+        pilot.start(x[4], m.act.stern, m.act.rpm, m.act.rudder)
     n = int(round(seconds / m.dt))
     hist = np.empty((n, 16))
     tr = m.truth()

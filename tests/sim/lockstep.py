@@ -1,8 +1,8 @@
 """A test that is the world's clock and the vehicle's pilot at once, over real LCM.
 
 The simulator runs in stepped mode; the test publishes SIM.CLOCK one step at
-a time and answers each step's NAV with an actuator command (sim.pilot_model:
-the pilot's control law with the plan's gains) before the next step. The
+a time and answers each step's NAV with an actuator command (sim.pilot: the
+pilot plugin's C loops with the plan's gains) before the next step. The
 loop is then exact whatever the CPU load: the published REMUS 100 is
 open-loop unstable in yaw and pitch, and a late controller loses it.
 """
@@ -20,11 +20,11 @@ class LockstepPilot:
     def __init__(
         self, lc: lcm.LCM, vehicle: str, depth_m: float, heading_rad: float = 0.0, rpm: float = 1500.0
     ) -> None:
-        from sim.pilot_model import PilotModel
+        from sim.pilot import Pilot
 
         self.lc, self.vehicle = lc, vehicle
         self.depth, self.heading, self.rpm = depth_m, heading_rad, rpm
-        self.ap = PilotModel(dt=0.04)
+        self.ap = Pilot(dt=0.04)
         self.navs: list = []
         Receiver(lc).subscribe(f"{vehicle}.NAV", nav_solution_t, self._on_nav, queue_capacity=1000)
 

@@ -22,9 +22,9 @@ from auvlcm.offline import OfflineLcm
 from auvlcm.sender import ThreadedLcm, library_path
 from auvlcm.url import with_receive_buffer
 from sim.actuators import Command
-from sim.autopilot import Autopilot
 from sim.config import load
 from sim.hil import Simulator
+from sim.pilot import Pilot
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = ROOT / "missions" / "sim" / "remus100.yaml"
@@ -37,9 +37,12 @@ def _library():
 
 
 class Driven(Simulator):
-    """The simulator with sim.autopilot in the loop: dives to 25 m on heading 0.5 rad."""
+    """The simulator with the pilot (sim.pilot) in the loop, every physics step:
+    dives to 25 m on heading 0.5 rad."""
 
-    ap = Autopilot()
+    def __init__(self, *args, **kw) -> None:
+        super().__init__(*args, **kw)
+        self.ap = Pilot(dt=self.model.dt)
 
     def _check_stale(self) -> None:
         x = self.model.dyn.x
@@ -245,7 +248,7 @@ def test_same_seed_same_messages_another_seed_other_noise():
         "SIM.CLOCK",
     } <= channels
     assert a == b
-    # the autopilot steers by truth: the vehicle moves the same, the instruments differ
+    # the pilot steers by truth: the vehicle moves the same, the instruments differ
     truth = [d for ch, d in a if ch == "AUV1.TRUTH"]
     assert truth == [d for ch, d in c if ch == "AUV1.TRUTH"]
     for ch in ("AUV1.AHRS", "AUV1.NAV", "AUV1.DVL", "AUV1.DEPTH"):

@@ -15,7 +15,7 @@ from sim import validate
 from sim import validation as v
 from sim.actuators import Command
 from sim.model import VehicleModel
-from sim.pilot_model import PilotGains
+from sim.pilot import gain_names, plan_gains
 from sim.vehicle import REMUS100
 
 NEUTRAL = REMUS100.with_updates({"buoyancy_n": REMUS100.weight_n})
@@ -140,11 +140,12 @@ def test_level_trim_exists_from_1_to_2_3_mps_and_max_rpm_is_about_2_5_mps():
 
 
 def test_pilot_gains_come_from_the_plan_only(tmp_path):
-    g = PilotGains.from_plan()
+    g = plan_gains()
+    assert sorted(g) == sorted(gain_names())  # every gain the C loops take, no other
     text = (ROOT / "missions" / "pilot" / "pilot.chasm").read_text()
-    assert "param pitch_kd       = 8.0" in text and g.pitch_kd == 8.0
-    assert g.max_rudder == pytest.approx(math.radians(20.0))
+    assert "param pitch_kd       = 8.0" in text and g["pitch_kd"] == 8.0
+    assert g["max_rudder"] == pytest.approx(math.radians(20.0))
     short = tmp_path / "pilot.chasm"
     short.write_text("\n".join(line for line in text.splitlines() if not line.startswith("param depth_kp")))
     with pytest.raises(ValueError, match="depth_kp"):
-        PilotGains.from_plan(short)
+        plan_gains(short)

@@ -6,6 +6,10 @@
  * positive bow up, depth positive down, headings [0, 2pi) clockwise from
  * north. All values are SI (the plan loader converts).
  *
+ * The control law itself is pilot_law.h (pilot_loops.c), free of CHASM so
+ * that libauvpilot.so (c/pilotlib) runs the same code; this header adds the
+ * behaviors and the reading of their parameters.
+ *
  * The vertical behaviors share two loops, whose parameters sit in each
  * schema as one contiguous block (the *_PARAMS(base) macros below, entries
  * indexed from slot base) at an offset the behavior passes in:
@@ -16,8 +20,7 @@
 #define PILOT_H
 
 #include "chasm/chasm_plugin.h"
-#include "plugins/lib/pu_limit.h"
-#include "plugins/lib/pu_pid.h"
+#include "plugins/pilot/pilot_law.h"
 
 /* Everything the plugin's files share stays inside the plugin: only the
  * descriptor (CHASM_PLUGIN_EXPORT) is visible to the loader. */
@@ -42,17 +45,8 @@ enum { PL_KP, PL_KI, PL_KD, PL_MAX_PLANE, PL_PLANE_SLEW, PL_I_LIMIT, PL_COUNT };
     [(base) + PL_I_LIMIT] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(                                                 \
         "plane_i_limit", "rad", 0, 60 * PILOT_DEG, "largest stern plane the pitch integrator may hold (trim)")
 
-typedef struct {
-    pu_pid pid;
-} pilot_pitch_loop;
-
 /* Reads the pitch-loop block starting at slot base. */
-void pilot_pitch_config(const chasm_ctx *c, int base, pu_pid_config *out);
-/* Starts the loop so its first command continues from the current plane. */
-void pilot_pitch_start(pilot_pitch_loop *l, double current_plane);
-/* Stern plane for pitch_cmd given pitch and pitch rate q. */
-double pilot_pitch_step(pilot_pitch_loop *l, const pu_pid_config *cfg, double pitch_cmd, double pitch, double q,
-                        double dt);
+void pilot_pitch_gains_read(const chasm_ctx *c, int base, pilot_pitch_gains *out);
 
 /* ---- depth loop: depth target -> pitch command (then the pitch loop) */
 enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_TAU, DL_COUNT };
@@ -70,26 +64,8 @@ enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_T
     [(base) + DL_RATE_TAU] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE(                                                \
         "depth_rate_tau", "s", 0, 60, "low-pass time constant of the depth rate used by kd")
 
-typedef struct {
-    pu_pid pid;
-    pu_lowpass rate;            /* depth rate, differenced and filtered */
-    double last_depth;
-    int has_last_depth;
-    pilot_pitch_loop pitch;
-} pilot_depth_loop;
-
-typedef struct {
-    pu_pid_config depth, pitch;
-    double max_depth, rate_tau;
-} pilot_depth_config;
-
-void pilot_depth_config_read(const chasm_ctx *c, int depth_base, int pitch_base, pilot_depth_config *out);
-/* pitch0/plane0: the vehicle's pitch and the current plane command, so the
- * loops take over without a jump. */
-void pilot_depth_start(pilot_depth_loop *l, double pitch0, double plane0);
-/* Stern plane that brings depth to target. */
-double pilot_depth_step(pilot_depth_loop *l, const pilot_depth_config *cfg, double target, double depth,
-                        double pitch, double q, double dt);
+/* Reads the depth-loop block at depth_base and the pitch-loop block at pitch_base. */
+void pilot_depth_gains_read(const chasm_ctx *c, int depth_base, int pitch_base, pilot_depth_gains *out);
 
 /* ---- behaviors (one file each family) */
 extern const chasm_behavior_spec pilot_heading_behavior;

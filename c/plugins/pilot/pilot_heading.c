@@ -10,10 +10,7 @@
  * the turn rate keeps the sideslip small enough that the rudder never runs
  * out of authority against the Munk moment. The integrator (trim: the hull
  * needs about 1 degree of rudder to run straight) only runs within i_zone of
- * the heading, so a long turn does not load it. */
-#include <math.h>
-
-#include "plugins/lib/pu_angle.h"
+ * the heading, so a long turn does not load it. The law is pilot_loops.c. */
 #include "plugins/pilot/pilot.h"
 
 enum { HEADING, YAW_RATE, SETPOINT, RUDDER, KP, KI, KD, MAX_TURN_RATE, MAX_RUDDER, RUDDER_SLEW, I_LIMIT, I_ZONE,
@@ -40,40 +37,32 @@ static const chasm_param_spec params[NPARAMS] = {
 };
 
 typedef struct {
-    pu_pid pid;
+    pilot_heading_loop loop;
 } heading_state;
 
 static int start(chasm_ctx *c, void *st)
 {
     heading_state *s = st;
-    pu_pid_reset(&s->pid);
-    pu_pid_preset_output(&s->pid, chasm_read_double(c, RUDDER));
+    pilot_heading_start(&s->loop, chasm_read_double(c, RUDDER));
     return 0;
 }
 
 static chasm_status_code step(chasm_ctx *c, void *st)
 {
     heading_state *s = st;
-    double kp = chasm_param_double(c, KP), kd = chasm_param_double(c, KD);
-    double max_rudder = chasm_param_double(c, MAX_RUDDER);
-    pu_pid_config cfg = {
-        .kp = kp,
+    const pilot_heading_gains g = {
+        .kp = chasm_param_double(c, KP),
         .ki = chasm_param_double(c, KI),
-        .kd = kd,
-        .out_min = -max_rudder,
-        .out_max = max_rudder,
-        .rate_max = chasm_param_double(c, RUDDER_SLEW),
+        .kd = chasm_param_double(c, KD),
+        .max_turn_rate = chasm_param_double(c, MAX_TURN_RATE),
+        .max_rudder = chasm_param_double(c, MAX_RUDDER),
+        .rudder_slew = chasm_param_double(c, RUDDER_SLEW),
         .i_limit = chasm_param_double(c, I_LIMIT),
         .i_zone = chasm_param_double(c, I_ZONE),
     };
-    double e = pu_angle_diff(chasm_read_double(c, SETPOINT), chasm_read_double(c, HEADING));
-    /* Limit the error the P term sees so kp e never asks for more than
-     * max_turn_rate: kp e_lim = kd max_turn_rate. */
-    double e_lim = kp > 0.0 ? pu_clamp_sym(e, kd * chasm_param_double(c, MAX_TURN_RATE) / kp) : e;
-    if (e_lim != e)
-        cfg.ki = 0.0; /* outside the linear region: never integrate (see i_zone) */
-    double r = chasm_read_double(c, YAW_RATE);
-    chasm_write_double(c, RUDDER, pu_pid_step(&s->pid, &cfg, e_lim, isfinite(r) ? -r : NAN, 0.0, c->dt_s));
+    double rudder = pilot_heading_step(&s->loop, &g, chasm_read_double(c, SETPOINT), chasm_read_double(c, HEADING),
+                                       chasm_read_double(c, YAW_RATE), c->dt_s);
+    chasm_write_double(c, RUDDER, rudder);
     return CHASM_RUNNING;
 }
 

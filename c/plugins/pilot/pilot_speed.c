@@ -5,7 +5,8 @@
  *
  * The feed-forward term gives nearly the right rpm at once (REMUS 100: about
  * 1000 rpm per m/s); the PI removes what is left (trim drag, a current). rpm
- * values are plain numbers in rev/min, as in actuators_t.prop_rpm. */
+ * values are plain numbers in rev/min, as in actuators_t.prop_rpm. The law
+ * is pilot_loops.c. */
 #include <stdio.h>
 
 #include "plugins/pilot/pilot.h"
@@ -18,7 +19,7 @@
 #define PROP_OUT CHASM_WRITE("prop", CHASM_DOUBLE, "", "actuators.prop_rpm", "prop command [rpm]")
 
 typedef struct {
-    pu_pid pid;
+    pilot_prop_loop loop;
 } prop_state;
 
 /* min_rpm <= max_rpm is a relation between two parameters, which the loader
@@ -32,8 +33,7 @@ static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const
         snprintf(why, sizeof why, "min_rpm (%g) is above max_rpm (%g)", lo, hi);
         return pilot_reject(c, name, why);
     }
-    pu_pid_reset(&s->pid);
-    pu_pid_preset_output(&s->pid, chasm_read_double(c, prop_slot));
+    pilot_prop_start(&s->loop, chasm_read_double(c, prop_slot));
     return 0;
 }
 
@@ -62,32 +62,17 @@ static int speed_start(chasm_ctx *c, void *st) { return prop_start(c, st, S_MIN_
 static chasm_status_code speed_step(chasm_ctx *c, void *st)
 {
     prop_state *s = st;
-    double sp = chasm_read_double(c, S_SETPOINT);
-    pu_pid_config cfg = {
+    const pilot_prop_gains g = {
+        .rpm_per_mps = chasm_param_double(c, S_FF),
         .kp = chasm_param_double(c, S_KP),
         .ki = chasm_param_double(c, S_KI),
-        .out_min = chasm_param_double(c, S_MIN_RPM),
-        .out_max = chasm_param_double(c, S_MAX_RPM),
-        .rate_max = chasm_param_double(c, S_RPM_SLEW),
         .i_limit = chasm_param_double(c, S_I_LIMIT),
+        .min_rpm = chasm_param_double(c, S_MIN_RPM),
+        .max_rpm = chasm_param_double(c, S_MAX_RPM),
+        .rpm_slew = chasm_param_double(c, S_RPM_SLEW),
     };
-    double rpm;
-    if (chasm_read_int(c, S_REFERENCE) == 1) {
-        /* through the water: the calibrated propeller law is the speed through
-         * the water; closing the loop on the (over-ground) navigation speed
-         * would fight or ride a current. No stored integral either. */
-        s->pid.integral = 0.0;
-        cfg.kp = cfg.ki = 0.0;
-    }
-    if (!(sp > 0.0)) {
-        /* stop means stop: no PI fighting a drifting vehicle, no stored integral */
-        s->pid.integral = 0.0;
-        cfg.kp = cfg.ki = 0.0;
-        rpm = pu_pid_step(&s->pid, &cfg, 0.0, 0.0, 0.0, c->dt_s);
-    } else {
-        double e = sp - chasm_read_double(c, S_SPEED);
-        rpm = pu_pid_step(&s->pid, &cfg, e, 0.0, chasm_param_double(c, S_FF) * sp, c->dt_s);
-    }
+    double rpm = pilot_speed_step(&s->loop, &g, chasm_read_double(c, S_SETPOINT), chasm_read_double(c, S_SPEED),
+                                  chasm_read_int(c, S_REFERENCE) == 1, c->dt_s);
     chasm_write_double(c, S_PROP, rpm);
     return CHASM_RUNNING;
 }
@@ -111,13 +96,12 @@ static int rpm_start(chasm_ctx *c, void *st) { return prop_start(c, st, R_MIN_RP
 static chasm_status_code rpm_step(chasm_ctx *c, void *st)
 {
     prop_state *s = st;
-    pu_pid_config cfg = {
-        .out_min = chasm_param_double(c, R_MIN_RPM),
-        .out_max = chasm_param_double(c, R_MAX_RPM),
-        .rate_max = chasm_param_double(c, R_RPM_SLEW),
+    const pilot_prop_gains g = {
+        .min_rpm = chasm_param_double(c, R_MIN_RPM),
+        .max_rpm = chasm_param_double(c, R_MAX_RPM),
+        .rpm_slew = chasm_param_double(c, R_RPM_SLEW),
     };
-    /* a pure feed-forward PID: limits and slew only */
-    chasm_write_double(c, R_PROP, pu_pid_step(&s->pid, &cfg, 0.0, 0.0, chasm_read_double(c, R_SETPOINT), c->dt_s));
+    chasm_write_double(c, R_PROP, pilot_rpm_step(&s->loop, &g, chasm_read_double(c, R_SETPOINT), c->dt_s));
     return CHASM_RUNNING;
 }
 

@@ -39,8 +39,8 @@ static int depth_start(chasm_ctx *c, void *st)
 static chasm_status_code depth_step(chasm_ctx *c, void *st)
 {
     depth_state *s = st;
-    pilot_depth_config cfg;
-    pilot_depth_config_read(c, D_LOOP, D_PITCH_LOOP, &cfg);
+    pilot_depth_gains cfg;
+    pilot_depth_gains_read(c, D_LOOP, D_PITCH_LOOP, &cfg);
     double plane = pilot_depth_step(&s->loop, &cfg, chasm_read_double(c, D_SETPOINT), chasm_read_double(c, D_DEPTH),
                                     chasm_read_double(c, D_PITCH), chasm_read_double(c, D_Q), c->dt_s);
     chasm_write_double(c, D_PLANE, plane);
@@ -97,8 +97,8 @@ static int altitude_start(chasm_ctx *c, void *st)
 static chasm_status_code altitude_step(chasm_ctx *c, void *st)
 {
     altitude_state *s = st;
-    pilot_depth_config cfg;
-    pilot_depth_config_read(c, A_LOOP, A_PITCH_LOOP, &cfg);
+    pilot_depth_gains cfg;
+    pilot_depth_gains_read(c, A_LOOP, A_PITCH_LOOP, &cfg);
     double depth = chasm_read_double(c, A_DEPTH), altitude = chasm_read_double(c, A_ALTITUDE);
     double dt = c->dt_s;
     if (isfinite(depth) && isfinite(altitude) && altitude >= 0.0) {
@@ -154,11 +154,11 @@ static int pitch_start(chasm_ctx *c, void *st)
 static chasm_status_code pitch_step(chasm_ctx *c, void *st)
 {
     pitch_state *s = st;
-    pu_pid_config cfg;
-    pilot_pitch_config(c, P_LOOP, &cfg);
-    double cmd = pu_clamp_sym(chasm_read_double(c, P_SETPOINT), chasm_param_double(c, P_MAX_PITCH));
-    double plane = pilot_pitch_step(&s->loop, &cfg, cmd, chasm_read_double(c, P_PITCH), chasm_read_double(c, P_Q),
-                                    c->dt_s);
+    pilot_pitch_gains cfg;
+    pilot_pitch_gains_read(c, P_LOOP, &cfg);
+    double plane = pilot_pitch_hold(&s->loop, &cfg, chasm_param_double(c, P_MAX_PITCH),
+                                    chasm_read_double(c, P_SETPOINT), chasm_read_double(c, P_PITCH),
+                                    chasm_read_double(c, P_Q), c->dt_s);
     chasm_write_double(c, P_PLANE, plane);
     return CHASM_RUNNING;
 }
