@@ -11,8 +11,13 @@
  * the recorder is a participant (SIM.<NAME>, the managers' lockstep code):
  * it reports a step done once it has taken in everything received before
  * that step's clock, and holds time while its queue is over half full.
+ * The record ends at the mission's end: once the launcher's annotation
+ * `mission end` (SIM.ANNOTATION, KIND_EVENT) came, only annotations are
+ * written (the launcher's notes of the stop, its summary); what the world
+ * still sends while it is stopped (repeated lockstep reports, leaves, health)
+ * is counted as after_end, not recorded (docs/scenarios.md, "End").
  * Counts: received, written, dropped (its own queue full), missed (datagrams
- * the kernel dropped at its socket), printed at exit, in --stats and each
+ * the kernel dropped at its socket), after_end, printed at exit, in --stats and each
  * health period on SIM.HEALTH. Output: an ordinary LCM event log.
  * Exit: 0 ok, 1 could not record (or a write failed), 2 usage. */
 #include <errno.h>
@@ -24,6 +29,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "auv/auv_log_annotation_t.h"
 #include "auv/auv_sim_clock_t.h"
 #include "managers/mgr_lockstep.h"
 #include "recorder/rec_health.h"
@@ -49,7 +55,9 @@ typedef struct {
     rec_writer w;
     rec_socket sock;
     mgr_lockstep ls;
-    int64_t received;
+    int64_t received;           /* taken in for the record (not after the end) */
+    int64_t after_end;          /* received after the mission's end mark, not recorded */
+    int ended;                  /* the launcher's `mission end` came */
     int64_t last_clock_utime;
     int64_t drops0;             /* kernel drops on the socket before we began */
 } recorder;
@@ -61,12 +69,33 @@ static double mono_s(void)
     return (double)ts.tv_sec + ts.tv_nsec * 1e-9;
 }
 
+#define ANNOTATION_CHANNEL "SIM.ANNOTATION"
+#define END_MARK "mission end"
+
+/* The launcher's mark of the mission's end (tools/launch/launcher.py). */
+static int is_end_mark(const void *data, int len)
+{
+    auv_log_annotation_t a;
+    if (auv_log_annotation_t_decode(data, 0, len, &a) < 0)
+        return 0;
+    int end = a.kind == AUV_LOG_ANNOTATION_T_KIND_EVENT && a.name && !strcmp(a.name, END_MARK);
+    auv_log_annotation_t_decode_cleanup(&a);
+    return end;
+}
+
 static void on_message(const char *channel, const void *data, int len, int64_t recv_utime, void *user)
 {
     recorder *r = user;
-    r->received++;
-    rec_queue_push(&r->q, recv_utime, channel, data, (int32_t)len);
-    if (!strcmp(channel, "SIM.CLOCK")) {
+    int annotation = !strcmp(channel, ANNOTATION_CHANNEL);
+    if (r->ended && !annotation) {
+        r->after_end++;
+    } else {
+        r->received++;
+        rec_queue_push(&r->q, recv_utime, channel, data, (int32_t)len);
+        if (annotation && !r->ended && is_end_mark(data, len))
+            r->ended = 1;
+    }
+    if (!strcmp(channel, "SIM.CLOCK")) { /* still a participant after the end, while the world stops */
         auv_sim_clock_t c;
         if (auv_sim_clock_t_decode(data, 0, len, &c) >= 0) {
             r->last_clock_utime = c.utime;
@@ -94,11 +123,11 @@ static void write_stats(const recorder *r, int64_t dropped, int64_t miss)
     }
     const lcm_udpm_counts *wire = r->in.all ? lcm_udpm_reader_counts(r->in.all) : NULL;
     fprintf(f, "{\"received\": %lld, \"written\": %lld, \"dropped\": %lld, \"missed\": %lld, "
-               "\"malformed\": %lld, \"incomplete\": %lld, "
+               "\"after_end\": %lld, \"malformed\": %lld, \"incomplete\": %lld, "
                "\"write_errors\": %lld, \"bytes\": %lld, \"queue_high_water_bytes\": %zu, "
                "\"recv_buf_requested\": %ld, \"recv_buf_granted\": %d, \"rmem_max\": %ld}\n",
             (long long)r->received, (long long)r->w.written, (long long)dropped, (long long)miss,
-            (long long)(wire ? wire->malformed : 0), (long long)(wire ? wire->incomplete : 0),
+            (long long)r->after_end, (long long)(wire ? wire->malformed : 0), (long long)(wire ? wire->incomplete : 0),
             (long long)r->w.write_errors, (long long)r->w.bytes, r->q.high_water, r->opt.recv_buf,
             r->sock.granted_bytes, rec_rmem_max());
     fclose(f);
@@ -205,9 +234,9 @@ int main(int argc, char **argv)
     int64_t dropped = rec_queue_dropped(&r.q), miss = missed(&r);
     write_stats(&r, dropped, miss);
     printf("auv-recorder: received %lld, written %lld, dropped %lld (own queue full), missed %s%lld "
-           "(kernel socket drops)%s\n",
+           "(kernel socket drops), %lld after the mission's end not recorded%s\n",
            (long long)r.received, (long long)r.w.written, (long long)dropped, miss < 0 ? "unknown " : "",
-           (long long)(miss < 0 ? 0 : miss), r.w.write_errors ? ", WRITE ERRORS" : "");
+           (long long)(miss < 0 ? 0 : miss), (long long)r.after_end, r.w.write_errors ? ", WRITE ERRORS" : "");
     const lcm_udpm_counts *wire = r.in.all ? lcm_udpm_reader_counts(r.in.all) : NULL;
     if (wire && (wire->malformed || wire->incomplete))
         printf("auv-recorder: not recorded: %lld malformed datagrams, %lld fragmented messages never completed\n",

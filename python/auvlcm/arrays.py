@@ -123,6 +123,7 @@ class LogArrays:
     undecodable: Counter = field(default_factory=Counter)  # per channel
     type_conflicts: Counter = field(default_factory=Counter)  # other types on a channel
     messages: dict[str, list] = field(default_factory=dict)  # kept decoded messages
+    events_to_mark: int | None = None  # events up to and with the first load_log(mark=) found
 
     def __getitem__(self, channel: str) -> ChannelArrays:
         try:
@@ -163,13 +164,18 @@ class _Builder:
 
 
 def load_log(
-    path: str | Path, channels: str | Iterable[str] | None = None, keep_messages: str | None = None
+    path: str | Path,
+    channels: str | Iterable[str] | None = None,
+    keep_messages: str | None = None,
+    mark: Callable[[Any], bool] | None = None,
 ) -> LogArrays:
     """Read a log into arrays.
 
     channels: a regular expression or a list of names to load (default: all).
     keep_messages: a regular expression of channels whose decoded messages are
     also kept (e.g. "SIM.TARGETS|.*CONTACTS") in `messages`.
+    mark: a test of a decoded event; `events_to_mark` counts the events up to
+    and with the first that passes it (None: none did).
     """
     if channels is None:
         want: Callable[[str], bool] = lambda _c: True
@@ -184,6 +190,8 @@ def load_log(
     out = LogArrays(Path(path), {}, stats)
     builders: dict[str, _Builder] = {}
     for ev in read_events(path, stats):
+        if mark is not None and out.events_to_mark is None and ev.msg is not None and mark(ev):
+            out.events_to_mark = stats.events
         if not want(ev.channel):
             continue
         if ev.msg is None:

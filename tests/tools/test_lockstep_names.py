@@ -5,7 +5,9 @@ The team scenario counts its simulators, pilots and navigators (12), but the
 recorder takes part too: under load the world began with one simulator still
 starting, which joined at step 1, and two runs differed from their start.
 The launcher now writes every participant's name into each simulator's
-configuration, and the serving simulator waits for all of them."""
+configuration, and the serving simulator waits for all of them; the launcher
+takes part too, as SIM.LAUNCHER (it ends the world at a defined step:
+tools/launch/fault_step.py), and counts itself in."""
 
 from __future__ import annotations
 
@@ -26,7 +28,7 @@ TEAM = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
 
 
 def team_names(recorder: bool) -> set[str]:
-    names = {f"AUV{i}.{p}" for i in range(1, 5) for p in ("sim", "PILOT", "NAVIGATOR")}
+    names = {f"AUV{i}.{p}" for i in range(1, 5) for p in ("sim", "PILOT", "NAVIGATOR")} | {"SIM.LAUNCHER"}
     return names | {"SIM.RECORDER"} if recorder else names
 
 
@@ -40,9 +42,9 @@ def test_each_simulator_names_every_participant_of_the_world(tmp_path):
         for path in paths.values():
             mh = yaml.safe_load(path.read_text())["multihil"]
             assert set(mh["lockstep_names"]) == team_names(recorder), mh
-            assert mh["lockstep_participants"] == 12  # the scenario's count stays: both must hold
+            assert mh["lockstep_participants"] == 13  # the scenario's count and the launcher: both must hold
             node = node_config(load(path))  # the simulator reads them as they were written
-            assert set(node.lockstep_names) == team_names(recorder) and node.lockstep_expect == 12
+            assert set(node.lockstep_names) == team_names(recorder) and node.lockstep_expect == 13
 
 
 def test_a_world_whose_count_is_met_by_the_wrong_set_waits_for_the_missing_name(tmp_path):
@@ -52,9 +54,9 @@ def test_a_world_whose_count_is_met_by_the_wrong_set_waits_for_the_missing_name(
     tracker = LockstepTracker(timeout_s=None)
     server = LockstepServer(tracker, 100_000, node.lockstep_expect, expect_names=set(node.lockstep_names))
     late = "AUV2.sim"
-    for name in sorted(team_names(True) - {late}):  # 12 registrations: the count is met
+    for name in sorted(team_names(True) - {late}):  # 13 registrations: the count is met
         tracker.on_message(lockstep_msg(name, lockstep_t.KIND_REGISTER, 0, 0))
-    assert len(tracker.parts) == 12
+    assert len(tracker.parts) == 13
     assert server.poll() is None, "step 0 went without AUV2.sim"
     tracker.on_message(lockstep_msg(late, lockstep_t.KIND_REGISTER, 0, 0))
     assert server.poll() == 0

@@ -7,8 +7,10 @@ Order: the recorder (auv-recorder, or lcm-logger if chosen), the files the run u
 simulators, the onboard navigation filters (vehicles with `nav: ekf`), the
 managers; then the global clock starts. The mission ends when
 every vehicle's navigator is done, aborted or failed, or at the time limit;
-Ctrl-C, SIGTERM or any process dying ends it too. Everything is stopped in
-reverse order, the logger last, so the log holds the end.
+Ctrl-C, SIGTERM or any process dying ends it too. In a lockstep world the end
+is a step, marked in the log (`mission end`) before anything stops
+(tools/launch/launcher.py); everything is then stopped a kind at a time, the
+recorder last.
 
 A scenario's planned faults (`faults:`, tools/scenario/faults.py) are applied
 at their sim time: a lost vehicle's processes are killed and it counts as
@@ -189,6 +191,7 @@ def _finish(run: Launcher, args, result: str) -> int:
             print(
                 f"record: {counts['written']} of {counts['received']} messages received written, "
                 f"{counts['dropped']} dropped, {counts['missed']} missed (kernel socket drops)"
+                + (f"; {counts['after_end']} after the mission's end left out" if counts.get("after_end") else "")
             )
     return EXIT[result]
 

@@ -8,6 +8,14 @@ the time limit; Ctrl-C, SIGTERM or any process dying ends it too. Everything is
 stopped a kind at a time (managers, filters, simulators), the recorder last, so
 the log holds the end.
 
+In a lockstep world (the launcher's clock, or the simulators' with the launcher
+taking part) the end is a step: the first whose time is after every vehicle's
+end (or at the time limit); the world finishes it and is stepped no further.
+The launcher then writes the end into the log (annotation `mission end`,
+stamped with that step's time), where auv-recorder's record of the world ends,
+before it stops anything, so the log also holds the processes' exits and the
+summary (`end`) after the mark.
+
 A scenario's planned faults (`faults:`, tools/scenario/faults.py) are applied
 at their sim time: a lost vehicle's processes are killed and it counts as
 over ("lost"), not as a death.
@@ -42,6 +50,7 @@ from tools.scenario.scenario_file import Scenario
 # the exit status of each result (auv-launch exits with it)
 EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "interrupted": 130}
 STARTUP_TIMEOUT_S = 90.0
+END_WAIT_S = 5.0  # at most this long for the last step's reports (tools/launch/fault_step.py)
 CHILD_CHECK_S = 0.05  # how often the loops look for a child that exited
 
 
@@ -105,6 +114,7 @@ class Launcher:
     ) -> None:
         self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
         self.nav_configs = nav_configs or {}
+        self.agents = agents
         self.host = args.host
         self.out: Path = args.out
         self.build = args.build
@@ -128,6 +138,7 @@ class Launcher:
                 sc.time.step_s,
                 participants(sc, recorder_takes_part(sc, self.recorder)),
                 before_step=self.apply_faults,
+                hold=self._ended_before,
             )
             if self.own_clock
             else None
@@ -139,10 +150,13 @@ class Launcher:
         self.faults = list(sc.faults)  # planned, in time order (tools/scenario/faults.py)
         # a world stepped by the simulators: the launcher takes part, to kill between steps
         self.fault_step = (
-            FaultStepper(self.lc, self._lost_by, self._settled, self.apply_faults)
+            FaultStepper(
+                self.lc, self._lost_by, self._settled, self.apply_faults, self._ended_before, track=bool(sc.faults)
+            )
             if not self.clock and takes_part(sc, self.host, sim_configs.values())
             else None
         )
+        self.end_us: int | None = None  # the step the world ended at (lockstep), else when the watch saw the end
         self.log_path = self.out / sc.log_file
         self.recorder_stats = self.out / "recorder.json"
 
@@ -300,13 +314,18 @@ class Launcher:
                 self.fault_step.poll()
             elif not self.clock:  # free-running: when the watch sees the time
                 self.apply_faults(self.watch.sim_time_us)
-            outcome = self.watch.outcome()
-            if outcome:
-                return outcome
+            if self.clock or self.fault_step:  # lockstep: the end is the step the world was held at
+                held = self._held_us(stop)
+                if held is not None:
+                    self.end_us = held
+                    return self._result_at(held)
+            else:
+                outcome = self.watch.outcome()
+                if outcome:
+                    return outcome
+                if self.watch.sim_time_us / 1e6 >= t.limit_s:
+                    return self._result_at(self.watch.sim_time_us)
             now = time.monotonic()
-            if self.watch.sim_time_us / 1e6 >= t.limit_s:
-                self.stop_reason = f"mission time limit {t.limit_s:g} s reached"
-                return "time limit"
             if t.wall_limit_s and now - wall0 >= t.wall_limit_s:
                 self.stop_reason = f"wall-clock limit {t.wall_limit_s:g} s reached"
                 return "time limit"
@@ -321,6 +340,40 @@ class Launcher:
                     flush=True,
                 )
 
+    def _ended_before(self, t_us: int) -> bool:
+        """Whether the mission ended before step time t_us, or that step reaches the
+        time limit: asked with every earlier step reported (the launcher's clock) or
+        at the clock of that step (the simulators'), when everything stamped before
+        t_us has reached the watch (sim/multihil/lockstep.py: a step's messages go
+        out before its report, the next clock after every report)."""
+        self.watch.handle(0.0)
+        return self.watch.outcome(before_us=t_us) is not None or t_us / 1e6 >= self.sc.time.limit_s
+
+    def _held_us(self, stop) -> int | None:
+        """The time of the step the world was held at, once all of it is in: the
+        launcher's clock holds when every participant reported it; in a world the
+        simulators step, the launcher waits for their reports of it (they repeat
+        them while no clock follows), at most END_WAIT_S."""
+        if self.clock:
+            return self.clock.held_us
+        step = self.fault_step
+        if step is None or step.held_at is None:
+            return None
+        names = participants(self.sc, recorder_takes_part(self.sc, self.recorder))
+        names -= self._lost_by(step.held_at[1])
+        deadline = time.monotonic() + END_WAIT_S
+        while not step.finished(names, self._exited) and time.monotonic() < deadline and not stop():
+            self.watch.handle(0.05)
+        return step.held_at[1]
+
+    def _result_at(self, t_us: int) -> str:
+        """The mission's outcome as of step time t_us: the worst vehicle outcome, or the time limit."""
+        outcome = self.watch.outcome(before_us=t_us)
+        if outcome:
+            return outcome
+        self.stop_reason = f"mission time limit {self.sc.time.limit_s:g} s reached"
+        return "time limit"
+
     def _lost_by(self, t_us: int) -> set[str]:
         """The participants of the vehicles lost at or before t_us (sim time)."""
         vids = {f.vehicle for f in self.faults if f.do == "lose" and f.at_s * 1e6 <= t_us + 0.5}
@@ -330,6 +383,11 @@ class Launcher:
         """That participant's process is not running here (gone, or on another host)."""
         c = next((c for c in self.children if c.name == name), None)
         return c is None or c.poll() is not None
+
+    def _exited(self, name: str) -> bool:
+        """That participant's process runs here and has exited."""
+        c = next((c for c in self.children if c.name == name), None)
+        return c is not None and c.poll() is not None
 
     def apply_faults(self, t_us: int) -> None:
         """The planned faults due by sim time t_us (docs/scenarios.md, "Faults").
@@ -361,7 +419,18 @@ class Launcher:
             print(f"launch: fault: {text}", flush=True)
             self.notes.event("fault", text, vehicle=f.vehicle, utime=t_us)
 
+    def mark_end(self) -> None:
+        """The mission's end into the log, before anything stops: auv-recorder
+        records nothing of the world after it (the launcher's notes of the stop
+        and the summary still), and the report cuts every series there."""
+        if self.end_us is None:
+            self.end_us = self.watch.sim_time_us  # not held (interrupted, a death, free-running time)
+        # whoever ends the world (its clock, or the launcher taking part); in free-running time, who records
+        if self.clock or self.fault_step or ((self.own_log or self.agents) and self.sc.time.source != "launcher"):
+            self.notes.event("mission end", json.dumps({"sim_time_s": self.end_us / 1e6}), utime=self.end_us)
+
     def stop_all(self, result: str) -> None:
+        self.mark_end()
         if self.fault_step:
             self.fault_step.close()  # the world must not wait for the launcher while it stops
         dead = self._dead()
@@ -393,7 +462,7 @@ class Launcher:
             "outcome": result,
             "exit_code": EXIT[result],
             "reason": self.stop_reason or causes,
-            "sim_time_s": self.watch.sim_time_us / 1e6,
+            "sim_time_s": (self.watch.sim_time_us if self.end_us is None else self.end_us) / 1e6,
             "vehicles": vehicles,
             "log": str(self.log_path) if self.own_log else None,
             "dropped": self.watch.dropped(),

@@ -11,8 +11,8 @@ differed from their first step (issue 14).
 
 from __future__ import annotations
 
-from tools.launch.fault_step import NAME as FAULTS
-from tools.launch.fault_step import is_lockstep_multihil, loses_vehicles
+from tools.launch.fault_step import NAME as LAUNCHER
+from tools.launch.fault_step import is_lockstep_multihil
 
 
 def participants(sc, recorder: bool) -> set[str]:
@@ -30,11 +30,11 @@ def participants(sc, recorder: bool) -> set[str]:
 def name_them(sc, cfg: dict, recorder: bool) -> dict:
     """A merged simulator configuration of a multi-HIL lockstep world that
     names every participant of the world (multihil.lockstep_names), the
-    launcher's SIM.FAULTS too when it takes part (tools/launch/fault_step.py); names
+    launcher's SIM.LAUNCHER too (it takes part: tools/launch/fault_step.py); names
     the configuration already lists stay."""
     if not is_lockstep_multihil(cfg):
         return cfg
-    names = participants(sc, recorder) | ({FAULTS} if loses_vehicles(sc) else set())
+    names = participants(sc, recorder) | {LAUNCHER}
     mh = cfg.get("multihil") or {}
     cfg["multihil"] = {**mh, "lockstep_names": sorted(set(mh.get("lockstep_names") or ()) | names)}
     return cfg

@@ -11,7 +11,10 @@
 - outcome: each vehicle's end manager (NAVIGATOR by default) is done,
   aborted or failed. A plan whose `abort when` rule fired and then ended
   normally (the surfacing state completed) counts as aborted: the plan's abort
-  targets are read from its text.
+  targets are read from its text. In a lockstep world the launcher asks for
+  the outcome as of a step (outcome(before_us)): only ends stamped before that
+  step's time count, all of which reached it before that step's clock, so the
+  step the mission ends at is the same in every run (docs/scenarios.md, "End").
 
 Stamps follow the project's rule (auvlcm.timepolicy): the SIM.CLOCK the watch
 follows never goes back or jumps unconfirmed (one message at INT64_MAX cannot
@@ -85,6 +88,7 @@ class VehicleState:
     abort_condition: str = ""  # the whole condition of that transition
     abort_at_s: float | None = None
     lost_at_s: float | None = None  # lost by a planned fault (tools/scenario/faults.py)
+    end_us: int | None = None  # sim time of the status that ended its plan, or of its loss
 
     @property
     def outcome(self) -> str | None:
@@ -158,6 +162,8 @@ class MissionWatch:
                 self.rx.unsubscribe(sub)
             return
         v.run_state = m.run_state
+        if v.end_us is None and m.run_state in FINAL:
+            v.end_us = m.utime
         if m.path_len:
             v.path = "/".join(m.active_path)
             if not v.entered_abort and any(s in v.abort_states for s in m.active_path):
@@ -202,16 +208,18 @@ class MissionWatch:
         v = self.vehicles.get(vid)
         if v is not None and v.lost_at_s is None:
             v.lost_at_s = at_s
+            v.end_us = round(at_s * 1e6)
             v.cause = "planned fault"
             self.expected -= {n for n in self.expected if n.startswith(f"{vid}.")}
 
-    def outcome(self) -> str | None:
+    def outcome(self, before_us: int | None = None) -> str | None:
         """None while any vehicle runs; else the worst vehicle outcome (a
-        vehicle lost by a planned fault counts as over, not as a failure)."""
+        vehicle lost by a planned fault counts as over, not as a failure).
+        before_us: only ends stamped before that sim time count."""
         outs = []
         for v in self.vehicles.values():  # called at every wake-up of the launcher: stop at the first running
             o = v.outcome
-            if o is None:
+            if o is None or (before_us is not None and (v.end_us is None or v.end_us >= before_us)):
                 return None
             outs.append(o)
         for worst in ("failed", "aborted"):

@@ -97,7 +97,7 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
 
             listed = cfg.get("sensors") or {name: {} for name in REGISTRY}  # none listed: all of them
             cfg["sensors"] = merge(listed, {"leak": {"at_s": f.at_s}})
-    return count_in(sc, cfg)  # a planned loss: the launcher takes part in the lockstep
+    return count_in(sc, cfg)  # the launcher takes part in a lockstep world (the end, planned losses)
 
 
 def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:

@@ -14,6 +14,10 @@ What the modes change is only the pace (time.mode):
 - `lockstep` (also `fast`, the old name): as fast as the slowest participant;
 - `scaled`: at most `warp` times real time; `realtime`: at most real time.
 
+The end (docs/scenarios.md, "End"): once every participant reported a step,
+the clock asks hold(utime) before it goes on; if the mission ended by then,
+the world stops at that step, whole, and nothing after it is simulated.
+
 Lost datagrams are repeated, never waited for (sim/multihil/lockstep.py): a
 participant repeats its last report while no newer clock comes, and a report
 of the previous step from one that owes the current step makes the clock
@@ -48,11 +52,16 @@ class WorldClock:
         participants: set[str] | None = None,
         log=print,
         before_step: Callable[[int], None] | None = None,
+        hold: Callable[[int], bool] | None = None,
     ) -> None:
         """before_step(utime): called before a new step is published, when every
-        participant has reported the one before (planned faults act there)."""
+        participant has reported the one before (planned faults act there).
+        hold(utime): asked then first, with the time of the step every participant
+        reported; True: the world ends at that step (held_us), no step follows."""
         self.lc = lc
         self.before_step = before_step
+        self.hold = hold
+        self.held_us: int | None = None  # the time of the step the world ended at
         self.mode = mode
         self.warp = PACE[mode] if PACE[mode] is not None else warp
         self.step_us = max(1, round(step_s * 1e6))
@@ -127,7 +136,7 @@ class WorldClock:
     def advance(self) -> None:
         """Publish the next step if every participant is done and its time is due
         (or the current step again, if a participant missed it)."""
-        if not self.running:
+        if not self.running or self.held_us is not None:
             return
         if (
             self.server.started
@@ -136,6 +145,10 @@ class WorldClock:
             and time.monotonic() < self._due(self.server.step + 1)
         ):
             return
+        if self.hold is not None and self.ticks and not self.tracker.owes(self.server.step):
+            if self.hold(self.now_us):
+                self.held_us = self.now_us
+                return
         previous = self.server.step if self.ticks else None  # the step published last
         step = self.server.poll()
         if step is None:

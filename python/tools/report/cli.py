@@ -131,7 +131,12 @@ def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[
         "vehicles": run.vehicles,
         **outcome_of(run),
         "duration_s": run.duration_s(),
-        "log_events": run.log.stats.events,
+        # the mission's events (RunData.mission_events); after its end only the launcher's notes of the stop
+        "log_events": run.mission_events(),
+        "log_events_after_end": (
+            run.log.stats.events - run.log.events_to_mark if run.log.events_to_mark is not None else None
+        ),
+        "end_from": run.end_from,
         "undecodable_events": run.log.stats.undecodable,
         "log_damage": {
             "skipped_bytes": run.log.stats.damage.skipped_bytes,
@@ -181,7 +186,7 @@ def report_text(rep: dict) -> str:
     lines = [
         f"Mission report: {rep['log']}",
         f"outcome   {rep['outcome'] or '-'}" + (f" ({rep['reason']})" if rep.get("reason") else ""),
-        f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events, "
+        f"duration  {rep['duration_s'] / 60:.1f} min sim time; {rep['log_events']} log events of the mission, "
         f"{rep['undecodable_events']} undecodable"
         + (
             f"; DAMAGED LOG: {rep['log_damage']['lost_events']} event(s) lost, "
