@@ -45,8 +45,8 @@ class Checker:
         self.path = path
         self.root = root
         self.errors: list[str] = []
-        # the file of each node that came from a base (confcheck.extends); others are path's
-        self.sources: dict[int, Path] = {}
+        # id -> (file, node) of each node that came from a base (confcheck.extends); others are path's
+        self.sources: dict[int, tuple[Path, Any]] = {}
         self._constructor = yaml.constructor.SafeConstructor()  # scalars only (no tags reach it)
 
     @classmethod
@@ -62,7 +62,7 @@ class Checker:
 
     @classmethod
     def _made(cls, path: Path, root: yaml.Node, text: str, limits: Limits, extends: bool) -> "Checker":
-        sources: dict[int, Path] = {}
+        sources: dict[int, tuple[Path, Any]] = {}
         if extends:
             from confcheck.extends import compose
 
@@ -75,7 +75,7 @@ class Checker:
     # ------------------------------------------------------------ errors
     def where(self, node) -> str:
         m = node.start_mark if node is not None else None
-        path = self.sources.get(id(node), self.path)
+        path = self.sources[id(node)][0] if id(node) in self.sources else self.path
         return f"{path}:{m.line + 1}:{m.column + 1}" if m else f"{path}"
 
     def err(self, node, key: str, msg: str) -> None:

@@ -55,14 +55,16 @@ def merge(base: yaml.Node, over: yaml.Node) -> yaml.Node:
     return yaml.MappingNode(over.tag, pairs, over.start_mark, over.end_mark, flow_style=over.flow_style)
 
 
-def _mark(node: yaml.Node, path: Path, sources: dict[int, Path]) -> None:
-    """Record path as the file of every node under node not recorded yet."""
+def _mark(node: yaml.Node, path: Path, sources: dict[int, tuple[Path, yaml.Node]]) -> None:
+    """Record path as the file of every node under node not recorded yet. The
+    node is kept with it: a node the merge drops must stay alive, or a later
+    node could get its id (and its file)."""
     stack = [node]
     while stack:
         n = stack.pop()
         if id(n) in sources:
             continue
-        sources[id(n)] = path
+        sources[id(n)] = (path, n)
         if isinstance(n, yaml.MappingNode):
             for k, v in n.value:
                 stack += [k, v]
@@ -99,7 +101,7 @@ def _remove(base: yaml.MappingNode, items: yaml.Node, path: Path, base_name: str
 def compose(
     path: Path,
     root: yaml.Node,
-    sources: dict[int, Path],
+    sources: dict[int, tuple[Path, yaml.Node]],
     limits: Limits = LIMITS,
     chain: tuple[Path, ...] = (),
 ) -> yaml.Node:
