@@ -128,6 +128,8 @@ class Mission:
                 .read_text()
                 .replace("${VEHICLE}.NAV ", "${VEHICLE}.NAV_RELAY ")
             )
+            shared = "sensors.bind"  # what it includes, next to it
+            (tmp / shared).write_text((MISSIONS / "bindings" / shared).read_text())
         self.bind = bind
 
     def _on_truth(self, channel: str, m: ground_truth_t) -> None:
