@@ -94,3 +94,86 @@ def test_fuzz_binding_parser_short(build_dir, child_env, tmp_path):
     assert p.returncode == 0, p.stdout + p.stderr
     assert "no crash" in p.stdout
     assert not list(tmp_path.glob("chasm-crash-*"))
+
+
+# `include "FILE"` (docs/managers.md, "Bindings"): {file: text} written under
+# tmp_path, the manager given b.bind; (exit code, messages expected on stderr).
+NAV = "input nav ${VEHICLE}.NAV nav_solution_t\n"
+SETPOINT = "output setpoint ${VEHICLE}.SETPOINT setpoint_t\n"
+INCLUDE_CASES = {
+    "relative_to_the_includer": (
+        {"b.bind": NAV + 'include "shared/s.bind"\n', "shared/s.bind": 'include "../o.bind"\n', "o.bind": SETPOINT},
+        None,
+        [],
+    ),
+    "missing": (
+        {"b.bind": NAV + 'include  "nope.bind"\n' + SETPOINT},
+        1,
+        ["b.bind:2:10: cannot include 'nope.bind' (", "nope.bind): No such file or directory"],
+    ),
+    "a_folder": (
+        {"b.bind": NAV + 'include "d"\n' + SETPOINT, "d/x": ""},
+        1,
+        ["b.bind:2:9: cannot include 'd'", "not a regular file"],
+    ),
+    "cycle": (
+        {"b.bind": NAV + 'include "a.bind"\n' + SETPOINT, "a.bind": '\ninclude "b.bind"\n'},
+        1,
+        ["a.bind:2:9: include cycle: ", "b.bind -> ", "a.bind -> ", "b.bind\n"],
+    ),
+    "itself": ({"b.bind": NAV + 'include "b.bind"\n' + SETPOINT}, 1, ["b.bind:2:9: include cycle: "]),
+    "no_quotes": ({"b.bind": NAV + "include s.bind\n" + SETPOINT}, 1, ['b.bind:2:9: expected `include "FILE"`']),
+    "two_names": (
+        {"b.bind": NAV + 'include "s.bind" "t.bind"\n' + SETPOINT},
+        1,
+        ["b.bind:2:18: one file per include line"],
+    ),
+    "error_in_the_included_file": (
+        {"b.bind": NAV + 'include "s.bind"\n' + SETPOINT, "s.bind": "# shared\ninput gps X.GPS no_such_t\n"},
+        1,
+        ["s.bind:2:17: unknown message type 'no_such_t'"],
+    ),
+    "prefix_bound_in_another_file": (
+        {"b.bind": NAV + 'include "s.bind"\n' + SETPOINT, "s.bind": "input nav X.NAV2 nav_solution_t\n"},
+        1,
+        ["s.bind:1:7: prefix 'nav' is already bound at ", "b.bind:1\n"],
+    ),
+    "too_deep": (
+        {"b.bind": NAV + 'include "i1.bind"\n' + SETPOINT}
+        | {f"i{k}.bind": f'include "i{k + 1}.bind"\n' for k in range(1, 12)}
+        | {"i12.bind": ""},
+        1,
+        ["i7.bind:1:9: includes nested deeper than 8 files"],
+    ),
+}
+
+
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+@pytest.mark.parametrize("case", list(INCLUDE_CASES))
+def test_binding_includes(tmp_path, lcm_url, child_env, sanitized, case):
+    files, code, expected = INCLUDE_CASES[case]
+    for name, text in files.items():
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text(text)
+    cmd = [
+        c_program("bin/chasm-manager", sanitized),
+        *("--plan", HERE / "dive.chasm", "--bind", tmp_path / "b.bind", "--vehicle", "AUV1"),
+        *("--name", "NAVIGATOR", "--lcm-url", lcm_url),
+    ]
+    if code is None:
+        p = subprocess.Popen(cmd, env=child_env, stderr=subprocess.PIPE, text=True)
+        try:
+            out = ""
+            for line in p.stderr:
+                out += line
+                if "running" in line:
+                    break
+        finally:
+            p.terminate()
+            p.wait(20)
+        assert "NAVIGATOR: running" in out, out
+        return
+    run = subprocess.run(cmd, env=child_env, capture_output=True, text=True, timeout=30)
+    assert run.returncode == code, run.stderr
+    for part in expected:
+        assert part in run.stderr, run.stderr

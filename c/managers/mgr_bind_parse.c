@@ -1,5 +1,6 @@
 /* The binding file's syntax: one line per message, words separated by
- * blanks, `#` comments. No fixed-size buffer: lines, prefixes and type names
+ * blanks, `#` comments, `include "FILE"` lines (mgr_bind_files.c reads the
+ * files). No fixed-size buffer: lines, prefixes and type names
  * have any length; a channel (after ${VEHICLE}) has at most LCM's 63
  * characters; a byte outside printable ASCII, a NUL or a sixth word is an
  * error at its file:line:col. Fuzzed by c/managers/fuzz/fuzz_bindings.c. */
@@ -7,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "managers/mgr_bind_files.h"
 #include "managers/mgr_bindings.h"
 
 static int expand_vehicle(const char *in, const char *vehicle, char *out, size_t outlen)
@@ -51,9 +53,34 @@ static char *word_dup(const word_t *w)
 }
 
 /* Parse one binding line (without its newline). Returns the errors found. */
-static int parse_line(mgr_bindings *b, const char *path, int lineno, const char *line, size_t len,
+/* `include "FILE"`: a file name in quotes (blanks in it are not supported). */
+static int include_line(mgr_bindings *b, const mgr_bind_chain *chain, int lineno, const word_t *w, int n,
+                        const char *vehicle, mgr_errors *errs)
+{
+    if (n > 2) {
+        mgr_errors_add(errs, "%s:%d:%d: one file per include line", chain->path, lineno, w[2].col);
+        return 1;
+    }
+    if (n != 2 || w[1].n < 3 || w[1].p[0] != '"' || w[1].p[w[1].n - 1] != '"') {
+        mgr_errors_add(errs, "%s:%d:%d: expected `include \"FILE\"` (a binding file, relative to this one)",
+                       chain->path, lineno, n == 2 ? w[1].col : w[0].col);
+        return 1;
+    }
+    word_t inner = {w[1].p + 1, w[1].n - 2, w[1].col + 1};
+    char *name = word_dup(&inner);
+    if (!name) {
+        mgr_errors_add(errs, "%s:%d:1: out of memory", chain->path, lineno);
+        return 1;
+    }
+    int errors = mgr_bind_include(b, chain, lineno, w[1].col, name, vehicle, errs);
+    free(name);
+    return errors;
+}
+
+static int parse_line(mgr_bindings *b, const mgr_bind_chain *chain, int lineno, const char *line, size_t len,
                       const char *vehicle, mgr_errors *errs)
 {
+    const char *path = chain->path;
     word_t w[6];
     int n = 0;
     size_t end = 0;
@@ -83,6 +110,8 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
     }
     if (n == 0)
         return 0;
+    if (word_is(&w[0], "include"))
+        return include_line(b, chain, lineno, w, n, vehicle, errs);
     if (n < 4 || n > 5 || (!word_is(&w[0], "input") && !word_is(&w[0], "output"))) {
         mgr_errors_add(errs, "%s:%d:%d: expected `input|output PREFIX CHANNEL TYPE [optional|on_change]`", path,
                        lineno, w[0].col);
@@ -130,7 +159,12 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
     mb->prefix = prefix;
     mb->type = t;
     mb->line = lineno;
+    mb->file = strdup(path);
     int errors = 0;
+    if (!mb->file) {
+        mgr_errors_add(errs, "%s:%d:1: out of memory", path, lineno);
+        errors++;
+    }
     if (expand_vehicle(chan, vehicle, mb->channel, sizeof mb->channel) != 0 || strlen(mb->channel) > MGR_MAX_CHANNEL) {
         mgr_errors_add(errs, "%s:%d:%d: channel name too long (LCM allows %d characters)", path, lineno, w[2].col,
                        MGR_MAX_CHANNEL);
@@ -139,16 +173,21 @@ static int parse_line(mgr_bindings *b, const char *path, int lineno, const char 
     free(chan);
     for (int k = 0; k < b->n_msgs - 1; k++)
         if (!strcmp(b->msgs[k].prefix, prefix)) {
-            mgr_errors_add(errs, "%s:%d:%d: prefix '%s' is already bound on line %d", path, lineno, w[1].col,
-                           strlen(prefix) > 60 ? "(long name)" : prefix, b->msgs[k].line);
+            const mgr_message_binding *first = &b->msgs[k];
+            /* the first binding may be in another file of the include tree */
+            int same = first->file && !strcmp(first->file, path);
+            mgr_errors_add(errs, "%s:%d:%d: prefix '%s' is already bound %s%s%s%d", path, lineno, w[1].col,
+                           strlen(prefix) > 60 ? "(long name)" : prefix, same ? "on line " : "at ",
+                           same ? "" : (first->file ? first->file : "?"), same ? "" : ":", first->line);
             errors++;
         }
     return errors;
 }
 
-int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
-                            mgr_errors *errs)
+int mgr_bind_parse_chain(mgr_bindings *b, const mgr_bind_chain *chain, const char *text, size_t len,
+                         const char *vehicle, mgr_errors *errs)
 {
+    const char *path = chain->path;
     int lineno = 0, errors = 0;
     for (size_t i = 0; i < len;) {
         size_t e = i;
@@ -159,47 +198,18 @@ int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text,
                            (size_t)((const char *)memchr(text + i, '\0', e - i) - (text + i)) + 1);
             errors++;
         } else
-            errors += parse_line(b, path, lineno, text + i, e - i, vehicle, errs);
+            errors += parse_line(b, chain, lineno, text + i, e - i, vehicle, errs);
         i = e + 1;
     }
     return errors;
 }
 
-int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehicle, mgr_errors *errs)
+int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
+                            mgr_errors *errs)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        mgr_errors_add(errs, "%s: cannot open binding file", path);
-        return 1;
-    }
-    size_t cap = 4096, n = 0, r;
-    char *buf = malloc(cap);
-    while (buf && (r = fread(buf + n, 1, cap - n, f)) > 0) {
-        n += r;
-        if (n == cap && n < MGR_MAX_BIND_BYTES + 1) {
-            char *g = realloc(buf, cap * 2);
-            if (!g) {
-                free(buf);
-                buf = NULL;
-                break;
-            }
-            buf = g;
-            cap *= 2;
-        } else if (n == cap)
-            break;
-    }
-    fclose(f);
-    if (!buf) {
-        mgr_errors_add(errs, "%s: out of memory reading the binding file", path);
-        return 1;
-    }
-    int errors;
-    if (n > MGR_MAX_BIND_BYTES) {
-        mgr_errors_add(errs, "%s:1:1: binding file larger than %d bytes", path, MGR_MAX_BIND_BYTES);
-        errors = 1;
-    } else
-        errors = mgr_bindings_parse_text(b, path, buf, n, vehicle, errs);
-    free(buf);
+    char *real = realpath(path, NULL); /* NULL when no such file: then only its includes can cycle */
+    mgr_bind_chain top = {path, real, NULL, 0};
+    int errors = mgr_bind_parse_chain(b, &top, text, len, vehicle, errs);
+    free(real);
     return errors;
 }
-

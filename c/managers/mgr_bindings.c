@@ -5,6 +5,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The file a binding's line is in: an included file's lines name it. */
+static const char *file_of(const mgr_message_binding *mb, const char *path) { return mb->file ? mb->file : path; }
+
 /* A messages variable is bound by a line whose prefix is its whole name. */
 static int bind_stream(mgr_bindings *b, const char *path, int var, mgr_errors *errs)
 {
@@ -15,7 +18,7 @@ static int bind_stream(mgr_bindings *b, const char *path, int var, mgr_errors *e
         if (strcmp(mb->prefix, name))
             continue;
         if (mb->is_output != (kind == CHASM_VAR_OUTPUT)) {
-            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", path, mb->line,
+            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", file_of(mb, path), mb->line,
                     kind == CHASM_VAR_OUTPUT ? "output" : "input", name, mb->is_output ? "output" : "input");
             return 1;
         }
@@ -40,18 +43,19 @@ static int bind_var(mgr_bindings *b, const char *path, int var, mgr_errors *errs
         if (!dot || strlen(mb->prefix) != plen || strncmp(mb->prefix, name, plen))
             continue;
         if (mb->is_output != (kind == CHASM_VAR_OUTPUT)) {
-            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", path, mb->line,
+            mgr_errors_add(errs, "%s:%d:1: plan %s '%s' is bound as an %s", file_of(mb, path), mb->line,
                     kind == CHASM_VAR_OUTPUT ? "output" : "input", name, mb->is_output ? "output" : "input");
             return 1;
         }
         mgr_var_binding vb = {var, chasm_var_type(b->machine, var), {0, 0}};
         char err[256];
         if (field_path_resolve(mb->type, dot + 1, &vb.field, err, sizeof err) != 0) {
-            mgr_errors_add(errs, "%s:%d:1: plan variable '%s': %s", path, mb->line, name, err);
+            mgr_errors_add(errs, "%s:%d:1: plan variable '%s': %s", file_of(mb, path), mb->line, name, err);
             return 1;
         }
         if ((vb.var_type == CHASM_STRING) != !field_ref_is_numeric(&vb.field)) {
-            mgr_errors_add(errs, "%s:%d:1: plan variable '%s' is %s but the field is %s", path, mb->line, name,
+            mgr_errors_add(errs, "%s:%d:1: plan variable '%s' is %s but the field is %s", file_of(mb, path),
+                    mb->line, name,
                     vb.var_type == CHASM_STRING ? "a string" : "a number",
                     vb.var_type == CHASM_STRING ? "a number" : "a string");
             return 1;
@@ -120,14 +124,14 @@ static int bind_all(mgr_bindings *b, const char *path, chasm_machine *m, mgr_err
         if (mb->stream_var >= 0 && mb->n_vars) {
             /* one line, one meaning: whole messages, or fields, not both */
             mgr_errors_add(errs, "%s:%d:1: '%s' carries whole messages (plan variable '%s' is messages): it cannot "
-                    "also bind the field variable '%s'", path, mb->line, mb->prefix, mb->prefix,
+                    "also bind the field variable '%s'", file_of(mb, path), mb->line, mb->prefix, mb->prefix,
                     chasm_var_name(m, mb->vars[0].var));
             errors++;
         }
         if (mb->on_change && mb->stream_var >= 0) {
             /* a stream's messages are events: each one is published */
-            mgr_errors_add(errs, "%s:%d:1: '%s' carries whole messages: `on_change` is for outputs of fields", path,
-                    mb->line, mb->prefix);
+            mgr_errors_add(errs, "%s:%d:1: '%s' carries whole messages: `on_change` is for outputs of fields",
+                    file_of(mb, path), mb->line, mb->prefix);
             errors++;
         }
         if (!mb->is_output)
@@ -285,6 +289,7 @@ void mgr_bindings_free(mgr_bindings *b, lcm_t *lcm)
         free(mb->last_sent);
         free(mb->vars);
         free(mb->prefix);
+        free(mb->file);
     }
     free(b->msgs);
     mgr_held_free(&b->held);

@@ -4,6 +4,8 @@
  *     input   nav       ${VEHICLE}.NAV        nav_solution_t
  *     input   gps       ${VEHICLE}.GPS        gps_fix_t   optional
  *     output  setpoint  ${VEHICLE}.SETPOINT   setpoint_t
+ * and may take in the lines of shared files (resolved relative to itself):
+ *     include "shared/sensors.bind"
  * A plan variable `nav.depth_m` then reads field depth_m of every
  * nav_solution_t on AUV1.NAV; `setpoint.heading_rad` is written into the
  * setpoint_t published each cycle. Fields are found through the type table
@@ -35,6 +37,7 @@ typedef struct {
     char channel[MGR_MAX_CHANNEL + 1];
     const auv_type_entry_t *type;
     int line;               /* in the binding file, for messages */
+    char *file;             /* that file (an included one, or the one given) */
     mgr_var_binding *vars;
     int n_vars;
     /* inputs */
@@ -95,7 +98,8 @@ int mgr_bindings_load(mgr_bindings *b, const char *path, const char *vehicle, ch
 /* mgr_bindings_load from text (the fuzzer uses it). */
 int mgr_bindings_load_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                            chasm_machine *m, mgr_errors *errs);
-/* Only the file's syntax, nothing bound (mgr_bind_parse.c). Return the number of errors. */
+/* Only the file's syntax (and the files it includes), nothing bound
+ * (mgr_bind_parse.c, mgr_bind_files.c). Return the number of errors. */
 int mgr_bindings_parse_file(mgr_bindings *b, const char *path, const char *vehicle, mgr_errors *errs);
 int mgr_bindings_parse_text(mgr_bindings *b, const char *path, const char *text, size_t len, const char *vehicle,
                             mgr_errors *errs);

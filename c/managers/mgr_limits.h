@@ -18,7 +18,8 @@
 #define MGR_MAX_CLOCK_JUMP_S 86400          /* --max-clock-jump */
 
 /* Files. */
-#define MGR_MAX_BIND_BYTES (1024 * 1024)    /* a binding file */
+#define MGR_MAX_BIND_BYTES (1024 * 1024)    /* a binding file (each included file too) */
+#define MGR_MAX_BIND_INCLUDE_DEPTH 8        /* files open at once through `include` */
 
 /* Mission commands and their acks. */
 #define MGR_MAX_PLAN_BYTES (256 * 1024)     /* LOAD_PLAN plan_text, the documented maximum */

@@ -45,26 +45,38 @@ class Checker:
         self.path = path
         self.root = root
         self.errors: list[str] = []
+        # id -> (file, node) of each node that came from a base (confcheck.extends); others are path's
+        self.sources: dict[int, tuple[Path, Any]] = {}
         self._constructor = yaml.constructor.SafeConstructor()  # scalars only (no tags reach it)
 
     @classmethod
-    def from_file(cls, path: str | Path, limits: Limits = LIMITS) -> "Checker":
+    def from_file(cls, path: str | Path, limits: Limits = LIMITS, extends: bool = False) -> "Checker":
+        """extends: the file may name a base (`extends:`, confcheck.extends), merged in."""
         path = Path(path)
         root, text = read_yaml(path, limits)
-        c = cls(path, root)
-        c.text = text
-        return c
+        return cls._made(path, root, text, limits, extends)
 
     @classmethod
-    def from_text(cls, text: str, path: Path, limits: Limits = LIMITS) -> "Checker":
-        c = cls(path, parse_text(path, text, limits))
+    def from_text(cls, text: str, path: Path, limits: Limits = LIMITS, extends: bool = False) -> "Checker":
+        return cls._made(path, parse_text(path, text, limits), text, limits, extends)
+
+    @classmethod
+    def _made(cls, path: Path, root: yaml.Node, text: str, limits: Limits, extends: bool) -> "Checker":
+        sources: dict[int, tuple[Path, Any]] = {}
+        if extends:
+            from confcheck.extends import compose
+
+            root = compose(path, root, sources, limits)
+        c = cls(path, root)
+        c.sources = sources
         c.text = text
         return c
 
     # ------------------------------------------------------------ errors
     def where(self, node) -> str:
         m = node.start_mark if node is not None else None
-        return f"{self.path}:{m.line + 1}:{m.column + 1}" if m else f"{self.path}"
+        path = self.sources[id(node)][0] if id(node) in self.sources else self.path
+        return f"{path}:{m.line + 1}:{m.column + 1}" if m else f"{path}"
 
     def err(self, node, key: str, msg: str) -> None:
         self.errors.append(f"{self.where(node)}: {key}: {msg}" if key else f"{self.where(node)}: {msg}")

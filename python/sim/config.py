@@ -20,29 +20,26 @@ from confcheck import VEHICLE_ID, Checker, ConfigError, Rule, report, rule_of, s
 from sim import clock_modes
 from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
-from sim.environment import CurrentLayer, EnvParams, Transponder
+from sim.environment import ENV_VARIABLES, CurrentLayer, EnvParams, Transponder
 from sim.sensors import REGISTRY
 from sim.sonar.config import SonarConfig
 from sim.vehicle import REMUS100, VehicleParams
 
-__all__ = ["ConfigError", "SimConfig", "VEHICLE_ID", "load", "load_or_report", "loads"]
+__all__ = [
+    "ConfigError",
+    "ENV_VARIABLES",
+    "RESERVED_TOPICS",
+    "SimConfig",
+    "VEHICLE_ID",
+    "load",
+    "load_or_report",
+    "loads",
+]
 
-ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
-# <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's
-RESERVED_TOPICS = {
-    "AHRS",
-    "DEPTH",
-    "DVL",
-    "ALTIMETER",
-    "GPS",
-    "LBL",
-    "TRUTH",
-    "ACTUATOR_STATE",
-    "ACTUATORS",
-    "HEALTH",
-    "CONTACTS",
-    "SETPOINT",
-}
+# <VEHICLE>.<topic> channels the simulator writes or reads besides the INS's:
+# its own, and every registered sensor's (sim.sensors.SENSORS)
+SIM_TOPICS = {"TRUTH", "ACTUATOR_STATE", "ACTUATORS", "HEALTH", "CONTACTS", "SETPOINT"}
+RESERVED_TOPICS = SIM_TOPICS | {cls.topic for name, (_, cls) in REGISTRY.items() if name != "ins"}
 
 
 @dataclass
@@ -285,10 +282,27 @@ def _sensors(doc: Checker, node) -> dict[str, Any]:
     return out
 
 
+def _needs_served(doc: Checker, node, sensors: dict[str, Any], mh: MultiHil) -> None:
+    """A listed multihil.needs asks the world for what every fitted sensor reads
+    (Sensor.env_needs): a sensor is served the environment it needs."""
+    items = doc.mapping(node, "multihil")
+    if "needs" not in items:
+        return  # the default asks for everything
+    fitted = sensors or {name: cfg_cls() for name, (cfg_cls, _) in REGISTRY.items()}
+    for name, scfg in fitted.items():
+        missing = [v for v in REGISTRY[name][1].env_needs if v not in mh.needs]
+        if scfg.enabled and missing:
+            doc.err(
+                items["needs"][1],
+                "multihil.needs",
+                f"sensors.{name} reads {', '.join(missing)} from the world: add {'them' if len(missing) > 1 else 'it'}",
+            )
+
+
 def load(path: str | Path) -> SimConfig:
     """Read and check a configuration; raise ConfigError listing every problem."""
     path = Path(path)
-    return _check(Checker.from_file(path), path)
+    return _check(Checker.from_file(path, extends=True), path)
 
 
 def load_or_report(path: str | Path) -> SimConfig | None:
@@ -302,7 +316,7 @@ def load_or_report(path: str | Path) -> SimConfig | None:
 
 
 def loads(text: str, path: Path = Path("<config>")) -> SimConfig:
-    return _check(Checker.from_text(text, path), path)
+    return _check(Checker.from_text(text, path, extends=True), path)
 
 
 SECTIONS = (
@@ -331,6 +345,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     env = _environment(doc, get("environment"), path.parent)
     sensors = _sensors(doc, get("sensors"))
     mh = doc.fill(get("multihil"), "multihil", MultiHil())
+    _needs_served(doc, get("multihil"), sensors, mh)
     safe = doc.fill(get("safe_command"), "safe_command", Command())
     sonar = None
     if "sonar" in top:

@@ -17,6 +17,9 @@ from pathlib import Path
 from confcheck import setting
 from sim.bathymetry import Bathymetry
 
+# What of the world a vehicle may ask a multi-HIL world for (multihil.needs,
+# env_needs_t), and what a sensor declares it reads (Sensor.env_needs).
+ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
 G = 9.81
 RHO_SEAWATER = 1025.0  # kg/m^3, the depth sensor's conversion too
 # Spatial wavelength of the slow current variation [m]: large against a

@@ -44,19 +44,16 @@ from sim.wire import Encoder
 
 
 def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
-    """Every enabled sensor of the configuration (all of them if none are listed)."""
+    """Every enabled sensor of the configuration (all of them if none are listed),
+    each given the parts of the world it declares it uses (Sensor.uses)."""
     out = []
+    world = {"env": model.env, "frame": model.frame}
     names = cfg.sensors or {name: REGISTRY[name][0]() for name in REGISTRY}
     for name, scfg in names.items():
         if not scfg.enabled or getattr(scfg, "channel", "") == "off":
             continue
         cls = REGISTRY[name][1]
-        if name in ("gps", "ins"):
-            out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id, model.frame))
-        elif name == "lbl":
-            out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id, model.env))
-        else:
-            out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id))
+        out.append(cls(scfg, cfg.sim.seed, cfg.vehicle_id, **{part: world[part] for part in cls.uses}))
     return out
 
 

@@ -27,6 +27,7 @@ from lcm_proc import pump, stop
 from auv import chasm_status_t, ground_truth_t, nav_solution_t, sim_clock_t
 from auvlcm import programs
 from auvlcm.rx import Receiver
+from confcheck.extends import resolved
 
 MISSIONS = ROOT / "missions"
 SIM_CONFIG = MISSIONS / "sim" / "remus100.yaml"
@@ -83,7 +84,7 @@ def sim_config(tmp: Path, **overrides) -> Path:
     """The example vehicle, stepped by SIM.CLOCK, with the truth published at
     every physics step (this process waits for it) and any `section: {key:
     value}` overrides merged in (e.g. initial={'north_m': -50}; None removes a key)."""
-    cfg = yaml.safe_load(SIM_CONFIG.read_text())
+    cfg = resolved(SIM_CONFIG)  # with the base it extends
     cfg["simulation"].update(clock="lockstep", truth_rate_hz=cfg["simulation"].get("physics_rate_hz", 50))
     merge(cfg, overrides)
     path = tmp / "sim.yaml"
@@ -127,6 +128,8 @@ class Mission:
                 .read_text()
                 .replace("${VEHICLE}.NAV ", "${VEHICLE}.NAV_RELAY ")
             )
+            shared = "sensors.bind"  # what it includes, next to it
+            (tmp / shared).write_text((MISSIONS / "bindings" / shared).read_text())
         self.bind = bind
 
     def _on_truth(self, channel: str, m: ground_truth_t) -> None:

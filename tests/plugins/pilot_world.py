@@ -24,6 +24,7 @@ from lcm_proc import pump, stop, wait_for_line
 from auv import actuators_t, chasm_status_t, ground_truth_t, pilot_status_t, setpoint_t, sim_clock_t
 from auvlcm import programs
 from auvlcm.rx import Receiver
+from confcheck.extends import resolved
 
 ROOT = Path(__file__).resolve().parents[2]
 SIM_CONFIG = ROOT / "missions" / "sim" / "remus100.yaml"
@@ -121,7 +122,7 @@ class World:
     def _config(self) -> Path:
         """remus100.yaml (the default table-coefficient vehicle) with the
         test's clock, start state and any environment change."""
-        cfg = yaml.safe_load(SIM_CONFIG.read_text())
+        cfg = resolved(SIM_CONFIG)  # with the base it extends
         cfg["simulation"].update(
             clock="lockstep",
             lcm_url=self.url,

@@ -132,6 +132,8 @@ def test_mismatched_modems_are_refused(tmp_path):
     cfg.write_text(
         (ROOT / "missions" / "sim" / "remus100_ri.yaml").read_text().replace("bitrate_bps: 80", "bitrate_bps: 1300")
     )
+    base = "remus100_base.yaml"  # the base it extends, next to it
+    (tmp_path / base).write_text((ROOT / "missions" / "sim" / base).read_text())
     run = run_team(tmp_path / "x", "--ri-config", str(cfg))
     assert run.returncode == 2 and "one team, one modem profile" in run.stderr, run.stderr
 

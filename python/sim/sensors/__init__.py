@@ -1,4 +1,11 @@
-"""Sensor models. Each turns the true state into the message a real instrument sends."""
+"""Sensor models. Each turns the true state into the message a real instrument sends.
+
+SENSORS is the one registry: a sensor is declared by its class (name, topic,
+config_class, env_needs, uses, nav_config: sim.sensors.base.Sensor) and one
+line here. Everything else that lists sensors derives from it: the keys of a
+configuration's `sensors:`, the channels an INS may not move onto
+(sim.config.RESERVED_TOPICS), the navigation filter's figures (tools.nav.navconf).
+"""
 
 from sim.sensors.base import Sensor, SensorConfig
 from sim.sensors.ins import Ins, InsConfig
@@ -17,28 +24,32 @@ from sim.sensors.instruments import (
 from sim.sensors.lbl import Lbl, LblConfig
 from sim.sensors.leak import LeakConfig, LeakSensor
 
-# name in the configuration -> (config class, sensor class)
-REGISTRY = {
-    "ahrs": (AhrsConfig, Ahrs),
-    "depth": (DepthConfig, DepthSensor),
-    "dvl": (DvlConfig, Dvl),
-    "altimeter": (AltimeterConfig, Altimeter),
-    "gps": (GpsConfig, Gps),
-    "lbl": (LblConfig, Lbl),
-    "ins": (InsConfig, Ins),
-    "leak": (LeakConfig, LeakSensor),
-}
+# In this order a vehicle whose configuration lists no sensors builds them
+# (and publishes those due at the same instant).
+SENSORS: tuple[type[Sensor], ...] = (Ahrs, DepthSensor, Dvl, Altimeter, Gps, Lbl, Ins, LeakSensor)
+
+# name in the configuration -> (config class, sensor class), derived
+REGISTRY = {s.name: (s.config_class, s) for s in SENSORS}
 
 __all__ = [
     "Sensor",
     "SensorConfig",
+    "SENSORS",
     "REGISTRY",
     "Ahrs",
+    "AhrsConfig",
     "DepthSensor",
+    "DepthConfig",
     "Dvl",
+    "DvlConfig",
     "Altimeter",
+    "AltimeterConfig",
     "Gps",
+    "GpsConfig",
     "Lbl",
+    "LblConfig",
     "Ins",
+    "InsConfig",
     "LeakSensor",
+    "LeakConfig",
 ]

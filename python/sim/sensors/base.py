@@ -35,8 +35,27 @@ class SensorConfig:
 
 
 class Sensor:
-    name = "sensor"
+    """A sensor model, declared once: its registry entry (sim.sensors.SENSORS)
+    is this class, and everything else that names sensors derives from these
+    attributes (the configuration's `sensors:` keys, the channels an INS may
+    not move onto, the navigation filter's figures, the world it is given)."""
+
+    name = "sensor"  # its key under `sensors:` in a simulator configuration
     topic = "SENSOR"  # channel suffix: <VEHICLE>.<topic>
+    config_class: type = None  # type: ignore[assignment]  # its SensorConfig subclass
+    # The environment variables it reads (sim.environment.ENV_VARIABLES): a
+    # multi-HIL vehicle must ask the world for them (multihil.needs).
+    env_needs: tuple[str, ...] = ()
+    # The parts of the simulated world its constructor takes, as keywords:
+    # "env" (sim.environment.Environment), "frame" (the geodetic frame).
+    uses: tuple[str, ...] = ()
+
+    @classmethod
+    def nav_config(cls, cfg: "SensorConfig", env: Any) -> list[str]:
+        """Its lines of the navigation filter's config (tools.nav.navconf), from its
+        configuration and the world's parameters (sim.environment.EnvParams): its
+        noise as the filter's specification; none if the filter does not fuse it."""
+        return []
 
     def __init__(self, cfg: SensorConfig, seed: int, vehicle: str) -> None:
         self.cfg = cfg

@@ -43,7 +43,10 @@ class InsConfig(SensorConfig):
 
 class Ins(Sensor):
     name = "ins"
-    topic = "NAV"
+    topic = "NAV"  # the default of `channel`, which may move it
+    config_class = InsConfig
+    env_needs = ("waves", "bathymetry")  # its depth is a pressure gauge's; bottom lock
+    uses = ("frame",)
     cfg: InsConfig
 
     def __init__(self, cfg, seed, vehicle, frame) -> None:

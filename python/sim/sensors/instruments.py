@@ -14,6 +14,8 @@ from sim.wire import Encoder
 RHO_SEAWATER = 1025.0
 P_ATM = 101325.0
 G = 9.81
+# Below this a configured compass bias is "none"; the filter still gets a small prior.
+MIN_BIAS_SIGMA_RAD = math.radians(0.1)
 
 
 @dataclass
@@ -28,7 +30,18 @@ class AhrsConfig(SensorConfig):
 class Ahrs(Sensor):
     name = "ahrs"
     topic = "AHRS"
+    config_class = AhrsConfig
     cfg: AhrsConfig
+
+    @classmethod
+    def nav_config(cls, cfg: AhrsConfig, env) -> list[str]:
+        # a constant compass bias becomes the 1-sigma prior of the filter's bias state, never its value
+        return [
+            f"compass_noise_rad {max(cfg.noise, 1e-6):.6g}",
+            f"compass_bias_sigma_rad {max(abs(cfg.bias), MIN_BIAS_SIGMA_RAD):.6g}",
+            f"gyro_noise_radps {cfg.rate_noise:.6g}",
+            f"attitude_noise_rad {cfg.attitude_noise:.6g}",
+        ]
 
     def __init__(self, cfg, seed, vehicle) -> None:
         super().__init__(cfg, seed, vehicle)
@@ -68,7 +81,18 @@ class DepthConfig(SensorConfig):
 class DepthSensor(Sensor):
     name = "depth"
     topic = "DEPTH"
+    config_class = DepthConfig
+    env_needs = ("waves",)  # a pressure gauge reads the swell's dynamic pressure
     cfg: DepthConfig
+
+    @classmethod
+    def nav_config(cls, cfg: DepthConfig, env) -> list[str]:
+        # The gauge also reads the swell's dynamic pressure head (docs/simulator.md,
+        # "Waves"): its standard deviation is Hs/4 at the surface, less deeper down
+        # (e^-kz); the surface figure is the conservative choice for a filter that
+        # does not know the vehicle's depth in advance.
+        swell = env.wave_height_m / 4.0 if env.wave_period_s > 0.0 else 0.0
+        return [f"depth_noise_m {max(math.hypot(cfg.noise, cfg.bias, swell), 1e-4):.6g}"]
 
     def measure(self, tr: Truth):
         c = self.cfg
@@ -102,7 +126,13 @@ class DvlConfig(SensorConfig):
 class Dvl(Sensor):
     name = "dvl"
     topic = "DVL"
+    config_class = DvlConfig
+    env_needs = ("bathymetry", "current")  # bottom lock; water track
     cfg: DvlConfig
+
+    @classmethod
+    def nav_config(cls, cfg: DvlConfig, env) -> list[str]:
+        return [f"dvl_noise_mps {max(math.hypot(cfg.noise, cfg.bias), 1e-4):.6g}"]
 
     def measure(self, tr: Truth):
         c = self.cfg
@@ -171,6 +201,8 @@ class AltimeterConfig(SensorConfig):
 class Altimeter(Sensor):
     name = "altimeter"
     topic = "ALTIMETER"
+    config_class = AltimeterConfig
+    env_needs = ("bathymetry",)
     cfg: AltimeterConfig
 
     def measure(self, tr: Truth):
@@ -207,7 +239,13 @@ class GpsConfig(SensorConfig):
 class Gps(Sensor):
     name = "gps"
     topic = "GPS"
+    config_class = GpsConfig
+    uses = ("frame",)
     cfg: GpsConfig
+
+    @classmethod
+    def nav_config(cls, cfg: GpsConfig, env) -> list[str]:
+        return [f"gps_noise_m {max(math.hypot(cfg.noise, cfg.bias), 0.01):.6g}"]
 
     def __init__(self, cfg, seed, vehicle, frame) -> None:
         super().__init__(cfg, seed, vehicle)

@@ -34,7 +34,26 @@ class LblConfig(SensorConfig):
 class Lbl(Sensor):
     name = "lbl"
     topic = "LBL"
+    config_class = LblConfig
+    env_needs = ("sound_speed", "lbl")  # the travel times; the transponders
+    uses = ("env",)
     cfg: LblConfig
+
+    @classmethod
+    def nav_config(cls, cfg: LblConfig, env) -> list[str]:
+        p = env
+        lines = [f"lbl_range_noise_m {max(math.hypot(cfg.noise, cfg.bias), 0.01):.6g}"]
+        if cfg.assumed_sound_speed_mps > 0:
+            lines.append(f"sound_speed_mps {cfg.assumed_sound_speed_mps:.9g}")
+        else:
+            lines += [
+                f"sound_speed_mps {p.sound_speed_mps:.9g}",
+                f"sound_speed_gradient_per_m {p.sound_speed_gradient_per_m:.9g}",
+            ]
+        lines.append("# transponder ID NORTH_M EAST_M DEPTH_M TURNAROUND_S")
+        for t in p.transponders:
+            lines.append(f"transponder {t.id} {t.north_m:.9g} {t.east_m:.9g} {t.depth_m:.9g} {t.turnaround_s:.9g}")
+        return lines
 
     def __init__(self, cfg, seed, vehicle, env: Environment) -> None:
         super().__init__(cfg, seed, vehicle)

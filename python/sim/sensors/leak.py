@@ -29,6 +29,7 @@ class LeakConfig(SensorConfig):
 class LeakSensor(Sensor):
     name = "leak"
     topic = "LEAK"
+    config_class = LeakConfig
     cfg: LeakConfig
 
     def measure(self, tr: Truth):

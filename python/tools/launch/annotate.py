@@ -2,8 +2,8 @@
 
 Channel SIM.ANNOTATION, type log_annotation_t: the scenario (KIND_SCENARIO),
 each vehicle's merged simulator configuration (KIND_SCENARIO, with vehicle),
-each plan and the files it includes (KIND_PLAN), each binding file (KIND_NOTE
-named after the file), every .lcm type definition (KIND_LCMTYPE), and
+each plan and the files it includes (KIND_PLAN), each binding file and the
+files it includes (KIND_NOTE named after the file), every .lcm type definition (KIND_LCMTYPE), and
 supervisor events (KIND_EVENT: process start/exit, mission end).
 `auv-lcmlog annotations LOG --extract DIR` writes them back out.
 """
@@ -73,4 +73,6 @@ class Annotator:
             self.file(log_annotation_t.KIND_PLAN, p, vehicle)
 
     def binding(self, bind: Path, vehicle: str) -> None:
-        self.file(log_annotation_t.KIND_NOTE, bind, vehicle)
+        # a binding file's `include "FILE"` has the plans' syntax and resolution
+        for p in plan_files(bind):
+            self.file(log_annotation_t.KIND_NOTE, p, vehicle)

@@ -8,6 +8,7 @@ import re
 from pathlib import Path
 
 from confcheck import Checker, ConfigError
+from confcheck.extends import locate
 from confcheck.reader import dump_yaml
 from tools.launch.fault_step import count_in
 from tools.launch.lockstep_names import name_them
@@ -34,7 +35,7 @@ def _absolute_grid(env: dict, base: Path) -> dict:
 def _base(v: Vehicle) -> dict:
     """The vehicle's base simulator configuration as plain data (read and
     checked for YAML limits like every file; its keys are checked after the merge)."""
-    c = Checker.from_file(v.sim_config)
+    c = Checker.from_file(v.sim_config, extends=True)  # with the base it extends merged in
     data = c.plain(c.root)
     c.raise_errors()
     return data if isinstance(data, dict) else {}
@@ -112,8 +113,8 @@ def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:
     if found:
         return pos
     try:
-        base = Checker.from_file(v.sim_config)
-        bpos, bfound = position(v.sim_config, base.root, parts)
+        base = Checker.from_file(v.sim_config, extends=True)
+        bpos, bfound = locate(base, parts)  # in the file or the base it extends
         return bpos if bfound else pos
     except ConfigError:
         return pos

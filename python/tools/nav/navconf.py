@@ -16,15 +16,11 @@ filter's defaults (docs/navigation.md).
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
 from sim.config import SimConfig, load_or_report
 from sim.sensors import REGISTRY
-
-# Below this a configured bias is "none"; the filter still gets a small prior.
-MIN_BIAS_SIGMA_RAD = math.radians(0.1)
 
 
 def _sensor(cfg: SimConfig, name: str):
@@ -41,41 +37,11 @@ def nav_config_text(cfg: SimConfig) -> str:
         f"origin_latitude_deg {env.origin_latitude_deg:.9g}",
         f"origin_longitude_deg {env.origin_longitude_deg:.9g}",
     ]
-    ahrs = _sensor(cfg, "ahrs")
-    if ahrs is not None and ahrs.enabled:
-        lines += [
-            f"compass_noise_rad {max(ahrs.noise, 1e-6):.6g}",
-            f"compass_bias_sigma_rad {max(abs(ahrs.bias), MIN_BIAS_SIGMA_RAD):.6g}",
-            f"gyro_noise_radps {ahrs.rate_noise:.6g}",
-            f"attitude_noise_rad {ahrs.attitude_noise:.6g}",
-        ]
-    depth = _sensor(cfg, "depth")
-    if depth is not None and depth.enabled:
-        # The gauge also reads the swell's dynamic pressure head (docs/simulator.md,
-        # "Waves"): its standard deviation is Hs/4 at the surface, less deeper down
-        # (e^-kz); the surface figure is the conservative choice for a filter that
-        # does not know the vehicle's depth in advance.
-        swell = env.wave_height_m / 4.0 if env.wave_period_s > 0.0 else 0.0
-        lines.append(f"depth_noise_m {max(math.hypot(depth.noise, depth.bias, swell), 1e-4):.6g}")
-    dvl = _sensor(cfg, "dvl")
-    if dvl is not None and dvl.enabled:
-        lines.append(f"dvl_noise_mps {max(math.hypot(dvl.noise, dvl.bias), 1e-4):.6g}")
+    for name, (_, cls) in REGISTRY.items():  # each sensor's figures: sim.sensors.base.Sensor.nav_config
+        scfg = _sensor(cfg, name)
+        if scfg is not None and scfg.enabled:
+            lines += cls.nav_config(scfg, env)
     gps = _sensor(cfg, "gps")
-    if gps is not None and gps.enabled:
-        lines.append(f"gps_noise_m {max(math.hypot(gps.noise, gps.bias), 0.01):.6g}")
-    lbl = _sensor(cfg, "lbl")
-    if lbl is not None and lbl.enabled:
-        lines.append(f"lbl_range_noise_m {max(math.hypot(lbl.noise, lbl.bias), 0.01):.6g}")
-        if lbl.assumed_sound_speed_mps > 0:
-            lines.append(f"sound_speed_mps {lbl.assumed_sound_speed_mps:.9g}")
-        else:
-            lines += [
-                f"sound_speed_mps {env.sound_speed_mps:.9g}",
-                f"sound_speed_gradient_per_m {env.sound_speed_gradient_per_m:.9g}",
-            ]
-        lines.append("# transponder ID NORTH_M EAST_M DEPTH_M TURNAROUND_S")
-        for t in env.transponders:
-            lines.append(f"transponder {t.id} {t.north_m:.9g} {t.east_m:.9g} {t.depth_m:.9g} {t.turnaround_s:.9g}")
     gps_depth = gps.max_depth_m if gps is not None and gps.enabled else -1.0
     if cfg.initial.depth_m > gps_depth:
         lines += [
