@@ -17,6 +17,7 @@ from typing import Any, Callable, Iterable
 import yaml
 
 from confcheck.errors import ConfigError, position
+from confcheck.extends import compose
 from confcheck.reader import LIMITS, Limits, parse_text, read_yaml
 from confcheck.rules import NO_RULE, Rule, rule_of
 
@@ -64,8 +65,6 @@ class Checker:
     def _made(cls, path: Path, root: yaml.Node, text: str, limits: Limits, extends: bool) -> "Checker":
         sources: dict[int, tuple[Path, Any]] = {}
         if extends:
-            from confcheck.extends import compose
-
             root = compose(path, root, sources, limits)
         c = cls(path, root)
         c.sources = sources
@@ -238,3 +237,13 @@ class Checker:
             if v is not dataclasses.MISSING:
                 setattr(obj, f.name, v)
         return obj
+
+
+def resolved(path: str | Path, limits: Limits = LIMITS) -> dict:
+    """A file's plain data (dicts, lists, values) with the bases it extends merged
+    in: what a tool that edits a configuration and writes it elsewhere starts from
+    (a copy of the file's text would name its base relative to the wrong folder)."""
+    c = Checker.from_file(path, limits, extends=True)
+    data = c.plain(c.root)
+    c.raise_errors()
+    return data if isinstance(data, dict) else {}

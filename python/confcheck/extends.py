@@ -159,15 +159,3 @@ def locate(checker, parts: list[str]) -> tuple[str, bool]:
             break
         node, found = hit, found + 1
     return checker.where(node), found == len(parts) and found > 0
-
-
-def resolved(path: str | Path, limits: Limits = LIMITS) -> dict:
-    """A file's plain data (dicts, lists, values) with the bases it extends merged
-    in: what a tool that edits a configuration and writes it elsewhere starts from
-    (a copy of the file's text would name its base relative to the wrong folder)."""
-    from confcheck.checker import Checker
-
-    c = Checker.from_file(path, limits, extends=True)
-    data = c.plain(c.root)
-    c.raise_errors()
-    return data if isinstance(data, dict) else {}

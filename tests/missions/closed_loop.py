@@ -27,7 +27,7 @@ from lcm_proc import pump, stop
 from auv import chasm_status_t, ground_truth_t, nav_solution_t, sim_clock_t
 from auvlcm import programs
 from auvlcm.rx import Receiver
-from confcheck.extends import resolved
+from confcheck.checker import resolved
 
 MISSIONS = ROOT / "missions"
 SIM_CONFIG = MISSIONS / "sim" / "remus100.yaml"

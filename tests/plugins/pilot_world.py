@@ -24,7 +24,7 @@ from lcm_proc import pump, stop, wait_for_line
 from auv import actuators_t, chasm_status_t, ground_truth_t, pilot_status_t, setpoint_t, sim_clock_t
 from auvlcm import programs
 from auvlcm.rx import Receiver
-from confcheck.extends import resolved
+from confcheck.checker import resolved
 
 ROOT = Path(__file__).resolve().parents[2]
 SIM_CONFIG = ROOT / "missions" / "sim" / "remus100.yaml"
