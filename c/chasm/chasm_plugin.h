@@ -250,19 +250,20 @@ typedef struct {
  *   };
  *   CHASM_PLUGIN_EXPORT("depth_tools", "1.0.0", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));
  *
- * Why this form: named fields cannot be swapped silently (name and doc, start
- * and stop have the same types), optional members (doc, state_size, start,
- * stop) are left out rather than padded with NULL and 0, and an entry
- * survives a field added at an ABI bump; a macro of positional arguments
- * (a BEHAVIOR(...) of a plugin's own, or one here) would bring back the
- * positional problem. Why one table written out in one file: the descriptor
- * takes a contiguous array, and C cannot build one at compile time from spec
- * objects defined in other files (copying them in at load time needs a
- * constructor and a writable table); each behavior file therefore exports
- * its schema and entry points (hidden), and the table names them. The only
- * helpers are for the pairs of a pointer and its count, which must not drift
- * apart. tests/chasm/test_plugin_registration.py holds every plugin, test
- * plugin and doc example to this. Members in declaration order (C++20 too). */
+ * Why this form: named fields cannot be swapped silently (name and doc are
+ * both strings, n_params and state_size both sizes), optional members (doc,
+ * state_size, start, stop) are left out rather than padded with NULL and 0,
+ * and an entry survives a field added at an ABI bump; a macro of positional
+ * arguments (a BEHAVIOR(...) of a plugin's own, or one here) would bring back
+ * the positional problem. Why one table written out in one file: the
+ * descriptor takes a contiguous array, and C cannot build one at compile time
+ * from spec objects defined in other files (copying them in at load time
+ * needs a constructor and a writable table); each behavior file therefore
+ * exports its schema and entry points (hidden), and the table names them. The
+ * only helpers are for the pairs of a pointer and its count, which must not
+ * drift apart. tests/chasm/test_plugin_registration.py holds every plugin,
+ * test plugin and doc example to this. Members in declaration order (C++20
+ * too). */
 #define CHASM_SCHEMA(PARAMS) .params = (PARAMS), .n_params = CHASM_COUNT(PARAMS)
 #define CHASM_BEHAVIORS(TABLE) .behaviors = (TABLE), .n_behaviors = CHASM_COUNT(TABLE)
 #define CHASM_TESTS(TABLE) .tests = (TABLE), .n_tests = CHASM_COUNT(TABLE)
