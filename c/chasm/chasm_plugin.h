@@ -2,9 +2,10 @@
  *
  * A plugin is a shared object that exports ONE symbol, `chasm_plugin`, of type
  * chasm_plugin_descriptor (use CHASM_PLUGIN_EXPORT). It describes the plugin's
- * behaviors and test handlers and, for each, a schema of parameters: the Loader
- * checks every value of a plan against that schema (type, unit, range,
- * required) before a mission starts, so a behavior never has to validate them.
+ * behaviors and test handlers (one table of each, see "Registration" below)
+ * and, for each, a schema of parameters: the Loader checks every value of a
+ * plan against that schema (type, unit, range, required) before a mission
+ * starts, so a behavior never has to validate them.
  *
  * Plugins see CHASM only through chasm_ctx and the inline accessors below, which
  * call through a function table: a plugin links against nothing and does not
@@ -224,14 +225,57 @@ typedef struct {
     size_t n_tests;
 } chasm_plugin_descriptor;
 
-#define CHASM_COUNT(a) (sizeof(a) / sizeof((a)[0]))
+/* Elements of an array; a pointer given instead (whose count this is not)
+ * is a compile error where the compiler can tell (GCC, Clang; C only). */
+#if defined(__GNUC__) && !defined(__cplusplus)
+#define CHASM_NOT_POINTER_(a) \
+    (0 * sizeof(struct { int an_array_: 1 - 2 * __builtin_types_compatible_p(__typeof__(a), __typeof__(&(a)[0])); }))
+#else
+#define CHASM_NOT_POINTER_(a) 0
+#endif
+#define CHASM_COUNT(a) (sizeof(a) / sizeof((a)[0]) + CHASM_NOT_POINTER_(a))
 
-/* Defines the exported descriptor. Example:
- *   CHASM_PLUGIN_EXPORT("survey", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0); */
-#define CHASM_PLUGIN_EXPORT(NAME, VERSION, BEH, NBEH, TESTS, NTESTS)                 \
-    __attribute__((visibility("default"))) const chasm_plugin_descriptor chasm_plugin = { \
-        CHASM_PLUGIN_ABI, (uint32_t)sizeof(chasm_plugin_descriptor), NAME, VERSION,   \
-        BEH, NBEH, TESTS, NTESTS}
+/* Registration: the one way a plugin registers its behaviors and test
+ * handlers. Each plugin has one table of behaviors and one of test handlers,
+ * `static const` arrays in its <plugin>_plugin.c, each entry a designated
+ * initializer; the schema is given with CHASM_SCHEMA and the tables with
+ * CHASM_BEHAVIORS / CHASM_TESTS in CHASM_PLUGIN_EXPORT:
+ *
+ *   static const chasm_behavior_spec behaviors[] = {
+ *       {.name = "ramp_depth", .doc = "ramp the depth setpoint", CHASM_SCHEMA(params),
+ *        .state_size = sizeof(state_t), .step = step},
+ *   };
+ *   static const chasm_test_spec tests[] = {
+ *       {.name = "deep", .doc = "deeper than limit", CHASM_SCHEMA(deep_params), .evaluate = deep},
+ *   };
+ *   CHASM_PLUGIN_EXPORT("depth_tools", "1.0.0", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));
+ *
+ * Why this form: named fields cannot be swapped silently (name and doc are
+ * both strings, n_params and state_size both sizes), optional members (doc,
+ * state_size, start, stop) are left out rather than padded with NULL and 0,
+ * and an entry survives a field added at an ABI bump; a macro of positional
+ * arguments (a BEHAVIOR(...) of a plugin's own, or one here) would bring back
+ * the positional problem. Why one table written out in one file: the
+ * descriptor takes a contiguous array, and C cannot build one at compile time
+ * from spec objects defined in other files (copying them in at load time
+ * needs a constructor and a writable table); each behavior file therefore
+ * exports its schema and entry points (hidden), and the table names them. The
+ * only helpers are for the pairs of a pointer and its count, which must not
+ * drift apart. tests/chasm/test_plugin_registration.py holds every plugin,
+ * test plugin and doc example to this. Members in declaration order (C++20
+ * too). */
+#define CHASM_SCHEMA(PARAMS) .params = (PARAMS), .n_params = CHASM_COUNT(PARAMS)
+#define CHASM_BEHAVIORS(TABLE) .behaviors = (TABLE), .n_behaviors = CHASM_COUNT(TABLE)
+#define CHASM_TESTS(TABLE) .tests = (TABLE), .n_tests = CHASM_COUNT(TABLE)
+
+/* Defines the exported descriptor of the plugin NAME (`use NAME`), VERSION
+ * free text, then CHASM_BEHAVIORS(table) and/or CHASM_TESTS(table), in that
+ * order. The ABI version and struct size are filled in here, so a plugin
+ * always says what it was built against. */
+#define CHASM_PLUGIN_EXPORT(NAME, VERSION, ...)                                                      \
+    __attribute__((visibility("default"))) const chasm_plugin_descriptor chasm_plugin = {            \
+        .abi_version = CHASM_PLUGIN_ABI, .struct_size = (uint32_t)sizeof(chasm_plugin_descriptor), \
+        .name = (NAME), .version = (VERSION), __VA_ARGS__}
 
 /* Optional: limits of a plan's values that the schema cannot state (a
  * polygon's vertex count, a list's length). A plugin may define

@@ -30,23 +30,21 @@
 #define STR_(x) #x
 #define STR(x) STR_(x)
 
-enum { POLYGON, NORTH, EAST, LENGTH, WIDTH, HEADING, MARGIN, AT_NORTH, AT_EAST, NPARAMS };
-
-static const chasm_param_spec params[NPARAMS] = {
+const chasm_param_spec checks_outside_area_params[AREA_NPARAMS] = {
     /* The limits are in the description so that planners read them from
      * `chasm describe checks` (python/tools/plan/plugin_limits.py), not a copy. */
-    [POLYGON] = CHASM_PARAM_STRING("polygon", "",
-                                   "vertices \"north,east; ...\" in metres (or give a box); at most " STR(PU_POLYGON_MAX)
-                                   " vertices and " STR(TEXT_MAX_CHARS) " characters"),
-    [NORTH] = CHASM_PARAM_DOUBLE_RANGE("north", "m", 0, -1e7, 1e7, "box corner, north"),
-    [EAST] = CHASM_PARAM_DOUBLE_RANGE("east", "m", 0, -1e7, 1e7, "box corner, east"),
-    [LENGTH] = CHASM_PARAM_DOUBLE_RANGE("length", "m", 0, 0, 1e7, "box side along heading"),
-    [WIDTH] = CHASM_PARAM_DOUBLE_RANGE("width", "m", 0, 0, 1e7, "box side to the right of heading"),
-    [HEADING] = CHASM_PARAM_DOUBLE_RANGE("heading", "rad", 0, -6.283185307179586, 6.283185307179586,
-                                         "direction of the box's length (0: north)"),
-    [MARGIN] = CHASM_PARAM_DOUBLE_RANGE("margin", "m", 0, 0, 1e6, "also true this close to the edge, inside"),
-    [AT_NORTH] = CHASM_READ("at_north", CHASM_DOUBLE, "m", "nav.north_m", "vehicle position, north"),
-    [AT_EAST] = CHASM_READ("at_east", CHASM_DOUBLE, "m", "nav.east_m", "vehicle position, east"),
+    [AREA_POLYGON] = CHASM_PARAM_STRING("polygon", "",
+                                        "vertices \"north,east; ...\" in metres (or give a box); at most "
+                                        STR(PU_POLYGON_MAX) " vertices and " STR(TEXT_MAX_CHARS) " characters"),
+    [AREA_NORTH] = CHASM_PARAM_DOUBLE_RANGE("north", "m", 0, -1e7, 1e7, "box corner, north"),
+    [AREA_EAST] = CHASM_PARAM_DOUBLE_RANGE("east", "m", 0, -1e7, 1e7, "box corner, east"),
+    [AREA_LENGTH] = CHASM_PARAM_DOUBLE_RANGE("length", "m", 0, 0, 1e7, "box side along heading"),
+    [AREA_WIDTH] = CHASM_PARAM_DOUBLE_RANGE("width", "m", 0, 0, 1e7, "box side to the right of heading"),
+    [AREA_HEADING] = CHASM_PARAM_DOUBLE_RANGE("heading", "rad", 0, -6.283185307179586, 6.283185307179586,
+                                              "direction of the box's length (0: north)"),
+    [AREA_MARGIN] = CHASM_PARAM_DOUBLE_RANGE("margin", "m", 0, 0, 1e6, "also true this close to the edge, inside"),
+    [AREA_AT_NORTH] = CHASM_READ("at_north", CHASM_DOUBLE, "m", "nav.north_m", "vehicle position, north"),
+    [AREA_AT_EAST] = CHASM_READ("at_east", CHASM_DOUBLE, "m", "nav.east_m", "vehicle position, east"),
 };
 
 #define CACHE_SLOTS 16
@@ -95,10 +93,10 @@ static int fail(chasm_ctx *c, int *reported, const char *why)
 
 static int box_reported; /* a bad box has no string to key on: one message per process */
 
-static int evaluate(chasm_ctx *c)
+int checks_outside_area_evaluate(chasm_ctx *c)
 {
-    const char *text = chasm_param_string(c, POLYGON);
-    double length = chasm_param_double(c, LENGTH), width = chasm_param_double(c, WIDTH);
+    const char *text = chasm_param_string(c, AREA_POLYGON);
+    double length = chasm_param_double(c, AREA_LENGTH), width = chasm_param_double(c, AREA_WIDTH);
     int has_polygon = text && text[0], has_box = length > 0.0 || width > 0.0;
     pu_polygon box;
     const pu_polygon *area = &box;
@@ -113,7 +111,8 @@ static int evaluate(chasm_ctx *c)
         if (!(length > 0.0 && width > 0.0))
             return fail(c, &box_reported, "no area: give polygon = \"n,e; n,e; ...\", or a box with length > 0 "
                                            "and width > 0");
-        double h = chasm_param_double(c, HEADING), n0 = chasm_param_double(c, NORTH), e0 = chasm_param_double(c, EAST);
+        double h = chasm_param_double(c, AREA_HEADING);
+        double n0 = chasm_param_double(c, AREA_NORTH), e0 = chasm_param_double(c, AREA_EAST);
         pu_polygon_box(&box, 0.0, 0.0, length, width);
         for (int i = 0; i < box.n; i++) { /* rotate about the corner, then place it */
             double n = box.north[i], e = box.east[i];
@@ -121,15 +120,11 @@ static int evaluate(chasm_ctx *c)
             box.east[i] = e0 + n * sin(h) + e * cos(h);
         }
     }
-    double n = chasm_read_double(c, AT_NORTH), e = chasm_read_double(c, AT_EAST);
+    double n = chasm_read_double(c, AREA_AT_NORTH), e = chasm_read_double(c, AREA_AT_EAST);
     if (!isfinite(n) || !isfinite(e))
         return 1;
     if (!pu_polygon_contains(area, n, e))
         return 1;
-    double margin = chasm_param_double(c, MARGIN);
+    double margin = chasm_param_double(c, AREA_MARGIN);
     return margin > 0.0 && pu_polygon_edge_distance(area, n, e) < margin;
 }
-
-const chasm_test_spec checks_outside_area = {
-    "outside_area", "outside an operating area (polygon or box), or within margin of its edge", params,
-    CHASM_COUNT(params), evaluate};

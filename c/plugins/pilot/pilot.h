@@ -67,14 +67,68 @@ enum { DL_KP, DL_KI, DL_KD, DL_MAX_PITCH, DL_PITCH_SLEW, DL_MAX_DEPTH, DL_RATE_T
 /* Reads the depth-loop block at depth_base and the pitch-loop block at pitch_base. */
 void pilot_depth_gains_read(const chasm_ctx *c, int depth_base, int pitch_base, pilot_depth_gains *out);
 
-/* ---- behaviors (one file each family) */
-extern const chasm_behavior_spec pilot_heading_behavior;
-extern const chasm_behavior_spec pilot_depth_behavior;
-extern const chasm_behavior_spec pilot_altitude_behavior;
-extern const chasm_behavior_spec pilot_pitch_behavior;
-extern const chasm_behavior_spec pilot_speed_behavior;
-extern const chasm_behavior_spec pilot_rpm_behavior;
-extern const chasm_behavior_spec pilot_watch_behavior;
+/* ---- behaviors: slots, per-instance state and entry points of each,
+ * registered by pilot_plugin.c (one table: chasm_plugin.h, "Registration"). */
+#define PILOT_DECLARE(id, nparams)                                    \
+    extern const chasm_param_spec pilot_##id##_params[nparams];      \
+    int pilot_##id##_start(chasm_ctx *c, void *state);               \
+    chasm_status_code pilot_##id##_step(chasm_ctx *c, void *state)
+
+/* heading_control (pilot_heading.c) */
+enum { H_HEADING, H_YAW_RATE, H_SETPOINT, H_RUDDER, H_KP, H_KI, H_KD, H_MAX_TURN_RATE, H_MAX_RUDDER, H_RUDDER_SLEW,
+       H_I_LIMIT, H_I_ZONE, H_NPARAMS };
+typedef struct {
+    pilot_heading_loop loop;
+} pilot_heading_state;
+
+PILOT_DECLARE(heading_control, H_NPARAMS);
+
+/* speed_control, rpm_control (pilot_speed.c) */
+enum { S_SPEED, S_SETPOINT, S_REFERENCE, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW,
+       S_NPARAMS };
+enum { R_SETPOINT, R_PROP, R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW, R_NPARAMS };
+
+typedef struct {
+    pilot_prop_loop loop;
+} pilot_prop_state;
+
+PILOT_DECLARE(speed_control, S_NPARAMS);
+PILOT_DECLARE(rpm_control, R_NPARAMS);
+
+/* depth_control, altitude_control, pitch_control (pilot_vertical.c); the
+ * loops' blocks (PILOT_*_LOOP_PARAMS above) start at the *_LOOP slots. */
+enum { D_DEPTH, D_PITCH, D_Q, D_SETPOINT, D_PLANE, D_LOOP, D_PITCH_LOOP = D_LOOP + DL_COUNT,
+       D_NPARAMS = D_PITCH_LOOP + PL_COUNT };
+enum { A_DEPTH, A_ALTITUDE, A_PITCH, A_Q, A_SETPOINT, A_PLANE, A_TAU, A_SEARCH, A_LOOP,
+       A_PITCH_LOOP = A_LOOP + DL_COUNT, A_NPARAMS = A_PITCH_LOOP + PL_COUNT };
+enum { P_PITCH, P_Q, P_SETPOINT, P_PLANE, P_MAX_PITCH, P_LOOP, P_NPARAMS = P_LOOP + PL_COUNT };
+
+typedef struct {
+    pilot_depth_loop loop;
+} pilot_depth_state;
+typedef struct {
+    pilot_depth_loop loop;
+    pu_lowpass target;
+} pilot_altitude_state;
+typedef struct {
+    pilot_pitch_loop loop;
+} pilot_pitch_state;
+
+PILOT_DECLARE(depth_control, D_NPARAMS);
+PILOT_DECLARE(altitude_control, A_NPARAMS);
+PILOT_DECLARE(pitch_control, P_NPARAMS);
+
+/* setpoint_watch (pilot_watch.c): no start() */
+enum { W_UTIME, W_HEADING, W_DEPTH, W_ALTITUDE, W_PITCH, W_SPEED, W_RPM, W_VMODE, W_SMODE, W_REF,
+       W_COUNT, W_IGNORING, W_REASON, W_LAST, W_STATE, W_REF_OUT, W_TIMEOUT, W_FLYING, W_NPARAMS };
+
+typedef struct {
+    double last[W_SMODE + 2];  /* utime and values of the last setpoint seen */
+    int seen;
+} pilot_watch_state;
+
+extern const chasm_param_spec pilot_setpoint_watch_params[W_NPARAMS];
+chasm_status_code pilot_setpoint_watch_step(chasm_ctx *c, void *state);
 
 /* Fails a behavior's start with a message in the manager's log. */
 int pilot_reject(chasm_ctx *c, const char *behavior, const char *reason);

@@ -18,15 +18,11 @@
     [slew] = CHASM_PARAM_REQUIRED_DOUBLE_RANGE("rpm_slew", "", 0, 1e6, "prop slew limit [rpm/s] (0: none)")
 #define PROP_OUT CHASM_WRITE("prop", CHASM_DOUBLE, "", "actuators.prop_rpm", "prop command [rpm]")
 
-typedef struct {
-    pilot_prop_loop loop;
-} prop_state;
-
 /* min_rpm <= max_rpm is a relation between two parameters, which the loader
  * cannot check: the behavior fails at start, with the reason in the log. */
 static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const char *name)
 {
-    prop_state *s = st;
+    pilot_prop_state *s = st;
     double lo = chasm_param_double(c, min_slot), hi = chasm_param_double(c, min_slot + 1);
     if (lo > hi) {
         char why[96];
@@ -39,10 +35,7 @@ static int prop_start(chasm_ctx *c, void *st, int min_slot, int prop_slot, const
 
 /* ------------------------------------------------------------ speed_control */
 
-enum { S_SPEED, S_SETPOINT, S_REFERENCE, S_PROP, S_FF, S_KP, S_KI, S_I_LIMIT, S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW,
-       S_NPARAMS };
-
-static const chasm_param_spec speed_params[S_NPARAMS] = {
+const chasm_param_spec pilot_speed_control_params[S_NPARAMS] = {
     [S_SPEED] = CHASM_READ("speed", CHASM_DOUBLE, "m/s", "nav.u_mps", "measured surge speed"),
     [S_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "m/s", "setpoint.speed_mps", "desired speed"),
     [S_REFERENCE] = CHASM_READ("reference", CHASM_INT, "", "setpoint.speed_reference",
@@ -57,11 +50,14 @@ static const chasm_param_spec speed_params[S_NPARAMS] = {
     RPM_LIMIT_PARAMS(S_MIN_RPM, S_MAX_RPM, S_RPM_SLEW),
 };
 
-static int speed_start(chasm_ctx *c, void *st) { return prop_start(c, st, S_MIN_RPM, S_PROP, "speed_control"); }
-
-static chasm_status_code speed_step(chasm_ctx *c, void *st)
+int pilot_speed_control_start(chasm_ctx *c, void *st)
 {
-    prop_state *s = st;
+    return prop_start(c, st, S_MIN_RPM, S_PROP, "speed_control");
+}
+
+chasm_status_code pilot_speed_control_step(chasm_ctx *c, void *st)
+{
+    pilot_prop_state *s = st;
     const pilot_prop_gains g = {
         .rpm_per_mps = chasm_param_double(c, S_FF),
         .kp = chasm_param_double(c, S_KP),
@@ -77,25 +73,23 @@ static chasm_status_code speed_step(chasm_ctx *c, void *st)
     return CHASM_RUNNING;
 }
 
-const chasm_behavior_spec pilot_speed_behavior = {
-    "speed_control", "hold setpoint speed with the prop (feed-forward + PI)",
-    speed_params, CHASM_COUNT(speed_params), sizeof(prop_state), speed_start, speed_step, NULL};
 
 /* -------------------------------------------------------------- rpm_control */
 
-enum { R_SETPOINT, R_PROP, R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW, R_NPARAMS };
-
-static const chasm_param_spec rpm_params[R_NPARAMS] = {
+const chasm_param_spec pilot_rpm_control_params[R_NPARAMS] = {
     [R_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "", "setpoint.prop_rpm", "desired prop rpm"),
     [R_PROP] = PROP_OUT,
     RPM_LIMIT_PARAMS(R_MIN_RPM, R_MAX_RPM, R_RPM_SLEW),
 };
 
-static int rpm_start(chasm_ctx *c, void *st) { return prop_start(c, st, R_MIN_RPM, R_PROP, "rpm_control"); }
-
-static chasm_status_code rpm_step(chasm_ctx *c, void *st)
+int pilot_rpm_control_start(chasm_ctx *c, void *st)
 {
-    prop_state *s = st;
+    return prop_start(c, st, R_MIN_RPM, R_PROP, "rpm_control");
+}
+
+chasm_status_code pilot_rpm_control_step(chasm_ctx *c, void *st)
+{
+    pilot_prop_state *s = st;
     const pilot_prop_gains g = {
         .min_rpm = chasm_param_double(c, R_MIN_RPM),
         .max_rpm = chasm_param_double(c, R_MAX_RPM),
@@ -104,7 +98,3 @@ static chasm_status_code rpm_step(chasm_ctx *c, void *st)
     chasm_write_double(c, R_PROP, pilot_rpm_step(&s->loop, &g, chasm_read_double(c, R_SETPOINT), c->dt_s));
     return CHASM_RUNNING;
 }
-
-const chasm_behavior_spec pilot_rpm_behavior = {
-    "rpm_control", "drive the prop at setpoint rpm (open loop, limited and slew-limited)",
-    rpm_params, CHASM_COUNT(rpm_params), sizeof(prop_state), rpm_start, rpm_step, NULL};

@@ -12,10 +12,7 @@
 
 /* ------------------------------------------------------------ depth_control */
 
-enum { D_DEPTH, D_PITCH, D_Q, D_SETPOINT, D_PLANE, D_LOOP, D_PITCH_LOOP = D_LOOP + DL_COUNT,
-       D_NPARAMS = D_PITCH_LOOP + PL_COUNT };
-
-static const chasm_param_spec depth_params[D_NPARAMS] = {
+const chasm_param_spec pilot_depth_control_params[D_NPARAMS] = {
     [D_DEPTH] = DEPTH_IN,
     [D_PITCH] = PITCH_IN,
     [D_Q] = Q_IN,
@@ -25,20 +22,16 @@ static const chasm_param_spec depth_params[D_NPARAMS] = {
     PILOT_PITCH_LOOP_PARAMS(D_PITCH_LOOP),
 };
 
-typedef struct {
-    pilot_depth_loop loop;
-} depth_state;
-
-static int depth_start(chasm_ctx *c, void *st)
+int pilot_depth_control_start(chasm_ctx *c, void *st)
 {
-    depth_state *s = st;
+    pilot_depth_state *s = st;
     pilot_depth_start(&s->loop, chasm_read_double(c, D_PITCH), chasm_read_double(c, D_PLANE));
     return 0;
 }
 
-static chasm_status_code depth_step(chasm_ctx *c, void *st)
+chasm_status_code pilot_depth_control_step(chasm_ctx *c, void *st)
 {
-    depth_state *s = st;
+    pilot_depth_state *s = st;
     pilot_depth_gains cfg;
     pilot_depth_gains_read(c, D_LOOP, D_PITCH_LOOP, &cfg);
     double plane = pilot_depth_step(&s->loop, &cfg, chasm_read_double(c, D_SETPOINT), chasm_read_double(c, D_DEPTH),
@@ -47,9 +40,6 @@ static chasm_status_code depth_step(chasm_ctx *c, void *st)
     return CHASM_RUNNING;
 }
 
-const chasm_behavior_spec pilot_depth_behavior = {
-    "depth_control", "hold setpoint depth: depth error -> pitch command -> stern plane (cascade)",
-    depth_params, CHASM_COUNT(depth_params), sizeof(depth_state), depth_start, depth_step, NULL};
 
 /* --------------------------------------------------------- altitude_control
  *
@@ -62,10 +52,7 @@ const chasm_behavior_spec pilot_depth_behavior = {
 
 #define SEARCH_LEAD_M 2.0
 
-enum { A_DEPTH, A_ALTITUDE, A_PITCH, A_Q, A_SETPOINT, A_PLANE, A_TAU, A_SEARCH, A_LOOP,
-       A_PITCH_LOOP = A_LOOP + DL_COUNT, A_NPARAMS = A_PITCH_LOOP + PL_COUNT };
-
-static const chasm_param_spec altitude_params[A_NPARAMS] = {
+const chasm_param_spec pilot_altitude_control_params[A_NPARAMS] = {
     [A_DEPTH] = DEPTH_IN,
     [A_ALTITUDE] = CHASM_READ("altitude", CHASM_DOUBLE, "m", "nav.altitude_m",
                               "height above the seabed, negative if unknown"),
@@ -81,22 +68,17 @@ static const chasm_param_spec altitude_params[A_NPARAMS] = {
     PILOT_PITCH_LOOP_PARAMS(A_PITCH_LOOP),
 };
 
-typedef struct {
-    pilot_depth_loop loop;
-    pu_lowpass target;
-} altitude_state;
-
-static int altitude_start(chasm_ctx *c, void *st)
+int pilot_altitude_control_start(chasm_ctx *c, void *st)
 {
-    altitude_state *s = st;
+    pilot_altitude_state *s = st;
     pilot_depth_start(&s->loop, chasm_read_double(c, A_PITCH), chasm_read_double(c, A_PLANE));
     pu_lowpass_reset(&s->target);
     return 0;
 }
 
-static chasm_status_code altitude_step(chasm_ctx *c, void *st)
+chasm_status_code pilot_altitude_control_step(chasm_ctx *c, void *st)
 {
-    altitude_state *s = st;
+    pilot_altitude_state *s = st;
     pilot_depth_gains cfg;
     pilot_depth_gains_read(c, A_LOOP, A_PITCH_LOOP, &cfg);
     double depth = chasm_read_double(c, A_DEPTH), altitude = chasm_read_double(c, A_ALTITUDE);
@@ -122,15 +104,10 @@ static chasm_status_code altitude_step(chasm_ctx *c, void *st)
     return CHASM_RUNNING;
 }
 
-const chasm_behavior_spec pilot_altitude_behavior = {
-    "altitude_control", "hold setpoint altitude above the seabed (terrain following through the depth loop)",
-    altitude_params, CHASM_COUNT(altitude_params), sizeof(altitude_state), altitude_start, altitude_step, NULL};
 
 /* ------------------------------------------------------------ pitch_control */
 
-enum { P_PITCH, P_Q, P_SETPOINT, P_PLANE, P_MAX_PITCH, P_LOOP, P_NPARAMS = P_LOOP + PL_COUNT };
-
-static const chasm_param_spec pitch_params[P_NPARAMS] = {
+const chasm_param_spec pilot_pitch_control_params[P_NPARAMS] = {
     [P_PITCH] = PITCH_IN,
     [P_Q] = Q_IN,
     [P_SETPOINT] = CHASM_READ("setpoint", CHASM_DOUBLE, "rad", "setpoint.pitch_rad", "desired pitch, positive bow up"),
@@ -140,20 +117,16 @@ static const chasm_param_spec pitch_params[P_NPARAMS] = {
     PILOT_PITCH_LOOP_PARAMS(P_LOOP),
 };
 
-typedef struct {
-    pilot_pitch_loop loop;
-} pitch_state;
-
-static int pitch_start(chasm_ctx *c, void *st)
+int pilot_pitch_control_start(chasm_ctx *c, void *st)
 {
-    pitch_state *s = st;
+    pilot_pitch_state *s = st;
     pilot_pitch_start(&s->loop, chasm_read_double(c, P_PLANE));
     return 0;
 }
 
-static chasm_status_code pitch_step(chasm_ctx *c, void *st)
+chasm_status_code pilot_pitch_control_step(chasm_ctx *c, void *st)
 {
-    pitch_state *s = st;
+    pilot_pitch_state *s = st;
     pilot_pitch_gains cfg;
     pilot_pitch_gains_read(c, P_LOOP, &cfg);
     double plane = pilot_pitch_hold(&s->loop, &cfg, chasm_param_double(c, P_MAX_PITCH),
@@ -162,7 +135,3 @@ static chasm_status_code pitch_step(chasm_ctx *c, void *st)
     chasm_write_double(c, P_PLANE, plane);
     return CHASM_RUNNING;
 }
-
-const chasm_behavior_spec pilot_pitch_behavior = {
-    "pitch_control", "hold setpoint pitch with the stern plane (PID with pitch-rate damping)",
-    pitch_params, CHASM_COUNT(pitch_params), sizeof(pitch_state), pitch_start, pitch_step, NULL};

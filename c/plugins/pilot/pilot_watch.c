@@ -15,13 +15,10 @@
 
 #include "plugins/pilot/pilot.h"
 
-enum { W_UTIME, W_HEADING, W_DEPTH, W_ALTITUDE, W_PITCH, W_SPEED, W_RPM, W_VMODE, W_SMODE, W_REF,
-       W_COUNT, W_IGNORING, W_REASON, W_LAST, W_STATE, W_REF_OUT, W_TIMEOUT, W_FLYING, W_NPARAMS };
-
 /* A field of the setpoint watched: read as is, its doc says which. */
 #define IN(name, type, unit, var) CHASM_READ(name, type, unit, var, "the setpoint's " name)
 
-static const chasm_param_spec params[W_NPARAMS] = {
+const chasm_param_spec pilot_setpoint_watch_params[W_NPARAMS] = {
     [W_UTIME] = IN("utime", CHASM_INT, "", "setpoint.utime"),
     [W_HEADING] = IN("heading", CHASM_DOUBLE, "rad", "setpoint.heading_rad"),
     [W_DEPTH] = IN("depth", CHASM_DOUBLE, "m", "setpoint.depth_m"),
@@ -45,11 +42,6 @@ static const chasm_param_spec params[W_NPARAMS] = {
     [W_FLYING] = CHASM_PARAM_REQUIRED_BOOL("flying", "true in the state that flies"),
 };
 
-typedef struct {
-    double last[W_SMODE + 2];  /* utime and values of the last setpoint seen */
-    int seen;
-} watch_state;
-
 static void snapshot(const chasm_ctx *c, double *out)
 {
     out[0] = (double)chasm_read_int(c, W_UTIME);
@@ -72,9 +64,9 @@ static int same(const double *a, const double *b, int n)
  * Transitions run before actions, so the state entered because a setpoint
  * went stale is the one that sees (and counts) it, once. */
 
-static chasm_status_code step(chasm_ctx *c, void *st)
+chasm_status_code pilot_setpoint_watch_step(chasm_ctx *c, void *st)
 {
-    watch_state *s = st;
+    pilot_watch_state *s = st;
     double now[W_SMODE + 2];
     snapshot(c, now);
     int64_t utime = chasm_read_int(c, W_UTIME);
@@ -103,7 +95,3 @@ static chasm_status_code step(chasm_ctx *c, void *st)
     chasm_write_int(c, W_REF_OUT, chasm_read_int(c, W_REF));
     return CHASM_RUNNING;
 }
-
-const chasm_behavior_spec pilot_watch_behavior = {
-    "setpoint_watch", "report the pilot's state and count the setpoints it ignores (zero or stale utime)",
-    params, CHASM_COUNT(params), sizeof(watch_state), NULL, step, NULL};

@@ -7,24 +7,30 @@
 #include "tm_behaviors.h"
 #include "tm_lines.h"
 
+/* One table (chasm_plugin.h, "Registration"); each behavior's schema and
+ * entry points are declared in tm_behaviors.h. */
 static const chasm_behavior_spec behaviors[] = {
-    {"team_link", "the team's acoustic link: TDMA frames by priority, peer table, lost teammates, team events",
-     tm_link_params, LINK_NPARAMS, 64, tm_link_start, tm_link_step, NULL},
-    {"team_status", "queue this vehicle's status for the link (`do team_status() every 20 s`)", tm_status_params,
-     STATUS_NPARAMS, 0, tm_status_start, tm_status_step, NULL},
-    {"search_contacts", "merge sidescan looks into the contact list; report mine-like ones until acked",
-     tm_search_params, SC_NPARAMS, 0, tm_search_start, tm_search_step, NULL},
-    {"team_survey", "fly own lines, then lines taken over from lost teammates", tm_survey_params, SV_NPARAMS,
-     sizeof(tm_survey_state), tm_survey_start, tm_survey_step, NULL},
-    {"ri_reacquire", "reacquire-identify: route through the reported targets, identify them from looks",
-     tm_ri_params, RI_NPARAMS, sizeof(tm_ri_state), tm_ri_start, tm_ri_step, NULL},
-    {"follow_peer", "keep station astern or abeam of a teammate, from its status over the link", tm_follow_params,
-     FP_NPARAMS, sizeof(tm_follow_state), tm_follow_start, tm_follow_step, NULL},
-    {"keep_clear", "depth offset while a lower-numbered teammate is predicted close", tm_keepclear_params,
-     KC_NPARAMS, sizeof(tm_keepclear_state), tm_keepclear_start, tm_keepclear_step, tm_keepclear_stop},
+    {.name = "team_link",
+     .doc = "the team's acoustic link: TDMA frames by priority, peer table, lost teammates, team events",
+     CHASM_SCHEMA(tm_link_params), .state_size = 64, .start = tm_link_start, .step = tm_link_step},
+    {.name = "team_status", .doc = "queue this vehicle's status for the link (`do team_status() every 20 s`)",
+     CHASM_SCHEMA(tm_status_params), .start = tm_status_start, .step = tm_status_step},
+    {.name = "search_contacts", .doc = "merge sidescan looks into the contact list; report mine-like ones until acked",
+     CHASM_SCHEMA(tm_search_params), .start = tm_search_start, .step = tm_search_step},
+    {.name = "team_survey", .doc = "fly own lines, then lines taken over from lost teammates",
+     CHASM_SCHEMA(tm_survey_params), .state_size = sizeof(tm_survey_state), .start = tm_survey_start,
+     .step = tm_survey_step},
+    {.name = "ri_reacquire", .doc = "reacquire-identify: route through the reported targets, identify them from looks",
+     CHASM_SCHEMA(tm_ri_params), .state_size = sizeof(tm_ri_state), .start = tm_ri_start, .step = tm_ri_step},
+    {.name = "follow_peer", .doc = "keep station astern or abeam of a teammate, from its status over the link",
+     CHASM_SCHEMA(tm_follow_params), .state_size = sizeof(tm_follow_state), .start = tm_follow_start,
+     .step = tm_follow_step},
+    {.name = "keep_clear", .doc = "depth offset while a lower-numbered teammate is predicted close",
+     CHASM_SCHEMA(tm_keepclear_params), .state_size = sizeof(tm_keepclear_state), .start = tm_keepclear_start,
+     .step = tm_keepclear_step, .stop = tm_keepclear_stop},
 };
 
-CHASM_PLUGIN_EXPORT("team", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);
+CHASM_PLUGIN_EXPORT("team", "1.0.0", CHASM_BEHAVIORS(behaviors));
 
 CHASM_PLUGIN_CHECK(check)
 static int check(const char *item, const chasm_ctx *c, int *slot, char *why, size_t whylen)

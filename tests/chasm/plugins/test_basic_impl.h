@@ -58,10 +58,13 @@ static chasm_status_code trace_step(chasm_ctx *c, void *st) { (void)st; trace_ms
 static void trace_stop(chasm_ctx *c, void *st) { (void)st; trace_msg(c, "stop"); }
 
 static const chasm_behavior_spec behaviors[] = {
-    {"hold", "hold a value", hold_params, CHASM_COUNT(hold_params), 0, NULL, hold_step, NULL},
-    {"count_to", "count steps", count_params, CHASM_COUNT(count_params), sizeof(count_state), NULL, count_step, NULL},
-    {"fail_after", "fail after n steps", fail_params, CHASM_COUNT(fail_params), sizeof(count_state), NULL, fail_step, NULL},
-    {"trace", "log calls", trace_params, CHASM_COUNT(trace_params), 0, trace_start, trace_step, trace_stop},
+    {.name = "hold", .doc = "hold a value", CHASM_SCHEMA(hold_params), .step = hold_step},
+    {.name = "count_to", .doc = "count steps", CHASM_SCHEMA(count_params), .state_size = sizeof(count_state),
+     .step = count_step},
+    {.name = "fail_after", .doc = "fail after n steps", CHASM_SCHEMA(fail_params), .state_size = sizeof(count_state),
+     .step = fail_step},
+    {.name = "trace", .doc = "log calls", CHASM_SCHEMA(trace_params), .start = trace_start, .step = trace_step,
+     .stop = trace_stop},
 };
 
 /* above: true when the variable x is above limit. */
@@ -71,5 +74,5 @@ static const chasm_param_spec above_params[] = {
 };
 static int above_eval(chasm_ctx *c) { return chasm_read_double(c, 0) > chasm_param_double(c, 1); }
 static const chasm_test_spec tests[] = {
-    {"above", "x > limit", above_params, CHASM_COUNT(above_params), above_eval},
+    {.name = "above", .doc = "x > limit", CHASM_SCHEMA(above_params), .evaluate = above_eval},
 };

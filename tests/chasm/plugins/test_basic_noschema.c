@@ -3,6 +3,6 @@
 #include "chasm/chasm_plugin.h"
 static chasm_status_code step(chasm_ctx *c, void *s) { (void)c; (void)s; return CHASM_RUNNING; }
 static const chasm_behavior_spec behaviors[] = {
-    {"hold", NULL, NULL, 0, 0, NULL, step, NULL},
+    {.name = "hold", .step = step},
 };
-CHASM_PLUGIN_EXPORT("test_basic", "4.0.0", behaviors, 1, NULL, 0);
+CHASM_PLUGIN_EXPORT("test_basic", "4.0.0", CHASM_BEHAVIORS(behaviors));

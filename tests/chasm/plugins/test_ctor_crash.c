@@ -4,4 +4,4 @@
 #define TEST_GAIN 1
 #include "test_basic_impl.h"
 __attribute__((constructor)) static void crash_on_load(void) { raise(SIGSEGV); }
-CHASM_PLUGIN_EXPORT("test_basic", "1.0.0-crash", behaviors, CHASM_COUNT(behaviors), tests, CHASM_COUNT(tests));
+CHASM_PLUGIN_EXPORT("test_basic", "1.0.0-crash", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));

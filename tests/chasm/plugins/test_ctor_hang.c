@@ -7,4 +7,4 @@ __attribute__((constructor)) static void hang_on_load(void)
 {
     for (;;) pause();
 }
-CHASM_PLUGIN_EXPORT("test_basic", "1.0.0-hang", behaviors, CHASM_COUNT(behaviors), tests, CHASM_COUNT(tests));
+CHASM_PLUGIN_EXPORT("test_basic", "1.0.0-hang", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));

@@ -27,7 +27,7 @@ static chasm_status_code step(chasm_ctx *c, void *s)
     return CHASM_RUNNING;
 }
 static const chasm_behavior_spec behaviors[] = {
-    {"probe", "writes what was given", params, CHASM_COUNT(params), 0, NULL, step, NULL},
+    {.name = "probe", .doc = "writes what was given", CHASM_SCHEMA(params), .step = step},
 };
 
 static const chasm_param_spec test_params[] = {
@@ -35,9 +35,9 @@ static const chasm_param_spec test_params[] = {
 };
 static int has_opt(chasm_ctx *c) { return chasm_param_given(c, OPT); }
 static const chasm_test_spec tests[] = {
-    {"has_opt", "opt was given", test_params, CHASM_COUNT(test_params), has_opt},
+    {.name = "has_opt", .doc = "opt was given", CHASM_SCHEMA(test_params), .evaluate = has_opt},
 };
-CHASM_PLUGIN_EXPORT("test_given", "1.0.0", behaviors, CHASM_COUNT(behaviors), tests, CHASM_COUNT(tests));
+CHASM_PLUGIN_EXPORT("test_given", "1.0.0", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));
 
 CHASM_PLUGIN_CHECK(check)
 static int check(const char *item, const chasm_ctx *c, int *slot, char *why, size_t whylen)

@@ -10,6 +10,6 @@ static const chasm_param_spec params[NPARAMS] = {
 };
 static chasm_status_code step(chasm_ctx *c, void *s) { (void)c; (void)s; return CHASM_RUNNING; }
 static const chasm_behavior_spec behaviors[] = {
-    {"holey", "a table with a hole", params, CHASM_COUNT(params), 0, NULL, step, NULL},
+    {.name = "holey", .doc = "a table with a hole", CHASM_SCHEMA(params), .step = step},
 };
-CHASM_PLUGIN_EXPORT("test_hole", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);
+CHASM_PLUGIN_EXPORT("test_hole", "1.0.0", CHASM_BEHAVIORS(behaviors));

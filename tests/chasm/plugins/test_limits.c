@@ -26,14 +26,14 @@ static chasm_status_code route_step(chasm_ctx *c, void *st)
     return CHASM_RUNNING;
 }
 static const chasm_behavior_spec behaviors[] = {
-    {"route", "follow points", route_params, CHASM_COUNT(route_params), 0, NULL, route_step, NULL},
+    {.name = "route", .doc = "follow points", CHASM_SCHEMA(route_params), .step = route_step},
 };
 static const chasm_param_spec many_params[] = {
     [POINTS] = CHASM_PARAM_REQUIRED_STRING("points", "\"x; x; ...\", at most 4"),
 };
 static int many_eval(chasm_ctx *c) { return count(chasm_param_string(c, 0)) > 2; }
 static const chasm_test_spec tests[] = {
-    {"many", "more than 2 points", many_params, CHASM_COUNT(many_params), many_eval},
+    {.name = "many", .doc = "more than 2 points", CHASM_SCHEMA(many_params), .evaluate = many_eval},
 };
 
 CHASM_PLUGIN_CHECK(check);
@@ -47,4 +47,4 @@ static int check(const char *item, const chasm_ctx *c, int *slot, char *why, siz
     return 1;
 }
 
-CHASM_PLUGIN_EXPORT("test_limits", "1.0.0", behaviors, CHASM_COUNT(behaviors), tests, CHASM_COUNT(tests));
+CHASM_PLUGIN_EXPORT("test_limits", "1.0.0", CHASM_BEHAVIORS(behaviors), CHASM_TESTS(tests));

@@ -96,12 +96,14 @@ static chasm_status_code post_step(chasm_ctx *c, void *st)
 }
 
 static const chasm_behavior_spec behaviors[] = {
-    {"take", "records every message it takes", take_params, CHASM_COUNT(take_params), sizeof(take_state), NULL, take_step, NULL},
-    {"relay", "posts what it takes", relay_params, CHASM_COUNT(relay_params), 0, NULL, relay_step, NULL},
-    {"post", "posts messages", post_params, CHASM_COUNT(post_params), sizeof(post_state), NULL, post_step, NULL},
+    {.name = "take", .doc = "records every message it takes", CHASM_SCHEMA(take_params),
+     .state_size = sizeof(take_state), .step = take_step},
+    {.name = "relay", .doc = "posts what it takes", CHASM_SCHEMA(relay_params), .step = relay_step},
+    {.name = "post", .doc = "posts messages", CHASM_SCHEMA(post_params), .state_size = sizeof(post_state),
+     .step = post_step},
 };
 
-CHASM_PLUGIN_EXPORT("test_msgs", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);
+CHASM_PLUGIN_EXPORT("test_msgs", "1.0.0", CHASM_BEHAVIORS(behaviors));
 
 /* At load nothing can be taken or posted: a check that could would be
  * consuming the mission's messages before it starts. */

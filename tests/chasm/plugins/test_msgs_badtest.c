@@ -6,5 +6,7 @@ static const chasm_param_spec params[] = {
     CHASM_READ_REQUIRED("rx", CHASM_MESSAGES, "", "messages"),
 };
 static int any(chasm_ctx *c) { size_t n; return chasm_next_message(c, 0, &n) != NULL; }
-static const chasm_test_spec tests[] = {{"any_message", "true when a message came", params, 1, any}};
-CHASM_PLUGIN_EXPORT("test_msgs_badtest", "1.0.0", NULL, 0, tests, CHASM_COUNT(tests));
+static const chasm_test_spec tests[] = {
+    {.name = "any_message", .doc = "true when a message came", CHASM_SCHEMA(params), .evaluate = any},
+};
+CHASM_PLUGIN_EXPORT("test_msgs_badtest", "1.0.0", CHASM_TESTS(tests));

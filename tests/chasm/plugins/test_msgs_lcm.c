@@ -61,6 +61,7 @@ static chasm_status_code echo_step(chasm_ctx *c, void *st)
 }
 
 static const chasm_behavior_spec behaviors[] = {
-    {"echo", "echoes modem_tx_t messages", echo_params, CHASM_COUNT(echo_params), sizeof(echo_state), NULL, echo_step, NULL},
+    {.name = "echo", .doc = "echoes modem_tx_t messages", CHASM_SCHEMA(echo_params), .state_size = sizeof(echo_state),
+     .step = echo_step},
 };
-CHASM_PLUGIN_EXPORT("test_msgs_lcm", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);
+CHASM_PLUGIN_EXPORT("test_msgs_lcm", "1.0.0", CHASM_BEHAVIORS(behaviors));

@@ -11,7 +11,7 @@ static const chasm_param_spec goto_params[] = {
     CHASM_PARAM_BOOL("verbose", 0, NULL),
 };
 static const chasm_behavior_spec behaviors[] = {
-    {"hold", NULL, NULL, 0, 0, NULL, step, NULL},
-    {"goto", NULL, goto_params, CHASM_COUNT(goto_params), 0, NULL, step, NULL},
+    {.name = "hold", .step = step},
+    {.name = "goto", CHASM_SCHEMA(goto_params), .step = step},
 };
-CHASM_PLUGIN_EXPORT("test_other", "1.0.0", behaviors, CHASM_COUNT(behaviors), NULL, 0);
+CHASM_PLUGIN_EXPORT("test_other", "1.0.0", CHASM_BEHAVIORS(behaviors));
