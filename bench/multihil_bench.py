@@ -1,7 +1,7 @@
 """Multi-HIL benchmark: failover time, clock synchronisation error, lockstep rate.
 
 Prints figures, asserts nothing. Cases:
-  1. failover: three environment nodes (`python -m sim.multihil node`, the
+  1. failover: three environment nodes (`auv-multihil node`, the
      EnvNode every simulator runs), the server SIGKILLed; time from the kill
      to the first SIM.CLOCK of the new server (goal < 1 s), the largest gap
      between consecutive SIM.CLOCK values a client sees, and the jump: how far
@@ -64,7 +64,7 @@ def node(out: Path, node_id: str, url: str, prio: int, *extra) -> subprocess.Pop
         [
             sys.executable,
             "-m",
-            "sim.multihil",
+            "tools.launch.multihil_cli",
             "node",
             "--id",
             node_id,

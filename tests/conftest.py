@@ -142,7 +142,23 @@ SHARED_SESSION = {
 }
 # The longest units start first, so no worker is left with a long one at the
 # end (measured: `make test PYTEST_ARGS=--durations=0`, docs/contributing.md).
-LONGEST_FIRST: list[str] = []
+LONGEST_FIRST = [
+    "test_demo.py",
+    "team/test_team_loss.py",
+    "team/test_leader_follower.py",
+    "team/test_team_faults.py",
+    "multihil/test_nodes.py",
+    "hosts/test_agents.py",
+    "multihil/test_multihost.py",
+    "team/test_team_deterministic.py",
+    "nav survey",
+    "hosts/test_hil_topology.py",
+    "team/test_team_crossing.py",
+    "tools/test_montecarlo.py",
+    "test_manager_status_rate.py",
+    "chasm/test_chasm_fuzz.py",
+    "multihil/test_sim_world.py",
+]
 
 
 @pytest.hookimpl(tryfirst=True)  # before xdist reads the groups

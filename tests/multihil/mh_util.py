@@ -64,7 +64,7 @@ def node_cmd(node_id: str, url: str, priority: int = 0, *extra) -> list:
     return [
         sys.executable,
         "-m",
-        "sim.multihil",
+        "tools.launch.multihil_cli",
         "node",
         "--id",
         node_id,

@@ -2,7 +2,7 @@
 failover by priority, two servers resolved, rejoin, per-client needs, clock
 synchronisation under injected offset and drift.
 
-The nodes are `python -m sim.multihil node`, the same EnvNode each simulator
+The nodes are `auv-multihil node`, the same EnvNode each simulator
 runs, without the physics (tests/multihil/test_sim_world.py runs simulators).
 Wall-time bounds here are generous: they check that things happen, the
 benchmark measures how fast.

@@ -1,4 +1,4 @@
-"""Clock probes: what `python -m sim.multihil node --probe FILE` writes, and
+"""Clock probes: what `auv-multihil node --probe FILE` writes, and
 how two of them compare. Every process on one machine reads the same
 monotonic clock, so the client's global estimate and the server's global
 time can be put side by side at the same instant."""

@@ -1,4 +1,4 @@
-"""`python -m sim.multihil node`: an environment node without a vehicle.
+"""`auv-multihil node`: an environment node without a vehicle.
 
 The same EnvNode a simulator runs, in a process of its own: it stands for a
 simulator in election, failover and clock tests and benchmarks (cheap to
@@ -30,7 +30,7 @@ from sim.multihil.node import EnvNode, NodeConfig
 
 def parse(argv: list[str]) -> argparse.Namespace:
     ap = argparse.ArgumentParser(
-        prog="python -m sim.multihil node", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+        prog="auv-multihil node", description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
     ap.add_argument("--id", required=True, help="client id, e.g. AUV1-sim")
     ap.add_argument("--vehicle", default="", help="vehicle id (default: the id up to '-')")

@@ -1,5 +1,6 @@
-"""`auv-multihil node ...` / `auv-multihil world ...`: one multi-HIL node
-(sim.multihil.standalone), or a whole world on this machine (tools/launch/world.py)."""
+"""`auv-multihil node ...` / `auv-multihil world ...` (also `python -m
+tools.launch.multihil_cli`): one multi-HIL node (sim.multihil.standalone), or a
+whole world on this machine (tools/launch/world.py)."""
 
 from __future__ import annotations
 
