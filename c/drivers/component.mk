@@ -1,8 +1,9 @@
 # The vehicle's device layer (docs/drivers.md): the code every driver shares
-# (c/drivers/common: NMEA framing and fields, ...) as libauvdrivers.a, and the
-# C unit tests of it and of each driver's parser (tests/drivers/*.c) on the
-# shared harness as bin/test_drivers, built in both variants.
-DRIVERS_COMMON_SRCS := $(sort $(wildcard c/drivers/common/*.c))
+# (c/drivers/common: NMEA framing and fields, ...) and each device's protocol
+# code (c/drivers/<device>/*.c but its *_main.c) as libauvdrivers.a, and the C
+# unit tests of them (tests/drivers/*.c) on the shared harness as
+# bin/test_drivers, built in both variants.
+DRIVERS_COMMON_SRCS := $(sort $(filter-out %_main.c,$(wildcard c/drivers/*/*.c)))
 DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) $(UNIT_HARNESS_SRCS)
 
 define drivers_rules
