@@ -18,3 +18,27 @@ $(foreach v,$(VARIANTS),$(eval $(call drivers_rules,$(v))))
 
 C_LIBS += lib/libauvdrivers.a
 C_PROGRAMS += bin/test_drivers
+
+# Fuzz targets: each c/drivers/fuzz/fuzz_NAME.c is an LLVMFuzzerTestOneInput over
+# one protocol, built as bin/drivers_fuzz_NAME on the project's mutation driver
+# (c/chasm/fuzz/fuzz_driver.c) in both variants; tests/drivers/corpus/NAME/ is
+# its hostile corpus, which tests/drivers/test_driver_fuzz.py replays and
+# mutates briefly in both builds, and `make fuzz` for FUZZ_SECONDS each.
+DRIVERS_FUZZ := $(sort $(patsubst c/drivers/fuzz/fuzz_%.c,%,$(wildcard c/drivers/fuzz/fuzz_*.c)))
+
+define drivers_fuzz_rule
+$(1)/bin/drivers_fuzz_$(2): $(1)/obj/c/drivers/fuzz/fuzz_$(2).o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(1)/lib/libauvdrivers.a
+	@mkdir -p $$(@D)
+	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ -lm
+endef
+$(foreach v,$(VARIANTS),$(foreach f,$(DRIVERS_FUZZ),$(eval $(call drivers_fuzz_rule,$(v),$(f)))))
+
+C_PROGRAMS += $(addprefix bin/drivers_fuzz_,$(DRIVERS_FUZZ))
+
+.PHONY: fuzz-drivers
+fuzz: fuzz-drivers
+fuzz-drivers: $(addprefix $(BUILD)/san/bin/drivers_fuzz_,$(DRIVERS_FUZZ))
+	@for f in $(DRIVERS_FUZZ); do \
+	  echo "fuzz drivers: $$f ($(FUZZ_SECONDS) s)"; \
+	  $(BUILD)/san/bin/drivers_fuzz_$$f --no-dict --seconds $(FUZZ_SECONDS) --seed $$RANDOM tests/drivers/corpus/$$f || exit 1; \
+	done

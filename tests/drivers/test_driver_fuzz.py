@@ -1,0 +1,40 @@
+"""Each protocol's hostile corpus (tests/drivers/corpus/NAME/) replayed and
+mutated briefly through its fuzz target (c/drivers/fuzz/fuzz_NAME.c), in both
+builds: no input crashes a parser or trips a sanitizer. `make fuzz` runs the
+long version."""
+
+from __future__ import annotations
+
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+TARGETS = sorted(p.stem.removeprefix("fuzz_") for p in (ROOT / "c" / "drivers" / "fuzz").glob("fuzz_*.c"))
+
+
+def test_every_fuzz_target_has_a_corpus():
+    assert {"nmea", "digiquartz"} <= set(TARGETS), TARGETS
+    for name in TARGETS:
+        corpus = ROOT / "tests" / "drivers" / "corpus" / name
+        assert corpus.is_dir() and len(list(corpus.iterdir())) >= 3, f"{name}: a hostile corpus of at least 3 files"
+
+
+@pytest.mark.parametrize("name", TARGETS)
+def test_corpus_and_mutations_do_not_crash(name, variant_dir, child_env, tmp_path):
+    exe = variant_dir / "bin" / f"drivers_fuzz_{name}"
+    if not exe.exists():
+        pytest.fail(f"{exe} is not built: run `make build sanitize` first")
+    corpus = ROOT / "tests" / "drivers" / "corpus" / name
+    p = subprocess.run(
+        [str(exe), "--no-dict", "--runs", "100000", "--seed", "7", str(corpus)],
+        env=child_env,
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "no crash" in p.stdout
+    assert not list(tmp_path.glob("*crash*"))
