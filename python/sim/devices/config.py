@@ -64,6 +64,7 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
     if "protocol" not in items:
         doc.err(node, key, f"missing required key 'protocol' (one of: {', '.join(protocols)})")
         return dataclasses.MISSING
+    errors_before = len(doc.errors)
     pnode = items["protocol"][1]
     proto = doc.value(pnode, f"{key}.protocol", "", Rule(one_of=tuple(protocols)))
     if proto is dataclasses.MISSING:
@@ -90,7 +91,7 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
         ok = False
     if wire.pty:
         wire.pty = str(base / wire.pty) if not Path(wire.pty).is_absolute() else wire.pty
-    return wire if ok else dataclasses.MISSING
+    return wire if ok and len(doc.errors) == errors_before else dataclasses.MISSING
 
 
 def check_distinct(doc: Checker, wires: dict[str, tuple[Any, Any]]) -> None:
