@@ -88,3 +88,26 @@ def test_good_wires(tmp_path):
     w = cfg.sensors["gps"].wire
     assert (w.tcp_address, w.baud, w.publish_lcm, w.options.talker) == (("", 4001), 4800, False, "GN")
     assert cfg.sensors["depth"].wire is None
+
+
+def test_two_sensors_on_one_port_are_refused(tmp_path, monkeypatch):
+    """Only the GPS has an emulator yet: a stand-in one for the depth sensor."""
+    from sim.devices import registry
+    from sim.devices.emulator import Emulator
+
+    class Gauge(Emulator):
+        sensor, protocol = "depth", "ascii"
+
+    monkeypatch.setattr(registry, "EMULATORS", (*registry.EMULATORS, Gauge))
+    path = tmp_path / "sim.yaml"
+    path.write_text(
+        "sensors:\n"
+        "  gps: {wire: {protocol: nmea, tcp: '127.0.0.1:4001'}}\n"
+        "  depth: {wire: {protocol: ascii, tcp: '*:4001'}}\n"
+        "  ahrs: {}\n"
+    )
+    with pytest.raises(ConfigError) as exc:
+        load(path)
+    assert exc.value.errors == [f"{path}:3:17: sensors.depth.wire: sensors.gps is on this port already"]
+    path.write_text("sensors:\n  gps: {wire: {protocol: nmea, pty: a}}\n  depth: {wire: {protocol: ascii, pty: b}}\n")
+    assert load(path).sensors["depth"].wire.pty == str(tmp_path / "b")
