@@ -26,6 +26,7 @@ from sim.devices.transport import Transport
 MIN_WAIT_S = 0.002  # the writer's finest wake-up: a few bytes at 9600 baud
 IDLE_WAIT_S = 0.05  # how often an idle writer looks for a reader coming
 INBOX_BYTES = 65536  # input kept for the simulator between two of its steps
+LINGER_S = 0.5  # at close, how long a reader has to take the last bytes handed on
 
 
 class Port:
@@ -90,6 +91,7 @@ class Port:
         self._stop = True
         self.wake()
         self._thread.join(2.0)
+        self.transport.linger(LINGER_S)
         self.transport.close()
         os.close(self._wake_r)
         os.close(self._wake_w)
@@ -132,10 +134,14 @@ class Port:
 
     def _run(self) -> None:
         try:
-            while not self._stop:
+            while True:
+                # read before the clock: the bytes of a closing simulator's last step go out
+                stopping = self._stop
                 data, next_in = self._due_bytes()
                 if data:
                     self._hand_on(data)
+                if stopping:
+                    break
                 fds = self.transport.read_fds()
                 ready, _, _ = select.select([self._wake_r, *fds], [], [], self._timeout(next_in))
                 for fd in ready:

@@ -12,14 +12,18 @@ client that leaves is replaced by the next one the server accepts.
 
 from __future__ import annotations
 
+import array
 import errno
 import fcntl
 import os
 import select
 import socket
 import termios
+import time
 import tty
 from pathlib import Path
+
+LINGER_QUIET_S = 0.05  # a pty reader's queue empty this long: it has taken everything
 
 
 class Transport:
@@ -42,6 +46,9 @@ class Transport:
     def send(self, data: bytes) -> int:
         """Hand data on without blocking; how many bytes were taken."""
         return 0
+
+    def linger(self, timeout_s: float) -> None:
+        """Before closing: give a reader up to timeout_s to take what was handed on."""
 
     def close(self) -> None:
         pass
@@ -125,6 +132,32 @@ class PtyTransport(Transport):
             if e.errno != errno.EIO:
                 raise
             return 0
+
+    def linger(self, timeout_s: float) -> None:
+        """Closing the master hangs the slave up, and its unread input with it:
+        wait (up to timeout_s) until the reader has taken it (FIONREAD on the slave)."""
+        if not self._was_connected:
+            return
+        try:
+            probe = os.open(self.slave_name, os.O_RDWR | os.O_NOCTTY | os.O_NONBLOCK)
+        except OSError:
+            return
+        try:
+            deadline = time.monotonic() + timeout_s
+            unread = array.array("i", [0])
+            empty_since = None
+            while time.monotonic() < deadline:
+                fcntl.ioctl(probe, termios.FIONREAD, unread, True)
+                now = time.monotonic()
+                if unread[0]:
+                    empty_since = None
+                elif empty_since is None:
+                    empty_since = now
+                elif now - empty_since >= LINGER_QUIET_S:  # the kernel passes bytes on with a delay
+                    break
+                time.sleep(0.005)
+        finally:
+            os.close(probe)
 
     def close(self) -> None:
         try:
