@@ -56,6 +56,7 @@ def test_every_sentence_parses_and_carries_the_measurement():
     assert float(s["GGA"].horizontal_dil) == pytest.approx(fix.hdop)
     assert float(s["GSA"].hdop) == pytest.approx(fix.hdop)
     assert s["GSA"].mode_fix_type == "3"
+    assert (s["GGA"].altitude, s["GGA"].altitude_units) == (0.0, "M") and b",0.0,M,0.0,M," in lines[2]
     # 1.5 m/s at 060 degrees true, over ground
     assert float(s["RMC"].spd_over_grnd) == pytest.approx(1.5 * 3600 / 1852, abs=0.01)
     assert float(s["RMC"].true_course) == pytest.approx(60.0, abs=0.1)

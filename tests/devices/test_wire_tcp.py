@@ -92,3 +92,42 @@ def test_the_bytes_keep_the_lines_pace_on_tcp_too(port):
     port.wake()
     assert recv_all(client, 576) == bytes(576)
     client.close()
+
+
+def test_a_commanded_device_reads_and_answers():
+    """The emulator interface's other half: receive() gets what the driver wrote at
+    the simulator's next step, send() answers on the same line (a stand-in servo
+    controller that acknowledges each command)."""
+    from sim.devices.clocks import StepClock
+    from sim.devices.config import WireConfig
+    from sim.devices.device import Devices
+    from sim.devices.emulator import DeviceContext, Emulator, NoOptions
+
+    class Servo(Emulator):
+        sensor, protocol = "actuators", "stand-in"
+
+        def __init__(self, ctx):
+            super().__init__(ctx)
+            self.commands = []
+
+        def receive(self, data, t):
+            for line in data.split(b"\n")[:-1]:
+                self.commands.append((t, line))
+                self.send(b"ACK " + line + b"\n", t)
+
+    devices = Devices([], StepClock())
+    servo = Servo(DeviceContext("AUV1", "actuators", 1, NoOptions()))
+    device = devices.add(servo, WireConfig(protocol="stand-in", tcp="127.0.0.1:0", baud=9600))
+    try:
+        client = socket.create_connection(device.port.transport.address)
+        wait_until(lambda: device.port.transport.connects == 1, what="the driver connected")
+        client.sendall(b"RUDDER 0.1\n")
+        wait_until(lambda: device.port.received == 11, what="the command read")
+        devices.step(1.0)  # handed to the emulator at the step; its answer queued at t = 1.0
+        devices.step(1.1)  # 15 bytes at 9600 baud: out by 1.0156 s
+        assert servo.commands == [(1.0, b"RUDDER 0.1")]
+        assert recv_all(client, 15) == b"ACK RUDDER 0.1\n"
+        assert device.records[0].t_start == 1.0
+        client.close()
+    finally:
+        devices.close()

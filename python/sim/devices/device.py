@@ -46,6 +46,9 @@ def open_transport(wire: WireConfig) -> Transport:
 
 
 class Device:
+    """sensor: the sensor it speaks for, or None for a device the simulator drives
+    otherwise (the fin and thruster controller, the modem: Devices.add())."""
+
     def __init__(self, sensor, emulator: Emulator, port: Port, publish_lcm: bool) -> None:
         self.sensor = sensor
         self.emulator = emulator
@@ -81,7 +84,7 @@ class Device:
         self.port.close()
 
     def summary(self) -> str:
-        return f"{self.sensor.name} {self.emulator.protocol} on {self.port.summary()}"
+        return f"{self.emulator.ctx.sensor} {self.emulator.protocol} on {self.port.summary()}"
 
 
 class Devices:
@@ -98,9 +101,17 @@ class Devices:
     def poll_for(self, sensor) -> Callable[[Any], bytes | None]:
         """What the simulator calls to poll this sensor (as bytes for LCM, or None)."""
         for d in self.items:
-            if d.sensor is sensor:
+            if d.sensor is not None and d.sensor is sensor:
                 return d.poll
         return sensor.poll_encoded
+
+    def add(self, emulator: Emulator, wire: WireConfig) -> Device:
+        """A device no sensor polls (its part of the simulator calls its emulator), on
+        this simulator's line clock: what `actuators:` or `modem:` would wire."""
+        port = Port(open_transport(wire), Line(wire.baud), self.clock, wire.queue_bytes)
+        device = Device(None, emulator, port, wire.publish_lcm)
+        self.items.append(device)
+        return device
 
     def step(self, t: float) -> None:
         """Every physics step, after its outputs."""

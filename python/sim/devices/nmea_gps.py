@@ -84,7 +84,7 @@ class NmeaGps(Emulator):
             knots=math.hypot(vn, ve) * KNOTS_PER_MPS,
             course=math.degrees(math.atan2(ve, vn)) % 360.0,
             msg=msg,
-            altitude=-truth.depth,
+            altitude=0.0 - truth.depth,  # never "-0.0"
         )
         talker = self.options.talker
         return [nmea.sentence(talker + name, self._build[name](fix)) for name in self.options.sentences]
