@@ -124,7 +124,10 @@ def test_a_commanded_device_reads_and_answers():
         client.sendall(b"RUDDER 0.1\n")
         wait_until(lambda: device.port.received == 11, what="the command read")
         devices.step(1.0)  # handed to the emulator at the step; its answer queued at t = 1.0
-        devices.step(1.1)  # 15 bytes at 9600 baud: out by 1.0156 s
+        devices.step(1.0078)  # 15 bytes at 9600 baud: 7 complete by 1.0078 s ...
+        assert device.port.sent == 7  # ... and written by the step itself, not later by the writer
+        devices.step(1.1)
+        assert device.port.sent == 15
         assert servo.commands == [(1.0, b"RUDDER 0.1")]
         assert recv_all(client, 15) == b"ACK RUDDER 0.1\n"
         assert device.records[0].t_start == 1.0

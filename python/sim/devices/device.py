@@ -118,9 +118,9 @@ class Devices:
         if self._stepped:
             self.clock.advance(t)
         for d in self.items:
+            d.step(t)  # first: an answer queued now goes out in this step if it is due
             if self._stepped and d.port.pending():
-                d.port.wake()
-            d.step(t)
+                d.port.flush_due()
 
     def close(self) -> list[str]:
         """Close every port; a summary line each."""

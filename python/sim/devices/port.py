@@ -38,7 +38,8 @@ class Port:
         self._queue: deque[Burst] = deque()
         self._queued = 0  # bytes in the queue not yet handed on
         self._inbox = bytearray()
-        self._lock = threading.Lock()
+        self._lock = threading.Lock()  # the queue and the inbox
+        self._io = threading.Lock()  # the transport: the writer thread, or flush_due() from a step
         self._wake_r, self._wake_w = os.pipe()
         os.set_blocking(self._wake_r, False)
         os.set_blocking(self._wake_w, False)
@@ -79,6 +80,14 @@ class Port:
         """Bytes queued and not yet handed on."""
         with self._lock:
             return self._queued
+
+    def flush_due(self) -> None:
+        """Hand on the bytes due by the clock's time now, from the caller's thread: a
+        stepped simulator's bytes of a step are out before it reports the step done."""
+        with self._io:
+            data, _ = self._due_bytes()
+            if data:
+                self._hand_on(data)
 
     def wake(self) -> None:
         """Tell the writer to look again (a burst queued, a step clock moved)."""
@@ -137,13 +146,15 @@ class Port:
             while True:
                 # read before the clock: the bytes of a closing simulator's last step go out
                 stopping = self._stop
-                data, next_in = self._due_bytes()
-                if data:
-                    self._hand_on(data)
+                with self._io:
+                    data, next_in = self._due_bytes()
+                    if data:
+                        self._hand_on(data)
+                    timeout = self._timeout(next_in)
                 if stopping:
                     break
                 fds = self.transport.read_fds()
-                ready, _, _ = select.select([self._wake_r, *fds], [], [], self._timeout(next_in))
+                ready, _, _ = select.select([self._wake_r, *fds], [], [], timeout)
                 for fd in ready:
                     if fd == self._wake_r:
                         while True:
@@ -153,7 +164,9 @@ class Port:
                             except BlockingIOError:
                                 break
                     else:
-                        self._take(self.transport.on_readable(fd))
+                        with self._io:
+                            data = self.transport.on_readable(fd)
+                        self._take(data)
         except Exception as e:  # noqa: BLE001 - reported in the summary, never kills the simulation
             self.error = f"{type(e).__name__}: {e}"
 
