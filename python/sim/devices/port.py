@@ -151,10 +151,13 @@ class Port:
                     if data:
                         self._hand_on(data)
                     timeout = self._timeout(next_in)
+                    fds = self.transport.read_fds()
                 if stopping:
                     break
-                fds = self.transport.read_fds()
-                ready, _, _ = select.select([self._wake_r, *fds], [], [], timeout)
+                try:
+                    ready, _, _ = select.select([self._wake_r, *fds], [], [], timeout)
+                except (OSError, ValueError):  # a client a step's write dropped meanwhile
+                    continue
                 for fd in ready:
                     if fd == self._wake_r:
                         while True:
