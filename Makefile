@@ -164,7 +164,7 @@ $(PYC_STAMP): $(GEN_PY_STAMP) $(shell find python -name '*.py' 2>/dev/null)
 	$(VPY) -m compileall -q python $(GEN)/python >/dev/null
 	@touch $@
 
-.PHONY: all build sanitize test lint format demo spy bench clean distclean setup validate stress chromium
+.PHONY: all build sanitize test lint format demo spy bench clean distclean setup validate stress chromium gpsd
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET) $(PYC_STAMP)
 sanitize: $(SAN_OUTPUTS)
@@ -185,13 +185,24 @@ chromium:
 	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1; }; }; } || \
 	  echo "note: chromium is not installed (not root, or apt-get failed): the console's browser tests will skip"
 
+# The GPS emulator's test reads its NMEA with Debian's gpsd (test dependency
+# only), installed like chromium above; elsewhere that test skips and says why.
+gpsd:
+	@command -v gpsd >/dev/null || PATH="$$PATH:/usr/sbin:/sbin" command -v gpsd >/dev/null || \
+	  { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { echo "installing gpsd (apt-get) for the GPS emulator's test"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends gpsd >/dev/null 2>&1 || \
+	    { apt-get update >/dev/null 2>&1 && \
+	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends gpsd >/dev/null 2>&1; }; }; } || \
+	  echo "note: gpsd is not installed (not root, or apt-get failed): the GPS emulator's gpsd test will skip"
+
 # The suite runs on TEST_JOBS pytest-xdist workers (default: one per core, at
 # least 2: most tests wait on processes they start), each in a network
 # namespace of its own (tests/conftest.py); `make test TEST_JOBS=0` runs it in
 # one process. A test file is one unit of work, so its fixtures run once.
 TEST_JOBS ?= $(shell n=$$(nproc 2>/dev/null || echo 2); [ $$n -lt 2 ] && n=2; echo $$n)
 TEST_PARALLEL = $(if $(filter 0,$(TEST_JOBS)),-p no:xdist,-n $(TEST_JOBS) --dist loadgroup)
-test: build sanitize chromium lint
+test: build sanitize chromium gpsd lint
 	tests/isolated_net.sh $(VPY) -m pytest $(TEST_PARALLEL) $(PYTEST_ARGS)
 
 # The Python's lint and format (ruff, settings in pyproject.toml). `make format`

@@ -20,6 +20,7 @@ from confcheck import VEHICLE_ID, Checker, ConfigError, Rule, report, rule_of, s
 from sim import clock_modes
 from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
+from sim.devices.config import check_distinct, parse_wire
 from sim.environment import ENV_VARIABLES, CurrentLayer, EnvParams, Transponder
 from sim.sensors import REGISTRY
 from sim.sonar.config import SonarConfig
@@ -258,10 +259,11 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
     return env
 
 
-def _sensors(doc: Checker, node) -> dict[str, Any]:
+def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
     items = doc.mapping(node, "sensors")
     doc.unknown(items, REGISTRY, "sensors")
     out = {}
+    wires = {}
     for name, (_, snode) in items.items():
         if name in REGISTRY:
             cfg_cls, _ = REGISTRY[name]
@@ -269,8 +271,13 @@ def _sensors(doc: Checker, node) -> dict[str, Any]:
                 cfg = cfg_cls()
                 cfg.enabled = False
             else:
-                cfg = doc.fill(snode, f"sensors.{name}", cfg_cls())
+                key = f"sensors.{name}"
+                wire = {"wire": lambda n, k, name=name: parse_wire(doc, n, k, name, base)}
+                cfg = doc.fill(snode, key, cfg_cls(), special=wire)
+                if cfg.wire is not None and cfg.enabled:
+                    wires[name] = (doc.mapping(snode, key)["wire"][1], cfg.wire)
             out[name] = cfg
+    check_distinct(doc, wires)
     ins = out.get("ins")
     if ins is not None and ins.channel in RESERVED_TOPICS:
         cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
@@ -343,7 +350,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     sim = doc.fill(get("simulation"), "simulation", SimSettings())
     initial = doc.fill(get("initial"), "initial", InitialState())
     env = _environment(doc, get("environment"), path.parent)
-    sensors = _sensors(doc, get("sensors"))
+    sensors = _sensors(doc, get("sensors"), path.parent)
     mh = doc.fill(get("multihil"), "multihil", MultiHil())
     _needs_served(doc, get("multihil"), sensors, mh)
     safe = doc.fill(get("safe_command"), "safe_command", Command())

@@ -34,6 +34,7 @@ from sim.actuators import Command
 from sim.clock import ClockSource
 from sim.clock_modes import LOCKSTEP
 from sim.config import SimConfig
+from sim.devices.device import build_devices
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem
@@ -146,7 +147,11 @@ class Simulator:
         self._sensor_channels = [(sen, f"{self.vid}.{sen.topic}") for sen in self.sensors]
         # what _outputs() calls per sensor: when it is due next, its poll as bytes
         # (or None), its channel
-        self._sensor_polls = [(sen.next_due, sen.poll_encoded, ch) for sen, ch in self._sensor_channels]
+        # sensors at the wire (docs/simulator.md, "Devices at the wire"): their lines follow
+        # the steps where the wall clock does not pace them
+        stepped = s.clock == LOCKSTEP or self.pacer.fast or cfg.multihil.enabled
+        self.devices = build_devices(self.sensors, self.vid, s.seed, self.model.frame, self.pacer, stepped)
+        self._sensor_polls = [(sen.next_due, self.devices.poll_for(sen), ch) for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
@@ -295,6 +300,8 @@ class Simulator:
         t = self.model.t
         if self.modem is not None:  # every step: a frame may arrive at any step
             self.modem.step(t, tuple(self.model.dyn.x[0:3]))
+        if self.devices:  # every step: the lines' step clock, what the far ends wrote
+            self.devices.step(t)
         if t < self._next_due - 1e-9:
             return
         tr = self.model.truth(self.truth)
@@ -431,9 +438,15 @@ class Simulator:
         a receive thread that every later packet still wakes.
         """
         self._close_sender()
+        self._close_devices()
         for rx in (self.rx, self.mh.node.rx) if self.mh is not None else (self.rx,):
             for sub in list(rx.subscriptions):
                 rx.unsubscribe(sub)
+
+    def _close_devices(self) -> None:
+        for line in self.devices.close():
+            print(f"sim: {self.vid}: {line}", flush=True)
+        self.devices.items.clear()
 
     def _close_sender(self) -> str:
         """Send what is queued and stop the sender thread; its figures for the summary."""
@@ -502,4 +515,5 @@ class Simulator:
         )
         if self.modem is not None:
             print(self.modem.summary(), flush=True)
+        self._close_devices()
         return 0

@@ -32,6 +32,8 @@ class SensorConfig:
     bias: float = 0.0  # constant offset, in the sensor's unit
     dropout: float = setting(0.0, ge=0.0, lt=1.0)  # probability that one sample is lost [0, 1)
     phase_s: float = 0.0  # offset of the first sample, to spread load
+    # its device at the wire (sim.devices.config.WireConfig); None: LCM only
+    wire: Any = None
 
 
 class Sensor:

@@ -1,0 +1,19 @@
+"""The one list of device emulators: a new device is its module and one line here.
+
+Each class names the sensor it speaks for and its protocol
+(sim.devices.emulator.Emulator); a sensor's `wire.protocol` may be any of the
+protocols registered for it, and docs/simulator.md ("Devices at the wire")
+lists them.
+"""
+
+from __future__ import annotations
+
+from sim.devices.emulator import Emulator
+from sim.devices.nmea_gps import NmeaGps
+
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps,)
+
+
+def protocols_of(sensor: str) -> dict[str, type[Emulator]]:
+    """The protocols a sensor can speak at the wire, by name."""
+    return {e.protocol: e for e in EMULATORS if e.sensor == sensor}
