@@ -3,6 +3,8 @@
 # C unit tests of it and of each driver's parser (tests/drivers/*.c) on the
 # shared harness as bin/test_drivers, built in both variants.
 DRIVERS_COMMON_SRCS := $(sort $(wildcard c/drivers/common/*.c))
+# The Micro-Modem's protocol layer and bridge (no I/O: unit-tested here).
+DRIVERS_COMMON_SRCS += $(sort $(wildcard c/drivers/modem/mm_*.c))
 DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) $(UNIT_HARNESS_SRCS)
 
 define drivers_rules
