@@ -1,9 +1,10 @@
 # The vehicle's device layer (docs/drivers.md): the code every driver shares
 # (c/drivers/common: NMEA framing and fields, ...) and each device's protocol
-# code (c/drivers/<device>/*.c but its *_main.c) as libauvdrivers.a, and the C
+# code (c/drivers/<device>/*.c but its *_main.c; c/drivers/tools holds test
+# programs, c/drivers/fuzz the fuzz targets) as libauvdrivers.a, and the C
 # unit tests of them (tests/drivers/*.c) on the shared harness as
 # bin/test_drivers, built in both variants.
-DRIVERS_COMMON_SRCS := $(sort $(filter-out %_main.c,$(wildcard c/drivers/*/*.c)))
+DRIVERS_COMMON_SRCS := $(sort $(filter-out %_main.c c/drivers/tools/% c/drivers/fuzz/%,$(wildcard c/drivers/*/*.c)))
 DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) $(UNIT_HARNESS_SRCS)
 
 define drivers_rules
@@ -13,11 +14,16 @@ $(1)/lib/libauvdrivers.a: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_COMMON_SRCS))
 $(1)/bin/test_drivers: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_TEST_SRCS)) $(1)/lib/libauvdrivers.a
 	@mkdir -p $$(@D)
 	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ -lm
+# The Micro-Modem bridge on stdin/stdout (tests/drivers/test_micromodem.py puts
+# it face to face with the simulator's emulator).
+$(1)/bin/mm_cli: $(1)/obj/c/drivers/tools/mm_cli.o $(1)/lib/libauvdrivers.a
+	@mkdir -p $$(@D)
+	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ -lm
 endef
 $(foreach v,$(VARIANTS),$(eval $(call drivers_rules,$(v))))
 
 C_LIBS += lib/libauvdrivers.a
-C_PROGRAMS += bin/test_drivers
+C_PROGRAMS += bin/test_drivers bin/mm_cli
 
 # Fuzz targets: each c/drivers/fuzz/fuzz_NAME.c is an LLVMFuzzerTestOneInput over
 # one protocol, built as bin/drivers_fuzz_NAME on the project's mutation driver

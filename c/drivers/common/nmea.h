@@ -11,15 +11,16 @@
  * checksum, and a sentence cut short by a new `$` (truncated). Each refusal
  * has a reason, which the drivers count.
  *
- * NMEA 0183 limits a sentence to 82 characters; proprietary ones run longer
- * (a Micro-Modem $CARXD carries up to 64 bytes of hex), hence 300. */
+ * NMEA 0183 limits a sentence to 82 characters; proprietary ones run longer:
+ * a Micro-Modem $CARXD of a PSK rate carries a 256-byte frame as 512 hex
+ * digits (c/drivers/modem/mm_msg.h), some 540 characters in all, hence 600. */
 #ifndef DRIVERS_NMEA_H
 #define DRIVERS_NMEA_H
 
 #include <stddef.h>
 #include <stdint.h>
 
-#define NMEA_MAX_SENTENCE 300
+#define NMEA_MAX_SENTENCE 600
 #define NMEA_MAX_FIELDS 80
 
 typedef enum {
