@@ -105,6 +105,7 @@ static int run(driver *d)
     int64_t next_status_ms = drv_monotonic_ms() + STATUS_MS;
     int lcm_fd = d->opt.clock == DRV_CLOCK_SIM ? lcm_get_fileno(d->lcm) : -1;
     uint8_t buf[READ_CAP];
+    int was_open = 0;
     while (!stop_requested) {
         int64_t now_ms = drv_monotonic_ms();
         drv_port_service(&d->port, now_ms);
@@ -130,9 +131,12 @@ static int run(driver *d)
             long n = drv_port_ready(&d->port, fds[port_i].revents, buf, sizeof buf, now_ms);
             if (n > 0)
                 on_bytes(d, buf, (size_t)n);
-            else if (n < 0 && d->p->reset)
-                d->p->reset(d->state, &d->ctx); /* a half frame of the lost port never ends */
         }
+        /* the port lost, on a read or on a protocol's write: a half frame of
+         * it never ends */
+        if (was_open && d->port.state != DRV_PORT_OPEN && d->p->reset)
+            d->p->reset(d->state, &d->ctx);
+        was_open = d->port.state == DRV_PORT_OPEN;
         int64_t now = drv_clock_now(&d->clock);
         if (d->p->tick && now >= 0)
             d->p->tick(d->state, &d->ctx, now);

@@ -17,13 +17,21 @@
 #define FUZZ_T0 INT64_C(1700000000000000)
 
 static int64_t max_stamp;
+static const uint8_t *cur_data;
+static size_t cur_size;
 
+/* A broken check is no sanitizer report: the input is written here, then abort. */
 static void check(int ok, const char *what)
 {
-    if (!ok) {
-        fprintf(stderr, "drivers_fuzz: broken: %s\n", what);
-        abort();
+    if (ok)
+        return;
+    fprintf(stderr, "drivers_fuzz: broken: %s; input written to drivers-broken.bin\n", what);
+    FILE *f = fopen("drivers-broken.bin", "wb");
+    if (f) {
+        fwrite(cur_data, 1, cur_size, f);
+        fclose(f);
     }
+    abort();
 }
 
 static void sink(void *user, const char *channel, const auv_type_entry_t *type, const void *data, int len)
@@ -49,6 +57,8 @@ static void sink(void *user, const char *channel, const auv_type_entry_t *type, 
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
+    cur_data = data;
+    cur_size = size;
     for (int k = 0; k < drv_count(); k++) {
         const drv_protocol *p = drv_at(k);
         void *state = calloc(1, p->state_size ? p->state_size : 1);
