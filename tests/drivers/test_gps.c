@@ -31,9 +31,9 @@ static void capture(void *user, const char *channel, const auv_type_entry_t *typ
     if (r->n < MAX_FIXES) {
         auv_gps_fix_t *m = &r->fix[r->n++];
         CHECK(rx_decode(type, data, len, m) == 0);
-        m->vehicle = NULL; /* freed below: the tests read only numbers */
-        auv_gps_fix_t tmp = *m;
-        auv_gps_fix_t_decode_cleanup(&tmp);
+        CHECK_STR(m->vehicle, "AUV1");
+        auv_gps_fix_t_decode_cleanup(m); /* frees the string: the tests read only numbers */
+        m->vehicle = NULL;
     }
 }
 
