@@ -133,9 +133,12 @@ static int run(driver *d)
                 on_bytes(d, buf, (size_t)n);
         }
         /* the port lost, on a read or on a protocol's write: a half frame of
-         * it never ends */
+         * it never ends; the port (re)opened: a device that needs its
+         * configuration or a first poll gets it */
         if (was_open && d->port.state != DRV_PORT_OPEN && d->p->reset)
             d->p->reset(d->state, &d->ctx);
+        if (!was_open && d->port.state == DRV_PORT_OPEN && d->p->opened)
+            d->p->opened(d->state, &d->ctx);
         was_open = d->port.state == DRV_PORT_OPEN;
         int64_t now = drv_clock_now(&d->clock);
         if (d->p->tick && now >= 0)

@@ -48,6 +48,10 @@ typedef struct drv_protocol {
     /* Time passes without bytes (at least every 100 ms, and before each feed):
      * for protocols that close a frame or an epoch on silence. Optional. */
     void (*tick)(void *state, drv_ctx *ctx, int64_t now);
+    /* The port opened, or opened again after a loss: send the device its
+     * configuration or a first poll (drv_write). Not called by the replay,
+     * whose stream has no device behind it. Optional. */
+    void (*opened)(void *state, drv_ctx *ctx);
     /* The stream broke (port lost, a gap in a replayed log): forget any half
      * frame, it will never end. Optional. */
     void (*reset)(void *state, drv_ctx *ctx);
