@@ -60,7 +60,29 @@ def test_manager_nav_recorder_and_simulator_builders_use_documented_flags(tmp_pa
     _every_flag_documented(logger, [logger[0]])
 
 
-@pytest.mark.parametrize("program", ["chasm-manager", "auv-nav", "auv-recorder"])
+def test_driver_builders_use_documented_flags():
+    gps = programs.device_driver(
+        BUILD,
+        "gps",
+        vehicle="AUV1",
+        lcm_url="udpm://x",
+        port="/dev/ttyUSB0",
+        baud=4800,
+        raw=True,
+        extra=programs.gps_origin_flags(45.0, -70.0),
+    )
+    assert gps[0] == str(c_program("bin/auv-gps")) and gps[gps.index("--baud") + 1] == "4800"
+    _every_flag_documented(gps, [gps[0]])
+    tcp = programs.device_driver(BUILD, "gps", vehicle="AUV1", lcm_url="udpm://x", tcp="10.0.0.2:4001")
+    _every_flag_documented(tcp, [tcp[0]])
+    with pytest.raises(ValueError):
+        programs.device_driver(BUILD, "gps", vehicle="AUV1", lcm_url="udpm://x")
+    replay = programs.driver_replay(BUILD, log="l", vehicle="AUV1", device="GPS", extra=["--min-year", "1990"])
+    assert "--print" in replay
+    _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
+
+
+@pytest.mark.parametrize("program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-driver-replay"])
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])
 

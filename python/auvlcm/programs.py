@@ -1,5 +1,5 @@
 """One builder per program's command line: chasm-manager, auv-nav, the simulator,
-the recorders.
+the recorders, the device drivers and their replay.
 
 Every process that starts one of these (the launcher, the host agents through the
 launcher's core, the multi-HIL world, tests, benchmarks) builds its command here,
@@ -102,6 +102,55 @@ def lcm_logger(lcm_bin: Path, *, lcm_url: str, log: PathLike) -> list[str]:
     a signal reaches the logger itself), with a large receive buffer."""
     url = with_receive_buffer(lcm_url)
     return [str(lcm_bin / "lcm-logger"), f"--lcm-url={url}", "--quiet", "--flush-interval=100", "-f", str(log)]
+
+
+def device_driver(
+    build: Path,
+    device: str,
+    *,
+    vehicle: str,
+    lcm_url: str,
+    port: PathLike | None = None,
+    baud: int | None = None,
+    tcp: str | None = None,
+    raw: bool = False,
+    clock: str = "system",
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """A device driver `auv-<device>` (c/drivers/<device>, docs/drivers.md) on a
+    serial `port` (at `baud`) or a TCP `tcp` "HOST:PORT"; `raw` records its
+    bytes on <vehicle>.RAW.<DEVICE>; `extra` are the driver's own flags."""
+    if (port is None) == (tcp is None):
+        raise ValueError("a driver takes one of port and tcp")
+    cmd = [str(build / "bin" / f"auv-{device}")]
+    cmd += ["--device", str(port)] if port is not None else ["--tcp", tcp]
+    if baud is not None:
+        cmd += ["--baud", str(int(baud))]
+    cmd += ["--vehicle", vehicle, "--lcm-url", lcm_url, "--clock", clock]
+    if raw:
+        cmd.append("--raw")
+    return cmd + [str(x) for x in extra]
+
+
+def gps_origin_flags(lat0_deg: float, lon0_deg: float) -> list[str]:
+    """auv-gps's --origin: the world's local frame (python/sim/geo.py's origin)."""
+    return ["--origin", f"{lat0_deg:.10f},{lon0_deg:.10f}"]
+
+
+def driver_replay(
+    build: Path,
+    *,
+    log: PathLike,
+    vehicle: str,
+    device: str,
+    lcm_url: str | None = None,
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """auv-driver-replay: a log's <vehicle>.RAW.<DEVICE> bytes through the
+    driver's parser again, published on `lcm_url`, or printed when it is None."""
+    cmd = [str(build / "bin" / "auv-driver-replay"), str(log), "--vehicle", vehicle, "--device", device]
+    cmd += ["--lcm-url", lcm_url] if lcm_url is not None else ["--print"]
+    return cmd + [str(x) for x in extra]
 
 
 class _OldUrlSpelling(argparse.Action):

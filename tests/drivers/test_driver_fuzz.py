@@ -14,11 +14,19 @@ ROOT = Path(__file__).resolve().parents[2]
 TARGETS = sorted(p.stem.removeprefix("fuzz_") for p in (ROOT / "c" / "drivers" / "fuzz").glob("fuzz_*.c"))
 
 
+CORPUS = ROOT / "tests" / "drivers" / "corpus"
+
+
+def corpus_of(name: str) -> Path:
+    """A target's hostile corpus; `protocols` (every registered protocol at once) takes them all."""
+    return CORPUS if name == "protocols" else CORPUS / name
+
+
 def test_every_fuzz_target_has_a_corpus():
-    assert {"nmea", "digiquartz"} <= set(TARGETS), TARGETS
+    assert {"nmea", "digiquartz", "protocols"} <= set(TARGETS), TARGETS
     for name in TARGETS:
-        corpus = ROOT / "tests" / "drivers" / "corpus" / name
-        assert corpus.is_dir() and len(list(corpus.iterdir())) >= 3, f"{name}: a hostile corpus of at least 3 files"
+        corpus = corpus_of(name)
+        assert corpus.is_dir() and len(list(corpus.rglob("*"))) >= 3, f"{name}: a hostile corpus of at least 3 files"
 
 
 @pytest.mark.parametrize("name", TARGETS)
@@ -26,7 +34,7 @@ def test_corpus_and_mutations_do_not_crash(name, variant_dir, child_env, tmp_pat
     exe = variant_dir / "bin" / f"drivers_fuzz_{name}"
     if not exe.exists():
         pytest.fail(f"{exe} is not built: run `make build sanitize` first")
-    corpus = ROOT / "tests" / "drivers" / "corpus" / name
+    corpus = corpus_of(name)
     p = subprocess.run(
         [str(exe), "--no-dict", "--runs", "100000", "--seed", "7", str(corpus)],
         env=child_env,

@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 
+ROOT = Path(__file__).resolve().parents[2]
+
 NAMES = [
     name
     for source in sorted(Path(__file__).parent.glob("*.c"))
@@ -26,8 +28,6 @@ def test_c_unit(name, variant_dir, child_env):
     exe = variant_dir / "bin" / "test_drivers"
     if not exe.exists():
         pytest.fail(f"{exe} is not built: run `make build sanitize` first")
-    # from the repository's root: the corpus tests read tests/drivers/corpus/
-    root = Path(__file__).resolve().parents[2]
-    p = subprocess.run([str(exe), name], cwd=root, env=child_env, capture_output=True, text=True, timeout=120)
+    p = subprocess.run([str(exe), name], env=child_env, capture_output=True, text=True, timeout=120, cwd=ROOT)
     assert p.returncode not in (86, 87), f"sanitizer report:\n{p.stderr}"
     assert p.returncode == 0 and f"ok {name}" in p.stdout, p.stdout + p.stderr

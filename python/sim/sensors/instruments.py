@@ -261,4 +261,8 @@ class Gps(Sensor):
         m.east_m = tr.eta[1] + c.bias + self.gauss(c.noise)
         m.latitude_deg, m.longitude_deg = self.frame.to_latlon(m.north_m, m.east_m)
         m.hdop, m.horizontal_sigma_m, m.satellites = c.hdop, c.noise, c.satellites
+        # what a receiver tells besides: the model has a plain GPS fix and
+        # nothing else (simulated time is not UTC: no utc_utime)
+        m.quality, m.utc_utime = gps_fix_t.QUALITY_GPS, -1
+        m.altitude_m = m.speed_mps = m.course_deg = m.pdop = m.vdop = math.nan
         return m

@@ -1,0 +1,369 @@
+/* Unit tests of auv-gps's protocol (c/drivers/gps): published example
+ * sentences, every talker, the epoch grouping, the stamp and UTC rules, each
+ * refusal reason, absurd values with valid checksums, and the hostile corpus
+ * of tests/drivers/corpus/gps/ (each file: the stream, and the counts it must
+ * give). */
+#include <dirent.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "auv/auv_gps_fix_t.h"
+#include "common/lcm_rx.h"
+#include "drivers/gps/gps.h"
+#include "../harness/unit.h"
+
+#define T0 INT64_C(1700000000000000)
+#define MAX_FIXES 64
+
+typedef struct {
+    gps_state g;
+    drv_ctx ctx;
+    auv_gps_fix_t fix[MAX_FIXES];
+    int n;
+} rig;
+
+static void capture(void *user, const char *channel, const auv_type_entry_t *type, const void *data, int len)
+{
+    rig *r = user;
+    CHECK_STR(channel, "AUV1.GPS");
+    if (r->n < MAX_FIXES) {
+        auv_gps_fix_t *m = &r->fix[r->n++];
+        CHECK(rx_decode(type, data, len, m) == 0);
+        CHECK_STR(m->vehicle, "AUV1");
+        auv_gps_fix_t_decode_cleanup(m); /* frees the string: the tests read only numbers */
+        m->vehicle = NULL;
+    }
+}
+
+static rig *rig_new(const char *const *flags)
+{
+    rig *r = calloc(1, sizeof *r);
+    drv_ctx_init(&r->ctx, "test", "AUV1", "GPS", capture, r);
+    r->ctx.quiet = 1;
+    char err[200];
+    for (int i = 0; flags && flags[i]; i += 2)
+        for (const drv_flag *f = gps_protocol.flags; f->name; f++)
+            if (!strcmp(f->name, flags[i]))
+                CHECK(f->set(&r->g, flags[i + 1], err, sizeof err) == 0);
+    CHECK(gps_protocol.init(&r->g, &r->ctx) == 0);
+    return r;
+}
+
+static void feed(rig *r, const char *text, int64_t stamp)
+{
+    gps_protocol.tick(&r->g, &r->ctx, stamp);
+    gps_protocol.feed(&r->g, &r->ctx, (const uint8_t *)text, strlen(text), stamp);
+}
+
+/* "$" body "*hh\r\n" */
+static const char *sentence(const char *body)
+{
+    static char buf[8][160];
+    static int k;
+    char *out = buf[k++ % 8];
+    CHECK(nmea_format(out, 160, body) > 0);
+    return out;
+}
+
+static int64_t count(const rig *r, const char *reason) { return drv_reasons_get(&r->ctx.reasons, reason); }
+
+static void test_published_examples(void)
+{
+    /* the classic GGA/RMC/GSA/VTG/ZDA examples, checksums as published;
+     * the RMC's 1994 date needs --min-year 1990 */
+    rig *r = rig_new((const char *const[]){"--min-year", "1990", "--origin", "48.1,11.5", NULL});
+    feed(r, "$GPGSA,A,3,04,05,,09,12,,,24,,,,,2.5,1.3,2.1*39\r\n", T0);
+    feed(r, "$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K*48\r\n", T0 + 10000);
+    feed(r, "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n", T0 + 20000);
+    CHECK(r->n == 0); /* waiting for the epoch's RMC */
+    feed(r, "$GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230394,003.1,W*6A\r\n", T0 + 30000);
+    CHECK(r->n == 1);
+    const auv_gps_fix_t *m = &r->fix[0];
+    CHECK(m->utime == T0 + 20000); /* the receive time of the epoch's first sentence */
+    CHECK_NEAR(m->latitude_deg, 48 + 7.038 / 60, 1e-12);
+    CHECK_NEAR(m->longitude_deg, 11 + 31.0 / 60, 1e-12);
+    CHECK(m->quality == 1 && m->satellites == 8 && m->fix_type == AUV_GPS_FIX_T_FIX_3D);
+    CHECK_NEAR(m->hdop, 0.9, 1e-12);
+    CHECK_NEAR(m->horizontal_sigma_m, 2.0 * 0.9, 1e-12);
+    CHECK_NEAR(m->altitude_m, 545.4, 1e-9);
+    CHECK_NEAR(m->speed_mps, 22.4 * 1852.0 / 3600.0, 1e-9);
+    CHECK_NEAR(m->course_deg, 84.4, 1e-12);
+    CHECK_NEAR(m->pdop, 2.5, 1e-12);
+    CHECK_NEAR(m->vdop, 2.1, 1e-12);
+    CHECK(m->utc_utime == (nmea_unix_day(1994, 3, 23) * 86400 + 12 * 3600 + 35 * 60 + 19) * INT64_C(1000000));
+    /* north/east as python/sim/geo.py: 1 minute of latitude is about 1853 m there */
+    CHECK_NEAR(m->north_m, 1923.6262274946, 1e-6); /* python/sim/geo.py's number */
+    CHECK_NEAR(m->east_m, 1241.350360046177, 1e-6);
+    CHECK(r->ctx.frames_decoded == 4 && r->ctx.reasons.total == 0);
+    /* ZDA gives the date to a GGA-only stream */
+    feed(r, "$GPZDA,201530.00,04,07,2002,00,00*60\r\n", T0 + 1000000);
+    feed(r, sentence("GPGGA,201531.00,4807.038,N,01131.000,E,2,12,1.5,10.0,M,46.9,M,,"), T0 + 2000000);
+    feed(r, sentence("GPGGA,201532.00,4807.038,N,01131.000,E,2,12,1.5,10.0,M,46.9,M,,"), T0 + 3000000);
+    /* the first GGA-only epoch waits for an RMC that never comes; closed by
+     * the next one, then the receiver is known to send GGA alone */
+    CHECK(r->n == 3);
+    CHECK(r->fix[1].utc_utime == (nmea_unix_day(2002, 7, 4) * 86400 + 20 * 3600 + 15 * 60 + 31) * INT64_C(1000000));
+    CHECK(r->fix[2].utime == T0 + 3000000 && r->fix[2].quality == 2);
+    CHECK(isnan(r->fix[2].speed_mps)); /* no RMC, and the VTG is too old */
+    free(r);
+}
+
+static void test_each_talker(void)
+{
+    const char *talkers[] = {"GP", "GN", "GL", "GA", "GB", "BD"};
+    for (size_t k = 0; k < sizeof talkers / sizeof talkers[0]; k++) {
+        rig *r = rig_new(NULL);
+        char body[160];
+        snprintf(body, sizeof body, "%sGGA,010203.50,3530.0000,S,17410.0000,W,1,10,0.8,3.0,M,,M,,", talkers[k]);
+        feed(r, sentence(body), T0);
+        snprintf(body, sizeof body, "%sRMC,010203.50,A,3530.0000,S,17410.0000,W,1.0,359.9,150724,,,A", talkers[k]);
+        feed(r, sentence(body), T0 + 5000);
+        CHECK(r->n == 1);
+        CHECK_NEAR(r->fix[0].latitude_deg, -35.5, 1e-12);
+        CHECK_NEAR(r->fix[0].longitude_deg, -(174 + 10.0 / 60), 1e-12);
+        CHECK(isnan(r->fix[0].north_m)); /* no --origin */
+        CHECK(r->fix[0].utc_utime ==
+              (nmea_unix_day(2024, 7, 15) * 86400 + 3600 + 2 * 60 + 3) * INT64_C(1000000) + 500000);
+        free(r);
+    }
+    /* a GGA from a talker that is no GNSS receiver */
+    rig *r = rig_new(NULL);
+    feed(r, sentence("HEGGA,010203,3530.0000,S,17410.0000,W,1,10,0.8,3.0,M,,M,,"), T0);
+    CHECK(count(r, "unknown talker") == 1 && r->n == 0);
+    free(r);
+}
+
+static void test_absurd_values_refused(void)
+{
+    static const struct {
+        const char *body, *reason;
+    } cases[] = {
+        {"GPGGA,123519,20000.000,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,", "bad latitude"}, /* 200 degrees */
+        {"GPGGA,123519,9100.000,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,", "bad latitude"},  /* 91 degrees */
+        {"GPGGA,123519,4807.038,N,19131.000,E,1,08,0.9,545.4,M,46.9,M,,", "bad longitude"},
+        {"GPGGA,123519,4807.038,X,01131.000,E,1,08,0.9,545.4,M,46.9,M,,", "bad latitude"},
+        {"GPGGA,123519,4807.038,N,,,1,08,0.9,545.4,M,46.9,M,,", "missing position"},
+        {"GPGGA,123519,,,,,1,08,0.9,545.4,M,46.9,M,,", "missing position"},
+        {"GPGGA,253519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,", "bad time"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,9,08,0.9,545.4,M,46.9,M,,", "bad fix quality"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,100,0.9,545.4,M,46.9,M,,", "bad satellites"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,-3,0.9,545.4,M,46.9,M,,", "bad satellites"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,08,-0.9,545.4,M,46.9,M,,", "bad hdop"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,08,1e3,545.4,M,46.9,M,,", "bad hdop"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,99999.0,M,46.9,M,,", "bad altitude"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,F,46.9,M,,", "bad altitude"},
+        {"GPGGA,123519,4807.038,N,01131.000,E,1", "too few fields"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230380,003.1,W", "date out of range"}, /* 1980 */
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230399,003.1,W", "date out of range"}, /* 1999 */
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,310224,003.1,W", "bad date"},
+        {"GPRMC,123519,X,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W", "bad status"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,2000.0,084.4,230324,003.1,W", "bad speed"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,-1.0,084.4,230324,003.1,W", "bad speed"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,400.0,230324,003.1,W", "bad course"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W,Q", "bad mode"},
+        {"GPRMC,123519,A,,,,,022.4,084.4,230324,003.1,W", "missing position"},
+        {"GPVTG,054.7,T,034.4,M,-5.5,N,010.2,K", "bad speed"},
+        {"GPVTG,554.7,T,034.4,M,005.5,N,010.2,K", "bad course"},
+        {"GPGSA,A,4,04,05,,09,12,,,24,,,,,2.5,1.3,2.1", "bad fix mode"},
+        {"GPGSA,A,3,04,05,,09,12,,,24,,,,,2.5,-1.3,2.1", "bad dop"},
+        {"GPGSA,A,3,04,05", "too few fields"},
+        {"GPZDA,201530.00,04,07,1980,00,00", "date out of range"},
+        {"GPZDA,201530.00,31,02,2024,00,00", "bad date"},
+        {"GPZDA,201530.00,04,07,02,00,00", "bad date"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        rig *r = rig_new(NULL);
+        feed(r, sentence(cases[k].body), T0);
+        gps_protocol.finish(&r->g, &r->ctx, T0 + 1);
+        if (count(r, cases[k].reason) != 1 || r->ctx.reasons.total != 1 || r->n != 0)
+            fprintf(stderr, "case %zu (%s): %s\n", k, cases[k].body, r->ctx.last_error);
+        CHECK(count(r, cases[k].reason) == 1 && r->ctx.reasons.total == 1);
+        CHECK(r->n == 0 && r->ctx.frames_decoded == 0);
+        free(r);
+    }
+    /* the year limit is a setting */
+    rig *r = rig_new((const char *const[]){"--min-year", "1980", NULL});
+    feed(r, sentence("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230380,003.1,W"), T0);
+    CHECK(r->ctx.reasons.total == 0);
+    free(r);
+}
+
+static void test_stream_errors_counted(void)
+{
+    rig *r = rig_new(NULL);
+    char stream[4096];
+    const char *good = sentence("GPGGA,000001,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,");
+    char endless[600];
+    endless[0] = '$';
+    memset(endless + 1, 'G', sizeof endless - 2);
+    endless[sizeof endless - 1] = '\0';
+    snprintf(stream, sizeof stream,
+             "\x01\x02junk%s"                                           /* garbage, then a good one */
+             "$GPGGA,000002,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,*00\r\n" /* bad checksum */
+             "$GPGGA,000003,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,\r\n"    /* no checksum */
+             "$GPGGA,000004,0100.0"                                      /* cut by the next */
+             "%s\r\n"                                                    /* an endless line */
+             "$GPGGA,00\x80" "0005*11\r\n",                              /* a byte outside ASCII */
+             good, endless);
+    feed(r, stream, T0);
+    CHECK(count(r, "garbage") == 1);
+    CHECK(count(r, "bad checksum") == 1);
+    CHECK(count(r, "no checksum") == 1);
+    CHECK(count(r, "truncated sentence") == 1);
+    CHECK(count(r, "line too long") == 1);
+    CHECK(count(r, "bad character") == 1);
+    CHECK(r->ctx.frames_decoded == 1);
+    /* the stream still works, and a lost port forgets its half sentence */
+    feed(r, "$GPGGA,000006,0100.0", T0 + 1000000);
+    gps_protocol.reset(&r->g, &r->ctx);
+    feed(r, good, T0 + 2000000);
+    CHECK(count(r, "truncated sentence") == 1);
+    CHECK(r->ctx.frames_decoded == 2);
+    free(r);
+}
+
+static void test_epochs(void)
+{
+    rig *r = rig_new(NULL);
+    /* sentences split across reads anywhere; RMC before GGA; GSA after */
+    const char *rmc = sentence("GNRMC,235959.00,A,0100.000,N,00100.000,E,0.5,90.0,311224,,,D");
+    const char *gga = sentence("GNGGA,235959.00,0100.000,N,00100.000,E,2,09,1.2,1.0,M,,M,,");
+    const char *gsa = sentence("GNGSA,A,2,01,02,03,,,,,,,,,,3.0,1.2,2.7");
+    char all[600];
+    snprintf(all, sizeof all, "%s%s%s", rmc, gga, gsa);
+    for (size_t i = 0; all[i]; i += 7) {
+        char part[8] = {0};
+        memcpy(part, all + i, strnlen(all + i, 7));
+        feed(r, part, T0 + (int64_t)i * 1000);
+    }
+    CHECK(r->n == 1);
+    CHECK(r->fix[0].utime < T0 + (int64_t)strlen(rmc) * 1000); /* the RMC's receive time */
+    CHECK(r->fix[0].quality == 2 && isnan(r->fix[0].pdop));    /* GSA came after: not this epoch's */
+    CHECK(r->fix[0].utc_utime == (nmea_unix_day(2024, 12, 31) * 86400 + 86399) * INT64_C(1000000));
+    /* the next epoch, past midnight: the date rolls over with the time of day;
+     * the GSA of the previous epoch lends its DOPs and its 2D mode */
+    feed(r, sentence("GNGGA,000000.00,0100.000,N,00100.000,E,2,09,1.2,1.0,M,,M,,"), T0 + 1000000);
+    CHECK(r->n == 1); /* this receiver sends RMC too */
+    feed(r, sentence("GNRMC,000000.00,A,0100.000,N,00100.000,E,0.5,90.0,010125,,,D"), T0 + 1010000);
+    CHECK(r->n == 2);
+    CHECK(r->fix[1].utc_utime == nmea_unix_day(2025, 1, 1) * 86400 * INT64_C(1000000));
+    CHECK_NEAR(r->fix[1].pdop, 3.0, 1e-12);
+    CHECK(r->fix[1].fix_type == AUV_GPS_FIX_T_FIX_2D);
+    /* an epoch that loses its RMC to a bad checksum is published on the timeout */
+    feed(r, sentence("GNGGA,000001.00,0100.000,N,00100.000,E,2,09,1.2,1.0,M,,M,,"), T0 + 2000000);
+    CHECK(r->n == 2);
+    gps_protocol.tick(&r->g, &r->ctx, T0 + 2400000);
+    CHECK(r->n == 2);
+    gps_protocol.tick(&r->g, &r->ctx, T0 + 2600000);
+    CHECK(r->n == 3 && r->fix[2].utime == T0 + 2000000);
+    /* its late RMC is not a second fix of the same epoch */
+    feed(r, sentence("GNRMC,000001.00,A,0100.000,N,00100.000,E,0.5,90.0,010125,,,D"), T0 + 2700000);
+    gps_protocol.finish(&r->g, &r->ctx, T0 + 3000000);
+    CHECK(r->n == 3);
+    /* no fix: nothing published, nothing refused */
+    rig *q = rig_new(NULL);
+    feed(q, sentence("GPGGA,000002.00,,,,,0,00,99.99,,,,,,"), T0);
+    feed(q, sentence("GPRMC,000002.00,V,,,,,,,010125,,,N"), T0 + 1000);
+    feed(q, sentence("GPGGA,,,,,,0,00,99.99,,,,,,"), T0 + 2000);
+    gps_protocol.finish(&q->g, &q->ctx, T0 + 1000000);
+    CHECK(q->n == 0 && q->ctx.reasons.total == 0 && q->ctx.frames_decoded == 3);
+    free(q);
+    free(r);
+}
+
+static void test_origin_matches_the_simulator(void)
+{
+    /* python/sim/geo.py at 45 N: radii from WGS-84; 0.01 degree of latitude
+     * is 1111.318 m, 0.01 of longitude 788.468 m (its numbers, printed once) */
+    rig *r = rig_new((const char *const[]){"--origin", "45.0,-70.0", NULL});
+    double n, e;
+    gps_to_ned(&r->g, 45.01, -69.99, &n, &e);
+    CHECK_NEAR(n, 1111.3177741415357, 1e-6);
+    CHECK_NEAR(e, 788.4683509401842, 1e-6);
+    char err[200];
+    CHECK(gps_set_origin(&r->g, "95,0", err, sizeof err) < 0);
+    CHECK(gps_set_origin(&r->g, "45", err, sizeof err) < 0);
+    CHECK(gps_set_min_year(&r->g, "1970", err, sizeof err) < 0);
+    CHECK(gps_set_uere(&r->g, "-1", err, sizeof err) < 0);
+    free(r);
+}
+
+/* tests/drivers/corpus/gps/NAME.nmea: hostile streams; a first line
+ * "# expect: fixes=N reason=count ..." says what each must give. */
+static void test_hostile_corpus(void)
+{
+    /* run from the checkout's root (tests/drivers/test_drivers_c.py does) */
+    const char *dir = "tests/drivers/corpus/gps";
+    DIR *d = opendir(dir);
+    CHECK(d != NULL);
+    if (!d)
+        return;
+    int files = 0;
+    struct dirent *ent;
+    while ((ent = readdir(d))) {
+        if (!strstr(ent->d_name, ".nmea"))
+            continue;
+        char path[512];
+        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
+        FILE *f = fopen(path, "rb");
+        CHECK(f != NULL);
+        if (!f)
+            continue;
+        static char data[1 << 20];
+        size_t n = fread(data, 1, sizeof data - 1, f);
+        fclose(f);
+        data[n] = '\0';
+        char expect[512] = "";
+        if (!strncmp(data, "# expect:", 9)) {
+            size_t l = strcspn(data, "\n");
+            snprintf(expect, sizeof expect, "%.*s", (int)(l - 9), data + 9);
+        }
+        CHECK(expect[0] != '\0');
+        rig *r = rig_new((const char *const[]){"--origin", "0,0", NULL});
+        /* in reads of 13 bytes, 10 ms apart (a 9600 baud line) */
+        int64_t t = T0;
+        for (size_t i = 0; i < n; i += 13, t += 10000) {
+            gps_protocol.tick(&r->g, &r->ctx, t);
+            gps_protocol.feed(&r->g, &r->ctx, (const uint8_t *)data + i, n - i < 13 ? n - i : 13, t);
+        }
+        gps_protocol.finish(&r->g, &r->ctx, t);
+        for (char *tok = strtok(expect, " "); tok; tok = strtok(NULL, " ")) {
+            char *eq = strrchr(tok, '=');
+            CHECK(eq != NULL);
+            if (!eq)
+                continue;
+            *eq = '\0';
+            for (char *c = tok; *c; c++)
+                if (*c == '_')
+                    *c = ' ';
+            long want = strtol(eq + 1, NULL, 10);
+            long got = !strcmp(tok, "fixes") ? r->n : !strcmp(tok, "total") ? (long)r->ctx.reasons.total
+                                                                             : (long)count(r, tok);
+            if (got != want)
+                fprintf(stderr, "%s: %s: want %ld, got %ld (last error: %s)\n", ent->d_name, tok, want, got,
+                        r->ctx.last_error);
+            CHECK(got == want);
+        }
+        for (int i = 0; i < r->n; i++)
+            CHECK(fabs(r->fix[i].latitude_deg) <= 90 && r->fix[i].quality > 0);
+        free(r);
+        files++;
+    }
+    closedir(d);
+    CHECK(files >= 5);
+}
+
+static const unit_test tests[] = {
+    {"gps_published_examples", test_published_examples},
+    {"gps_each_talker", test_each_talker},
+    {"gps_absurd_values_refused", test_absurd_values_refused},
+    {"gps_stream_errors_counted", test_stream_errors_counted},
+    {"gps_epochs", test_epochs},
+    {"gps_origin_matches_the_simulator", test_origin_matches_the_simulator},
+    {"gps_hostile_corpus", test_hostile_corpus},
+    {NULL, NULL},
+};
+
+__attribute__((constructor)) static void register_tests(void) { unit_register_list(tests); }
