@@ -195,7 +195,7 @@ static void test_stream_errors_counted(void)
     rig *r = rig_new(NULL);
     char stream[4096];
     const char *good = sentence("GPGGA,000001,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,");
-    char endless[600];
+    char endless[NMEA_MAX_SENTENCE + 100]; /* longer than any sentence may be */
     endless[0] = '$';
     memset(endless + 1, 'G', sizeof endless - 2);
     endless[sizeof endless - 1] = '\0';
