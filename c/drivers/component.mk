@@ -8,8 +8,8 @@
 #    tests decode exactly as the drivers do;
 #  - bin/auv-<device> for each device folder with a <device>_main.c: a new
 #    driver is a new folder, nothing to add here;
-#  - bin/auv-driver-replay (c/drivers/replay), bin/NAME for each test tool
-#    c/drivers/tools/NAME.c, bin/drivers_fuzz_NAME for each fuzz target
+#  - bin/auv-driver-replay (c/drivers/replay), bin/NAME for each tool
+#    c/drivers/tools/NAME.c (underscores become dashes: auv_pd0_dump.c is auv-pd0-dump), bin/drivers_fuzz_NAME for each fuzz target
 #    c/drivers/fuzz/fuzz_NAME.c, and bin/test_drivers: the C unit tests
 #    (tests/drivers/*.c, each file registering its own list) on the shared harness.
 DRIVERS_COMMON_SRCS := $(sort $(wildcard c/drivers/common/*.c))
@@ -42,7 +42,7 @@ $(1)/bin/$(2): $(1)/obj/$(3:.c=.o) $(call DRIVERS_LIBS,$(1))
 	$(DRIVERS_LINK)
 endef
 $(foreach v,$(VARIANTS),$(foreach d,$(DRIVERS_PROGRAMS),$(eval $(call drivers_program_rule,$(v),auv-$(d),c/drivers/$(d)/$(d)_main.c))))
-$(foreach v,$(VARIANTS),$(foreach t,$(DRIVERS_TOOLS),$(eval $(call drivers_program_rule,$(v),$(t),c/drivers/tools/$(t).c))))
+$(foreach v,$(VARIANTS),$(foreach t,$(DRIVERS_TOOLS),$(eval $(call drivers_program_rule,$(v),$(subst _,-,$(t)),c/drivers/tools/$(t).c))))
 # the fuzz targets run on the project's mutation driver (no libFuzzer needed)
 define drivers_fuzz_rule
 $(1)/bin/drivers_fuzz_$(2): $(1)/obj/c/drivers/fuzz/fuzz_$(2).o $(1)/obj/c/chasm/fuzz/fuzz_driver.o $(call DRIVERS_LIBS,$(1))
@@ -52,7 +52,7 @@ endef
 $(foreach v,$(VARIANTS),$(foreach f,$(DRIVERS_FUZZ),$(eval $(call drivers_fuzz_rule,$(v),$(f)))))
 
 C_LIBS += lib/libauvdrivers.a
-C_PROGRAMS += bin/test_drivers bin/auv-driver-replay $(addprefix bin/auv-,$(DRIVERS_PROGRAMS)) $(addprefix bin/,$(DRIVERS_TOOLS))
+C_PROGRAMS += bin/test_drivers bin/auv-driver-replay $(addprefix bin/auv-,$(DRIVERS_PROGRAMS)) $(addprefix bin/,$(subst _,-,$(DRIVERS_TOOLS)))
 C_PROGRAMS += $(addprefix bin/drivers_fuzz_,$(DRIVERS_FUZZ))
 
 # `make fuzz`: each fuzz target over its hostile corpus tests/drivers/corpus/NAME

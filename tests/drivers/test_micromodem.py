@@ -1,5 +1,5 @@
 """The simulator's Micro-Modem emulator (python/sim/devices/micromodem.py) alone,
-and face to face with the C bridge (c/drivers/modem, run as build/bin/mm_cli in
+and face to face with the C bridge (c/drivers/modem, run as build/bin/mm-cli in
 both builds): the C formatter's sentences go into the emulator, the emulator's
 into the C parser, and a frame crosses each way with its bytes intact."""
 
@@ -155,7 +155,7 @@ def exchange(bridge: Bridge, modem: MicroModem, first: list[str], t_us: int) -> 
 
 @pytest.fixture
 def mm_cli(variant_dir):
-    exe = variant_dir / "bin" / "mm_cli"
+    exe = variant_dir / "bin" / "mm-cli"
     if not exe.exists():
         pytest.fail(f"{exe} is not built: run `make build sanitize` first")
     return exe
