@@ -231,6 +231,8 @@ static void test_table_errors(void)
     refused("watchdog 1\nchannel 0 rudder 1500 500 1100 1900 upside_down\n", "t.cfg:2:37:", "unexpected");
     refused("watchdog 1\nwatchdog 2\n", "t.cfg:2:1:", "already set");
     refused("watchdog 0\n", "t.cfg:1:10:", "watchdog [s]");
+    refused("watchdog 0x10\n", "t.cfg:1:10:", "not a number");
+    refused("watchdog 1\nchannel 0 rudder 1500 500 1100 1900 speed inf\n", "t.cfg:2:43:", "not a number");
     refused("channel 0 rudder 1500 500 1100 1900\n", "t.cfg:1:1:", "no 'watchdog");
     refused("watchdog 1\n", "t.cfg:1:1:", "table is empty");
     refused("watchdog 1\nprotocol serial\n", "t.cfg:2:10:", "protocol");

@@ -65,6 +65,30 @@ static int split(reader *r, const char *s, size_t len)
     return 0;
 }
 
+/* A plain decimal number: digits, one point, an exponent; no hex, no inf or
+ * nan, no locale (the Python reader, sim.devices.maestro, takes the same). */
+static int decimal(const char *s)
+{
+    int digits = 0;
+    s += *s == '+' || *s == '-';
+    for (; *s >= '0' && *s <= '9'; s++)
+        digits++;
+    if (*s == '.')
+        for (s++; *s >= '0' && *s <= '9'; s++)
+            digits++;
+    if (!digits)
+        return 0;
+    if (*s == 'e' || *s == 'E') {
+        s++;
+        s += *s == '+' || *s == '-';
+        if (*s < '0' || *s > '9')
+            return 0;
+        while (*s >= '0' && *s <= '9')
+            s++;
+    }
+    return *s == '\0';
+}
+
 /* Word k as a finite number within [lo, hi]. */
 static int number(reader *r, unsigned k, double lo, double hi, const char *what, double *out)
 {
@@ -73,7 +97,7 @@ static int number(reader *r, unsigned k, double lo, double hi, const char *what,
     char *end;
     errno = 0;
     double v = strtod(r->word[k], &end);
-    if (end == r->word[k] || *end || errno || !isfinite(v))
+    if (!decimal(r->word[k]) || end == r->word[k] || *end || errno || !isfinite(v))
         return fail(r, r->col[k], "%s: '%s' is not a number", what, r->word[k]);
     if (v < lo || v > hi)
         return fail(r, r->col[k], "%s: %s is outside %g..%g", what, r->word[k], lo, hi);
