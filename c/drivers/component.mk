@@ -18,12 +18,13 @@ DRIVERS_PROTOCOL_SRCS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(filter-out %/$(
 DRIVERS_PROGRAMS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(if $(wildcard c/drivers/$(d)/$(d)_main.c),$(d))))
 DRIVERS_TOOLS := $(sort $(patsubst c/drivers/tools/%.c,%,$(wildcard c/drivers/tools/*.c)))
 DRIVERS_FUZZ := $(sort $(patsubst c/drivers/fuzz/fuzz_%.c,%,$(wildcard c/drivers/fuzz/fuzz_*.c)))
-DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) $(UNIT_HARNESS_SRCS)
+# (the Maestro's corpus test calls its fuzz target's maestro_fuzz_one())
+DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) c/drivers/fuzz/fuzz_maestro.c $(UNIT_HARNESS_SRCS)
 DRIVERS_LIBS = $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_PROTOCOL_SRCS)) $(1)/lib/libauvdrivers.a $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
 DRIVERS_LINK = $$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 
 define drivers_rules
-$(1)/lib/libauvdrivers.a: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_COMMON_SRCS))
+$(1)/lib/libauvdrivers.a: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_LIB_SRCS))
 	@mkdir -p $$(@D)
 	$$(Q)$$(AR) rcs $$@ $$^
 $(1)/bin/test_drivers: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_TEST_SRCS)) $(call DRIVERS_LIBS,$(1))
