@@ -174,27 +174,23 @@ all: build
 # tests/isolated_net.sh): LCM multicast then needs no route on the host and
 # test traffic can never leave the machine or meet another run's.
 PYTEST_ARGS ?=
-# The console's browser tests need Debian's chromium. It is installed here,
-# outside the tests' private network namespace (which has no network), when
-# this is root and it is missing; elsewhere those tests skip and say why.
+# Test-only tools from Debian's packages: chromium (the console's browser tests)
+# and gpsd (it reads the GPS emulator's NMEA). Each is installed here, outside
+# the tests' private network namespace (which has no network), when this is
+# root and it is missing; elsewhere the tests that need it skip and say why.
+# $(1): the command, $(2): the package, $(3): what needs it.
+define apt_test_tool
+	@PATH="$$PATH:/usr/sbin:/sbin" command -v $(1) >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { echo "installing $(2) (apt-get) for $(3)"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(2) >/dev/null 2>&1 || \
+	    { apt-get update >/dev/null 2>&1 && \
+	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $(2) >/dev/null 2>&1; }; }; } || \
+	  echo "note: $(2) is not installed (not root, or apt-get failed): $(3) will skip"
+endef
 chromium:
-	@command -v chromium >/dev/null || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
-	  { echo "installing chromium (apt-get) for the console's browser tests"; \
-	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1 || \
-	    { apt-get update >/dev/null 2>&1 && \
-	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends chromium >/dev/null 2>&1; }; }; } || \
-	  echo "note: chromium is not installed (not root, or apt-get failed): the console's browser tests will skip"
-
-# The GPS emulator's test reads its NMEA with Debian's gpsd (test dependency
-# only), installed like chromium above; elsewhere that test skips and says why.
+	$(call apt_test_tool,chromium,chromium,the console's browser tests)
 gpsd:
-	@command -v gpsd >/dev/null || PATH="$$PATH:/usr/sbin:/sbin" command -v gpsd >/dev/null || \
-	  { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
-	  { echo "installing gpsd (apt-get) for the GPS emulator's test"; \
-	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends gpsd >/dev/null 2>&1 || \
-	    { apt-get update >/dev/null 2>&1 && \
-	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends gpsd >/dev/null 2>&1; }; }; } || \
-	  echo "note: gpsd is not installed (not root, or apt-get failed): the GPS emulator's gpsd test will skip"
+	$(call apt_test_tool,gpsd,gpsd,the GPS emulator's gpsd test)
 
 # The suite runs on TEST_JOBS pytest-xdist workers (default: one per core, at
 # least 2: most tests wait on processes they start), each in a network
