@@ -88,7 +88,9 @@ def test_driver_builders_use_documented_flags():
     _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
 
 
-@pytest.mark.parametrize("program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-driver-replay"])
+@pytest.mark.parametrize(
+    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-driver-replay"]
+)
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])
 

@@ -66,8 +66,8 @@ static int set_mounting(void *state, const char *v, char *err, size_t n)
     s->settings_done |= 1;
     return 0;
 bad:
-    snprintf(err, n, "--mounting wants YAW,PITCH,ROLL in degrees (|YAW| <= 180, |PITCH| <= 90, |ROLL| <= 180), not '%s'",
-             v);
+    snprintf(err, n,
+             "--mounting wants YAW,PITCH,ROLL in degrees (|YAW| <= 180, |PITCH| <= 90, |ROLL| <= 180), not '%s'", v);
     return -1;
 }
 
