@@ -217,6 +217,38 @@ def test_dvl_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
     assert reasons == want
 
 
+def test_dvl_repeat_and_restart_through_the_replay(tmp_path, child_env):
+    """A repeated ensemble number is counted and not published (one ping must
+    not count twice); a step back (the device restarted) is counted and
+    published."""
+    dev = Device()
+    m = measurement(dvl_t.MODE_BOTTOM_LOCK)
+    log = lcm.EventLog(str(tmp_path / "r.lcmlog"), "w")
+    offset = 0
+    for k, number in enumerate([7, 8, 8, 1, 2]):
+        data = dev.ensemble(m, number)
+        raw = raw_bytes_t()
+        raw.utime, raw.vehicle, raw.device, raw.direction = 1_000_000 * (k + 1), VEHICLE, "DVL", raw_bytes_t.DIR_RX
+        raw.offset, raw.n_bytes, raw.data = offset, len(data), data
+        offset += len(data)
+        log.write_event(raw.utime, f"{VEHICLE}.RAW.DVL", raw.encode())
+    log.close()
+    cmd = programs.driver_replay(
+        c_program("bin/auv-driver-replay").parent.parent, log=tmp_path / "r.lcmlog", vehicle=VEHICLE, device="DVL"
+    )
+    p = subprocess.run(cmd, capture_output=True, text=True, env=child_env, timeout=60)
+    assert p.returncode == 0, p.stderr
+    got = [dict(re.findall(r"(\w+)=(\S+)", line)) for line in p.stdout.splitlines()]
+    assert [(g["ensemble"], g["utime"]) for g in got] == [
+        ("7", "1000000"),
+        ("8", "2000000"),
+        ("1", "4000000"),
+        ("2", "5000000"),
+    ]
+    summary = p.stderr.strip().splitlines()[-1]
+    assert "repeated ensemble: 1" in summary and "ensemble number restarted: 1" in summary, summary
+
+
 def test_dvl_mounting_and_usage(tmp_path, child_env):
     """A DVL turned 90 degrees to starboard on its mounting: the same wire gives
     the vehicle's velocity rotated back (auv-driver-replay on a log of it);
