@@ -80,9 +80,17 @@ def test_driver_builders_use_documented_flags():
     replay = programs.driver_replay(BUILD, log="l", vehicle="AUV1", device="GPS", extra=["--min-year", "1990"])
     assert "--print" in replay
     _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
+    own = programs.dvl_flags(mounting_deg=(45.0, -2.5, 180.0), sigma_mps=0.02, ensemble_timeout_s=0.3)
+    dvl = programs.device_driver(BUILD, "dvl", vehicle="AUV1", lcm_url="udpm://x", port="/dev/ttyUSB1", extra=own)
+    assert dvl[dvl.index("--mounting") + 1] == "45.000000,-2.500000,180.000000"
+    _every_flag_documented(dvl, [dvl[0]])
+    replay = programs.driver_replay(BUILD, log="l", vehicle="AUV1", device="DVL", extra=own)
+    _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
 
 
-@pytest.mark.parametrize("program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-driver-replay"])
+@pytest.mark.parametrize(
+    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-driver-replay"]
+)
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])
 

@@ -137,6 +137,24 @@ def gps_origin_flags(lat0_deg: float, lon0_deg: float) -> list[str]:
     return ["--origin", f"{lat0_deg:.10f},{lon0_deg:.10f}"]
 
 
+def dvl_flags(
+    *,
+    mounting_deg: tuple[float, float, float] | None = None,
+    sigma_mps: float | None = None,
+    ensemble_timeout_s: float | None = None,
+) -> list[str]:
+    """auv-dvl's own flags: the DVL's yaw, pitch, roll from the body [deg], the
+    published velocity sigma, and the silence that drops a cut ensemble."""
+    cmd: list[str] = []
+    if mounting_deg is not None:
+        cmd += ["--mounting", ",".join(f"{float(a):.6f}" for a in mounting_deg)]
+    if sigma_mps is not None:
+        cmd += ["--sigma", f"{float(sigma_mps):g}"]
+    if ensemble_timeout_s is not None:
+        cmd += ["--ensemble-timeout", f"{float(ensemble_timeout_s):g}"]
+    return cmd
+
+
 def driver_replay(
     build: Path,
     *,
