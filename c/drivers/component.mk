@@ -24,7 +24,7 @@ DRIVERS_LIBS = $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_PROTOCOL_SRCS)) $(1)/lib/li
 DRIVERS_LINK = $$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 
 define drivers_rules
-$(1)/lib/libauvdrivers.a: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_LIB_SRCS))
+$(1)/lib/libauvdrivers.a: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_COMMON_SRCS))
 	@mkdir -p $$(@D)
 	$$(Q)$$(AR) rcs $$@ $$^
 $(1)/bin/test_drivers: $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_TEST_SRCS)) $(call DRIVERS_LIBS,$(1))
