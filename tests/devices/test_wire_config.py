@@ -111,3 +111,19 @@ def test_two_sensors_on_one_port_are_refused(tmp_path, monkeypatch):
     assert exc.value.errors == [f"{path}:3:17: sensors.depth.wire: sensors.gps is on this port already"]
     path.write_text("sensors:\n  gps: {wire: {protocol: nmea, pty: a}}\n  depth: {wire: {protocol: ascii, pty: b}}\n")
     assert load(path).sensors["depth"].wire.pty == str(tmp_path / "b")
+
+
+def test_ahrs_and_depth_wires(tmp_path):
+    path = tmp_path / "sim.yaml"
+    path.write_text(
+        "sensors:\n"
+        "  ahrs: {wire: {protocol: nmea, pty: ahrs0, talker: HC, sentences: [PASHR]}}\n"
+        "  depth: {wire: {protocol: digiquartz, pty: depth0, address: 3, unit: 2}}\n"
+    )
+    cfg = load(path)
+    a, d = cfg.sensors["ahrs"].wire, cfg.sensors["depth"].wire
+    assert (a.options.talker, a.options.sentences) == ("HC", ["PASHR"])
+    assert (d.options.address, d.options.unit) == (3, 2)
+    assert errors_of(tmp_path, "{protocol: digiquartz, pty: d, unit: 9}", sensor="depth") == [
+        "sim.yaml:4:48: sensors.depth.wire.unit: must be in [1, 8]"
+    ]

@@ -8,10 +8,12 @@ lists them.
 
 from __future__ import annotations
 
+from sim.devices.ahrs_nmea import AhrsNmea
+from sim.devices.digiquartz import Digiquartz
 from sim.devices.emulator import Emulator
 from sim.devices.nmea_gps import NmeaGps
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps,)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:

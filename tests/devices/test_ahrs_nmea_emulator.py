@@ -1,0 +1,75 @@
+"""The AHRS emulator's NMEA, read back by an independent parser (pynmea2): PASHR
+and HDT parse with a good checksum and carry the measurement's heading, roll
+and pitch; a dropout sends nothing."""
+
+from __future__ import annotations
+
+import math
+
+import pynmea2
+import pytest
+
+from sim.devices.ahrs_nmea import SENTENCES, AhrsNmea, AhrsNmeaOptions, heading_deg
+from sim.devices.emulator import DeviceContext
+from sim.devices.registry import protocols_of
+from sim.model import Truth
+from sim.sensors import Ahrs, AhrsConfig
+
+
+def sample(t=3725.5, roll=math.radians(-12.3), pitch=math.radians(4.56), heading=math.radians(271.0)):
+    ahrs = Ahrs(AhrsConfig(), seed=4, vehicle="AUV1")
+    tr = Truth(t=t, eta=(0.0, 0.0, 10.0, roll, pitch, heading), nu=(1.0, 0.0, 0.0, 0.01, 0.02, 0.03))
+    return ahrs.measure(tr), tr
+
+
+def emulator(**opts) -> AhrsNmea:
+    return AhrsNmea(DeviceContext("AUV1", "ahrs", 4, AhrsNmeaOptions(**opts)))
+
+
+def test_registered_for_the_ahrs_sensor():
+    assert protocols_of("ahrs") == {"nmea": AhrsNmea}
+
+
+def test_pashr_and_hdt_parse_and_carry_the_measurement():
+    msg, tr = sample()
+    lines = emulator().encode(msg, tr)
+    assert len(lines) == len(SENTENCES)
+    parsed = []
+    for raw in lines:
+        assert raw.startswith(b"$") and raw.endswith(b"\r\n")
+        parsed.append(pynmea2.parse(raw.decode("ascii").strip(), check=True))  # check: the checksum is required
+    pashr, hdt = parsed
+    assert hdt.talker == "HE" and hdt.sentence_type == "HDT" and hdt.hdg_true == "T"
+    assert float(hdt.heading) == pytest.approx(math.degrees(msg.heading_rad) % 360, abs=0.006)
+    # pynmea2 reads $PASHR,<time>,... as Ashtech's ATT form
+    assert type(pashr).__name__ == "ASHRATT"
+    assert pashr.timestamp.isoformat() == "01:02:05.500000+00:00"
+    assert float(pashr.true_heading) == pytest.approx(math.degrees(msg.heading_rad) % 360, abs=0.006)
+    assert pashr.is_true_heading == "T"
+    assert float(pashr.roll) == pytest.approx(math.degrees(msg.roll_rad), abs=0.006)
+    assert float(pashr.pitch) == pytest.approx(math.degrees(msg.pitch_rad), abs=0.006)
+    assert math.degrees(msg.roll_rad) < 0  # the sign goes through, not only the magnitude
+    assert (pashr.roll_accuracy, pashr.pitch_accuracy, pashr.heading_accuracy) == (0.1, 0.1, 0.5)
+    assert (pashr.aiding_status, pashr.imu_status) == (0, 1)
+
+
+def test_sentences_and_talker_are_configurable():
+    msg, tr = sample()
+    lines = emulator(sentences=["HDT"], talker="HC").encode(msg, tr)
+    assert len(lines) == 1 and lines[0].startswith(b"$HCHDT,")
+
+
+def test_a_heading_that_rounds_to_360_is_zero():
+    assert heading_deg(math.radians(359.999)) == "000.00"
+    assert heading_deg(math.radians(-90.0)) == "270.00"
+
+
+def test_a_dropout_sends_nothing():
+    ahrs = Ahrs(AhrsConfig(), seed=4, vehicle="AUV1")
+    tr = Truth(t=1.0, eta=(0.0,) * 6, nu=(0.0,) * 6)
+    assert emulator().encode(ahrs.dropout_message(tr), tr) == []
+
+
+def test_problems():
+    assert AhrsNmea.problems(AhrsNmeaOptions(sentences=[])) == {"sentences": "name at least one sentence"}
+    assert "start_utc" in AhrsNmea.problems(AhrsNmeaOptions(start_utc="2025-02-30T00:00:00Z"))
