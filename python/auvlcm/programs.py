@@ -137,6 +137,11 @@ def gps_origin_flags(lat0_deg: float, lon0_deg: float) -> list[str]:
     return ["--origin", f"{lat0_deg:.10f},{lon0_deg:.10f}"]
 
 
+def servo_table_flags(table: PathLike) -> list[str]:
+    """auv-servo's --table: the fins-and-thruster channel table (docs/drivers.md, "auv-servo")."""
+    return ["--table", str(table)]
+
+
 def driver_replay(
     build: Path,
     *,
