@@ -155,6 +155,11 @@ def dvl_flags(
     return cmd
 
 
+def servo_table_flags(table: PathLike) -> list[str]:
+    """auv-servo's --table: the fins-and-thruster channel table (docs/drivers.md, "auv-servo")."""
+    return ["--table", str(table)]
+
+
 def driver_replay(
     build: Path,
     *,

@@ -1,6 +1,7 @@
 /* Unit tests of the driver framework (c/drivers/common/drv_*.c): drop reasons,
- * the common flags and a driver's own, the context's publish path, and the
- * port on a pseudo-terminal: raw mode, reads, a hangup, the reopening. */
+ * the common flags and a driver's own, the context's publish path, the
+ * port on a pseudo-terminal: raw mode, reads, a hangup, the reopening, and a
+ * protocol's LCM subscriptions on an in-process LCM (memq://). */
 #define _GNU_SOURCE /* posix_openpt & co. */
 #include <fcntl.h>
 #include <poll.h>
@@ -10,11 +11,13 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include "auv/auv_actuators_t.h"
 #include "auv/auv_gps_fix_t.h"
 #include "drivers/common/drv_clock.h"
 #include "drivers/common/drv_options.h"
 #include "drivers/common/drv_port.h"
 #include "drivers/common/drv_protocol.h"
+#include "drivers/common/drv_subs.h"
 #include "../harness/unit.h"
 
 static void test_reasons(void)
@@ -225,12 +228,94 @@ static void test_clock(void)
     CHECK(tp_clock_offer(&c.sim, 5000000) == TP_OK && drv_clock_now(&c) == 5000000);
 }
 
+typedef struct {
+    int calls;
+    double rudder;
+    int64_t now;
+} sub_state;
+
+static void on_toy_actuators(void *state, drv_ctx *ctx, const void *msg, int64_t now)
+{
+    (void)ctx;
+    sub_state *s = state;
+    s->calls++;
+    s->rudder = ((const auv_actuators_t *)msg)->rudder_rad;
+    s->now = now;
+}
+
+static const drv_subscription toy_subs[] = {{"ACTUATORS", "actuators_t", on_toy_actuators}, {0}};
+static const drv_subscription bad_subs[] = {{"ACTUATORS", "no_such_t", on_toy_actuators}, {0}};
+
+/* one pending message of the in-process LCM, then the drops it caused */
+static void handle(lcm_t *lcm, drv_subs *s)
+{
+    CHECK(rx_handle_timeout(lcm, 100) == 1);
+    drv_subs_account(s);
+}
+
+static void test_subscriptions(void)
+{
+    lcm_t *lcm = lcm_create("memq://");
+    CHECK(lcm != NULL);
+    if (!lcm)
+        return;
+    drv_clock clock;
+    CHECK(drv_clock_init(&clock, DRV_CLOCK_SYSTEM, NULL) == 0);
+    clock.mode = DRV_CLOCK_SIM; /* no SIM.CLOCK yet */
+    drv_ctx c;
+    drv_ctx_init(&c, "t", "AUV7", "TOY", count_sink, NULL);
+    c.quiet = 1;
+    sub_state st = {0};
+    drv_protocol p = {.device = "TOY", .program = "t", .subscriptions = bad_subs};
+    drv_subs subs;
+    char err[128] = "";
+    CHECK(drv_subs_init(&subs, lcm, &p, &st, &c, &clock, err, sizeof err) == -1);
+    CHECK_STR(err, "subscription ACTUATORS: no such message type");
+    p.subscriptions = toy_subs;
+    CHECK(drv_subs_init(&subs, lcm, &p, &st, &c, &clock, err, sizeof err) == 0 && subs.n == 1);
+
+    auv_actuators_t m = {.utime = 1000, .vehicle = "AUV7", .rudder_rad = 0.25, .seq = 1};
+    auv_actuators_t_publish(lcm, "AUV7.ACTUATORS", &m);
+    handle(lcm, &subs); /* before the first clock: no time rule can judge it */
+    CHECK(st.calls == 0 && drv_reasons_get(&c.reasons, "no clock yet") == 1);
+
+    CHECK(tp_clock_offer(&clock.sim, 5000) == TP_OK);
+    auv_actuators_t_publish(lcm, "AUV7.ACTUATORS", &m);
+    handle(lcm, &subs);
+    CHECK(st.calls == 1 && st.rudder == 0.25 && st.now == 5000); /* stamped with the driver's clock */
+
+    /* garbage, a truncated actuators_t and another type: counted, never handled */
+    lcm_publish(lcm, "AUV7.ACTUATORS", "junk", 4);
+    handle(lcm, &subs);
+    uint8_t buf[256];
+    int n = auv_actuators_t_encode(buf, 0, sizeof buf, &m);
+    CHECK(n > 10);
+    lcm_publish(lcm, "AUV7.ACTUATORS", buf, (unsigned)n - 3);
+    handle(lcm, &subs);
+    auv_gps_fix_t g;
+    memset(&g, 0, sizeof g);
+    g.vehicle = "AUV7";
+    auv_gps_fix_t_publish(lcm, "AUV7.ACTUATORS", &g);
+    handle(lcm, &subs);
+    CHECK(st.calls == 1 && drv_reasons_get(&c.reasons, "undecodable ACTUATORS") == 3);
+    drv_subs_account(&subs); /* accounting again counts nothing twice */
+    CHECK(drv_reasons_get(&c.reasons, "undecodable ACTUATORS") == 3 && c.reasons.total == 4);
+
+    /* another vehicle's commands are not this driver's */
+    auv_actuators_t_publish(lcm, "AUV8.ACTUATORS", &m);
+    rx_handle_timeout(lcm, 50);
+    CHECK(st.calls == 1);
+    drv_subs_close(&subs, lcm);
+    lcm_destroy(lcm);
+}
+
 static const unit_test tests[] = {
     {"framework_reasons", test_reasons},
     {"framework_options", test_options},
     {"framework_ctx", test_ctx},
     {"framework_port_on_a_pty", test_port_on_a_pty},
     {"framework_clock", test_clock},
+    {"framework_subscriptions", test_subscriptions},
     {NULL, NULL},
 };
 

@@ -1,5 +1,6 @@
 /* The driver process: flags, LCM, the port, and one poll loop over the port,
- * LCM (SIM.CLOCK, with --clock sim) and a 1 Hz timer for the status and
+ * LCM (SIM.CLOCK with --clock sim, and the protocol's own subscriptions:
+ * drv_subs.h) and a 1 Hz timer for the status and
  * health messages. Every read is stamped on the chosen clock, recorded raw
  * when asked (--raw), and handed to the protocol. Nothing in the loop blocks:
  * the port is non-blocking, TCP connects included. */
@@ -17,6 +18,7 @@
 #include "drivers/common/drv_port.h"
 #include "drivers/common/drv_protocol.h"
 #include "drivers/common/drv_status.h"
+#include "drivers/common/drv_subs.h"
 
 #define TICK_MS 100
 #define STATUS_MS 1000
@@ -31,6 +33,7 @@ typedef struct {
     drv_port port;
     drv_ctx ctx;
     drv_status status;
+    drv_subs subs;
     char log_prefix[128];
     char raw_channel[128];
     int64_t raw_offset[2]; /* bytes of each direction so far (raw_bytes_t.offset) */
@@ -103,7 +106,7 @@ static int next_timeout(const driver *d, int64_t now_ms, int64_t next_status_ms)
 static int run(driver *d)
 {
     int64_t next_status_ms = drv_monotonic_ms() + STATUS_MS;
-    int lcm_fd = d->opt.clock == DRV_CLOCK_SIM ? lcm_get_fileno(d->lcm) : -1;
+    int lcm_fd = d->opt.clock == DRV_CLOCK_SIM || d->subs.n ? lcm_get_fileno(d->lcm) : -1;
     uint8_t buf[READ_CAP];
     int was_open = 0;
     while (!stop_requested) {
@@ -125,8 +128,10 @@ static int run(driver *d)
             return 1;
         }
         now_ms = drv_monotonic_ms();
-        if (r > 0 && lcm_i >= 0 && fds[lcm_i].revents)
+        if (r > 0 && lcm_i >= 0 && fds[lcm_i].revents) {
             rx_handle_timeout(d->lcm, 0);
+            drv_subs_account(&d->subs);
+        }
         if (r > 0 && port_i >= 0 && fds[port_i].revents) {
             long n = drv_port_ready(&d->port, fds[port_i].revents, buf, sizeof buf, now_ms);
             if (n > 0)
@@ -194,6 +199,11 @@ int drv_main(const drv_protocol *p, int argc, char **argv)
     d.ctx.write_user = &d;
     if (p->init && p->init(d.state, &d.ctx) < 0)
         goto out;
+    char err[256];
+    if (drv_subs_init(&d.subs, d.lcm, p, d.state, &d.ctx, &d.clock, err, sizeof err) < 0) {
+        fprintf(stderr, "%s: %s\n", p->program, err);
+        goto out;
+    }
     drv_status_init(&d.status);
 
     struct sigaction sa;
@@ -212,6 +222,7 @@ int drv_main(const drv_protocol *p, int argc, char **argv)
             p->program, p->device, (long long)d.port.bytes_read, (long long)d.ctx.frames_decoded,
             (long long)d.ctx.messages_published, (long long)d.ctx.reasons.total, (long long)d.port.reopens);
 out:
+    drv_subs_close(&d.subs, d.lcm);
     drv_port_close(&d.port);
     lcm_destroy(d.lcm);
     free(d.state);

@@ -18,6 +18,8 @@ void drv_options_usage(FILE *out, const drv_protocol *p)
             "  --clock MODE       system (default): stamps are CLOCK_REALTIME; sim: the newest SIM.CLOCK\n"
             "                     (a simulated vehicle; bytes before the first clock are dropped, counted)\n",
             p->program, p->summary, p->default_baud, p->device, p->device, p->device);
+    for (const drv_subscription *s = p->subscriptions; s && s->suffix; s++)
+        fprintf(out, "  %-18s <ID>.%s (%s): the driver's LCM input\n", "(subscribes)", s->suffix, s->type_name);
     for (const drv_flag *f = p->flags; f && f->name; f++) {
         char head[64];
         snprintf(head, sizeof head, "%s%s%s", f->name, f->arg ? " " : "", f->arg ? f->arg : "");

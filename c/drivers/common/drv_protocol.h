@@ -31,6 +31,19 @@ typedef struct {
     int (*set)(void *state, const char *value, char *err, size_t errlen);
 } drv_flag;
 
+/* One LCM input of the driver's own (a command it passes on to the device):
+ * the driver process subscribes to "<VEHICLE>.<suffix>" with the project's
+ * strict typed receive (c/common/lcm_rx.h), so a message that does not decode
+ * as type_name never reaches the handler: it is a drop, reason
+ * "undecodable <suffix>". msg is the decoded struct (auv_<type_name>), freed
+ * when the handler returns; now is the driver's clock [us]. The replay and the
+ * fuzzer have no LCM input: they never call handlers. */
+typedef struct {
+    const char *suffix;    /* "ACTUATORS": <V>.ACTUATORS */
+    const char *type_name; /* "actuators_t" (auv_type_find) */
+    void (*handler)(void *state, drv_ctx *ctx, const void *msg, int64_t now);
+} drv_subscription;
+
 typedef struct drv_protocol {
     const char *device;  /* "GPS": channels <V>.RAW.GPS and <V>.DRIVER.GPS */
     const char *program; /* "auv-gps" */
@@ -38,6 +51,7 @@ typedef struct drv_protocol {
     int default_baud;
     size_t state_size;   /* the framework allocates it zeroed */
     const drv_flag *flags; /* ends with {0}; may be NULL */
+    const drv_subscription *subscriptions; /* ends with {0}; may be NULL */
 
     /* Before the first byte, after the flags (state holds their values). 0 ok,
      * -1 refuses to start (with a log line). Optional. */
