@@ -14,7 +14,6 @@
 #    (tests/drivers/*.c, each file registering its own list) on the shared harness.
 DRIVERS_COMMON_SRCS := $(sort $(wildcard c/drivers/common/*.c))
 # (the servo folder's protocol and table code are protocol sources below, as every device's)
-DRIVERS_LIB_SRCS := $(DRIVERS_COMMON_SRCS)
 DRIVERS_DEVICES := $(filter-out common replay fuzz tools,$(notdir $(patsubst %/,%,$(sort $(dir $(wildcard c/drivers/*/*.c))))))
 DRIVERS_PROTOCOL_SRCS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(filter-out %/$(d)_main.c,$(wildcard c/drivers/$(d)/*.c))))
 DRIVERS_PROGRAMS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(if $(wildcard c/drivers/$(d)/$(d)_main.c),$(d))))
