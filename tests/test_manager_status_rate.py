@@ -92,7 +92,7 @@ def test_a_status_rate_publishes_on_changes_and_at_most_at_the_rate(lcm_url, chi
         # `hold` ends after 2 s: `finish`, at once, then quiet again
         for _ in range(25):
             d.cycle(9.0)
-        finish = [s for s in d.status if s.active_path[-1] == "finish"]
+        finish = [s for s in d.status if s.active_path[-1:] == ["finish"]]
         assert finish and finish[0].last_transition_utime == finish[0].utime
         # the statuses carry the costliest step since the one before (CPU time, > 0)
         assert all(s.cycle_cost_us > 0 for s in d.status if s.run_state == chasm_status_t.RUN_RUNNING)
@@ -177,5 +177,5 @@ def test_an_on_change_output_goes_out_when_it_changes_and_once_a_second(lcm_url,
         assert t1 - t0 <= 1_000_000, (t0, t1)  # and at least one a second
     assert hold_at in times and next(s for t, s, _ in sent if t == hold_at) == 1.0
     finish = [t for t, s, d in sent if s == 0.0 and d == 0.0]
-    assert finish and finish[0] == next(st.last_transition_utime for st in status if st.active_path[-1] == "finish")
+    assert finish and finish[0] == next(st.last_transition_utime for st in status if st.active_path[-1:] == ["finish"])
     assert len(sent) <= 10, sent  # 6 s of cycles at 10 Hz: 60 without the flag

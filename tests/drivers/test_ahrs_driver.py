@@ -42,8 +42,11 @@ class Bus:
         self.lc = lcm.LCM(url)
         self.msgs: list[ahrs_t] = []
         self.status: list[driver_status_t] = []
-        self.lc.subscribe(f"{VEHICLE}.AHRS", lambda c, d: self.msgs.append(ahrs_t.decode(d)))
-        self.lc.subscribe(f"{VEHICLE}.DRIVER.AHRS", lambda c, d: self.status.append(driver_status_t.decode(d)))
+        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
+        self.lc.subscribe(f"{VEHICLE}.AHRS", lambda c, d: self.msgs.append(ahrs_t.decode(d))).set_queue_capacity(10000)
+        self.lc.subscribe(
+            f"{VEHICLE}.DRIVER.AHRS", lambda c, d: self.status.append(driver_status_t.decode(d))
+        ).set_queue_capacity(10000)
 
     def wait(self, until, what: str, timeout: float = 20.0) -> None:
         last = self.status[-1] if self.status else None

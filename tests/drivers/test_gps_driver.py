@@ -65,10 +65,17 @@ class Bus:
         self.status: list[driver_status_t] = []
         self.health: list[process_health_t] = []
         self.raw: list[tuple[str, bytes]] = []
-        self.lc.subscribe(f"{VEHICLE}.GPS", lambda c, d: self.fixes.append(gps_fix_t.decode(d)))
-        self.lc.subscribe(f"{VEHICLE}.DRIVER.GPS", lambda c, d: self.status.append(driver_status_t.decode(d)))
-        self.lc.subscribe(f"{VEHICLE}.HEALTH", lambda c, d: self.health.append(process_health_t.decode(d)))
-        self.lc.subscribe(f"{VEHICLE}.RAW.GPS", lambda c, d: self.raw.append((c, d)))
+        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
+        self.lc.subscribe(f"{VEHICLE}.GPS", lambda c, d: self.fixes.append(gps_fix_t.decode(d))).set_queue_capacity(
+            10000
+        )
+        self.lc.subscribe(
+            f"{VEHICLE}.DRIVER.GPS", lambda c, d: self.status.append(driver_status_t.decode(d))
+        ).set_queue_capacity(10000)
+        self.lc.subscribe(
+            f"{VEHICLE}.HEALTH", lambda c, d: self.health.append(process_health_t.decode(d))
+        ).set_queue_capacity(10000)
+        self.lc.subscribe(f"{VEHICLE}.RAW.GPS", lambda c, d: self.raw.append((c, d))).set_queue_capacity(10000)
 
     def wait(self, until, what: str, timeout: float = 20.0) -> None:
         assert pump(self.lc, until, timeout), f"waited {timeout} s for {what}; last status: {self.last()}"

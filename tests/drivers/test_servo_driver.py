@@ -83,7 +83,10 @@ class ServoBus(Bus):
     def __init__(self, url: str, wire: Wire) -> None:
         super().__init__(url)
         self.wire = wire
-        self.lc.subscribe(f"{VEHICLE}.DRIVER.SERVO", lambda c, d: self.status.append(driver_status_t.decode(d)))
+        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
+        self.lc.subscribe(
+            f"{VEHICLE}.DRIVER.SERVO", lambda c, d: self.status.append(driver_status_t.decode(d))
+        ).set_queue_capacity(10000)
         self.seq = 0
 
     def wait(self, until, what: str, timeout: float = 20.0) -> None:
