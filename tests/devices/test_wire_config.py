@@ -73,8 +73,8 @@ def test_a_bad_wire_names_its_place(tmp_path, wire, error):
 
 
 def test_a_sensor_with_no_emulator_says_so(tmp_path):
-    assert errors_of(tmp_path, "{protocol: pd0, pty: dvl0}", sensor="dvl") == [
-        "sim.yaml:4:11: sensors.dvl.wire: no device emulator speaks for sensors.dvl yet"
+    assert errors_of(tmp_path, "{protocol: ascii, pty: leak0}", sensor="leak") == [
+        "sim.yaml:4:11: sensors.leak.wire: no device emulator speaks for sensors.leak yet"
     ]
 
 

@@ -327,32 +327,34 @@ static void test_invalid_markers_and_modes(void)
     pd0_to_dvl(&E, &m, &d);
     CHECK(d.mode == AUV_DVL_T_MODE_NONE);
     CHECK(d.velocity_mps[0] == 0 && d.velocity_mps[1] == 0);
-    /* level, 20 m slant at 30 degrees: 17.32 m; a beam with no bottom is
-     * left out; two beams only: no altitude */
-    CHECK_NEAR(d.altitude_m, 20.0 * cos(30 * DEG), 1e-6);
-    CHECK_NEAR(d.beam_range_m[0], 20.0, 1e-6);
+    /* level, BT range 20 m (RDI's vertical range): altitude 20 m, slant
+     * 20 / cos(30 deg) = 23.09 m; a beam with no bottom is left out; two
+     * beams only: no altitude */
+    CHECK_NEAR(d.altitude_m, 20.0, 1e-6);
+    CHECK_NEAR(d.beam_range_m[0], 20.0 / cos(30 * DEG), 1e-5);
     s.range_cm[0] = 0;
     n = build(&s, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
     pd0_to_dvl(&E, &m, &d);
-    CHECK_NEAR(d.altitude_m, 20.0 * cos(30 * DEG), 1e-6);
+    CHECK_NEAR(d.altitude_m, 20.0, 1e-6);
     CHECK(d.beam_range_m[0] < 0);
     s.range_cm[1] = 0;
     n = build(&s, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
     pd0_to_dvl(&E, &m, &d);
     CHECK(d.altitude_m < 0);
-    /* pitched 10 degrees up over a flat seabed 15 m below: each beam's range
-     * is 15 / its downward component, and the altitude comes back */
+    /* pitched 10 degrees up over a flat seabed 15 m below: each beam's slant
+     * range is 15 / its downward component, its BT range that x cos(beam
+     * angle) (RDI's vertical range, no pitch in it), and the altitude comes back */
     s = base();
     s.pitch = atan(tan(10 * DEG) / cos(0)) / DEG;
     double th = 30 * DEG, p = 10 * DEG;
     double down3 = cos(th) * cos(p) - sin(th) * sin(p); /* forward beam: nearer the horizon */
     double down4 = cos(th) * cos(p) + sin(th) * sin(p);
     double down12 = cos(th) * cos(p);
-    s.range_cm[0] = s.range_cm[1] = (uint32_t)lround(1500 / down12);
-    s.range_cm[2] = (uint32_t)lround(1500 / down3);
-    s.range_cm[3] = (uint32_t)lround(1500 / down4);
+    s.range_cm[0] = s.range_cm[1] = (uint32_t)lround(1500 * cos(th) / down12);
+    s.range_cm[2] = (uint32_t)lround(1500 * cos(th) / down3);
+    s.range_cm[3] = (uint32_t)lround(1500 * cos(th) / down4);
     n = build(&s, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
     CHECK_NEAR(pd0_altitude(&E), 15.0, 0.01);

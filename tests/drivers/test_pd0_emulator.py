@@ -81,7 +81,7 @@ def test_the_driver_decodes_what_the_simulator_measured(frame, tmp_path, child_e
         assert d["mode"] == m.mode
         # 1 mm/s steps and 0.01 degree attitude; along the beams, a little more
         assert d["velocity_mps"] == pytest.approx(list(m.velocity_mps), abs=2e-3)
-        assert d["beam_range_m"] == pytest.approx([m.beam_range_m[i] for i in SIM_INDEX_OF_BEAM], abs=0.006)
+        assert d["beam_range_m"] == pytest.approx([m.beam_range_m[i] for i in SIM_INDEX_OF_BEAM], abs=0.007)
         if all(r > 0 for r in m.beam_range_m):
             assert d["altitude_m"] == pytest.approx(tr.altitude_m, abs=0.02)
         assert d["device_utime"] == round((RTC_EPOCH.timestamp() + tr.t) * 1e6)
@@ -132,8 +132,9 @@ def test_dolfyn_reads_what_we_encoded(frame, tmp_path, child_env):
         assert heading[k] == pytest.approx(math.degrees(tr.eta[5]) % 360, abs=0.006)
         assert roll[k] == pytest.approx(math.degrees(tr.eta[3]), abs=0.006)
         assert pitch[k] == pytest.approx(e["pitch_deg"], abs=1e-4)
-        # (PD0's range 0 is "no bottom"; the simulator says -1)
-        ranges = [max(m.beam_range_m[i], 0.0) for i in SIM_INDEX_OF_BEAM]
+        # (PD0's range 0 is "no bottom"; the simulator says -1), as RDI's vertical
+        # range: slant x cos(beam angle)
+        ranges = [max(m.beam_range_m[i], 0.0) * math.cos(math.radians(30.0)) for i in SIM_INDEX_OF_BEAM]
         assert dist_bt[:, k] == pytest.approx(ranges, abs=0.006)
         if m.mode == dvl_t.MODE_BOTTOM_LOCK:
             if frame == "earth":

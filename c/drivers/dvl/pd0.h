@@ -133,7 +133,9 @@ typedef struct {
     /* bottom track (0x0600); per beam whatever the frame, velocities in the frame */
     int has_bottom_track;
     int bt_pings;
-    double bt_range_m[PD0_MAX_BEAMS];    /* slant range with its MSB byte; -1 where 0 (no bottom) */
+    double bt_range_m[PD0_MAX_BEAMS];    /* RDI's BT range with its MSB byte: the VERTICAL range seen along
+                                          * the beam (slant x cos(beam angle)), not corrected for pitch and
+                                          * roll; -1 where 0 (no bottom) */
     double bt_velocity_mps[PD0_MAX_BEAMS]; /* NAN where marked invalid */
     uint8_t bt_correlation[PD0_MAX_BEAMS], bt_eval_amplitude[PD0_MAX_BEAMS], bt_percent_good[PD0_MAX_BEAMS];
 

@@ -168,10 +168,18 @@ int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double
     return 1;
 }
 
-/* Each beam's range times the downward component of the beam (its unit
+/* A beam's slant range: PD0's BT range is the vertical range the device
+ * computed as slant x cos(beam angle), with no pitch or roll in it (RDI's
+ * definition), so the slant is the range over cos(beam angle). */
+static double slant_range(const pd0_ensemble *e, int b)
+{
+    return e->bt_range_m[b] / cos(e->beam_angle_deg * DEG);
+}
+
+/* Each beam's slant range times the downward component of the beam (its unit
  * vector in instrument axes, turned to ship axes, then by the device's pitch
- * and roll): the height above a flat seabed seen along that beam. Level,
- * that is range * cos(beam angle). The mean over the beams on the bottom. */
+ * and roll): the height above a flat seabed seen along that beam. Level, that
+ * is PD0's BT range itself. The mean over the beams on the bottom. */
 double pd0_altitude(const pd0_ensemble *e)
 {
     if (!e->has_bottom_track)
@@ -191,7 +199,7 @@ double pd0_altitude(const pd0_ensemble *e)
         mul(M, ship, earth);
         if (earth[2] >= -0.05) /* a beam at the horizon or above sees no seabed below */
             continue;
-        sum += e->bt_range_m[b] * -earth[2];
+        sum += slant_range(e, b) * -earth[2];
         n++;
     }
     return n >= ALTITUDE_MIN_BEAMS ? sum / n : -1.0;
@@ -239,7 +247,7 @@ void pd0_to_dvl(const pd0_ensemble *e, const pd0_mounting *m, auv_dvl_t *out)
     out->error_velocity_mps = err;
     out->altitude_m = pd0_altitude(e);
     for (int b = 0; b < 4; b++)
-        out->beam_range_m[b] = e->has_bottom_track && e->bt_range_m[b] > 0 ? (float)e->bt_range_m[b] : -1.0f;
+        out->beam_range_m[b] = e->has_bottom_track && e->bt_range_m[b] > 0 ? (float)slant_range(e, b) : -1.0f;
     static const int8_t frames[4] = {AUV_DVL_T_FRAME_BEAM, AUV_DVL_T_FRAME_INSTRUMENT, AUV_DVL_T_FRAME_SHIP,
                                      AUV_DVL_T_FRAME_EARTH};
     out->device_frame = frames[e->frame & 3];

@@ -263,7 +263,10 @@ class Pd0Encoder:
         )
 
     def _bottom_track(self, vel: Sequence[int], ranges_m: Sequence[float]) -> bytes:
-        cm = [round(x * 100) if x > 0 else 0 for x in ranges_m]
+        # BT range is RDI's vertical range: the slant range x cos(beam angle), with
+        # no pitch or roll in it (the manuals' definition; the driver undoes it)
+        cos_beam = math.cos(math.radians(self.cfg.beam_angle_deg))
+        cm = [round(x * cos_beam * 100) if x > 0 else 0 for x in ranges_m]
         cm = [min(x, 0xFFFFFF) for x in cm]
         good = vel[0] != INVALID
         return struct.pack(

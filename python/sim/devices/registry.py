@@ -10,10 +10,11 @@ from __future__ import annotations
 
 from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
+from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
 from sim.devices.nmea_gps import NmeaGps
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:
