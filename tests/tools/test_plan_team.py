@@ -109,6 +109,16 @@ def test_the_launchers_clock_and_no_ri(tmp_path):
     assert param((tmp_path / "f" / "AUV3.chasm").read_text(), "slots") == "3"
 
 
+def test_the_onboard_filter_for_the_whole_team(tmp_path):
+    """--nav ekf: every vehicle steers by auv-nav, which takes part in the lockstep
+    world beside its simulator, pilot and navigator."""
+    run = run_team(tmp_path / "e", "--nav", "ekf")
+    assert run.returncode == 0, run.stderr
+    sc = yaml.safe_load((tmp_path / "e" / "e.yaml").read_text())
+    assert [v.get("nav") for v in sc["vehicles"]] == ["ekf"] * 4
+    assert {v["sim"]["multihil"]["lockstep_participants"] for v in sc["vehicles"]} == {16}
+
+
 @pytest.mark.parametrize(
     "extra,msg",
     [

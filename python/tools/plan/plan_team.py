@@ -187,7 +187,8 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
         )
         paths.append(path)
     vehicles = []
-    participants = 3 * len(roster)  # lockstep: every simulator, pilot and navigator
+    # lockstep: every simulator, pilot and navigator, and each onboard filter (--nav ekf)
+    participants = (4 if args.nav == "ekf" else 3) * len(roster)
     for vid, st, first in [(i, s, v.legs[0].start) for i, s, v in zip(ids, starts, sv.vehicles)] + [
         (i, ri_st, (ri_st[0] + 1.0, ri_st[1])) for i in ri_ids
     ]:
@@ -203,6 +204,7 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
             {
                 "id": vid,
                 "sim": sim,
+                **({"nav": args.nav} if args.nav != "ins" else {}),
                 "managers": vehicle_managers(
                     args, out, f"{vid}.chasm", args.ri_bind if vid in ri_ids else args.team_bind
                 ),
