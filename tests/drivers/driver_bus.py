@@ -8,9 +8,12 @@ from __future__ import annotations
 import math
 import os
 import re
+import select
 import signal
 import struct
 import subprocess
+import threading
+import time
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -98,6 +101,38 @@ class Pty:
         if self.master >= 0:
             os.close(self.master)
             self.master = -1
+
+
+class PtyDevice:
+    """The device's side of a Pty, on a thread: each read of what the driver
+    wrote goes to on_data(bytes); 50 ms without a byte, on_idle(). Both run
+    under `lock`, so a test can act on the device between them."""
+
+    def __init__(self, pty: Pty, on_data: Callable[[bytes], None], on_idle: Callable[[], None] = lambda: None) -> None:
+        self.pty = pty
+        self.on_data, self.on_idle = on_data, on_idle
+        self.lock = threading.Lock()
+        self.stop = False
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
+
+    def _run(self) -> None:
+        while not self.stop:
+            r, _, _ = select.select([self.pty.master], [], [], 0.05)
+            try:
+                data = os.read(self.pty.master, 4096) if r else b""
+            except OSError:  # EIO: no one has the terminal open (yet, or any more)
+                time.sleep(0.05)
+                continue
+            with self.lock:
+                if data:
+                    self.on_data(data)
+                else:
+                    self.on_idle()
+
+    def close(self) -> None:
+        self.stop = True
+        self.thread.join(2)
 
 
 def start(cmd: Sequence[str], tmp_path: Path, child_env: dict, name: str = "driver") -> subprocess.Popen:

@@ -8,14 +8,11 @@ and nothing is published; a sensor that answers again is polled again."""
 
 from __future__ import annotations
 
-import os
-import select
-import threading
 import time
 
 import pytest
 from conftest import c_program
-from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, start
+from driver_bus import VEHICLE, Bus, Pty, PtyDevice, check_usage_errors, finish, start
 from lcm_proc import pump
 
 from auv import depth_t
@@ -41,27 +38,15 @@ class Sensor:
         self.emu.encode(self.sample, None)
         self.heard = bytearray()
         self.mute = False
-        self.stop = False
-        self.thread = threading.Thread(target=self._run, daemon=True)
-        self.thread.start()
+        self.device = PtyDevice(pty, self._on_data)
 
-    def _run(self) -> None:
-        while not self.stop:
-            r, _, _ = select.select([self.pty.master], [], [], 0.05)
-            if not r:
-                continue
-            try:
-                data = os.read(self.pty.master, 4096)
-            except OSError:  # EIO: no one has the terminal open (yet, or any more)
-                time.sleep(0.05)
-                continue
-            self.heard += data
-            if not self.mute:
-                self.emu.receive(data, time.time())
+    def _on_data(self, data: bytes) -> None:
+        self.heard += data
+        if not self.mute:
+            self.emu.receive(data, time.time())
 
     def close(self) -> None:
-        self.stop = True
-        self.thread.join(2)
+        self.device.close()
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])

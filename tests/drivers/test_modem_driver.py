@@ -10,17 +10,14 @@ the simulators publishing none of the vehicles' modem channels themselves."""
 from __future__ import annotations
 
 import math
-import os
-import select
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
 import pytest
 from conftest import c_program
-from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, start
+from driver_bus import VEHICLE, Bus, Pty, PtyDevice, check_usage_errors, finish, start
 from lcm_proc import pump
 
 from auv import modem_rx_t, modem_status_t, modem_tx_t
@@ -34,35 +31,22 @@ TABLE = {"AUV1": 1, "AUV2": 2}
 
 
 class Modem:
-    """The emulated modem behind the pty's master, on a thread: what the driver
-    writes it reads and answers (sim time = wall time); every line the driver
-    wrote is kept."""
+    """The emulated modem behind the pty's master (sim time = wall time): what
+    the driver writes it reads and answers; every byte the driver wrote is kept."""
 
     def __init__(self, pty: Pty) -> None:
         self.pty = pty
         self.emu = MicroModem(address=1)
         self.written = bytearray()
-        self.lock = threading.Lock()
-        self.stop = False
-        self.thread = threading.Thread(target=self._run, daemon=True)
-        self.thread.start()
+        self.device = PtyDevice(pty, self._on_data, self._on_idle)
+        self.lock = self.device.lock
 
-    def _run(self) -> None:
-        while not self.stop:
-            r, _, _ = select.select([self.pty.master], [], [], 0.05)
-            with self.lock:
-                if not r:
-                    out = self.emu.tick(time.time())
-                else:
-                    try:
-                        data = os.read(self.pty.master, 4096)
-                    except OSError:  # EIO: no one has the terminal open (yet)
-                        time.sleep(0.05)
-                        continue
-                    self.written += data
-                    out = self.emu.feed(data, time.time())
-                if out:
-                    self.pty.write(out)
+    def _on_data(self, data: bytes) -> None:
+        self.written += data
+        self.pty.write(self.emu.feed(data, time.time()))
+
+    def _on_idle(self) -> None:
+        self.pty.write(self.emu.tick(time.time()))
 
     def says(self, data: bytes) -> None:
         with self.lock:
@@ -72,8 +56,7 @@ class Modem:
         return bytes(self.written).decode("ascii", "replace").split("\r\n")
 
     def close(self) -> None:
-        self.stop = True
-        self.thread.join(2)
+        self.device.close()
 
 
 def tx(n_bytes: int, dst: str = "AUV2", seq: int = 1) -> modem_tx_t:
