@@ -86,10 +86,16 @@ def test_driver_builders_use_documented_flags():
     _every_flag_documented(dvl, [dvl[0]])
     replay = programs.driver_replay(BUILD, log="l", vehicle="AUV1", device="DVL", extra=own)
     _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
+    own = programs.modem_flags(
+        {"AUV1": 1, "AUV2": 2}, rate=1, ack=True, cst=False, kind=2, answer_timeout_s=3, ack_timeout_s=9, rx_hold_s=1
+    )
+    modem = programs.device_driver(BUILD, "modem", vehicle="AUV1", lcm_url="udpm://x", tcp="10.0.0.3:4001", extra=own)
+    assert modem[modem.index("--table") + 1] == "AUV1=1,AUV2=2" and modem[modem.index("--rate") + 1] == "1"
+    _every_flag_documented(modem, [modem[0]])
 
 
 @pytest.mark.parametrize(
-    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-driver-replay"]
+    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-modem", "auv-driver-replay"]
 )
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])

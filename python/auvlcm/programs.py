@@ -160,6 +160,35 @@ def servo_table_flags(table: PathLike) -> list[str]:
     return ["--table", str(table)]
 
 
+def modem_flags(
+    table: dict[str, int],
+    *,
+    rate: int | None = None,
+    ack: bool = False,
+    cst: bool = True,
+    kind: int | None = None,
+    answer_timeout_s: float | None = None,
+    ack_timeout_s: float | None = None,
+    rx_hold_s: float | None = None,
+) -> list[str]:
+    """auv-modem's own flags (docs/drivers.md, "auv-modem"): the address table
+    (vehicle id -> modem address, the same on every vehicle), the rate frames
+    are sent at, acks, CACST, the kind the link carries and its timeouts [s]."""
+    cmd = ["--table", ",".join(f"{v}={int(a)}" for v, a in table.items())]
+    if rate is not None:
+        cmd += ["--rate", str(int(rate))]
+    if ack:
+        cmd.append("--ack")
+    if not cst:
+        cmd.append("--no-cst")
+    if kind is not None:
+        cmd += ["--kind", str(int(kind))]
+    for flag, v in (("--answer-timeout", answer_timeout_s), ("--ack-timeout", ack_timeout_s), ("--rx-hold", rx_hold_s)):
+        if v is not None:
+            cmd += [flag, f"{float(v):g}"]
+    return cmd
+
+
 def driver_replay(
     build: Path,
     *,

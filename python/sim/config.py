@@ -361,7 +361,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         sonar = check_sonar(doc, get("sonar"), path.parent)
     from sim.modem.config import parse as parse_modem
 
-    modem = parse_modem(doc, get("modem"))
+    modem = parse_modem(doc, get("modem"), path.parent)
     identify = None
     if "identify" in top:
         from sim.sonar.identify import check_identify

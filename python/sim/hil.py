@@ -37,7 +37,7 @@ from sim.config import SimConfig
 from sim.devices.device import build_devices
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
-from sim.modem.node import make_modem
+from sim.modem.node import make_modem, wire_modem
 from sim.periodic import Periodic
 from sim.sensors import REGISTRY
 from sim.sensors.base import utime
@@ -151,6 +151,7 @@ class Simulator:
         # the steps where the wall clock does not pace them
         stepped = s.clock == LOCKSTEP or self.pacer.fast or cfg.multihil.enabled
         self.devices = build_devices(self.sensors, self.vid, s.seed, self.model.frame, self.pacer, stepped)
+        wire_modem(self.modem, self.devices, self.vid, s.seed)  # the modem at the wire, on the same lines' clock
         self._sensor_polls = [(sen.next_due, self.devices.poll_for(sen), ch) for sen, ch in self._sensor_channels]
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)

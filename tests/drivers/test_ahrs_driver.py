@@ -9,23 +9,20 @@ driver_status_t and publish nothing; the sign and offset flags apply."""
 from __future__ import annotations
 
 import math
-import subprocess
 import time
 
-import lcm
 import pytest
 from conftest import c_program
-from lcm_proc import pump
-from test_gps_driver import Pty, finish, nmea, start
+from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, start
+from test_gps_driver import nmea
 
-from auv import ahrs_t, driver_status_t
+from auv import ahrs_t
 from auvlcm import programs
 from sim.devices.ahrs_nmea import AhrsNmea, AhrsNmeaOptions
 from sim.devices.emulator import DeviceContext
 from sim.model import Truth
 from sim.sensors import Ahrs, AhrsConfig
 
-VEHICLE = "AUV1"
 # the sentences carry 0.01 degree: half of it, and a margin for the rounding of radians
 TOL_RAD = math.radians(0.006)
 
@@ -35,30 +32,6 @@ HOSTILE = (
     + nmea("HEHDT,123.40,T").replace(b"*", b"0*", 1)  # bad checksum
 )
 HOSTILE_REASONS = {"attitude out of range": 1, "heading not true": 1, "bad checksum": 1}
-
-
-class Bus:
-    def __init__(self, url: str) -> None:
-        self.lc = lcm.LCM(url)
-        self.msgs: list[ahrs_t] = []
-        self.status: list[driver_status_t] = []
-        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
-        self.lc.subscribe(f"{VEHICLE}.AHRS", lambda c, d: self.msgs.append(ahrs_t.decode(d))).set_queue_capacity(10000)
-        self.lc.subscribe(
-            f"{VEHICLE}.DRIVER.AHRS", lambda c, d: self.status.append(driver_status_t.decode(d))
-        ).set_queue_capacity(10000)
-
-    def wait(self, until, what: str, timeout: float = 20.0) -> None:
-        last = self.status[-1] if self.status else None
-        assert pump(self.lc, until, timeout), f"waited {timeout} s for {what}; last status: {last}"
-
-    def wait_status(self, pred, what: str) -> driver_status_t:
-        self.wait(lambda: bool(self.status) and pred(self.status[-1]), what)
-        return self.status[-1]
-
-    def reasons(self) -> dict[str, int]:
-        s = self.status[-1]
-        return dict(zip(s.reason, s.reason_count))
 
 
 def samples(n: int = 5) -> list[ahrs_t]:
@@ -90,7 +63,7 @@ def run_driver(build, tmp_path, lcm_url, child_env, extra=()):
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_ahrs_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
-    bus = Bus(lcm_url)
+    bus = Bus(lcm_url, "AHRS", ahrs_t)
     pty = Pty(tmp_path / "ahrs0")
     proc = run_driver(c_program("bin/auv-ahrs", sanitized).parent.parent, tmp_path, lcm_url, child_env)
     try:
@@ -124,7 +97,7 @@ def test_ahrs_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
 
 
 def test_signs_and_heading_offset(lcm_url, tmp_path, child_env):
-    bus = Bus(lcm_url)
+    bus = Bus(lcm_url, "AHRS", ahrs_t)
     pty = Pty(tmp_path / "ahrs0")
     flags = ["--roll-sign", "-1", "--pitch-sign", "-1", "--heading-offset", "15"]
     proc = run_driver(c_program("bin/auv-ahrs").parent.parent, tmp_path, lcm_url, child_env, flags)
@@ -144,17 +117,13 @@ def test_signs_and_heading_offset(lcm_url, tmp_path, child_env):
 
 
 def test_usage_errors(child_env):
-    exe = str(c_program("bin/auv-ahrs"))
-    for args, text in [
-        (["--roll-sign", "2"], "--roll-sign wants 1 or -1"),
-        (["--pitch-sign", "x"], "--pitch-sign wants 1 or -1"),
-        (["--heading-offset", "400"], "--heading-offset wants degrees"),
-    ]:
-        p = subprocess.run(
-            [exe, "--device", "/dev/null", "--vehicle", "A", *args],
-            capture_output=True,
-            text=True,
-            env=child_env,
-            timeout=30,
-        )
-        assert p.returncode == 2 and text in p.stderr, (args, p.stderr)
+    check_usage_errors(
+        "bin/auv-ahrs",
+        [
+            (["--roll-sign", "2"], "--roll-sign wants 1 or -1"),
+            (["--pitch-sign", "x"], "--pitch-sign wants 1 or -1"),
+            (["--heading-offset", "400"], "--heading-offset wants degrees"),
+        ],
+        child_env,
+        base=["--device", "/dev/null", "--vehicle", "A"],
+    )

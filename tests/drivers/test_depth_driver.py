@@ -8,26 +8,20 @@ and nothing is published; a sensor that answers again is polled again."""
 
 from __future__ import annotations
 
-import os
-import select
-import subprocess
-import threading
 import time
 
-import lcm
 import pytest
 from conftest import c_program
+from driver_bus import VEHICLE, Bus, Pty, PtyDevice, check_usage_errors, finish, start
 from lcm_proc import pump
-from test_gps_driver import Pty, finish, start
 
-from auv import depth_t, driver_status_t
+from auv import depth_t
 from auvlcm import programs
 from sim.devices.digiquartz import Digiquartz, DigiquartzOptions
 from sim.devices.emulator import DeviceContext
 from sim.model import Truth
 from sim.sensors import DepthConfig, DepthSensor
 
-VEHICLE = "AUV1"
 DEPTH_M = 37.5
 
 
@@ -44,58 +38,20 @@ class Sensor:
         self.emu.encode(self.sample, None)
         self.heard = bytearray()
         self.mute = False
-        self.stop = False
-        self.thread = threading.Thread(target=self._run, daemon=True)
-        self.thread.start()
+        self.device = PtyDevice(pty, self._on_data)
 
-    def _run(self) -> None:
-        while not self.stop:
-            r, _, _ = select.select([self.pty.master], [], [], 0.05)
-            if not r:
-                continue
-            try:
-                data = os.read(self.pty.master, 4096)
-            except OSError:  # EIO: no one has the terminal open (yet, or any more)
-                time.sleep(0.05)
-                continue
-            self.heard += data
-            if not self.mute:
-                self.emu.receive(data, time.time())
+    def _on_data(self, data: bytes) -> None:
+        self.heard += data
+        if not self.mute:
+            self.emu.receive(data, time.time())
 
     def close(self) -> None:
-        self.stop = True
-        self.thread.join(2)
-
-
-class Bus:
-    def __init__(self, url: str) -> None:
-        self.lc = lcm.LCM(url)
-        self.msgs: list[depth_t] = []
-        self.status: list[driver_status_t] = []
-        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
-        self.lc.subscribe(f"{VEHICLE}.DEPTH", lambda c, d: self.msgs.append(depth_t.decode(d))).set_queue_capacity(
-            10000
-        )
-        self.lc.subscribe(
-            f"{VEHICLE}.DRIVER.DEPTH", lambda c, d: self.status.append(driver_status_t.decode(d))
-        ).set_queue_capacity(10000)
-
-    def wait(self, until, what: str, timeout: float = 20.0) -> None:
-        last = self.status[-1] if self.status else None
-        assert pump(self.lc, until, timeout), f"waited {timeout} s for {what}; last status: {last}"
-
-    def wait_status(self, pred, what: str) -> driver_status_t:
-        self.wait(lambda: bool(self.status) and pred(self.status[-1]), what)
-        return self.status[-1]
-
-    def reasons(self) -> dict[str, int]:
-        s = self.status[-1]
-        return dict(zip(s.reason, s.reason_count))
+        self.device.close()
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_depth_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
-    bus = Bus(lcm_url)
+    bus = Bus(lcm_url, "DEPTH", depth_t)
     pty = Pty(tmp_path / "depth0")
     sensor = Sensor(pty)
     rho, g, p_atm = 1027.0, 9.80, 101000.0
@@ -147,18 +103,14 @@ def test_depth_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
 
 
 def test_usage_errors(child_env):
-    exe = str(c_program("bin/auv-depth"))
-    for args, text in [
-        (["--units", "9"], "--units wants"),
-        (["--rate", "50"], "--rate wants"),
-        (["--rho", "10"], "--rho wants"),
-        (["--address", "0"], "--address wants"),
-    ]:
-        p = subprocess.run(
-            [exe, "--device", "/dev/null", "--vehicle", "A", *args],
-            capture_output=True,
-            text=True,
-            env=child_env,
-            timeout=30,
-        )
-        assert p.returncode == 2 and text in p.stderr, (args, p.stderr)
+    check_usage_errors(
+        "bin/auv-depth",
+        [
+            (["--units", "9"], "--units wants"),
+            (["--rate", "50"], "--rate wants"),
+            (["--rho", "10"], "--rho wants"),
+            (["--address", "0"], "--address wants"),
+        ],
+        child_env,
+        base=["--device", "/dev/null", "--vehicle", "A"],
+    )

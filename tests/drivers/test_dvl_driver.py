@@ -10,56 +10,21 @@ from __future__ import annotations
 
 import math
 import re
-import struct
 import subprocess
 import time
 
 import lcm
 import pytest
 from conftest import c_program
-from lcm_proc import pump
-from test_gps_driver import Pty, finish, start
+from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, replay_print, same_printed, start
 
-from auv import driver_status_t, dvl_t, process_health_t, raw_bytes_t
+from auv import dvl_t, raw_bytes_t
 from auvlcm import programs
 from sim.devices.pd0 import RTC_EPOCH, SIM_INDEX_OF_BEAM, Pd0Config, Pd0Encoder
 
-VEHICLE = "AUV1"
 BEAM_ANGLE = math.radians(30.0)
 YAW = math.radians(37.0)
 RANGE_M = 12.0  # every beam's slant range over a flat seabed, level
-
-
-class Bus:
-    """What the driver publishes, as it arrives."""
-
-    def __init__(self, url: str) -> None:
-        self.lc = lcm.LCM(url)
-        self.dvl: list[dvl_t] = []
-        self.status: list[driver_status_t] = []
-        self.health: list[process_health_t] = []
-        self.raw: list[tuple[str, bytes]] = []
-        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
-        self.lc.subscribe(f"{VEHICLE}.DVL", lambda c, d: self.dvl.append(dvl_t.decode(d))).set_queue_capacity(10000)
-        self.lc.subscribe(
-            f"{VEHICLE}.DRIVER.DVL", lambda c, d: self.status.append(driver_status_t.decode(d))
-        ).set_queue_capacity(10000)
-        self.lc.subscribe(
-            f"{VEHICLE}.HEALTH", lambda c, d: self.health.append(process_health_t.decode(d))
-        ).set_queue_capacity(10000)
-        self.lc.subscribe(f"{VEHICLE}.RAW.DVL", lambda c, d: self.raw.append((c, d))).set_queue_capacity(10000)
-
-    def wait(self, until, what: str, timeout: float = 20.0) -> None:
-        last = self.status[-1] if self.status else None
-        assert pump(self.lc, until, timeout), f"waited {timeout} s for {what}; last status: {last}"
-
-    def reasons(self) -> dict[str, int]:
-        s = self.status[-1] if self.status else None
-        return dict(zip(s.reason, s.reason_count)) if s else {}
-
-    def wait_status(self, pred, what: str, timeout: float = 20.0) -> driver_status_t:
-        self.wait(lambda: bool(self.status) and pred(self.status[-1]), what, timeout)
-        return self.status[-1]
 
 
 def measurement(mode: int, velocity=(1.5, 0.2, 0.05), ranges=(RANGE_M,) * 4) -> dvl_t:
@@ -110,45 +75,12 @@ def check_dvl(d: dvl_t, m: dvl_t, number: int, t: float) -> None:
 
 def replay_dvl(tmp_path, raw, child_env, sanitized):
     """The recorded raw messages as a log, through auv-driver-replay --print."""
-    log = lcm.EventLog(str(tmp_path / "raw.lcmlog"), "w")
-    for channel, data in raw:
-        log.write_event(raw_bytes_t.decode(data).utime, channel, data)
-    log.close()
-    build = c_program("bin/auv-driver-replay", sanitized).parent.parent
-    cmd = programs.driver_replay(
-        build, log=tmp_path / "raw.lcmlog", vehicle=VEHICLE, device="DVL", extra=programs.dvl_flags(sigma_mps=0.02)
-    )
-    p = subprocess.run(cmd, capture_output=True, text=True, env=child_env, timeout=60)
-    assert p.returncode == 0, p.stderr
-    printed = []
-    for line in p.stdout.splitlines():
-        assert line.startswith(f"{VEHICLE}.DVL "), line
-        printed.append(dict(re.findall(r'(\w+)=("(?:[^"\\]|\\.)*"|\S+)', line)))
-    summary = p.stderr.strip().splitlines()[-1]
-    reasons = {k: int(v) for k, v in re.findall(r"[:,] ([a-z ]+): (\d+)", summary.rsplit(" dropped", 1)[1])}
-    return printed, reasons
-
-
-def f32(x: float) -> float:
-    return struct.unpack("<f", struct.pack("<f", x))[0]
-
-
-def same_dvl(printed: dict, m: dvl_t) -> None:
-    for name in dvl_t.__slots__:
-        value, text = getattr(m, name), printed[name]
-        if isinstance(value, str):
-            assert text == f'"{value}"', name
-        elif name == "beam_range_m":  # floats, printed with 9 digits
-            assert [f32(float(x)) for x in text.split(",")] == list(value), name
-        elif isinstance(value, (list, tuple)):
-            assert [float(x) for x in text.split(",")] == list(value), name
-        else:
-            assert float(text) == value, (name, text, value)
+    return replay_print(tmp_path, raw, child_env, "DVL", programs.dvl_flags(sigma_mps=0.02), sanitized)
 
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_dvl_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
-    bus = Bus(lcm_url)
+    bus = Bus(lcm_url, "DVL", dvl_t)
     pty = Pty(tmp_path / "dvl0")
     build = c_program("bin/auv-dvl", sanitized).parent.parent
     cmd = programs.device_driver(
@@ -178,12 +110,12 @@ def test_dvl_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
         send(measurement(dvl_t.MODE_BOTTOM_LOCK))
         send(measurement(dvl_t.MODE_WATER_TRACK, (0.9, -0.3, 0.0), (-1.0,) * 4), chunk=7)
         send(measurement(dvl_t.MODE_NONE, (0.0, 0.0, 0.0), (-1.0,) * 4), chunk=1000)
-        bus.wait(lambda: len(bus.dvl) >= 3, "three dvl_t")
+        bus.wait(lambda: len(bus.msgs) >= 3, "three dvl_t")
         after = time.time_ns() // 1000
-        for d, (m, number, t) in zip(bus.dvl, sent):
+        for d, (m, number, t) in zip(bus.msgs, sent):
             check_dvl(d, m, number, t)
             assert before <= d.utime <= after  # the receive time, not the DVL's clock
-        assert [d.mode for d in bus.dvl] == [1, 2, 0]
+        assert [d.mode for d in bus.msgs] == [1, 2, 0]
         assert bus.reasons() == {}
 
         # garbage, then a bad checksum (ensemble 4, sent again whole), then
@@ -193,17 +125,17 @@ def test_dvl_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
         bad[-1] ^= 0x55
         pty.write(bytes(bad))
         send(measurement(dvl_t.MODE_BOTTOM_LOCK, (1.2, 0.0, 0.1)), number=4)
-        bus.wait(lambda: len(bus.dvl) >= 4, "ensemble 4 after its broken copy")
+        bus.wait(lambda: len(bus.msgs) >= 4, "ensemble 4 after its broken copy")
         cut = dev.ensemble(measurement(dvl_t.MODE_BOTTOM_LOCK), number=5)
         pty.write(cut[: len(cut) // 2])
         bus.wait_status(lambda s: "truncated ensemble" in s.reason, "the cut ensemble dropped on silence")
         send(measurement(dvl_t.MODE_BOTTOM_LOCK, (1.0, 0.1, 0.0)), number=5)
         # ensembles 6..8 never arrive: a gap, counted, and 9 is still published
         send(measurement(dvl_t.MODE_BOTTOM_LOCK, (1.1, 0.1, 0.0)), number=9)
-        bus.wait(lambda: len(bus.dvl) >= 6, "ensembles 5 and 9")
-        for d, (m, number, t) in zip(bus.dvl, sent):
+        bus.wait(lambda: len(bus.msgs) >= 6, "ensembles 5 and 9")
+        for d, (m, number, t) in zip(bus.msgs, sent):
             check_dvl(d, m, number, t)
-        assert [d.ensemble for d in bus.dvl] == [1, 2, 3, 4, 5, 9]
+        assert [d.ensemble for d in bus.msgs] == [1, 2, 3, 4, 5, 9]
         want = {"garbage": 1, "bad checksum": 1, "truncated ensemble": 1, "ensemble gap": 1}
         s = bus.wait_status(lambda s: sum(s.reason_count) >= 4, "every refusal counted")
         assert bus.reasons() == want, s.last_error
@@ -217,9 +149,9 @@ def test_dvl_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
     assert "dropped: bad checksum" in text
     # the recorded bytes give the same dvl_t through the same parser
     printed, reasons = replay_dvl(tmp_path, bus.raw, child_env, sanitized)
-    assert len(printed) == len(bus.dvl) == 6
-    for p, m in zip(printed, bus.dvl):
-        same_dvl(p, m)
+    assert len(printed) == len(bus.msgs) == 6
+    for p, m in zip(printed, bus.msgs):
+        same_printed(p, m, f32_fields=("beam_range_m",))
     assert reasons == want
 
 
@@ -287,18 +219,14 @@ def test_dvl_mounting_and_usage(tmp_path, child_env):
     assert outs[0] == pytest.approx([1.0, 0.0, 0.0], abs=2e-3)
     assert outs[1] == pytest.approx([0.0, 1.0, 0.0], abs=2e-3)
 
-    exe = str(c_program("bin/auv-dvl"))
-    for args, text in [
-        (["--mounting", "0,0"], "--mounting wants"),
-        (["--mounting", "0,95,0"], "--mounting wants"),
-        (["--sigma", "0"], "--sigma wants"),
-        (["--ensemble-timeout", "x"], "--ensemble-timeout wants"),
-    ]:
-        p = subprocess.run(
-            [exe, "--device", "/dev/null", "--vehicle", "A", *args],
-            capture_output=True,
-            text=True,
-            env=child_env,
-            timeout=30,
-        )
-        assert p.returncode == 2 and text in p.stderr, (args, p.stderr)
+    check_usage_errors(
+        "bin/auv-dvl",
+        [
+            (["--mounting", "0,0"], "--mounting wants"),
+            (["--mounting", "0,95,0"], "--mounting wants"),
+            (["--sigma", "0"], "--sigma wants"),
+            (["--ensemble-timeout", "x"], "--ensemble-timeout wants"),
+        ],
+        child_env,
+        base=["--device", "/dev/null", "--vehicle", "A"],
+    )

@@ -19,9 +19,9 @@ import time
 import lcm
 import pytest
 from conftest import c_program
-from test_gps_driver import VEHICLE, Bus, Pty, finish, start
+from driver_bus import VEHICLE, Bus, Pty, finish, start
 
-from auv import actuators_t, driver_status_t
+from auv import actuators_t
 from auvlcm import programs
 from sim.devices.maestro import ERR_SERIAL_PROTOCOL, Maestro
 
@@ -81,12 +81,8 @@ class Wire:
 
 class ServoBus(Bus):
     def __init__(self, url: str, wire: Wire) -> None:
-        super().__init__(url)
+        super().__init__(url, "SERVO")
         self.wire = wire
-        # queues that hold a loaded run's bursts (LCM's default, 30, drops the newest)
-        self.lc.subscribe(
-            f"{VEHICLE}.DRIVER.SERVO", lambda c, d: self.status.append(driver_status_t.decode(d))
-        ).set_queue_capacity(10000)
         self.seq = 0
 
     def wait(self, until, what: str, timeout: float = 20.0) -> None:
@@ -103,9 +99,6 @@ class ServoBus(Bus):
         m.vehicle = VEHICLE
         m.rudder_rad, m.stern_plane_rad, m.prop_rpm, m.seq = rudder, stern, rpm, self.seq
         self.lc.publish(f"{VEHICLE}.ACTUATORS", m.encode())
-
-    def reason(self, name: str) -> int:
-        return self.reasons().get(name, 0)
 
 
 def servo_cmd(tmp_path, lcm_url, table, sanitized=False) -> list[str]:

@@ -317,6 +317,8 @@ void mm_bridge_input(mm_bridge *b, const mm_msg *m, int64_t now_us, mm_out *out)
     }
 }
 
+void mm_bridge_flush(mm_bridge *b, mm_out *out) { flush_held(b, out); }
+
 void mm_bridge_tick(mm_bridge *b, int64_t now_us, mm_out *out)
 {
     if (b->state != MM_IDLE && now_us >= b->deadline_us) {

@@ -140,6 +140,10 @@ void mm_bridge_input(mm_bridge *b, const mm_msg *m, int64_t now_us, mm_out *out)
  * times a second. */
 void mm_bridge_tick(mm_bridge *b, int64_t now_us, mm_out *out);
 
+/* The frames still waiting for their CACST, delivered now without it (the
+ * stream ended: the driver exits, a replayed log ends). */
+void mm_bridge_flush(mm_bridge *b, mm_out *out);
+
 void mm_out_clear(mm_out *out);
 
 #endif

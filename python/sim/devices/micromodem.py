@@ -24,7 +24,12 @@ What it does, per host sentence:
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
+
+from auv import modem_rx_t, modem_tx_t
+from confcheck import setting
+from sim.devices.emulator import Emulator
 
 # Index = rate (packet type): rate 0 FH-FSK, 1-5 PSK.
 FRAME_BYTES = (32, 64, 64, 256, 256, 256)
@@ -281,3 +286,108 @@ class MicroModem:
         """`$CAACK` when the addressee `src` acknowledged our frame (the water's model
         decides whether the ack came back)."""
         return sentence(f"CAACK,{src},{self.address},{frame}")
+
+
+# ---- the modem in the simulator: the emulator on a port, frames to and from the water
+
+TABLE_ENTRY = re.compile(r"([A-Za-z0-9_-]{1,31})=([0-9]{1,3})")
+
+
+def parse_table(spec: str) -> dict[str, int]:
+    """`AUV1=1,AUV2=2`: vehicle ids to modem addresses 1..127, the rules of
+    auv-modem's --table (c/drivers/modem/mm_table.c). ValueError says what is wrong."""
+    table: dict[str, int] = {}
+    for entry in spec.split(","):
+        m = TABLE_ENTRY.fullmatch(entry)
+        if not m:
+            raise ValueError(f"'{entry}' is not VEHICLE=ADDRESS")
+        name, address = m[1], int(m[2])
+        if not 1 <= address <= MAX_ADDRESS:
+            raise ValueError(f"{name}: address {address} is not in 1..127 (0 is the broadcast address)")
+        if name in table or address in table.values():
+            raise ValueError(f"{name}={address}: a vehicle or an address given twice")
+        table[name] = address
+    return table
+
+
+@dataclass
+class MicroModemOptions:
+    # vehicle ids to modem addresses, the same as every vehicle's auv-modem --table (required)
+    table: str = ""
+    kind: int = setting(2, ge=0, le=127)  # the modem_tx_t kind of the frames it sends (the wire carries none)
+    heartbeat_s: float = setting(10.0, gt=0.0, le=3600.0)  # CAREV every so often
+    revision: str = "0.94.0.4"  # CAREV's version
+
+
+class MicroModemWire(Emulator):
+    """The Micro-Modem as the simulator's acoustic modem's device (sim.modem.node):
+    packets the host sent become modem_tx_t for the water, frames the water
+    delivered become what the modem prints. One frame per packet: the water
+    carries one frame per acoustic frame (a packet of several is refused, counted)."""
+
+    sensor = "modem"
+    protocol = "micromodem"
+    Options = MicroModemOptions
+    options: MicroModemOptions
+
+    @classmethod
+    def problems(cls, options: MicroModemOptions) -> dict[str, str]:
+        if not options.table:
+            return {"table": "required: VEHICLE=ADDRESS,... as auv-modem's --table"}
+        try:
+            parse_table(options.table)
+        except ValueError as e:
+            return {"table": str(e)}
+        return {}
+
+    def __init__(self, ctx) -> None:
+        super().__init__(ctx)
+        self.table = parse_table(self.options.table)
+        if ctx.vehicle not in self.table:
+            raise ValueError(f"modem.wire.table: vehicle {ctx.vehicle} is not in '{self.options.table}'")
+        self.by_address = {a: v for v, a in self.table.items()}
+        self.modem = MicroModem(self.table[ctx.vehicle], self.options.revision, self.options.heartbeat_s)
+        self.seq = 0
+        self.refused = 0  # packets the water cannot carry (several frames, an unknown address)
+        self.heard = 0  # frames printed to the host
+
+    def receive(self, data: bytes, t: float) -> None:
+        out = self.modem.feed(data, t)
+        if out:
+            self.send(out, t)
+
+    def tick(self, t: float) -> None:
+        """Every physics step: the heartbeat and the data-request timeout."""
+        out = self.modem.tick(t)
+        if out:
+            self.send(out, t)
+
+    def take_frames(self) -> list[modem_tx_t]:
+        """The packets the host sent since the last call, as the water's frames."""
+        out = []
+        for p in self.modem.take_outbox():
+            dst = "" if p.dest == BROADCAST else self.by_address.get(p.dest)
+            if len(p.frames) != 1 or dst is None or not p.frames[0]:
+                self.refused += 1
+                continue
+            self.seq += 1
+            m = modem_tx_t()
+            m.utime = int(round(p.t * 1e6))
+            m.vehicle, m.dst_vehicle, m.seq, m.kind = self.ctx.vehicle, dst, self.seq, self.options.kind
+            m.n_bytes, m.payload = len(p.frames[0]), bytes(p.frames[0])
+            out.append(m)
+        return out
+
+    def hear_frame(self, t: float, rx: modem_rx_t) -> None:
+        """A frame the water delivered to this vehicle: CACYC, CARXD, CACST on the line.
+        Its rate: the smallest whose frame holds it (the water does not say)."""
+        src = self.table.get(rx.src_vehicle)
+        if src is None:
+            self.refused += 1
+            return
+        dest = BROADCAST if not rx.dst_vehicle else self.table.get(rx.dst_vehicle, BROADCAST)
+        rate = next((r for r, n in enumerate(FRAME_BYTES) if n >= rx.n_bytes), len(FRAME_BYTES) - 1)
+        out = self.modem.hear(t, src, dest, rate, [bytes(rx.payload)], rx.snr_db)
+        if out:
+            self.heard += 1
+            self.send(out, t)

@@ -3,7 +3,8 @@
 Each class names the sensor it speaks for and its protocol
 (sim.devices.emulator.Emulator); a sensor's `wire.protocol` may be any of the
 protocols registered for it, and docs/simulator.md ("Devices at the wire")
-lists them.
+lists them. A device no sensor polls names the part of the simulator that
+drives it instead (`modem`: the `modem:` section's `wire:`).
 """
 
 from __future__ import annotations
@@ -12,9 +13,10 @@ from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
+from sim.devices.micromodem import MicroModemWire
 from sim.devices.nmea_gps import NmeaGps
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0, MicroModemWire)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:

@@ -4,6 +4,9 @@ A configuration without the section has no modem. With it, every key is
 checked like the rest of the file (confcheck): errors name the file, line,
 column and key, unknown keys get a did-you-mean, ranges are declared here.
 
+`wire:` puts a WHOI Micro-Modem's NMEA interface on a pty or TCP port
+(sim.devices.micromodem, docs/simulator.md "Devices at the wire").
+
 `profile:` picks a rate profile (PROFILES, after the WHOI Micro-Modem's
 rates): frame size, bit rate and per-frame overhead; keys given beside it
 override the profile's values.
@@ -14,8 +17,11 @@ from __future__ import annotations
 import dataclasses
 import difflib
 from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
 
 from confcheck import Checker, setting
+from sim.devices.config import parse_wire
 
 
 @dataclass
@@ -37,6 +43,8 @@ class ModemConfig:
     peer_reports: bool = True  # send <V>.PEER_REPORT, publish <V>.PEER.<OTHER>
     status_period_s: float = setting(1.0, gt=0.0)  # sim seconds between modem_status_t
     seed: int = -1  # loss draws; -1 = environment.seed (the world's)
+    # the modem at the wire (sim.devices.config.WireConfig, protocol micromodem); None: LCM only
+    wire: Any = None
 
 
 # Rate profiles, one frame per packet, in the class of the WHOI Micro-Modem's
@@ -69,8 +77,9 @@ def _profile(doc: Checker, node, key: str) -> str | None:
     return None
 
 
-def parse(doc: Checker, node) -> ModemConfig | None:
-    """A ModemConfig from the section's node (None: no section, no modem)."""
+def parse(doc: Checker, node, base: Path = Path(".")) -> ModemConfig | None:
+    """A ModemConfig from the section's node (None: no section, no modem); base:
+    the configuration's folder, for a relative `wire.pty`."""
     if node is None:
         return None
     cfg = ModemConfig()
@@ -79,4 +88,5 @@ def parse(doc: Checker, node) -> ModemConfig | None:
         name = _profile(doc, items["profile"][1], "modem.profile")
         if name:
             cfg = dataclasses.replace(cfg, profile=name, **PROFILES[name])
-    return doc.fill(node, "modem", cfg, skip=("profile",))
+    wire = {"wire": lambda n, k: parse_wire(doc, n, k, "modem", base)}
+    return doc.fill(node, "modem", cfg, skip=("profile",), special=wire)

@@ -15,6 +15,18 @@ water for ever.
 
 The simulator calls step() after every physics step with the new truth.
 
+At the wire (`modem.wire`, docs/modem.md "The modem at the wire"): a
+Micro-Modem emulator on a port (sim.devices.micromodem.MicroModemWire) stands
+for the modem; the frames to send are the packets the vehicle's driver wrote
+to it, and every frame heard goes to it, printed as the modem prints it. With
+`publish_lcm: false` that is all: the node then neither subscribes to nor
+publishes any of the vehicle's channels (MODEM_TX, PEER_REPORT, MODEM_RX,
+PEER.*, MODEM_STATUS), since in hardware in the loop at the wire the
+simulator knows nothing of the vehicle's LCM world. With `publish_lcm: true`
+both. The water (SIM.ACOUSTIC, delays, loss, collisions) is the same either
+way, and wired packets are handled as requests like MODEM_TX's, so lockstep
+keeps its order.
+
 A frame goes into the water at its request's own stamp (the vehicle
 software's time when it asked), from where the vehicle was at the first
 physics step at or after it (the receiver's track): not at whatever step the
@@ -42,6 +54,8 @@ from auv import acoustic_frame_t, modem_status_t, modem_tx_t, peer_report_t
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver as LcmReceiver
 from auvlcm.timepolicy import InputGate, TimeDrops
+from sim.devices.emulator import DeviceContext
+from sim.devices.micromodem import MicroModemWire
 from sim.environment import Environment
 from sim.modem.config import ModemConfig
 from sim.modem.peers import heard_report, report_frame
@@ -63,11 +77,15 @@ class ModemNode:
         publish: Callable[[str, bytes], None],
         drops: TimeDrops | None = None,
         clock_now_us: Callable[[], float | None] | None = None,
+        lcm_side: bool = True,
     ) -> None:
         self.cfg = cfg
         self.vehicle = vehicle
+        self.lcm_side = lcm_side  # the vehicle's channels; False: the wire alone
+        self.wire: MicroModemWire | None = None
         self.status = modem_status_t()
         self.status.vehicle = vehicle
+        self.status.rate = -1  # a real modem's rate (packet type): none here
         self.tx = Transmitter(cfg, vehicle, self.status)
         self.rx = Receiver(cfg, vehicle, seed if seed >= 0 else 0, env, self.status)
         self._publish = publish
@@ -87,10 +105,15 @@ class ModemNode:
         # the simulator's clock (None before it has one); alone: the time of the last step
         self.clock_now_us = clock_now_us or (lambda: None if self._t is None else utime(self._t))
         self._gates: dict[str, InputGate] = {}
-        rx.subscribe(f"{vehicle}.MODEM_TX", modem_tx_t, self._on_tx, queue_capacity=200)
         rx.subscribe("SIM.ACOUSTIC", acoustic_frame_t, self._on_frame, queue_capacity=2000)
-        if cfg.peer_reports:
+        if lcm_side:
+            rx.subscribe(f"{vehicle}.MODEM_TX", modem_tx_t, self._on_tx, queue_capacity=200)
+        if lcm_side and cfg.peer_reports:
             rx.subscribe(f"{vehicle}.PEER_REPORT", peer_report_t, self._on_report, queue_capacity=200)
+
+    def attach_wire(self, emulator: MicroModemWire) -> None:
+        """The modem's emulator on its port (the simulator made the port)."""
+        self.wire = emulator
 
     # ------------------------------------------------------------ handlers
     def _stamp_ok(self, what: str, stamp: int) -> bool:
@@ -176,6 +199,8 @@ class ModemNode:
         after the physics step that ended at t."""
         self._t, self._pos = t, position
         self.rx.record(t, position)
+        if self.wire is not None:
+            self._take_wire(t)
         h_req, h_rx = self._horizons(t)
         limit = h_req * 1e6 + 0.5  # stamps [us] up to the horizon (-inf: none yet)
         if self._requests and min(r[0] for r in self._requests) <= limit:
@@ -186,6 +211,10 @@ class ModemNode:
         st = self.status
         before = st.received + st.lost + st.out_of_range + st.collided + st.deaf
         for m in self.rx.judge(h_rx):
+            if self.wire is not None:
+                self.wire.hear_frame(t, m)
+            if not self.lcm_side:
+                continue
             self._publish(f"{self.vehicle}.MODEM_RX", m.encode())
             if self.cfg.peer_reports and m.kind == modem_tx_t.KIND_NAV_REPORT:
                 try:
@@ -204,7 +233,17 @@ class ModemNode:
                 self._next_status = t + self.cfg.status_period_s
             self._publish_status()
 
+    def _take_wire(self, t: float) -> None:
+        """The emulator's time (heartbeat, data-request timeout), and the packets the
+        driver sent: requests stamped with the step they were complete at."""
+        assert self.wire is not None
+        self.wire.tick(t)
+        for msg in self.wire.take_frames():
+            self._queue("wire", msg.utime, lambda msg=msg: self._send(msg))
+
     def _publish_status(self) -> None:
+        if not self.lcm_side:
+            return  # a vehicle-side channel: its driver publishes it
         self.status.utime = utime(self._t or 0.0)
         self._publish(f"{self.vehicle}.MODEM_STATUS", self.status.encode())
 
@@ -217,6 +256,12 @@ class ModemNode:
             f"{s.received} received, {s.lost} lost, {s.out_of_range} out of range, "
             f"{s.collided} collided, {s.deaf} missed while sending, "
             f"{self.reports_heard} peer reports heard"
+            + (
+                f"; at the wire: {self.wire.heard} frames to the host, "
+                f"{self.wire.refused} packets refused, {self.wire.modem.errors} CAERR"
+                if self.wire is not None
+                else ""
+            )
         )
 
 
@@ -232,4 +277,16 @@ def make_modem(
     m = cfg.modem
     if m is None or not m.enabled:
         return None
-    return ModemNode(m, cfg.vehicle_id, m.seed, env, rx, publish, drops, clock_now_us)
+    lcm_side = m.wire is None or m.wire.publish_lcm
+    return ModemNode(m, cfg.vehicle_id, m.seed, env, rx, publish, drops, clock_now_us, lcm_side)
+
+
+def wire_modem(node: ModemNode | None, devices, vehicle: str, seed: int) -> None:
+    """Put the modem on its port, if its configuration has `wire:` (devices:
+    the simulator's sim.devices.device.Devices, whose line clock it shares)."""
+    if node is None or node.cfg.wire is None:
+        return
+    wire = node.cfg.wire
+    emulator = MicroModemWire(DeviceContext(vehicle, "modem", seed, wire.options))
+    devices.add(emulator, wire)
+    node.attach_wire(emulator)
