@@ -1,6 +1,6 @@
 """The one list of device emulators: a new device is its module and one line here.
 
-Each class names the sensor it speaks for and its protocol
+Each class names the sensor it speaks for (or the simulator's part: `actuators`) and its protocol
 (sim.devices.emulator.Emulator); a sensor's `wire.protocol` may be any of the
 protocols registered for it, and docs/simulator.md ("Devices at the wire")
 lists them.
@@ -11,9 +11,10 @@ from __future__ import annotations
 from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.emulator import Emulator
+from sim.devices.maestro_wire import MaestroWire
 from sim.devices.nmea_gps import NmeaGps
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, MaestroWire)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:
