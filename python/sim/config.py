@@ -20,7 +20,8 @@ from confcheck import VEHICLE_ID, Checker, ConfigError, Rule, report, rule_of, s
 from sim import clock_modes
 from sim.actuators import Command
 from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
-from sim.devices.config import check_distinct, parse_wire
+from sim.devices.config import INPUT_DEVICE_KEYS, check_distinct, parse_wire
+from sim.devices.maestro import ChannelTable, TableError, parse_table
 from sim.environment import ENV_VARIABLES, CurrentLayer, EnvParams, Transponder
 from sim.sensors import REGISTRY
 from sim.sonar.config import SonarConfig
@@ -100,6 +101,22 @@ class MultiHil:
 
 
 @dataclass
+class ActuatorsConfig:
+    """`actuators:`: the fins and thruster at the wire (docs/simulator.md, "Fins and
+    thruster at the wire"); the actuators' figures are the vehicle's (vehicle:)."""
+
+    wire: Any = None  # sim.devices.config.WireConfig, None: commands on <V>.ACTUATORS
+
+
+@dataclass
+class Actuators:
+    """The `actuators:` section, and the channel table its wire names, read."""
+
+    wire: Any = None  # sim.devices.config.WireConfig; None: commands on <V>.ACTUATORS
+    table: ChannelTable | None = None
+
+
+@dataclass
 class SimConfig:
     path: Path
     vehicle_id: str
@@ -113,6 +130,7 @@ class SimConfig:
     sonar: SonarConfig | None = None  # None: no sonar section
     modem: Any = None  # sim.modem.ModemConfig, None without a modem: section
     identify: Any = None  # sim.sonar.identify.IdentifyConfig, None without identify:
+    actuators: Actuators = dataclasses.field(default_factory=Actuators)
 
 
 # --------------------------------------------------------------- sections
@@ -259,11 +277,11 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
     return env
 
 
-def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
+def _sensors(doc: Checker, node, base: Path, wires: dict) -> dict[str, Any]:
+    """The sensors; each enabled one's wire goes into wires ({`sensors.NAME`: (node, wire)})."""
     items = doc.mapping(node, "sensors")
     doc.unknown(items, REGISTRY, "sensors")
     out = {}
-    wires = {}
     for name, (_, snode) in items.items():
         if name in REGISTRY:
             cfg_cls, _ = REGISTRY[name]
@@ -275,9 +293,8 @@ def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
                 wire = {"wire": lambda n, k, name=name: parse_wire(doc, n, k, name, base)}
                 cfg = doc.fill(snode, key, cfg_cls(), special=wire)
                 if cfg.wire is not None and cfg.enabled:
-                    wires[name] = (doc.mapping(snode, key)["wire"][1], cfg.wire)
+                    wires[key] = (doc.mapping(snode, key)["wire"][1], cfg.wire)
             out[name] = cfg
-    check_distinct(doc, wires)
     ins = out.get("ins")
     if ins is not None and ins.channel in RESERVED_TOPICS:
         cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
@@ -287,6 +304,37 @@ def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
             f"{ins.channel} is another channel of this vehicle's simulator or pilot (one writer per channel)",
         )
     return out
+
+
+def _actuators(doc: Checker, node, base: Path, wires: dict) -> Actuators:
+    """`actuators: {wire: {protocol: maestro, ..., table: FILE}}`: the wire, and its
+    channel table read with the rules auv-servo reads it by (its errors at the table's
+    own file:line:col, under the key that names it)."""
+    key = "actuators"
+    wire = {"wire": lambda n, k: parse_wire(doc, n, k, key, base, common=INPUT_DEVICE_KEYS)}
+    keys = doc.fill(node, key, ActuatorsConfig(), special=wire)
+    cfg = Actuators(keys.wire)
+    if cfg.wire is None or cfg.wire is dataclasses.MISSING:
+        cfg.wire = None
+        return cfg
+    wnode = doc.mapping(node, key)["wire"][1]
+    tnode = doc.mapping(wnode, f"{key}.wire")["table"][1]
+    opts = cfg.wire.options
+    path = Path(opts.table) if Path(opts.table).is_absolute() else base / opts.table
+    opts.table = str(path)
+    try:
+        cfg.table = parse_table(path.read_text(encoding="ascii", errors="replace"), str(path))
+    except OSError as exc:
+        doc.err(tnode, f"{key}.wire.table", f"cannot read the channel table {path}: {exc.strerror}")
+        return cfg
+    except TableError as exc:
+        doc.err(tnode, f"{key}.wire.table", str(exc))
+        return cfg
+    beyond = [c.channel for c in cfg.table.channels if c.channel >= opts.channels]
+    if beyond:
+        doc.err(tnode, f"{key}.wire.table", f"channel {beyond[0]} is beyond a {opts.channels}-channel Maestro")
+    wires[key] = (wnode, cfg.wire)
+    return cfg
 
 
 def _needs_served(doc: Checker, node, sensors: dict[str, Any], mh: MultiHil) -> None:
@@ -337,6 +385,7 @@ SECTIONS = (
     "sonar",
     "modem",
     "identify",
+    "actuators",
 )
 
 
@@ -350,7 +399,10 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     sim = doc.fill(get("simulation"), "simulation", SimSettings())
     initial = doc.fill(get("initial"), "initial", InitialState())
     env = _environment(doc, get("environment"), path.parent)
-    sensors = _sensors(doc, get("sensors"), path.parent)
+    wires: dict[str, Any] = {}
+    sensors = _sensors(doc, get("sensors"), path.parent, wires)
+    actuators = _actuators(doc, get("actuators"), path.parent, wires)
+    check_distinct(doc, wires)
     mh = doc.fill(get("multihil"), "multihil", MultiHil())
     _needs_served(doc, get("multihil"), sensors, mh)
     safe = doc.fill(get("safe_command"), "safe_command", Command())
@@ -378,4 +430,18 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         modem.seed = env.seed  # the world's: the same for every simulator in it
     if identify is not None and identify.targets.seed < 0:
         identify.targets.seed = env.seed  # the same field as the search vehicles' sonars
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem, identify=identify)
+    return SimConfig(
+        path,
+        vid,
+        vp,
+        sim,
+        initial,
+        env,
+        sensors,
+        mh,
+        safe,
+        sonar=sonar,
+        modem=modem,
+        identify=identify,
+        actuators=actuators,
+    )

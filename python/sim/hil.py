@@ -4,7 +4,10 @@ One process per vehicle. It publishes each sensor on <VEHICLE>.<TOPIC> at
 that sensor's rate, ground truth on <VEHICLE>.TRUTH, what the actuators do on
 <VEHICLE>.ACTUATOR_STATE, its health on <VEHICLE>.HEALTH, and (when it runs
 the world alone in real-time or scaled mode) the global clock on SIM.CLOCK.
-It consumes <VEHICLE>.ACTUATORS and, in lockstep, SIM.CLOCK.
+It consumes <VEHICLE>.ACTUATORS and, in lockstep, SIM.CLOCK; with the fins and
+thruster at the wire (`actuators: {wire: ...}`), the commands are a Maestro's
+channel pulses on a port instead (sim.devices.maestro_wire), and
+<VEHICLE>.ACTUATORS only if its `take_lcm` says so.
 
 Time stamps follow the project's rule (auvlcm.timepolicy, docs/simulator.md):
 a SIM.CLOCK that goes back, jumps unconfirmed or is out of range is dropped;
@@ -35,6 +38,8 @@ from sim.clock import ClockSource
 from sim.clock_modes import LOCKSTEP
 from sim.config import SimConfig
 from sim.devices.device import build_devices
+from sim.devices.emulator import DeviceContext
+from sim.devices.maestro_wire import MaestroWire
 from sim.environment import Environment
 from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem, wire_modem
@@ -120,7 +125,9 @@ class Simulator:
         self._cmd_gate = InputGate(self.time_drops, f"{self.vid}.ACTUATORS")
         # where a command that passed the checks goes, if not applied at once
         self._command_filter: Callable[[str, actuators_t], None] | None = None
-        self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators, queue_capacity=200)
+        wire = cfg.actuators.wire
+        if wire is None or wire.options.take_lcm:
+            self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators, queue_capacity=200)
         if s.clock == LOCKSTEP and not cfg.multihil.enabled:  # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
         self.modem = make_modem(cfg, self.model.env, self.rx, self._publish, self.time_drops, self.clock_now_us)
@@ -153,6 +160,19 @@ class Simulator:
         self.devices = build_devices(self.sensors, self.vid, s.seed, self.model.frame, self.pacer, stepped)
         wire_modem(self.modem, self.devices, self.vid, s.seed)  # the modem at the wire, on the same lines' clock
         self._sensor_polls = [(sen.next_due, self.devices.poll_for(sen), ch) for sen, ch in self._sensor_channels]
+        # the fins and thruster at the wire: a Maestro's pulses are the commands
+        self.servo: MaestroWire | None = None
+        self._servo_seen: float | None = None  # sim time of the Maestro's newest target command taken
+        self._wire_acts = False  # its pulses command the actuators (not the initial or an LCM command)
+        if wire is not None:
+            assert cfg.actuators.table is not None  # read with the configuration
+            ctx = DeviceContext(self.vid, "actuators", s.seed, wire.options, self.model.frame)
+            self.servo = MaestroWire(ctx, cfg.actuators.table)
+            try:
+                self.devices.add(self.servo, wire)
+            except BaseException:
+                self.devices.close()
+                raise
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
         self.extras = build_extras(cfg, self.sensors, self.publish_clock)
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
@@ -205,11 +225,31 @@ class Simulator:
             self.missed_commands += msg.seq - self._last_seq - 1
         self._last_seq = msg.seq  # a pilot restart (seq going back) just resyncs
         self.model.command = Command(*vals)
+        self._commanded(msg.utime)
+        self._wire_acts = False  # the LCM command is the newer: it acts until the wire's next
+
+    def _commanded(self, utime_us: int) -> None:
         self.last_cmd_t = self.model.t
-        self.last_cmd_utime = msg.utime
+        self.last_cmd_utime = utime_us
         if self.stale:
             self.stale = False
             print(f"sim: {self.vid}: commands resumed at t={self.model.t:.2f}s", flush=True)
+
+    def _servo_command(self) -> None:
+        """Before each physics step: the Maestro's pulses, ramped to now, command the
+        actuators once its host has sent a target (until then the initial command, as
+        before a first LCM command); with take_lcm, until an LCM command is the newer.
+        Its newest target command is a fresh command: it stamps last_command_utime
+        (sim time: the driver's actuators_t stamp does not cross the wire)."""
+        servo = self.servo
+        assert servo is not None
+        newest = servo.last_command_t
+        if newest is not None and newest != self._servo_seen:
+            self._servo_seen = newest
+            self._wire_acts = True
+            self._commanded(utime(newest))
+        if self._wire_acts:
+            self.model.command = servo.command_at(self.model.t)
 
     # --------------------------------------------------- extension points
     # What a part plugged into the simulator (sim.lockstep_follow, the
@@ -279,6 +319,15 @@ class Simulator:
         if not self.stale and since > self.cfg.sim.command_timeout_s:
             self.stale = True
             self.stale_events += 1
+            if self.servo is not None:
+                # a Maestro holds its targets whatever the host does: neutral on silence
+                # is the driver's watchdog, on the wire; the stale flag only reports
+                print(
+                    f"sim: {self.vid}: no target command on the Maestro's wire for {since:.2f}s at "
+                    f"t={t:.2f}s: the Maestro holds its targets",
+                    flush=True,
+                )
+                return
             if self.cfg.sim.on_stale == "safe":
                 self.model.command = Command(
                     self.cfg.safe_command.rudder_rad,
@@ -491,6 +540,8 @@ class Simulator:
             if pacer.may_step(model.t, now):
                 if poll(0):  # anything from LCM (one poll() per step)
                     self._drain(0.0)
+                if self.servo is not None:
+                    self._servo_command()
                 self._check_stale()
                 model.step()
                 self._outputs()

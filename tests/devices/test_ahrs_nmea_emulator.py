@@ -1,6 +1,7 @@
 """The AHRS emulator's NMEA, read back by an independent parser (pynmea2): PASHR
 and HDT parse with a good checksum and carry the measurement's heading, roll
-and pitch; a dropout sends nothing."""
+and pitch; VectorNav's VNYMR carries them with the rates, a specific force and a
+magnetic field in the body frame; a dropout sends nothing."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ import math
 import pynmea2
 import pytest
 
-from sim.devices.ahrs_nmea import SENTENCES, AhrsNmea, AhrsNmeaOptions, heading_deg
+from sim.devices.ahrs_nmea import DEFAULT_SENTENCES, MAG_NED_GAUSS, AhrsNmea, AhrsNmeaOptions, G, heading_deg
 from sim.devices.emulator import DeviceContext
 from sim.devices.registry import protocols_of
 from sim.model import Truth
@@ -33,7 +34,7 @@ def test_registered_for_the_ahrs_sensor():
 def test_pashr_and_hdt_parse_and_carry_the_measurement():
     msg, tr = sample()
     lines = emulator().encode(msg, tr)
-    assert len(lines) == len(SENTENCES)
+    assert len(lines) == len(DEFAULT_SENTENCES)
     parsed = []
     for raw in lines:
         assert raw.startswith(b"$") and raw.endswith(b"\r\n")
@@ -73,3 +74,45 @@ def test_a_dropout_sends_nothing():
 def test_problems():
     assert AhrsNmea.problems(AhrsNmeaOptions(sentences=[])) == {"sentences": "name at least one sentence"}
     assert "start_utc" in AhrsNmea.problems(AhrsNmeaOptions(start_utc="2025-02-30T00:00:00Z"))
+
+
+def vnymr(msg, tr) -> list[float]:
+    (raw,) = emulator(sentences=["VNYMR"]).encode(msg, tr)
+    text = raw.decode("ascii")
+    assert text.startswith("$VNYMR,") and text.endswith("\r\n")
+    body, check = text[1:-2].split("*")
+    x = 0
+    for ch in body.encode():
+        x ^= ch
+    assert check == f"{x:02X}"  # NMEA's checksum, as VectorNav's
+    fields = body.split(",")[1:]
+    assert len(fields) == 12 and all(f[0] in "+-" for f in fields)
+    assert [len(f.split(".")[1]) for f in fields] == [3] * 3 + [4] * 3 + [3] * 3 + [6] * 3  # VectorNav's widths
+    return [float(f) for f in fields]
+
+
+def test_vnymr_carries_attitude_and_rates():
+    msg, tr = sample()
+    v = vnymr(msg, tr)
+    assert v[0] == pytest.approx((math.degrees(msg.heading_rad) + 180) % 360 - 180, abs=5e-4)
+    assert -180.0 <= v[0] <= 180.0 and v[0] < 0  # 271 degrees is yaw -89
+    assert v[1] == pytest.approx(math.degrees(msg.pitch_rad), abs=5e-4)
+    assert v[2] == pytest.approx(math.degrees(msg.roll_rad), abs=5e-4)
+    assert v[9:12] == pytest.approx([msg.p_radps, msg.q_radps, msg.r_radps], abs=5e-7)
+    assert math.hypot(*v[3:6]) == pytest.approx(math.hypot(*MAG_NED_GAUSS), abs=2e-4)
+
+
+def test_vnymr_specific_force_and_field_in_the_body_frame():
+    ahrs = Ahrs(AhrsConfig(noise=0.0, bias=0.0, attitude_noise=0.0, rate_noise=0.0), seed=4, vehicle="AUV1")
+    still = Truth(t=1.0, eta=(0.0, 0.0, 5.0, 0.0, 0.0, 0.0), nu=(0.0,) * 6)
+    v = vnymr(ahrs.measure(still), still)
+    assert v[6:9] == pytest.approx([0.0, 0.0, -G], abs=1e-3)  # level and still: -g on z, as the manual's example
+    assert v[3:6] == pytest.approx(list(MAG_NED_GAUSS), abs=1e-4)  # heading north: the field as it is
+    east_nose_up = Truth(t=1.0, eta=(0.0, 0.0, 5.0, 0.0, math.radians(30), math.pi / 2), nu=(0.0,) * 6)
+    v = vnymr(ahrs.measure(east_nose_up), east_nose_up)
+    assert v[6] == pytest.approx(G / 2, abs=1e-3)  # nose up: +g sin(pitch) on x
+    assert v[4] == pytest.approx(-MAG_NED_GAUSS[0], abs=1e-4)  # heading east: north is to port
+    # turning at r while moving at u: the centripetal u r to starboard, plus d nu / dt
+    turning = Truth(t=1.0, eta=(0.0,) * 6, nu=(1.5, 0.0, 0.0, 0.0, 0.0, 0.2), nu_dot=(0.1, 0.0, 0.0, 0.0, 0.0, 0.0))
+    v = vnymr(ahrs.measure(turning), turning)
+    assert v[6:9] == pytest.approx([0.1, 0.3, -G], abs=1e-3)

@@ -4,7 +4,10 @@ measurements, written into a pseudo-terminal, reach LCM as ahrs_t with the
 measurement's roll, pitch and heading (to the sentences' 0.01 degree), body
 rates NaN and the receive time as stamp; an absurd roll, a heading without its
 T flag and a bad checksum are each counted under their reason in
-driver_status_t and publish nothing; the sign and offset flags apply."""
+driver_status_t and publish nothing; the sign and offset flags apply. With the
+emulator's VectorNav $VNYMR the rates arrive too, finite and the simulator's to
+the sentence's 1e-6 rad/s, so auv-nav can take the messages; a VNYMR with an
+absurd rate is counted and publishes nothing."""
 
 from __future__ import annotations
 
@@ -25,6 +28,9 @@ from sim.sensors import Ahrs, AhrsConfig
 
 # the sentences carry 0.01 degree: half of it, and a margin for the rounding of radians
 TOL_RAD = math.radians(0.006)
+# VNYMR: 0.001 degree and 1e-6 rad/s
+VN_TOL_RAD = math.radians(0.0006)
+VN_TOL_RATE = 6e-7
 
 HOSTILE = (
     nmea("PASHR,010203.000,090.00,T,200.00,1.00,,0.100,0.100,0.500,0,1")  # roll 200 degrees
@@ -45,8 +51,8 @@ def samples(n: int = 5) -> list[ahrs_t]:
     return out
 
 
-def wire_bytes(msgs: list[ahrs_t]) -> bytes:
-    emu = AhrsNmea(DeviceContext(VEHICLE, "ahrs", 7, AhrsNmeaOptions()))
+def wire_bytes(msgs: list[ahrs_t], sentences: tuple[str, ...] = ("PASHR", "HDT")) -> bytes:
+    emu = AhrsNmea(DeviceContext(VEHICLE, "ahrs", 7, AhrsNmeaOptions(sentences=list(sentences))))
     return b"".join(b for m in msgs for b in emu.encode(m, None))
 
 
@@ -94,6 +100,39 @@ def test_ahrs_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
         pty.close()
         text = finish(proc, tmp_path)
     assert "attitude out of range" in text
+
+
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_vnymr_brings_the_rates(sanitized, lcm_url, tmp_path, child_env):
+    bus = Bus(lcm_url)
+    pty = Pty(tmp_path / "ahrs0")
+    proc = run_driver(c_program("bin/auv-ahrs", sanitized).parent.parent, tmp_path, lcm_url, child_env)
+    try:
+        bus.wait_status(lambda s: s.port_open, "the port open")
+        want = samples()
+        stream = wire_bytes(want, ("VNYMR",))
+        for i in range(0, len(stream), 41):  # sentences cut anywhere between writes
+            pty.write(stream[i : i + 41])
+        bus.wait(lambda: len(bus.msgs) >= len(want), "one ahrs_t per VNYMR")
+        for got, w in zip(bus.msgs, want):
+            assert got.vehicle == VEHICLE and got.valid
+            assert abs(wrap_pi(got.heading_rad - w.heading_rad)) < VN_TOL_RAD
+            assert 0.0 <= got.heading_rad < 2 * math.pi  # yaw -10 is heading 350
+            assert got.roll_rad == pytest.approx(w.roll_rad, abs=VN_TOL_RAD)
+            assert got.pitch_rad == pytest.approx(w.pitch_rad, abs=VN_TOL_RAD)
+            rates = (got.p_radps, got.q_radps, got.r_radps)
+            assert all(math.isfinite(x) for x in rates)  # what auv-nav asks of an ahrs_t
+            assert rates == pytest.approx((w.p_radps, w.q_radps, w.r_radps), abs=VN_TOL_RATE)
+        s = bus.wait_status(lambda s: s.frames_decoded == len(want), "every VNYMR decoded")
+        assert s.messages_published == len(want) and bus.reasons() == {}
+        absurd = nmea("VNYMR,+010.000,+000.000,+000.000,+0.2000,+0.0000,+0.4700,+00.000,+00.000,-09.807,0,0,+99.0")
+        pty.write(absurd)
+        bus.wait_status(lambda s: sum(s.reason_count) >= 1, "the absurd rate counted")
+        assert bus.reasons() == {"rate out of range": 1}
+        assert len(bus.msgs) == len(want)
+    finally:
+        pty.close()
+        finish(proc, tmp_path)
 
 
 def test_signs_and_heading_offset(lcm_url, tmp_path, child_env):

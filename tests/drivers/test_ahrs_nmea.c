@@ -1,5 +1,6 @@
 /* Unit tests of the heading and attitude sentences (c/drivers/ahrs/ahrs_nmea.c):
- * HDT from any talker, PASHR with and without its last field, the signs and
+ * HDT from any talker, PASHR with and without its last field, VectorNav's VNYMR
+ * (the manual's register-27 example as the async sentence), the signs and
  * mounting offset, and every refusal. */
 #include <math.h>
 #include <string.h>
@@ -85,10 +86,100 @@ static void test_pashr_refusals(void)
     CHECK(!r.has_attitude || r.roll_rad == 0.0);
 }
 
+/* VectorNav's published register-27 example (VN-100 User Manual UM001, 7.2.3,
+ * "$VNRRG,27,...*4F"), as its asynchronous $VNYMR output: the same 12 fields. */
+#define VNYMR_EXAMPLE "VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,-0.000450,-0.001218"
+
+static void test_vnymr(void)
+{
+    ahrs_nmea_config cfg = AHRS_NMEA_DEFAULTS;
+    ahrs_nmea_reading r;
+    /* the checksum rule is NMEA's: the manual's own example line checks */
+    const char *rrg = "$VNRRG,27,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,"
+                      "-0.001222,-0.000450,-0.001218*4F";
+    nmea_sentence s;
+    CHECK(nmea_parse_line(rrg, strlen(rrg), 0, &s) == NMEA_OK);
+    CHECK(ahrs_nmea_decode(&s, &cfg, &r) == AHRS_NMEA_NOT_MINE); /* a register read: not an output */
+
+    CHECK(decode(VNYMR_EXAMPLE, &cfg, &r) == AHRS_NMEA_OK);
+    CHECK(r.has_heading && r.has_attitude && r.has_rates && r.has_imu && !r.has_time && !r.has_accuracy);
+    CHECK_NEAR(r.heading_rad, 6.380 * DEG, 1e-12);
+    CHECK_NEAR(r.pitch_rad, 0.023 * DEG, 1e-12);
+    CHECK_NEAR(r.roll_rad, -1.953 * DEG, 1e-12);
+    CHECK_NEAR(r.mag_gauss[0], 1.0640, 1e-12);
+    CHECK_NEAR(r.mag_gauss[2], 3.0614, 1e-12);
+    CHECK_NEAR(r.accel_mps2[2], -9.758, 1e-12);
+    CHECK_NEAR(r.p_radps, -0.001222, 1e-12);
+    CHECK_NEAR(r.q_radps, -0.000450, 1e-12);
+    CHECK_NEAR(r.r_radps, -0.001218, 1e-12);
+
+    /* yaw in -180..180 is a heading in [0, 2 pi); the offset adds to it */
+    CHECK(decode("VNYMR,-010.000,+000.000,+000.000,+0.2,+0.0,+0.4,+00.000,+00.000,-09.807,+0.1,+0.2,+0.3", &cfg, &r) ==
+          AHRS_NMEA_OK);
+    CHECK_NEAR(r.heading_rad, 350.0 * DEG, 1e-12);
+    CHECK(decode("VNYMR,+180.000,+000.000,+000.000,+0.2,+0.0,+0.4,+00.000,+00.000,-09.807,0,0,0", &cfg, &r) ==
+          AHRS_NMEA_OK);
+    CHECK_NEAR(r.heading_rad, 180.0 * DEG, 1e-12);
+    cfg.heading_offset_deg = 15.0;
+    CHECK(decode("VNYMR,-010.000,+000.000,+000.000,+0.2,+0.0,+0.4,+00.000,+00.000,-09.807,+0.1,+0.2,+0.3", &cfg, &r) ==
+          AHRS_NMEA_OK);
+    CHECK_NEAR(r.heading_rad, 5.0 * DEG, 1e-12);
+    CHECK_NEAR(r.r_radps, 0.3, 1e-12); /* the offset does not rotate the rates */
+
+    /* the signs turn an axis's angle and its rate alike */
+    cfg = AHRS_NMEA_DEFAULTS;
+    cfg.roll_sign = cfg.pitch_sign = -1;
+    CHECK(decode(VNYMR_EXAMPLE, &cfg, &r) == AHRS_NMEA_OK);
+    CHECK_NEAR(r.roll_rad, 1.953 * DEG, 1e-12);
+    CHECK_NEAR(r.pitch_rad, -0.023 * DEG, 1e-12);
+    CHECK_NEAR(r.p_radps, 0.001222, 1e-12);
+    CHECK_NEAR(r.q_radps, 0.000450, 1e-12);
+    CHECK_NEAR(r.r_radps, -0.001218, 1e-12);
+}
+
+static void test_vnymr_refusals(void)
+{
+    ahrs_nmea_config cfg = AHRS_NMEA_DEFAULTS;
+    ahrs_nmea_reading r;
+    const char *cases[][2] = {
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,-0.000450",
+         "missing field"},
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,-0.000450,",
+         "missing field"}, /* the last field empty */
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,-0.000450,"
+         "-0.001218,0",
+         "malformed field"}, /* a 13th field */
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,1e3,-0.001218",
+         "malformed field"},
+        {"VNYMR,+186.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,0,0,0",
+         "heading out of range"},
+        {"VNYMR,+006.380,+090.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,0,0,0",
+         "attitude out of range"},
+        {"VNYMR,+006.380,+000.023,-181.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,0,0,0",
+         "attitude out of range"},
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,0,0,-41.0",
+         "rate out of range"},
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+300.344,-09.758,0,0,0",
+         "acceleration out of range"},
+        {"VNYMR,+006.380,+000.023,-001.953,+1.0640,-20.2531,+3.0614,+00.005,+00.344,-09.758,0,0,0",
+         "magnetic field out of range"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        ahrs_nmea_result res = decode(cases[i][0], &cfg, &r);
+        if (strcmp(ahrs_nmea_result_name(res), cases[i][1]) != 0)
+            UNIT_FAIL("%s: '%s', not '%s'", cases[i][0], ahrs_nmea_result_name(res), cases[i][1]);
+    }
+    /* another talker's YMR is not VectorNav's */
+    CHECK(decode("GPYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,0,0,0", &cfg, &r) ==
+          AHRS_NMEA_NOT_MINE);
+}
+
 static const unit_test tests[] = {
     {"ahrs_hdt_from_any_talker", test_hdt_from_any_talker},
     {"ahrs_pashr", test_pashr},
     {"ahrs_pashr_refusals", test_pashr_refusals},
+    {"ahrs_vnymr", test_vnymr},
+    {"ahrs_vnymr_refusals", test_vnymr_refusals},
     {NULL, NULL},
 };
 

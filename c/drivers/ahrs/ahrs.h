@@ -1,4 +1,4 @@
-/* auv-ahrs: a compass or AHRS speaking NMEA 0183 HDT and PASHR (ahrs_nmea.h),
+/* auv-ahrs: a compass or AHRS speaking NMEA 0183 HDT and PASHR, or VectorNav VNYMR (ahrs_nmea.h),
  * into ahrs_t on <VEHICLE>.AHRS (docs/drivers.md, "auv-ahrs"). */
 #ifndef DRV_AHRS_H
 #define DRV_AHRS_H

@@ -18,6 +18,9 @@ const char *ahrs_nmea_result_name(ahrs_nmea_result r)
         [AHRS_NMEA_ACCURACY_RANGE] = "accuracy out of range",
         [AHRS_NMEA_STATUS_RANGE] = "status out of range",
         [AHRS_NMEA_TIME_RANGE] = "time out of range",
+        [AHRS_NMEA_RATE_RANGE] = "rate out of range",
+        [AHRS_NMEA_ACCEL_RANGE] = "acceleration out of range",
+        [AHRS_NMEA_MAG_RANGE] = "magnetic field out of range",
     };
     return (unsigned)r < AHRS_NMEA_RESULT_COUNT ? names[r] : "unknown";
 }
@@ -97,6 +100,50 @@ static ahrs_nmea_result pashr(const nmea_sentence *s, const ahrs_nmea_config *cf
     return AHRS_NMEA_OK;
 }
 
+/* Three required numbers from field i, each within +-max, else range. */
+static ahrs_nmea_result vector3(const nmea_sentence *s, int i, double max, ahrs_nmea_result range, double v[3])
+{
+    for (int k = 0; k < 3; k++) {
+        ahrs_nmea_result r = need(s, i + k, &v[k]);
+        if (r != AHRS_NMEA_OK)
+            return r;
+        if (fabs(v[k]) > max)
+            return range;
+    }
+    return AHRS_NMEA_OK;
+}
+
+static ahrs_nmea_result vnymr(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
+{
+    if (s->nfields < 12)
+        return AHRS_NMEA_MISSING_FIELD;
+    if (s->nfields > 12) /* a fixed layout: a field more is another sentence's or corrupt */
+        return AHRS_NMEA_BAD_FIELD;
+    double yaw, pitch, roll, rate[3];
+    ahrs_nmea_result r;
+    if ((r = need(s, 0, &yaw)) != AHRS_NMEA_OK || (r = need(s, 1, &pitch)) != AHRS_NMEA_OK ||
+        (r = need(s, 2, &roll)) != AHRS_NMEA_OK)
+        return r;
+    if (fabs(yaw) > 180.0)
+        return AHRS_NMEA_HEADING_RANGE;
+    if (fabs(roll) > 180.0 || fabs(pitch) > 90.0)
+        return AHRS_NMEA_ATTITUDE_RANGE;
+    if ((r = vector3(s, 3, AHRS_NMEA_MAX_MAG_GAUSS, AHRS_NMEA_MAG_RANGE, out->mag_gauss)) != AHRS_NMEA_OK ||
+        (r = vector3(s, 6, AHRS_NMEA_MAX_ACCEL_MPS2, AHRS_NMEA_ACCEL_RANGE, out->accel_mps2)) != AHRS_NMEA_OK ||
+        (r = vector3(s, 9, AHRS_NMEA_MAX_RATE_RADPS, AHRS_NMEA_RATE_RANGE, rate)) != AHRS_NMEA_OK)
+        return r;
+    /* yaw is the heading (relative to the device's reference: magnetic north unless
+     * configured for true; the offset carries the declination), wrapped to [0, 2 pi) */
+    out->heading_rad = wrap_2pi((yaw + cfg->heading_offset_deg) * DEG);
+    out->roll_rad = cfg->roll_sign * roll * DEG;
+    out->pitch_rad = cfg->pitch_sign * pitch * DEG;
+    out->p_radps = cfg->roll_sign * rate[0];
+    out->q_radps = cfg->pitch_sign * rate[1];
+    out->r_radps = rate[2];
+    out->has_heading = out->has_attitude = out->has_rates = out->has_imu = 1;
+    return AHRS_NMEA_OK;
+}
+
 ahrs_nmea_result ahrs_nmea_decode(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
 {
     memset(out, 0, sizeof *out);
@@ -105,5 +152,7 @@ ahrs_nmea_result ahrs_nmea_decode(const nmea_sentence *s, const ahrs_nmea_config
         return pashr(s, cfg, out);
     if (s->talker[0] && !strcmp(s->type, "HDT"))
         return heading(s, 0, cfg, out);
+    if (!strcmp(s->talker, "VN") && !strcmp(s->type, "YMR"))
+        return vnymr(s, cfg, out);
     return AHRS_NMEA_NOT_MINE;
 }

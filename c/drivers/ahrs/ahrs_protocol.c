@@ -1,12 +1,12 @@
 /* auv-ahrs's protocol: NMEA framing (c/drivers/common/nmea.c) and the heading
  * and attitude sentences (ahrs_nmea.c) behind the driver framework.
  *
- * What is published: one ahrs_t per accepted PASHR, stamped with its receive
- * time, with its roll, pitch and heading and valid = true. ahrs_t has a single
- * `valid` flag for all six values, and neither sentence carries body rates:
- * p, q and r are NaN. A NaN in a "valid" message is what auv-nav refuses as
- * implausible (c/nav/nav_lcm.cpp), so auv-nav cannot run on this driver alone:
- * it needs the rates of an IMU (docs/drivers.md, "auv-ahrs"). An HDT carries
+ * What is published: one ahrs_t per accepted PASHR or VNYMR, stamped with its
+ * receive time, with its roll, pitch and heading and valid = true. ahrs_t has a
+ * single `valid` flag for all six values; VNYMR carries the body rates, PASHR
+ * does not: its p, q and r are NaN. A NaN in a "valid" message is what auv-nav
+ * refuses as implausible (c/nav/nav_lcm.cpp), so auv-nav runs on this driver
+ * only with a device sending VNYMR (docs/drivers.md, "auv-ahrs"). An HDT carries
  * no attitude: publishing it would put NaN roll and pitch under valid = true,
  * or a true heading under valid = false, so HDT is checked (its refusals
  * counted like any other) and counted as a frame, and not published. */
@@ -94,7 +94,13 @@ static void publish(ahrs_state *a, drv_ctx *ctx, const ahrs_nmea_reading *r, int
     m.roll_rad = r->roll_rad;
     m.pitch_rad = r->pitch_rad;
     m.heading_rad = r->heading_rad;
-    m.p_radps = m.q_radps = m.r_radps = NAN; /* no gyro rates in either sentence */
+    if (r->has_rates) {
+        m.p_radps = r->p_radps;
+        m.q_radps = r->q_radps;
+        m.r_radps = r->r_radps;
+    } else {
+        m.p_radps = m.q_radps = m.r_radps = NAN; /* PASHR: no gyro rates */
+    }
     m.valid = 1;
     drv_publish(ctx, "AHRS", a->ahrs_type, &m);
 }
@@ -159,9 +165,10 @@ static const drv_flag ahrs_flags[] = {
 const drv_protocol ahrs_protocol = {
     .device = "AHRS",
     .program = "auv-ahrs",
-    .summary = "NMEA 0183 compass/AHRS: $PASHR (heading, roll, pitch) into one ahrs_t per sentence on\n"
-               "<ID>.AHRS, stamped with its receive time; body rates are NaN (neither sentence has them).\n"
-               "$--HDT is checked and counted, not published (no attitude).",
+    .summary = "NMEA 0183 compass/AHRS: $PASHR (heading, roll, pitch) or VectorNav's $VNYMR (yaw, pitch,\n"
+               "roll and the body rates) into one ahrs_t per sentence on <ID>.AHRS, stamped with its\n"
+               "receive time; PASHR's body rates are NaN (it has none). $--HDT is checked and counted,\n"
+               "not published (no attitude).",
     .default_baud = 9600,
     .state_size = sizeof(ahrs_state),
     .flags = ahrs_flags,

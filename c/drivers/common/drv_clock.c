@@ -3,7 +3,6 @@
 #include <time.h>
 
 #include "auv/auv_sim_clock_t.h"
-#include "common/lcm_rx.h"
 
 static void on_clock(const char *channel, const void *msg, int64_t recv_utime, void *user)
 {
@@ -25,10 +24,19 @@ int drv_clock_init(drv_clock *c, drv_clock_mode mode, lcm_t *lcm)
     tp_clock_init(&c->sim, TP_MAX_CLOCK_JUMP_US);
     c->term.have = 0;
     c->term.term = 0;
+    c->sub = NULL;
     if (mode != DRV_CLOCK_SIM)
         return 0;
     const auv_type_entry_t *t = auv_type_find("sim_clock_t");
-    return t && rx_subscribe(lcm, "SIM.CLOCK", t, on_clock, c) ? 0 : -1;
+    c->sub = t ? rx_subscribe(lcm, "SIM.CLOCK", t, on_clock, c) : NULL;
+    return c->sub ? 0 : -1;
+}
+
+void drv_clock_close(drv_clock *c, lcm_t *lcm)
+{
+    if (c->sub)
+        rx_unsubscribe(lcm, c->sub);
+    c->sub = NULL;
 }
 
 int64_t drv_clock_now(const drv_clock *c)

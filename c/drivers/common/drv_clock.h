@@ -14,6 +14,7 @@
 #include <lcm/lcm.h>
 #include <stdint.h>
 
+#include "common/lcm_rx.h"
 #include "common/time_policy.h"
 #include "drivers/common/drv_options.h"
 
@@ -22,10 +23,14 @@ typedef struct {
     tp_clock sim;
     tp_term term;
     int64_t refused; /* SIM.CLOCK values the time rule refused */
+    rx_sub_t *sub;   /* sim mode: the SIM.CLOCK subscription, NULL otherwise */
 } drv_clock;
 
 /* sim mode subscribes to SIM.CLOCK on lcm. 0 ok, -1 failed. */
 int drv_clock_init(drv_clock *c, drv_clock_mode mode, lcm_t *lcm);
+/* Gives the SIM.CLOCK subscription back (before lcm is destroyed): the
+ * subscription's memory is the clock's, not lcm's. */
+void drv_clock_close(drv_clock *c, lcm_t *lcm);
 /* Now on the chosen clock [us], or -1 when there is none yet. */
 int64_t drv_clock_now(const drv_clock *c);
 /* Monotonic milliseconds, for timers and backoffs whatever the clock. */

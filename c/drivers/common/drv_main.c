@@ -223,6 +223,7 @@ int drv_main(const drv_protocol *p, int argc, char **argv)
             (long long)d.ctx.messages_published, (long long)d.ctx.reasons.total, (long long)d.port.reopens);
 out:
     drv_subs_close(&d.subs, d.lcm);
+    drv_clock_close(&d.clock, d.lcm);
     drv_port_close(&d.port);
     lcm_destroy(d.lcm);
     free(d.state);

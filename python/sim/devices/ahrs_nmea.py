@@ -1,4 +1,4 @@
-"""The compass/AHRS at the wire: NMEA 0183 $PASHR and $--HDT for each ahrs_t.
+"""The compass/AHRS at the wire: NMEA 0183 $PASHR, $--HDT and VectorNav's $VNYMR for each ahrs_t.
 
 One burst per ahrs_t the AHRS model (sim.sensors.instruments.Ahrs) makes, at its
 rate: the sentences in `sentences`, in that order. PASHR carries the time (the
@@ -9,7 +9,19 @@ model has none: an empty field, as receivers that call it reserved), the roll,
 pitch and heading accuracies (`attitude_sigma_deg`, `heading_sigma_deg`: the
 device's claim, not computed from the model), GNSS quality 0 (under water) and
 IMU status `imu_status`. HDT carries the same heading from the `talker`.
-Neither sentence carries body rates: the message's p, q and r go nowhere.
+Neither of those carries body rates. $VNYMR does: VectorNav's ASCII "Yaw, Pitch,
+Roll, Magnetic, Acceleration and Angular Rates" output (register 27, async header
+YMR; the VN-100 User Manual, UM001, section 7.2.3): yaw, pitch, roll [deg] (a 3-2-1
+Euler sequence from NED: the project's heading, pitch and roll; yaw in -180..180),
+the magnetic field x, y, z [Gauss], the acceleration x, y, z [m/s^2] and the angular
+rates x, y, z [rad/s], all in the body frame (x forward, y starboard, z down: the
+rates are p, q, r), in its fixed-width fields. The model's sample gives attitude,
+heading and rates; the rest is derived and documented: the acceleration is the
+specific force an accelerometer at the body origin measures (the truth's body
+acceleration, the transport term w x v, minus gravity, through the sample's roll and
+pitch: level and still it reads z = -9.81), the magnetic field a constant Earth
+field (MAG_NED_GAUSS) seen through the sample's attitude and heading, both without
+noise of their own.
 A dropout (valid false) sends nothing, as a device that stopped talking.
 """
 
@@ -23,13 +35,18 @@ from sim.devices import nmea
 from sim.devices.emulator import Emulator
 from sim.model import Truth
 
-SENTENCES = ("PASHR", "HDT")
+SENTENCES = ("PASHR", "HDT", "VNYMR")
+DEFAULT_SENTENCES = ("PASHR", "HDT")
+G = 9.80665  # m/s^2, what a still accelerometer reads (VectorNav's own figure of g)
+# a mid-latitude Earth field, north and down [Gauss] (Massachusetts, roughly: 0.2 G
+# horizontal, 0.47 G vertical); east 0: the heading is its own declination-free truth
+MAG_NED_GAUSS = (0.20, 0.0, 0.47)
 
 
 @dataclass
 class AhrsNmeaOptions:
     talker: str = setting("HE", one_of=("HE", "HC", "GP", "IN"))  # of HDT: HE gyro, HC compass, IN integrated
-    sentences: list = setting(factory=lambda: list(SENTENCES), one_of=SENTENCES)  # in this order each sample
+    sentences: list = setting(factory=lambda: list(DEFAULT_SENTENCES), one_of=SENTENCES)  # in this order each sample
     start_utc: str = setting(
         "2025-06-01T00:00:00Z",
         pattern=r"\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}Z",
@@ -77,6 +94,8 @@ class AhrsNmea(Emulator):
         for name in self.options.sentences:
             if name == "PASHR":
                 out.append(nmea.sentence("PASHR", self._pashr(msg)))
+            elif name == "VNYMR":
+                out.append(nmea.sentence("VNYMR", vnymr_fields(msg, truth)))
             else:
                 out.append(nmea.sentence(self.options.talker + "HDT", [heading_deg(msg.heading_rad), "T"]))
         return out
@@ -97,3 +116,48 @@ class AhrsNmea(Emulator):
             "0",
             str(o.imu_status),
         ]
+
+
+def _to_body(v: tuple[float, float, float], roll: float, pitch: float, yaw: float) -> tuple[float, float, float]:
+    """A NED vector in the body frame (the transpose of the ZYX rotation body -> NED)."""
+    cr, sr, cp, sp, cy, sy = (
+        math.cos(roll),
+        math.sin(roll),
+        math.cos(pitch),
+        math.sin(pitch),
+        math.cos(yaw),
+        math.sin(yaw),
+    )
+    n, e, d = v
+    x = cp * cy * n + cp * sy * e - sp * d
+    y = (sr * sp * cy - cr * sy) * n + (sr * sp * sy + cr * cy) * e + sr * cp * d
+    z = (cr * sp * cy + sr * sy) * n + (cr * sp * sy - sr * cy) * e + cr * cp * d
+    return x, y, z
+
+
+def specific_force(roll: float, pitch: float, truth: Truth | None) -> tuple[float, float, float]:
+    """What a body-fixed accelerometer at the origin reads [m/s^2]: the acceleration
+    (d nu/dt + w x v, from the truth; none without one) minus gravity, in body axes."""
+    gx, gy, gz = _to_body((0.0, 0.0, G), roll, pitch, 0.0)  # gravity has no heading
+    ax = ay = az = 0.0
+    if truth is not None:
+        u, v, w, p, q, r = truth.nu
+        du, dv, dw = truth.nu_dot[0:3]
+        ax, ay, az = du + q * w - r * v, dv + r * u - p * w, dw + p * v - q * u
+    return ax - gx, ay - gy, az - gz
+
+
+def vnymr_fields(msg, truth: Truth | None) -> list[str]:
+    """$VNYMR's 12 fields for an ahrs_t, in VectorNav's widths: +ddd.ddd degrees,
+    +d.dddd Gauss, +dd.ddd m/s^2, +d.dddddd rad/s."""
+    yaw = (math.degrees(msg.heading_rad) + 180.0) % 360.0 - 180.0
+    mag = _to_body(MAG_NED_GAUSS, msg.roll_rad, msg.pitch_rad, msg.heading_rad)
+    acc = specific_force(msg.roll_rad, msg.pitch_rad, truth)
+    return [
+        f"{yaw:+08.3f}",
+        f"{math.degrees(msg.pitch_rad):+08.3f}",
+        f"{math.degrees(msg.roll_rad):+08.3f}",
+        *(f"{m:+07.4f}" for m in mag),
+        *(f"{a:+07.3f}" for a in acc),
+        *(f"{w:+09.6f}" for w in (msg.p_radps, msg.q_radps, msg.r_radps)),
+    ]

@@ -48,9 +48,15 @@ class WireConfig:
 COMMON_KEYS = tuple(f.name for f in dataclasses.fields(WireConfig) if f.name != "options")
 
 
-def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
-    """The WireConfig of a sensor's `wire:` value (None: absent or false; MISSING
-    after reporting a problem)."""
+# an input device (the fins and thruster) publishes nothing: its LCM switch is its own
+# option (`take_lcm`), so a `publish_lcm` there is an unknown key, not a silent no-op
+INPUT_DEVICE_KEYS = tuple(k for k in COMMON_KEYS if k != "publish_lcm")
+
+
+def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path, common: tuple = COMMON_KEYS) -> Any:
+    """The WireConfig of a sensor's (or another part's: `actuators`) `wire:` value
+    (None: absent or false; MISSING after reporting a problem); `common`: the common
+    keys it takes."""
     if doc.is_empty(node) or (isinstance(node, yaml.ScalarNode) and doc.scalar(node) is False):
         return None
     if not isinstance(node, yaml.MappingNode):
@@ -72,8 +78,8 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
     emulator = protocols[proto]
     opts = emulator.Options()
     opt_keys = {f.name for f in dataclasses.fields(opts)}
-    doc.unknown(items, [*COMMON_KEYS, *opt_keys], key)
-    wire = doc.fill(node, key, WireConfig(), skip=set(items) - set(COMMON_KEYS))
+    doc.unknown(items, [*common, *opt_keys], key)
+    wire = doc.fill(node, key, WireConfig(), skip=set(items) - set(common))
     doc.fill(node, key, opts, skip=set(items) - opt_keys)
     wire.options = opts
     ok = True
@@ -95,10 +101,11 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
 
 
 def check_distinct(doc: Checker, wires: dict[str, tuple[Any, Any]]) -> None:
-    """No two sensors on one port: wires is {sensor: (wire node, WireConfig)}."""
+    """No two devices on one port: wires is {section key (`sensors.gps`, `actuators`):
+    (wire node, WireConfig)}."""
     seen: dict[str, str] = {}
-    for sensor, (node, w) in wires.items():
+    for owner, (node, w) in wires.items():
         where = w.pty or f"tcp {w.tcp_address[1]}"
         if where in seen:
-            doc.err(node, f"sensors.{sensor}.wire", f"sensors.{seen[where]} is on this port already")
-        seen[where] = sensor
+            doc.err(node, f"{owner}.wire", f"{seen[where]} is on this port already")
+        seen[where] = owner

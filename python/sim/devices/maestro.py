@@ -89,6 +89,7 @@ class Maestro:
     channels: list[ServoChannel] = field(default_factory=list)
     errors: int = 0
     protocol_errors: int = 0  # packets refused since the start (the bit is cleared when read)
+    target_commands: int = 0  # Set Target, Set Multiple Targets and Go Home obeyed: the host's commands
     _packet: list[int] = field(default_factory=list)  # command byte then data
     _pololu: list[int] | None = None  # header bytes of a Pololu packet under way
     _clock: float = 0.0
@@ -169,6 +170,7 @@ class Maestro:
                 return
             if cmd == SET_TARGET:
                 self._set_target(ch, value)
+                self.target_commands += 1
             elif cmd == SET_SPEED:
                 self.channels[ch].speed = value
             elif value > 255:
@@ -182,6 +184,7 @@ class Maestro:
                 return
             for k in range(n):
                 self._set_target(first + k, p[3 + 2 * k] | p[4 + 2 * k] << 7)
+            self.target_commands += 1
         elif cmd == GET_POSITION:
             if self._channel_ok(p[1]):
                 pos = round(self.channels[p[1]].position)
@@ -194,6 +197,7 @@ class Maestro:
         elif cmd == GO_HOME:
             for ch, c in enumerate(self.channels):
                 self._set_target(ch, c.home_qus)
+            self.target_commands += 1
 
     def _set_target(self, ch: int, value: int) -> None:
         c = self.channels[ch]

@@ -4,7 +4,7 @@ Each class names the sensor it speaks for and its protocol
 (sim.devices.emulator.Emulator); a sensor's `wire.protocol` may be any of the
 protocols registered for it, and docs/simulator.md ("Devices at the wire")
 lists them. A device no sensor polls names the part of the simulator that
-drives it instead (`modem`: the `modem:` section's `wire:`).
+drives it instead (`modem`, `actuators`: those sections' `wire:`).
 """
 
 from __future__ import annotations
@@ -13,10 +13,11 @@ from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
+from sim.devices.maestro_wire import MaestroWire
 from sim.devices.micromodem import MicroModemWire
 from sim.devices.nmea_gps import NmeaGps
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0, MicroModemWire)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0, MicroModemWire, MaestroWire)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:
