@@ -113,6 +113,7 @@ class SimConfig:
     sonar: SonarConfig | None = None  # None: no sonar section
     modem: Any = None  # sim.modem.ModemConfig, None without a modem: section
     identify: Any = None  # sim.sonar.identify.IdentifyConfig, None without identify:
+    time_link: Any = None  # sim.time_link.TimeLinkConfig, None without time_link:
 
 
 # --------------------------------------------------------------- sections
@@ -259,11 +260,11 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
     return env
 
 
-def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
+def _sensors(doc: Checker, node, base: Path, wires: dict[str, tuple[Any, Any]]) -> dict[str, Any]:
+    """The sensors; each enabled one's wire goes into wires (its key: its wire node and config)."""
     items = doc.mapping(node, "sensors")
     doc.unknown(items, REGISTRY, "sensors")
     out = {}
-    wires = {}
     for name, (_, snode) in items.items():
         if name in REGISTRY:
             cfg_cls, _ = REGISTRY[name]
@@ -275,9 +276,8 @@ def _sensors(doc: Checker, node, base: Path) -> dict[str, Any]:
                 wire = {"wire": lambda n, k, name=name: parse_wire(doc, n, k, name, base)}
                 cfg = doc.fill(snode, key, cfg_cls(), special=wire)
                 if cfg.wire is not None and cfg.enabled:
-                    wires[name] = (doc.mapping(snode, key)["wire"][1], cfg.wire)
+                    wires[key] = (doc.mapping(snode, key)["wire"][1], cfg.wire)
             out[name] = cfg
-    check_distinct(doc, wires)
     ins = out.get("ins")
     if ins is not None and ins.channel in RESERVED_TOPICS:
         cnode = doc.mapping(items["ins"][1], "sensors.ins")["channel"][1]
@@ -337,7 +337,14 @@ SECTIONS = (
     "sonar",
     "modem",
     "identify",
+    "time_link",
 )
+
+
+def _wire_of(doc: Checker, node, key: str, cfg, wires: dict[str, tuple[Any, Any]]) -> None:
+    """A section's wire (sonar, identify, the time link) into wires, for check_distinct."""
+    if cfg is not None and getattr(cfg, "wire", None) is not None:
+        wires[key] = (doc.mapping(node, key)["wire"][1], cfg.wire)
 
 
 def _check(doc: Checker, path: Path) -> SimConfig:
@@ -350,7 +357,8 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     sim = doc.fill(get("simulation"), "simulation", SimSettings())
     initial = doc.fill(get("initial"), "initial", InitialState())
     env = _environment(doc, get("environment"), path.parent)
-    sensors = _sensors(doc, get("sensors"), path.parent)
+    wires: dict[str, tuple[Any, Any]] = {}  # every port of the simulator: no two on one
+    sensors = _sensors(doc, get("sensors"), path.parent, wires)
     mh = doc.fill(get("multihil"), "multihil", MultiHil())
     _needs_served(doc, get("multihil"), sensors, mh)
     safe = doc.fill(get("safe_command"), "safe_command", Command())
@@ -359,6 +367,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         from sim.sonar.config_check import check_sonar
 
         sonar = check_sonar(doc, get("sonar"), path.parent)
+        _wire_of(doc, get("sonar"), "sonar", sonar, wires)
     from sim.modem.config import parse as parse_modem
 
     modem = parse_modem(doc, get("modem"))
@@ -367,6 +376,12 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         from sim.sonar.identify import check_identify
 
         identify = check_identify(doc, get("identify"), path.parent, "sonar" in top)
+        _wire_of(doc, get("identify"), "identify", identify, wires)
+    from sim.time_link import check_time_link
+
+    time_link = check_time_link(doc, get("time_link"), path.parent)
+    _wire_of(doc, get("time_link"), "time_link", time_link, wires)
+    check_distinct(doc, wires)
     doc.raise_errors()
     if sim.seed < 0:
         sim.seed = env.seed
@@ -378,4 +393,18 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         modem.seed = env.seed  # the world's: the same for every simulator in it
     if identify is not None and identify.targets.seed < 0:
         identify.targets.seed = env.seed  # the same field as the search vehicles' sonars
-    return SimConfig(path, vid, vp, sim, initial, env, sensors, mh, safe, sonar=sonar, modem=modem, identify=identify)
+    return SimConfig(
+        path,
+        vid,
+        vp,
+        sim,
+        initial,
+        env,
+        sensors,
+        mh,
+        safe,
+        sonar=sonar,
+        modem=modem,
+        identify=identify,
+        time_link=time_link,
+    )

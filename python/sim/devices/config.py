@@ -95,10 +95,11 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path) -> Any:
 
 
 def check_distinct(doc: Checker, wires: dict[str, tuple[Any, Any]]) -> None:
-    """No two sensors on one port: wires is {sensor: (wire node, WireConfig)}."""
+    """No two devices on one port: wires is {section key ("sensors.gps", "sonar"):
+    (wire node, WireConfig)}."""
     seen: dict[str, str] = {}
-    for sensor, (node, w) in wires.items():
+    for key, (node, w) in wires.items():
         where = w.pty or f"tcp {w.tcp_address[1]}"
         if where in seen:
-            doc.err(node, f"sensors.{sensor}.wire", f"sensors.{seen[where]} is on this port already")
-        seen[where] = sensor
+            doc.err(node, f"{key}.wire", f"{seen[where]} is on this port already")
+        seen[where] = key

@@ -11,9 +11,13 @@ from __future__ import annotations
 from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.emulator import Emulator
+from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.nmea_gps import NmeaGps
+from sim.devices.time_link import TimeLink
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz)
+# (the sonar, the identify sensor and the time link are no `sensors:` entries:
+# their `sensor` is their section's name)
+EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, SonarFrame, IdentifyFrame, TimeLink)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:
