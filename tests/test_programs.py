@@ -86,10 +86,21 @@ def test_driver_builders_use_documented_flags():
     _every_flag_documented(dvl, [dvl[0]])
     replay = programs.driver_replay(BUILD, log="l", vehicle="AUV1", device="DVL", extra=own)
     _every_flag_documented(replay, [str(c_program("bin/auv-driver-replay"))])
+    # the links of HIL at the wire: the time link's driver is the clock source (system clock)
+    ts = programs.device_driver(BUILD, "timesync", vehicle="AUV1", lcm_url="udpm://x", tcp="10.0.0.1:4010")
+    assert ts[ts.index("--clock") + 1] == "system"
+    _every_flag_documented(ts, [ts[0]])
+    own = programs.payload_flags(frame_timeout_s=0.2)
+    payload = programs.device_driver(
+        BUILD, "payload", vehicle="AUV1", lcm_url="udpm://x", port="/dev/ttyUSB2", clock="sim", extra=own
+    )
+    assert payload[payload.index("--frame-timeout") + 1] == "0.2"
+    _every_flag_documented(payload, [payload[0]])
 
 
 @pytest.mark.parametrize(
-    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-driver-replay"]
+    "program",
+    ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-timesync", "auv-payload", "auv-driver-replay"],
 )
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])

@@ -160,6 +160,11 @@ def servo_table_flags(table: PathLike) -> list[str]:
     return ["--table", str(table)]
 
 
+def payload_flags(*, frame_timeout_s: float | None = None) -> list[str]:
+    """auv-payload's own flag: the silence that drops a frame cut short [s]."""
+    return [] if frame_timeout_s is None else ["--frame-timeout", f"{frame_timeout_s:g}"]
+
+
 def driver_replay(
     build: Path,
     *,

@@ -480,9 +480,11 @@ class Simulator:
             f"publish_clock={'yes' if self.publish_clock else 'no'}",
             flush=True,
         )
+        # the pacer first: the lines' wall clock (sim.devices.clocks) reads it, and the
+        # first outputs' bytes would otherwise wait out the time since it was made
+        self.pacer.restart(self.model.t)
         if cfg.sim.clock != LOCKSTEP and self.mh is None:
             self._outputs()  # stepped, multi-HIL: nothing until the global clock says when
-        self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
         model, pacer, monotonic, poll = self.model, self.pacer, time.monotonic, self._poll

@@ -86,9 +86,11 @@ class TimeLinkOutputs:
         t = tr.t
         if self.every.due(t):
             self.every.advance(t)
-            # when the line starts it: now (the step's time, or the wall clock's
-            # sim time a little past it), the line being idle
-            start = self.port.start_time(t)
+            # the sentence starts at the step's sim time, the line being idle: the
+            # physics' time, which the simulator's SIM.CLOCK and its sensors' stamps
+            # carry (a simulator behind its pace writes the bytes later in wall time,
+            # when they still arrive at this time of its physics; Line.burst)
+            start = max(t, self.port.line.free_at)
             for data in self.emulator.encode(Sample(start, self.warp, self.port.line.byte_s), tr):
                 self.device.send(data, start)
         return []

@@ -69,12 +69,6 @@ class Port:
         self.wake()
         return burst
 
-    def start_time(self, t_measured: float) -> float:
-        """The sim time a burst measured at t_measured and written now would start:
-        after the line's previous burst, not before the line's clock (Line.burst)."""
-        with self._lock:
-            return max(t_measured, self.line.free_at, self.clock.now())
-
     def take_input(self) -> bytes:
         """What the far end sent since the last call."""
         with self._lock:
