@@ -100,7 +100,16 @@ def test_driver_builders_use_documented_flags():
 
 @pytest.mark.parametrize(
     "program",
-    ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-timesync", "auv-payload", "auv-driver-replay"],
+    [
+        "chasm-manager",
+        "auv-nav",
+        "auv-recorder",
+        "auv-gps",
+        "auv-dvl",
+        "auv-timesync",
+        "auv-payload",
+        "auv-driver-replay",
+    ],
 )
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])

@@ -50,8 +50,7 @@ def check_time_link(doc: Checker, node, base: Path) -> TimeLinkConfig | None:
             doc.err(
                 witems["publish_lcm"][1],
                 "time_link.wire.publish_lcm",
-                "the time link has no LCM message of its own (the simulator's SIM.CLOCK is "
-                "simulation.publish_clock)",
+                "the time link has no LCM message of its own (the simulator's SIM.CLOCK is simulation.publish_clock)",
             )
         share = cfg.rate_hz * SENTENCE_MAX_BYTES * BITS_PER_BYTE / cfg.wire.baud
         if share > LINE_SHARE_MAX and "rate_hz" in items:

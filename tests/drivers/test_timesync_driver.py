@@ -95,7 +95,9 @@ def test_the_vehicle_clock_follows_the_simulator(clock, warp, link, tmp_path, ch
     sim = start_simulator(cfg, child_env, "--lcm-url", sim_url)
     build = c_program("bin/auv-timesync").parents[1]
     where = {"port": tmp_path / "tl0", "baud": 115200} if link == "pty" else {"tcp": f"127.0.0.1:{tcp_port}"}
-    ts = start(programs.device_driver(build, "timesync", vehicle=VEHICLE, lcm_url=veh_url, **where), tmp_path, child_env)
+    ts = start(
+        programs.device_driver(build, "timesync", vehicle=VEHICLE, lcm_url=veh_url, **where), tmp_path, child_env
+    )
     gps_cmd = programs.device_driver(
         build, "gps", vehicle=VEHICLE, lcm_url=veh_url, port=tmp_path / "gps0", baud=115200, clock="sim"
     )
@@ -129,8 +131,10 @@ def test_the_vehicle_clock_follows_the_simulator(clock, warp, link, tmp_path, ch
     sim0 = max(m.utime / 1e6 - warp * w for w, m in sim_bus.clocks)
     offsets_ms = [1e3 * (m.utime / 1e6 - (sim0 + warp * w)) for w, m in vclocks]
     med, lo, hi = statistics.median(offsets_ms), min(offsets_ms), max(offsets_ms)
-    print(f"\nvehicle SIM.CLOCK - simulator time ({clock}, warp {warp}, {link}): median {med:.2f} ms, "
-          f"min {lo:.2f} ms, max {hi:.2f} ms (sim time), over {len(offsets_ms)} sentences")
+    print(
+        f"\nvehicle SIM.CLOCK - simulator time ({clock}, warp {warp}, {link}): median {med:.2f} ms, "
+        f"min {lo:.2f} ms, max {hi:.2f} ms (sim time), over {len(offsets_ms)} sentences"
+    )
     # behind by the reading's latency (times the warp: sim milliseconds), never ahead
     assert -20.0 * warp <= med <= 2.0 and hi <= 5.0 and lo >= -50.0 * warp
     # auv-gps --clock sim: a fix's stamp is the newest link clock at the read that
