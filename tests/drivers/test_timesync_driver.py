@@ -142,8 +142,10 @@ def test_the_vehicle_clock_follows_the_simulator(clock, warp, link, tmp_path, ch
     for f in veh_bus.fixes:
         t_fix_ms = (f.utc_utime - START_UTC_US) / 1e3  # the fix's sim time, to the sentences' 10 ms
         assert -70.0 <= f.utime / 1e3 - t_fix_ms <= 20.0, (f.utime, f.utc_utime)
-    assert veh_bus.reasons() == {}, veh_bus.status[-1].last_error
-    assert "dropped:" not in text, text
+    # a reader that joins mid-sentence sees that sentence's tail: one run of garbage at most
+    assert veh_bus.reasons() in ({}, {"garbage": 1}), veh_bus.status[-1].last_error
+    drops = [line for line in text.splitlines() if "dropped:" in line]
+    assert all("dropped: garbage" in line for line in drops), text
 
 
 def test_hostile_stream_counted(tmp_path, child_env, lcm_url):
