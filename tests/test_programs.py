@@ -92,10 +92,31 @@ def test_driver_builders_use_documented_flags():
     modem = programs.device_driver(BUILD, "modem", vehicle="AUV1", lcm_url="udpm://x", tcp="10.0.0.3:4001", extra=own)
     assert modem[modem.index("--table") + 1] == "AUV1=1,AUV2=2" and modem[modem.index("--rate") + 1] == "1"
     _every_flag_documented(modem, [modem[0]])
+    # the links of HIL at the wire: the time link's driver is the clock source (system clock)
+    ts = programs.device_driver(BUILD, "timesync", vehicle="AUV1", lcm_url="udpm://x", tcp="10.0.0.1:4010")
+    assert ts[ts.index("--clock") + 1] == "system"
+    _every_flag_documented(ts, [ts[0]])
+    own = programs.payload_flags(frame_timeout_s=0.2)
+    payload = programs.device_driver(
+        BUILD, "payload", vehicle="AUV1", lcm_url="udpm://x", port="/dev/ttyUSB2", clock="sim", extra=own
+    )
+    assert payload[payload.index("--frame-timeout") + 1] == "0.2"
+    _every_flag_documented(payload, [payload[0]])
 
 
 @pytest.mark.parametrize(
-    "program", ["chasm-manager", "auv-nav", "auv-recorder", "auv-gps", "auv-dvl", "auv-modem", "auv-driver-replay"]
+    "program",
+    [
+        "chasm-manager",
+        "auv-nav",
+        "auv-recorder",
+        "auv-gps",
+        "auv-dvl",
+        "auv-modem",
+        "auv-timesync",
+        "auv-payload",
+        "auv-driver-replay",
+    ],
 )
 def test_c_programs_document_lcm_url(program):
     assert "--lcm-url" in _help([str(c_program(f"bin/{program}"))])

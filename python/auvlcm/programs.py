@@ -189,6 +189,11 @@ def modem_flags(
     return cmd
 
 
+def payload_flags(*, frame_timeout_s: float | None = None) -> list[str]:
+    """auv-payload's own flag: the silence that drops a frame cut short [s]."""
+    return [] if frame_timeout_s is None else ["--frame-timeout", f"{frame_timeout_s:g}"]
+
+
 def driver_replay(
     build: Path,
     *,

@@ -131,6 +131,7 @@ class SimConfig:
     modem: Any = None  # sim.modem.ModemConfig, None without a modem: section
     identify: Any = None  # sim.sonar.identify.IdentifyConfig, None without identify:
     actuators: Actuators = dataclasses.field(default_factory=Actuators)
+    time_link: Any = None  # sim.time_link.TimeLinkConfig, None without time_link:
 
 
 # --------------------------------------------------------------- sections
@@ -277,8 +278,8 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
     return env
 
 
-def _sensors(doc: Checker, node, base: Path, wires: dict) -> dict[str, Any]:
-    """The sensors; each enabled one's wire goes into wires ({`sensors.NAME`: (node, wire)})."""
+def _sensors(doc: Checker, node, base: Path, wires: dict[str, tuple[Any, Any]]) -> dict[str, Any]:
+    """The sensors; each enabled one's wire goes into wires (its key: its wire node and config)."""
     items = doc.mapping(node, "sensors")
     doc.unknown(items, REGISTRY, "sensors")
     out = {}
@@ -386,7 +387,14 @@ SECTIONS = (
     "modem",
     "identify",
     "actuators",
+    "time_link",
 )
+
+
+def _wire_of(doc: Checker, node, key: str, cfg, wires: dict[str, tuple[Any, Any]]) -> None:
+    """A section's wire (sonar, identify, the time link) into wires, for check_distinct."""
+    if cfg is not None and getattr(cfg, "wire", None) is not None:
+        wires[key] = (doc.mapping(node, key)["wire"][1], cfg.wire)
 
 
 def _check(doc: Checker, path: Path) -> SimConfig:
@@ -399,10 +407,9 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     sim = doc.fill(get("simulation"), "simulation", SimSettings())
     initial = doc.fill(get("initial"), "initial", InitialState())
     env = _environment(doc, get("environment"), path.parent)
-    wires: dict[str, Any] = {}
+    wires: dict[str, tuple[Any, Any]] = {}  # every port of the simulator: no two on one
     sensors = _sensors(doc, get("sensors"), path.parent, wires)
     actuators = _actuators(doc, get("actuators"), path.parent, wires)
-    check_distinct(doc, wires)
     mh = doc.fill(get("multihil"), "multihil", MultiHil())
     _needs_served(doc, get("multihil"), sensors, mh)
     safe = doc.fill(get("safe_command"), "safe_command", Command())
@@ -411,6 +418,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         from sim.sonar.config_check import check_sonar
 
         sonar = check_sonar(doc, get("sonar"), path.parent)
+        _wire_of(doc, get("sonar"), "sonar", sonar, wires)
     from sim.modem.config import parse as parse_modem
 
     modem = parse_modem(doc, get("modem"), path.parent)
@@ -419,6 +427,12 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         from sim.sonar.identify import check_identify
 
         identify = check_identify(doc, get("identify"), path.parent, "sonar" in top)
+        _wire_of(doc, get("identify"), "identify", identify, wires)
+    from sim.time_link import check_time_link
+
+    time_link = check_time_link(doc, get("time_link"), path.parent)
+    _wire_of(doc, get("time_link"), "time_link", time_link, wires)
+    check_distinct(doc, wires)
     doc.raise_errors()
     if sim.seed < 0:
         sim.seed = env.seed
@@ -444,4 +458,5 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         modem=modem,
         identify=identify,
         actuators=actuators,
+        time_link=time_link,
     )

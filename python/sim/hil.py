@@ -63,18 +63,23 @@ def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
     return out
 
 
-def build_extras(cfg: SimConfig, sensors: list, publish_world: bool) -> list:
-    """Outputs beyond the instruments: the sidescan sonar and the reacquire-identify
-    sensor, when configured."""
+def build_extras(cfg: SimConfig, sensors: list, publish_world: bool, devices, pacer) -> list:
+    """Outputs beyond the instruments: the sidescan sonar, the reacquire-identify
+    sensor and the time link, when configured (the first two at the wire too, the
+    time link only there: their ports join devices)."""
     out: list = []
     if cfg.sonar is not None:
         from sim.sonar.publisher import SonarOutputs
 
-        out.append(SonarOutputs(cfg, sensors, publish_world))
+        out.append(SonarOutputs(cfg, sensors, publish_world, devices))
     if getattr(cfg, "identify", None) is not None:
         from sim.sonar.identify import IdentifyOutputs
 
-        out.append(IdentifyOutputs(cfg, sensors))
+        out.append(IdentifyOutputs(cfg, sensors, devices))
+    if getattr(cfg, "time_link", None) is not None:
+        from sim.time_link import TimeLinkOutputs
+
+        out.append(TimeLinkOutputs(cfg.time_link, devices, cfg.vehicle_id, cfg.sim.seed, pacer))
     return out
 
 
@@ -174,7 +179,11 @@ class Simulator:
                 self.devices.close()
                 raise
         # other outputs polled like sensors: next_due(), poll(truth) -> [(channel, bytes)]
-        self.extras = build_extras(cfg, self.sensors, self.publish_clock)
+        try:
+            self.extras = build_extras(cfg, self.sensors, self.publish_clock, self.devices, self.pacer)
+        except BaseException:
+            self.devices.close()  # the ports opened so far: their links and threads
+            raise
         self._ch_truth, self._ch_act = f"{self.vid}.TRUTH", f"{self.vid}.ACTUATOR_STATE"
         self._ch_health = f"{self.vid}.HEALTH"
         self._enc_truth = Encoder(ground_truth_t, vehicle=self.vid)
@@ -521,9 +530,11 @@ class Simulator:
             f"publish_clock={'yes' if self.publish_clock else 'no'}",
             flush=True,
         )
+        # the pacer first: the lines' wall clock (sim.devices.clocks) reads it, and the
+        # first outputs' bytes would otherwise wait out the time since it was made
+        self.pacer.restart(self.model.t)
         if cfg.sim.clock != LOCKSTEP and self.mh is None:
             self._outputs()  # stepped, multi-HIL: nothing until the global clock says when
-        self.pacer.restart(self.model.t)
         wall_start = time.monotonic()
         steps0 = self.model.steps
         model, pacer, monotonic, poll = self.model, self.pacer, time.monotonic, self._poll

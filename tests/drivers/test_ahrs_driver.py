@@ -104,7 +104,7 @@ def test_ahrs_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
 
 @pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 def test_vnymr_brings_the_rates(sanitized, lcm_url, tmp_path, child_env):
-    bus = Bus(lcm_url)
+    bus = Bus(lcm_url, "AHRS", ahrs_t)
     pty = Pty(tmp_path / "ahrs0")
     proc = run_driver(c_program("bin/auv-ahrs", sanitized).parent.parent, tmp_path, lcm_url, child_env)
     try:

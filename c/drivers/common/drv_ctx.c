@@ -48,7 +48,8 @@ void drv_frame_ok(drv_ctx *c, int64_t stamp)
     c->last_frame_utime = stamp;
 }
 
-int drv_publish(drv_ctx *c, const char *topic, const auv_type_entry_t *type, const void *msg)
+/* Encodes msg and hands it to the sink on channel. */
+static int publish_on(drv_ctx *c, const char *channel, const auv_type_entry_t *type, const void *msg)
 {
     const lcm_type_info_t *info = type->info();
     int len = (int)info->encoded_size(msg);
@@ -60,14 +61,33 @@ int drv_publish(drv_ctx *c, const char *topic, const auv_type_entry_t *type, con
         drv_log(c, "cannot encode a %s", type->lcm_name);
         return -1;
     }
-    char channel[128];
-    snprintf(channel, sizeof channel, "%s.%s", c->vehicle, topic);
     if (c->sink)
         c->sink(c->sink_user, channel, type, buf, len);
     c->messages_published++;
     if (buf != stackbuf)
         free(buf);
     return 0;
+}
+
+int drv_publish(drv_ctx *c, const char *topic, const auv_type_entry_t *type, const void *msg)
+{
+    char channel[128];
+    snprintf(channel, sizeof channel, "%s.%s", c->vehicle, topic);
+    return publish_on(c, channel, type, msg);
+}
+
+int drv_publish_global(drv_ctx *c, const char *channel, const auv_type_entry_t *type, const void *msg)
+{
+    return publish_on(c, channel, type, msg);
+}
+
+void drv_publish_encoded(drv_ctx *c, const char *topic, const auv_type_entry_t *type, const void *data, int len)
+{
+    char channel[128];
+    snprintf(channel, sizeof channel, "%s.%s", c->vehicle, topic);
+    if (c->sink)
+        c->sink(c->sink_user, channel, type, data, len);
+    c->messages_published++;
 }
 
 int drv_write(drv_ctx *c, const uint8_t *data, size_t n) { return c->write ? c->write(c->write_user, data, n) : -1; }

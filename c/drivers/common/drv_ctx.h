@@ -49,6 +49,16 @@ void drv_frame_ok(drv_ctx *c, int64_t stamp);
  * "<VEHICLE>.<topic>". Returns 0, or -1 if it could not be encoded. */
 int drv_publish(drv_ctx *c, const char *topic, const auv_type_entry_t *type, const void *msg);
 
+/* drv_publish on a channel of the world rather than the vehicle's, as
+ * given ("SIM.CLOCK": the time link's clock, which every process on the
+ * vehicle's LCM follows whatever its vehicle). */
+int drv_publish_global(drv_ctx *c, const char *channel, const auv_type_entry_t *type, const void *msg);
+
+/* A message the link carried already encoded (fingerprint first), to the
+ * sink on "<VEHICLE>.<topic>" as it came: the caller has decoded it as
+ * `type` (rx_decode) before, so only a whole message of that type goes out. */
+void drv_publish_encoded(drv_ctx *c, const char *topic, const auv_type_entry_t *type, const void *data, int len);
+
 /* Bytes to the device through the driver's port; -1 without one. */
 int drv_write(drv_ctx *c, const uint8_t *data, size_t n);
 

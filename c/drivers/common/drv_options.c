@@ -85,6 +85,9 @@ int drv_options_parse(drv_options *o, const drv_protocol *p, void *state, int ar
         } else if (!strcmp(a, "--clock")) {
             if (!strcmp(v, "system"))
                 o->clock = DRV_CLOCK_SYSTEM;
+            else if (!strcmp(v, "sim") && p->clock_source)
+                return usage_error(p, "--clock sim: this driver is the vehicle's clock source (it publishes "
+                                      "SIM.CLOCK); it runs on the system clock", NULL);
             else if (!strcmp(v, "sim"))
                 o->clock = DRV_CLOCK_SIM;
             else

@@ -52,6 +52,13 @@ typedef struct drv_protocol {
     size_t state_size;   /* the framework allocates it zeroed */
     const drv_flag *flags; /* ends with {0}; may be NULL */
     const drv_subscription *subscriptions; /* ends with {0}; may be NULL */
+    /* Its messages carry the time the link brought (a clock, a message framed
+     * whole by the simulator), not a receive stamp: the fuzzer checks that
+     * they decode, not that utime is a stamp it gave. */
+    int link_time;
+    /* It is the vehicle's clock source (it publishes SIM.CLOCK): --clock sim,
+     * which would make it follow itself, is a usage error. */
+    int clock_source;
 
     /* Before the first byte, after the flags (state holds their values). 0 ok,
      * -1 refuses to start (with a log line). Optional. */

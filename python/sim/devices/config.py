@@ -101,11 +101,11 @@ def parse_wire(doc: Checker, node, key: str, sensor: str, base: Path, common: tu
 
 
 def check_distinct(doc: Checker, wires: dict[str, tuple[Any, Any]]) -> None:
-    """No two devices on one port: wires is {section key (`sensors.gps`, `actuators`):
+    """No two devices on one port: wires is {section key ("sensors.gps", "sonar"):
     (wire node, WireConfig)}."""
     seen: dict[str, str] = {}
-    for owner, (node, w) in wires.items():
+    for key, (node, w) in wires.items():
         where = w.pty or f"tcp {w.tcp_address[1]}"
         if where in seen:
-            doc.err(node, f"{owner}.wire", f"{seen[where]} is on this port already")
-        seen[where] = owner
+            doc.err(node, f"{key}.wire", f"{seen[where]} is on this port already")
+        seen[where] = key

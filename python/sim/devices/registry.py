@@ -15,9 +15,23 @@ from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
 from sim.devices.maestro_wire import MaestroWire
 from sim.devices.micromodem import MicroModemWire
+from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.nmea_gps import NmeaGps
+from sim.devices.time_link import TimeLink
 
-EMULATORS: tuple[type[Emulator], ...] = (NmeaGps, AhrsNmea, Digiquartz, DvlPd0, MicroModemWire, MaestroWire)
+# (the modem, the fins, the sonar, the identify sensor and the time link are no `sensors:`
+# entries: their `sensor` is their section's name)
+EMULATORS: tuple[type[Emulator], ...] = (
+    NmeaGps,
+    AhrsNmea,
+    Digiquartz,
+    DvlPd0,
+    MicroModemWire,
+    MaestroWire,
+    SonarFrame,
+    IdentifyFrame,
+    TimeLink,
+)
 
 
 def protocols_of(sensor: str) -> dict[str, type[Emulator]]:

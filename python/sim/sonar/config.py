@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import Any
 
 from confcheck import setting
 
@@ -71,3 +72,5 @@ class SonarConfig:
     )  # SIM.TARGETS: auto (like SIM.CLOCK) | yes | no
     targets_period_s: float = setting(10.0, ge=0.0)  # republish period [sim s]; 0 = at start only
     targets: TargetsConfig = field(default_factory=TargetsConfig)
+    # the contacts at the wire (sim.devices.lcmframe, protocol lcmframe; docs/simulator.md)
+    wire: Any = None

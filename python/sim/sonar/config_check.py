@@ -28,7 +28,10 @@ def check_sonar(doc: Checker, node, base: Path) -> SonarConfig | None:
                 "replaced by the score model sonar.score "
                 "(mine_a, mine_b, clutter_a, clutter_b, threshold; docs/simulator.md)",
             )
-    cfg = doc.fill(node, "sonar", SonarConfig(), skip=REPLACED)
+    from sim.devices.config import parse_wire
+
+    wire = {"wire": lambda n, k: parse_wire(doc, n, k, "sonar", base)}
+    cfg = doc.fill(node, "sonar", SonarConfig(), skip=REPLACED, special=wire)
     if cfg.max_altitude_m <= cfg.min_altitude_m and "max_altitude_m" in items:
         doc.err(items["max_altitude_m"][1], "sonar.max_altitude_m", "must be > min_altitude_m")
     check_targets(

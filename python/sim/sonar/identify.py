@@ -21,7 +21,7 @@ world builds the same field). Draws come from a stream named by the seed
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Any, Callable
 
 import numpy as np
 
@@ -45,6 +45,7 @@ class IdentifyConfig:
     max_altitude_m: float = setting(10.0, gt=0.0)  # looks only this close to the seabed
     seed: int = -1  # -1 = simulation.seed
     targets: TargetsConfig = field(default_factory=TargetsConfig)  # without a sonar section
+    wire: Any = None  # the looks at the wire (sim.devices.lcmframe, protocol lcmframe)
 
 
 def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig | None:
@@ -55,8 +56,11 @@ def check_identify(doc: Checker, node, base, has_sonar: bool) -> IdentifyConfig 
 
     if isinstance(node, yaml.ScalarNode) and doc.scalar(node) is False:
         return None
+    from sim.devices.config import parse_wire
+
     errors_before = len(doc.errors)
-    cfg = doc.fill(node, "identify", IdentifyConfig())
+    wire = {"wire": lambda n, k: parse_wire(doc, n, k, "identify", base)}
+    cfg = doc.fill(node, "identify", IdentifyConfig(), special=wire)
     items = doc.mapping(node, "identify")
     if "targets" in items:
         if has_sonar:
@@ -128,10 +132,12 @@ class Identify:
 
 
 class IdentifyOutputs:
-    """The HIL hook (like sim.sonar.publisher.SonarOutputs): looks on <V>.LOOKS."""
+    """The HIL hook (like sim.sonar.publisher.SonarOutputs): looks on <V>.LOOKS, and
+    framed on a line with `identify.wire` (sim.devices.lcmframe)."""
 
-    def __init__(self, cfg, sensors) -> None:
-        from sim.sonar.publisher import build_field
+    def __init__(self, cfg, sensors, devices=None) -> None:
+        from sim.devices.lcmframe import IdentifyFrame
+        from sim.sonar.publisher import build_field, wire_device
 
         ic = cfg.identify
         self.field = build_field(cfg, cfg.sonar.targets if cfg.sonar is not None else ic.targets)
@@ -140,6 +146,7 @@ class IdentifyOutputs:
         seed = ic.seed if ic.seed >= 0 else cfg.sim.seed
         self.model = Identify(ic, self.field, seed, cfg.vehicle_id, nav_error)
         self.channel = f"{cfg.vehicle_id}.LOOKS"
+        self.device, self.publish_lcm = wire_device(devices, ic.wire, IdentifyFrame, cfg)
 
     def restart(self, t: float) -> None:
         self.model.schedule.restart(t)
@@ -148,4 +155,8 @@ class IdentifyOutputs:
         return self.model.next_due()
 
     def poll(self, tr) -> list[tuple[str, bytes]]:
-        return [(self.channel, m.encode()) for m in self.model.poll(tr)]
+        msgs = self.model.poll(tr)
+        if self.device is not None:
+            for m in msgs:
+                self.device.emit(m, tr)
+        return [(self.channel, m.encode()) for m in msgs] if self.publish_lcm else []

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import math
 
+from sim.devices.emulator import DeviceContext
+from sim.devices.lcmframe import SonarFrame
 from sim.sensors.base import utime
 from sim.sonar import targets as tg
 from sim.sonar.sidescan import Sidescan
@@ -25,8 +27,20 @@ def build_field(cfg, tc=None) -> tg.TargetField:
     return tg.place(tc, tc.seed, env.water_depth)
 
 
+def wire_device(devices, wire, emulator_cls, cfg):
+    """A payload's port at the wire (None without `wire:`) and whether its LCM
+    messages are published too (`publish_lcm`)."""
+    if wire is None or devices is None:
+        return None, True
+    ctx = DeviceContext(cfg.vehicle_id, emulator_cls.sensor, cfg.sim.seed, wire.options)
+    return devices.add(emulator_cls(ctx), wire), wire.publish_lcm
+
+
 class SonarOutputs:
-    def __init__(self, cfg, sensors, publish_world: bool) -> None:
+    """devices: the simulator's (sim.devices.device.Devices), for `sonar.wire`: the
+    contacts framed on a line (sim.devices.lcmframe), beside LCM or instead."""
+
+    def __init__(self, cfg, sensors, publish_world: bool, devices=None) -> None:
         sc = cfg.sonar
         self.field = build_field(cfg)
         ins = next((s for s in sensors if s.name == "ins"), None)
@@ -39,6 +53,7 @@ class SonarOutputs:
         self.publish_targets = sc.publish_targets == "yes" or (sc.publish_targets == "auto" and publish_world)
         self.targets_period = sc.targets_period_s
         self.next_targets = 0.0 if self.publish_targets else math.inf
+        self.device, self.publish_lcm = wire_device(devices, sc.wire, SonarFrame, cfg)
 
     def restart(self, t: float) -> None:
         """Join a world at time t (stepped mode)."""
@@ -50,7 +65,11 @@ class SonarOutputs:
         return min(self.sidescan.next_due(), self.next_targets)
 
     def poll(self, tr) -> list[tuple[str, bytes]]:
-        out = [(self.channel, m.encode()) for m in self.sidescan.poll(tr)]
+        msgs = self.sidescan.poll(tr)
+        if self.device is not None:
+            for m in msgs:
+                self.device.emit(m, tr)
+        out = [(self.channel, m.encode()) for m in msgs] if self.publish_lcm else []
         if tr.t >= self.next_targets - 1e-9:
             out.append(("SIM.TARGETS", self.field.to_lcm(utime(tr.t), self.world).encode()))
             self.next_targets = tr.t + self.targets_period if self.targets_period > 0 else math.inf
