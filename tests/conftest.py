@@ -143,6 +143,7 @@ SHARED_SESSION = {
 # The longest units start first, so no worker is left with a long one at the
 # end (measured: `make test PYTEST_ARGS=--durations=0`, docs/contributing.md).
 LONGEST_FIRST = [
+    "hil/test_hil_wire.py",
     "test_demo.py",
     "team/test_team_loss.py",
     "team/test_leader_follower.py",

@@ -62,6 +62,7 @@ def hosts_or_skip(count: int, subnet: int, what: str) -> Hosts:
 class Hosts:
     def __init__(self, count: int, subnet: int = 77) -> None:
         tag = os.getpid() % 1000
+        self.tag, self.subnet = tag, subnet
         self.bridge = f"mhbr{tag}"
         self.holders: list[subprocess.Popen] = []
         self.veths: list[str] = []
@@ -107,6 +108,10 @@ class Hosts:
             ["ip", "route", "add", "224.0.0.0/4", "dev", "eth0"],
         ):
             _run("nsenter", "-t", pid, "-n", *cmd)
+
+    def address(self, host: int) -> str:
+        """Host 1..N's address on the bridge."""
+        return f"10.{self.subnet}.{self.tag % 250}.{host}"
 
     def prefix(self, host: int) -> list[str]:
         """Command prefix that runs a program on host 1..N."""
