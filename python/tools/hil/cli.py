@@ -27,6 +27,7 @@ import yaml
 from auvlcm import programs
 from auvlcm.paths import ROOT
 from auvlcm.url import check_local, default_url
+from confcheck import ConfigError
 from confcheck.reader import dump_yaml
 from tools.hil.links import Link, plan_links, wired_config
 from tools.hil.merge import merge_logs
@@ -78,7 +79,7 @@ def prepare(sc: Scenario, a: argparse.Namespace) -> dict[str, dict]:
 
     paths, errors = write_configs(sc, sc.vehicles, a.out)
     if errors:
-        raise SystemExit("auv-hil-wire: " + "\n".join(errors))
+        raise ConfigError(errors)
     plan = {}
     n = len(sc.vehicles)
     for i, v in enumerate(sc.vehicles):
@@ -135,10 +136,18 @@ def main(argv: list[str] | None = None) -> int:
     a = ap.parse_args(argv)
     if a.warp <= 0:
         ap.error("--warp must be positive")
-    a.out.mkdir(parents=True, exist_ok=True)
-    sc = load_scenario(a.scenario)
-    plan = prepare(sc, a)
-    sim_url = check_local(a.url)
+    try:
+        sc = load_scenario(a.scenario)
+        a.out.mkdir(parents=True, exist_ok=True)
+        plan = prepare(sc, a)
+        sim_url = check_local(a.url)
+    except ConfigError as exc:
+        print("\n".join(exc.errors), file=sys.stderr)
+        print(f"auv-hil-wire: {a.scenario}: {len(exc.errors)} error(s)", file=sys.stderr)
+        return 2
+    except (OSError, ValueError) as exc:
+        print(f"auv-hil-wire: {exc}", file=sys.stderr)
+        return 2
     vc_exec, sim_exec = parse_exec(a.exec_vc), shlex.split(a.exec_sim)
     stopping = {"now": False}
     signal.signal(signal.SIGINT, lambda *_: stopping.update(now=True))

@@ -24,6 +24,7 @@ from auvlcm import programs
 from auvlcm.chanfilter import FilteredLcm
 from auvlcm.paths import ROOT
 from auvlcm.url import check_local, with_receive_buffer
+from confcheck import ConfigError
 from tools.launch.annotate import Annotator
 from tools.launch.launcher import EXIT
 from tools.launch.mission_watch import MissionWatch
@@ -162,7 +163,11 @@ def main(argv: list[str] | None = None) -> int:
         a.url = check_local(a.url)
     except ValueError as exc:
         ap.error(str(exc))
-    sc = load_scenario(a.scenario)
+    try:
+        sc = load_scenario(a.scenario)
+    except ConfigError as exc:
+        print("\n".join(exc.errors), file=sys.stderr)
+        return 2
     if a.vehicle not in {v.id for v in sc.vehicles}:
         ap.error(f"{a.scenario}: no vehicle {a.vehicle}")
     a.out.mkdir(parents=True, exist_ok=True)
