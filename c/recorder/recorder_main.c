@@ -185,16 +185,9 @@ int main(int argc, char **argv)
         return rc == 1 ? 0 : 2;
     setvbuf(stdout, NULL, _IOLBF, 0);
     char *url = rec_url_with_recv_buf(r.opt.url, r.opt.recv_buf);
-    lcm_eventlog_t *log = lcm_eventlog_create(r.opt.file, "w");
-    if (!log) {
-        perror(r.opt.file);
-        free(url);
-        return 1;
-    }
     r.lcm = url ? lcm_create(url) : NULL;
     if (!r.lcm || rec_queue_init(&r.q, r.opt.queue_bytes)) {
         fprintf(stderr, "auv-recorder: cannot start LCM on %s\n", url ? url : r.opt.url);
-        lcm_eventlog_destroy(log);
         free(url);
         return 1;
     }
@@ -205,6 +198,19 @@ int main(int argc, char **argv)
         r.drops0 = rec_socket_drops(&r.sock);
         if (r.drops0 < 0)
             r.drops0 = 0;
+    }
+    /* The file only once the socket is open: whoever sees it (the launcher
+     * writes its note `logger` then) is heard. Created before, a message sent
+     * between the two was lost on a loaded machine, and two runs' logs
+     * differed by that one event (docs/scenarios.md, "End"). */
+    lcm_eventlog_t *log = lcm_eventlog_create(r.opt.file, "w");
+    if (!log) {
+        perror(r.opt.file);
+        rec_input_close(&r.in);
+        lcm_destroy(r.lcm);
+        rec_queue_destroy(&r.q);
+        free(url);
+        return 1;
     }
     if (rec_writer_start(&r.w, &r.q, log, r.opt.flush_ms)) {
         fprintf(stderr, "auv-recorder: cannot start the writer thread\n");

@@ -122,6 +122,39 @@ def test_a_stalled_recorder_loses_nothing_where_lcm_logger_does(tmp_path, lcm_ur
     assert lost_by_logger > 0, "lcm-logger kept up this time: the burst did not test the difference"
 
 
+def test_the_recorder_hears_whatever_is_sent_once_its_file_exists(tmp_path, lcm_url, child_env, variant_dir):
+    """The launcher writes its note `logger` as soon as the log file exists
+    (tools/launch/launcher.py, start_logger). The recorder once created the
+    file before it opened its socket: a note sent in between was lost on a
+    loaded machine, and two runs of one scenario differed by that one event
+    (tests/tools/test_report_deterministic.py). Stopped (SIGSTOP) the moment
+    its file shows up, the recorder must already be listening."""
+    lc = lcm.LCM(lcm_url)
+    for i in range(40):
+        log, stats = tmp_path / f"r{i}.lcmlog", tmp_path / f"r{i}.json"
+        rec = subprocess.Popen(
+            recorder_cmd(variant_dir, lcm_url, log, stats, "--quiet"),
+            env=child_env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        try:
+            deadline = time.monotonic() + 30
+            while not log.exists():  # no sleep: catch the file as early as can be
+                assert rec.poll() is None, rec.communicate()
+                assert time.monotonic() < deadline, "auv-recorder never created its file"
+            os.kill(rec.pid, signal.SIGSTOP)
+            lc.publish("TEST.FIRST", b"first")
+        finally:
+            os.kill(rec.pid, signal.SIGCONT)
+            time.sleep(0.2)  # the kernel has the datagram; let the recorder take it in
+            rc = stop(rec, signal.SIGTERM)
+            out, err = rec.communicate()
+        assert rc == 0, out + err
+        assert ("TEST.FIRST", b"first") in events(log), f"run {i}: the first message was lost"
+
+
 def test_lcm_logplayer_replays_the_recorders_log(tmp_path, lcm_url, child_env, build_dir):
     url = lcm_url + "&recv_buf_size=4194304"
     log, stats = tmp_path / "rec.lcmlog", tmp_path / "stats.json"

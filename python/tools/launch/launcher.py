@@ -183,8 +183,10 @@ class Launcher:
         self.logger = Child("logger", cmd, self.out / "logger.out")
         self.logger.start()
         # lcm-logger: listening once its file exists; recording once our probe shows up in
-        # it. auv-recorder: recording once the first message is in the file (its own
-        # lockstep registration, sent as it starts), asked every 10 ms.
+        # it. auv-recorder: listening once its file exists too (it opens its socket
+        # first, so the note below is in every log: two runs count the same events),
+        # recording once the first message is in the file (its own lockstep
+        # registration, sent as it starts), asked every 10 ms.
         deadline = time.monotonic() + 20
         noted = False
         while time.monotonic() < deadline and self.logger.poll() is None:
