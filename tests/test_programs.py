@@ -102,6 +102,21 @@ def test_driver_builders_use_documented_flags():
     )
     assert payload[payload.index("--frame-timeout") + 1] == "0.2"
     _every_flag_documented(payload, [payload[0]])
+    fs = programs.frontseat(
+        BUILD,
+        vehicle="AUV1",
+        lcm_url="udpm://x",
+        port="/dev/ttyUSB3",
+        origin=(41.5, -70.7),
+        max_depth_m=40,
+        min_speed_mps=0.5,
+        max_speed_mps=2.0,
+        helm_version=4,
+        silent_after_s=2,
+        clock="sim",
+    )
+    assert fs[0] == str(c_program("bin/auv-frontseat")) and fs[fs.index("--max-depth") + 1] == "40"
+    _every_flag_documented(fs, [fs[0]])
 
 
 @pytest.mark.parametrize(
@@ -115,6 +130,7 @@ def test_driver_builders_use_documented_flags():
         "auv-modem",
         "auv-timesync",
         "auv-payload",
+        "auv-frontseat",
         "auv-driver-replay",
     ],
 )

@@ -16,6 +16,13 @@ DRIVERS_COMMON_SRCS := $(sort $(wildcard c/drivers/common/*.c))
 # (the servo folder's protocol and table code are protocol sources below, as every device's)
 DRIVERS_DEVICES := $(filter-out common replay fuzz tools,$(notdir $(patsubst %/,%,$(sort $(dir $(wildcard c/drivers/*/*.c))))))
 DRIVERS_PROTOCOL_SRCS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(filter-out %/$(d)_main.c,$(wildcard c/drivers/$(d)/*.c))))
+# Drivers kept outside c/drivers because they are more than a device: a folder
+# c/<name>/ with a <name>_main.c, built as bin/auv-<name> on this framework and
+# linked into the replay, the fuzzers and bin/test_drivers like every protocol
+# (c/frontseat: auv-frontseat, standing where the pilot stands on a commercial
+# vehicle, docs/frontseat.md).
+DRIVERS_OUTSIDE := frontseat
+DRIVERS_PROTOCOL_SRCS += $(sort $(foreach d,$(DRIVERS_OUTSIDE),$(filter-out %/$(d)_main.c,$(wildcard c/$(d)/*.c))))
 DRIVERS_PROGRAMS := $(sort $(foreach d,$(DRIVERS_DEVICES),$(if $(wildcard c/drivers/$(d)/$(d)_main.c),$(d))))
 DRIVERS_TOOLS := $(sort $(patsubst c/drivers/tools/%.c,%,$(wildcard c/drivers/tools/*.c)))
 DRIVERS_FUZZ := $(sort $(patsubst c/drivers/fuzz/fuzz_%.c,%,$(wildcard c/drivers/fuzz/fuzz_*.c)))
@@ -44,6 +51,7 @@ $(1)/bin/$(2): $(1)/obj/$(3:.c=.o) $(call DRIVERS_LIBS,$(1))
 	$(DRIVERS_LINK)
 endef
 $(foreach v,$(VARIANTS),$(foreach d,$(DRIVERS_PROGRAMS),$(eval $(call drivers_program_rule,$(v),auv-$(d),c/drivers/$(d)/$(d)_main.c))))
+$(foreach v,$(VARIANTS),$(foreach d,$(DRIVERS_OUTSIDE),$(eval $(call drivers_program_rule,$(v),auv-$(d),c/$(d)/$(d)_main.c))))
 $(foreach v,$(VARIANTS),$(foreach t,$(DRIVERS_TOOLS),$(eval $(call drivers_program_rule,$(v),$(subst _,-,$(t)),c/drivers/tools/$(t).c))))
 # the fuzz targets run on the project's mutation driver (no libFuzzer needed)
 define drivers_fuzz_rule
@@ -54,7 +62,7 @@ endef
 $(foreach v,$(VARIANTS),$(foreach f,$(DRIVERS_FUZZ),$(eval $(call drivers_fuzz_rule,$(v),$(f)))))
 
 C_LIBS += lib/libauvdrivers.a
-C_PROGRAMS += bin/test_drivers bin/auv-driver-replay $(addprefix bin/auv-,$(DRIVERS_PROGRAMS)) $(addprefix bin/,$(subst _,-,$(DRIVERS_TOOLS)))
+C_PROGRAMS += bin/test_drivers bin/auv-driver-replay $(addprefix bin/auv-,$(DRIVERS_PROGRAMS) $(DRIVERS_OUTSIDE)) $(addprefix bin/,$(subst _,-,$(DRIVERS_TOOLS)))
 C_PROGRAMS += $(addprefix bin/drivers_fuzz_,$(DRIVERS_FUZZ))
 
 # `make fuzz`: each fuzz target over its hostile corpus tests/drivers/corpus/NAME

@@ -160,6 +160,55 @@ def servo_table_flags(table: PathLike) -> list[str]:
     return ["--table", str(table)]
 
 
+def frontseat(
+    build: Path,
+    *,
+    vehicle: str,
+    lcm_url: str,
+    port: PathLike | None = None,
+    baud: int | None = None,
+    tcp: str | None = None,
+    protocol: str = "iver3",
+    origin: tuple[float, float] | None = None,
+    max_depth_m: float | None = None,
+    min_speed_mps: float | None = None,
+    max_speed_mps: float | None = None,
+    helm_version: int | None = None,
+    silent_after_s: float | None = None,
+    raw: bool = False,
+    clock: str = "system",
+) -> list[str]:
+    """auv-frontseat (c/frontseat, docs/frontseat.md): a commercial vehicle's frontseat
+    on a serial `port` or a TCP `tcp`, standing where the PILOT stands: the vehicle's
+    limits (setpoints beyond them clamped or refused), the world's `origin` for NAV's
+    north and east, the frontseat software's `helm_version`."""
+    extra: list[str] = ["--protocol", protocol]
+    if origin is not None:
+        extra += gps_origin_flags(*origin)
+    for flag, value in (
+        ("--max-depth", max_depth_m),
+        ("--min-speed", min_speed_mps),
+        ("--max-speed", max_speed_mps),
+        ("--silent-after", silent_after_s),
+    ):
+        if value is not None:
+            extra += [flag, f"{value:g}"]
+    if helm_version is not None:
+        extra += ["--helm-version", str(int(helm_version))]
+    return device_driver(
+        build,
+        "frontseat",
+        vehicle=vehicle,
+        lcm_url=lcm_url,
+        port=port,
+        baud=baud,
+        tcp=tcp,
+        raw=raw,
+        clock=clock,
+        extra=extra,
+    )
+
+
 def modem_flags(
     table: dict[str, int],
     *,

@@ -132,6 +132,7 @@ class SimConfig:
     identify: Any = None  # sim.sonar.identify.IdentifyConfig, None without identify:
     actuators: Actuators = dataclasses.field(default_factory=Actuators)
     time_link: Any = None  # sim.time_link.TimeLinkConfig, None without time_link:
+    frontseat: Any = None  # sim.frontseat.FrontseatConfig, None without frontseat:
 
 
 # --------------------------------------------------------------- sections
@@ -388,6 +389,7 @@ SECTIONS = (
     "identify",
     "actuators",
     "time_link",
+    "frontseat",
 )
 
 
@@ -432,6 +434,16 @@ def _check(doc: Checker, path: Path) -> SimConfig:
 
     time_link = check_time_link(doc, get("time_link"), path.parent)
     _wire_of(doc, get("time_link"), "time_link", time_link, wires)
+    from sim.frontseat import check_frontseat
+
+    frontseat = check_frontseat(doc, get("frontseat"), path.parent)
+    _wire_of(doc, get("frontseat"), "frontseat", frontseat, wires)
+    if frontseat is not None and actuators.wire is not None:
+        doc.err(
+            top["frontseat"][1],
+            "frontseat",
+            "the frontseat commands the fins and the propeller: no actuators.wire beside it",
+        )
     check_distinct(doc, wires)
     doc.raise_errors()
     if sim.seed < 0:
@@ -459,4 +471,5 @@ def _check(doc: Checker, path: Path) -> SimConfig:
         identify=identify,
         actuators=actuators,
         time_link=time_link,
+        frontseat=frontseat,
     )

@@ -7,7 +7,9 @@ the world alone in real-time or scaled mode) the global clock on SIM.CLOCK.
 It consumes <VEHICLE>.ACTUATORS and, in lockstep, SIM.CLOCK; with the fins and
 thruster at the wire (`actuators: {wire: ...}`), the commands are a Maestro's
 channel pulses on a port instead (sim.devices.maestro_wire), and
-<VEHICLE>.ACTUATORS only if its `take_lcm` says so.
+<VEHICLE>.ACTUATORS only if its `take_lcm` says so; with a frontseat (`frontseat:`,
+sim.frontseat), the frontseat's own loops command them and <VEHICLE>.ACTUATORS is not
+taken.
 
 Time stamps follow the project's rule (auvlcm.timepolicy, docs/simulator.md):
 a SIM.CLOCK that goes back, jumps unconfirmed or is out of range is dropped;
@@ -131,7 +133,8 @@ class Simulator:
         # where a command that passed the checks goes, if not applied at once
         self._command_filter: Callable[[str, actuators_t], None] | None = None
         wire = cfg.actuators.wire
-        if wire is None or wire.options.take_lcm:
+        # a frontseat (sim.frontseat) commands the fins and the propeller itself
+        if cfg.frontseat is None and (wire is None or wire.options.take_lcm):
             self.rx.subscribe(f"{self.vid}.ACTUATORS", actuators_t, self._on_actuators, queue_capacity=200)
         if s.clock == LOCKSTEP and not cfg.multihil.enabled:  # multi-HIL: the node's clock
             self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
@@ -175,6 +178,16 @@ class Simulator:
             self.servo = MaestroWire(ctx, cfg.actuators.table)
             try:
                 self.devices.add(self.servo, wire)
+            except BaseException:
+                self.devices.close()
+                raise
+        # a commercial vehicle's frontseat: its own loops fly the vehicle (docs/frontseat.md)
+        self.frontseat = None
+        if cfg.frontseat is not None:
+            from sim.frontseat import FrontseatVehicle
+
+            try:
+                self.frontseat = FrontseatVehicle(cfg.frontseat, self.devices, self.vid, s.seed, self.model)
             except BaseException:
                 self.devices.close()
                 raise
@@ -553,6 +566,9 @@ class Simulator:
                     self._drain(0.0)
                 if self.servo is not None:
                     self._servo_command()
+                if self.frontseat is not None:
+                    self.model.command = self.frontseat.command(self.model)
+                    self.last_cmd_t, self.last_cmd_utime = model.t, utime(model.t)  # never stale
                 self._check_stale()
                 model.step()
                 self._outputs()

@@ -13,13 +13,14 @@ from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
+from sim.devices.iver3_frontseat import Iver3Frontseat
 from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.maestro_wire import MaestroWire
 from sim.devices.micromodem import MicroModemWire
 from sim.devices.nmea_gps import NmeaGps
 from sim.devices.time_link import TimeLink
 
-# (the modem, the fins, the sonar, the identify sensor and the time link are no `sensors:`
+# (the modem, the fins, the sonar, the identify sensor, the time link and the frontseat are no `sensors:`
 # entries: their `sensor` is their section's name)
 EMULATORS: tuple[type[Emulator], ...] = (
     NmeaGps,
@@ -31,6 +32,7 @@ EMULATORS: tuple[type[Emulator], ...] = (
     SonarFrame,
     IdentifyFrame,
     TimeLink,
+    Iver3Frontseat,
 )
 
 

@@ -1,0 +1,190 @@
+"""A commercial vehicle's frontseat, end to end (docs/frontseat.md): a running simulator
+whose vehicle is flown by its Iver3 frontseat (`frontseat:`, the emulator on a
+pseudo-terminal), the real auv-frontseat on that pty (`--clock sim`), and setpoint_t
+published on LCM as the navigator would. The request is refused at the surface (the
+frontseat dives on its own mission first) and granted at depth; the simulated vehicle
+turns to the heading and reaches the depth; the frontseat's <V>.NAV matches the
+simulator's truth within the protocol's resolution; a setpoint over the limits is
+clamped, one under them refused, each with its reason; the frontseat's silence and its
+operator abort show in frontseat_status_t."""
+
+from __future__ import annotations
+
+import math
+import subprocess
+
+import lcm
+import pytest
+from conftest import c_program
+from driver_bus import finish, start
+from lcm_proc import pump, stop
+
+from auv import driver_status_t, frontseat_status_t, ground_truth_t, nav_solution_t, setpoint_t, sim_clock_t
+from auvlcm import programs
+
+VEHICLE = "AUV1"
+ORIGIN = (41.52, -70.67)  # the simulator's default world origin (sim.environment.EnvParams)
+SILENT_AT, SILENT_FOR, ABORT_AT = 75.0, 6.0, 95.0
+WARP = 2.0
+
+CONFIG = f"""
+vehicle: {{id: {VEHICLE}}}
+simulation: {{clock: scaled, warp: {WARP}, truth_rate_hz: 20}}
+initial: {{depth_m: 0.0, speed_mps: 1.0, heading_rad: 0.0}}
+environment: {{bathymetry: "flat:depth=50", waves: {{height_m: 0.0}}}}
+sensors: {{depth: {{}}}}
+frontseat:
+  control_min_depth_m: 2.0
+  mission_heading_deg: 0.0
+  mission_depth_m: 4.0
+  mission_speed_mps: 1.5
+  silent_at_s: {SILENT_AT}
+  silent_for_s: {SILENT_FOR}
+  abort_at_s: {ABORT_AT}
+  abort_error: Stl
+  wire: {{protocol: iver3, pty: fs0, baud: 19200}}
+"""
+
+
+class Bus:
+    def __init__(self, url: str) -> None:
+        self.lc = lcm.LCM(url)
+        self.clock = 0
+        self.truth: list[ground_truth_t] = []
+        self.nav: list[nav_solution_t] = []
+        self.fs: list[frontseat_status_t] = []
+        self.driver: list[driver_status_t] = []
+        self.want = (math.pi / 2, 6.0, 1.5)
+
+        def on_clock(_c, d):
+            self.clock = max(self.clock, sim_clock_t.decode(d).utime)
+
+        subs = (
+            ("SIM.CLOCK", on_clock),
+            (f"{VEHICLE}.TRUTH", lambda c, d: self.truth.append(ground_truth_t.decode(d))),
+            (f"{VEHICLE}.NAV", lambda c, d: self.nav.append(nav_solution_t.decode(d))),
+            (f"{VEHICLE}.FRONTSEAT", lambda c, d: self.fs.append(frontseat_status_t.decode(d))),
+            (f"{VEHICLE}.DRIVER.FRONTSEAT", lambda c, d: self.driver.append(driver_status_t.decode(d))),
+        )
+        for channel, fn in subs:
+            self.lc.subscribe(channel, fn).set_queue_capacity(100000)
+        self._last_sp = 0
+
+    def reason(self, name: str) -> int:
+        if not self.driver:
+            return 0
+        s = self.driver[-1]
+        return dict(zip(s.reason, s.reason_count)).get(name, 0)
+
+    def setpoint(self, heading: float, depth: float, speed: float) -> None:
+        m = setpoint_t()
+        m.utime, m.vehicle = self.clock, VEHICLE
+        m.heading_rad, m.depth_m, m.speed_mps = heading, depth, speed
+        m.vertical_mode, m.speed_mode = setpoint_t.VERTICAL_DEPTH, setpoint_t.SPEED_MPS
+        self.lc.publish(f"{VEHICLE}.SETPOINT", m.encode())
+
+    def wait(self, until, what: str, timeout: float = 60.0) -> None:
+        """Handle messages until until(), asking for self.want at 5 Hz of sim time."""
+
+        def step() -> bool:
+            if self.want is not None and self.clock - self._last_sp >= 200_000 and self.clock > 0:
+                self._last_sp = self.clock
+                self.setpoint(*self.want)
+            return until()
+
+        ok = pump(self.lc, step, timeout)
+        assert ok, f"waited {timeout} s for {what}; last status {self.fs[-1:]}, truth {self.truth[-1:]}"
+
+    def truth_at(self, utime: int) -> ground_truth_t | None:
+        best = min(self.truth, key=lambda m: abs(m.utime - utime), default=None)
+        return best if best is not None and abs(best.utime - utime) <= 30_000 else None
+
+
+def angle_diff(a: float, b: float) -> float:
+    return abs((a - b + math.pi) % (2 * math.pi) - math.pi)
+
+
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_auv_frontseat_flies_the_simulated_iver(sanitized, lcm_url, tmp_path, child_env):
+    config = tmp_path / "sim.yaml"
+    config.write_text(CONFIG)
+    bus = Bus(lcm_url)
+    sim_out = open(tmp_path / "sim.out", "w")
+    sim = subprocess.Popen(
+        programs.simulator(config, lcm_url=lcm_url), stdout=sim_out, stderr=subprocess.STDOUT, env=child_env
+    )
+    build = c_program("bin/auv-frontseat", sanitized).parent.parent
+    cmd = programs.frontseat(
+        build,
+        vehicle=VEHICLE,
+        lcm_url=lcm_url,
+        port=tmp_path / "fs0",
+        baud=19200,
+        origin=ORIGIN,
+        max_depth_m=40.0,
+        min_speed_mps=0.5,
+        max_speed_mps=2.0,
+        silent_after_s=2.0,
+        clock="sim",
+    )
+    driver = start(cmd, tmp_path, child_env)
+    try:
+        # at the surface: asked, refused (its own mission: mode N), then granted at depth
+        bus.wait(lambda: bus.fs and bus.fs[-1].requesting, "a request under way")
+        assert not bus.fs[-1].has_control and bus.fs[-1].mode == "N"
+        assert bus.truth and bus.truth[-1].eta[2] < 2.0
+        bus.wait(lambda: bus.fs and bus.fs[-1].has_control, "control granted")
+        granted = bus.fs[-1]
+        assert granted.mode == "A" and granted.state == frontseat_status_t.STATE_PAYLOAD
+        assert granted.control_granted == 1
+        assert bus.truth_at(granted.utime) is None or bus.truth_at(granted.utime).eta[2] >= 1.9
+
+        # the vehicle turns to the heading and reaches the depth
+        def there() -> bool:
+            t = bus.truth[-1] if bus.truth else None
+            return t is not None and angle_diff(t.eta[5], math.pi / 2) < math.radians(3) and abs(t.eta[2] - 6.0) < 0.5
+
+        bus.wait(there, "heading 90 and depth 6 m", timeout=90.0)
+
+        # the frontseat's NAV is the truth within the sentences' resolution (and one
+        # sentence's time on the line: its answer leaves at the step the poll arrived)
+        n0 = len(bus.nav)
+        bus.wait(lambda: len(bus.nav) >= n0 + 10, "ten NAV")
+        compared = 0
+        for nav in bus.nav[n0:]:
+            t = bus.truth_at(nav.utime - 80_000)  # ~150 bytes at 19200 baud
+            if t is None:
+                continue
+            compared += 1
+            assert math.hypot(nav.north_m - t.eta[0], nav.east_m - t.eta[1]) < 0.5, (nav, t)
+            assert abs(nav.depth_m - t.eta[2]) < 0.1 and angle_diff(nav.heading_rad, t.eta[5]) < math.radians(1.0)
+            assert abs(nav.pitch_rad - t.eta[4]) < math.radians(1.0)
+            assert nav.altitude_m > 0 and math.isnan(nav.v_mps) and math.isnan(nav.course_over_ground_rad)
+        assert compared >= 5
+
+        # over the limits: clamped (depth) and refused (speed), each with its reason
+        clamped0 = bus.fs[-1].setpoints_clamped
+        bus.setpoint(math.pi / 2, 200.0, 1.5)
+        bus.wait(lambda: bus.fs[-1].setpoints_clamped > clamped0, "a clamped setpoint")
+        assert "depth over the maximum" in bus.fs[-1].last_refusal
+        bus.setpoint(math.pi / 2, 6.0, 0.1)
+        bus.wait(lambda: bus.reason("setpoint: speed under the minimum") >= 1, "a refused setpoint")
+        assert bus.fs[-1].setpoints_refused >= 1
+
+        # the frontseat falls silent, then answers again and gives control back
+        bus.wait(lambda: bus.fs[-1].state == frontseat_status_t.STATE_SILENT, "silence", timeout=90.0)
+        s = bus.fs[-1]
+        assert not s.has_control and not s.requesting and s.last_message_age_s >= 2.0
+        bus.wait(lambda: bus.fs[-1].has_control, "control again after the silence", timeout=60.0)
+
+        # its operator aborts: control taken back, the abort's word reported
+        bus.wait(lambda: bus.fs[-1].state == frontseat_status_t.STATE_ERROR, "the abort", timeout=90.0)
+        s = bus.fs[-1]
+        assert s.error and s.error_text == "Stl" and s.mode == "S" and not s.has_control
+        assert s.control_lost >= 2
+    finally:
+        bus.want = None
+        text = finish(driver, tmp_path)
+        stop(sim)
+        sim_out.close()
+    assert "control granted to the payload" in text
