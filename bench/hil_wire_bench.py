@@ -46,7 +46,7 @@ def figures(log: Path, out: Path) -> dict:
     t = r.get("team", {})
     return {
         "outcome": r["outcome"],
-        "sim_s": r["duration_s"],
+        "sim_s": round(r["duration_s"], 1),
         "coverage": (r.get("coverage") or {}).get("fraction_once"),
         "detected": t.get("mine_like_detected"),
         "identified": t.get("mine_like_identified"),
@@ -77,8 +77,12 @@ def main() -> int:
     print(f"team: {search} search + 1 RI, {'reduced' if a.quick else 'full'}; wire at x{a.warp:g} on ptys")
     print(f"{'':14s}{'message level':>22s}{'at the wire':>22s}")
     print(f"{'wall [s]':14s}{wall_msg:22.1f}{wall_wire:22.1f}   ratio {wall_wire / wall_msg:.2f}")
-    for k in ("outcome", "sim_s", "coverage", "detected", "identified", "nav_rms_m"):
+    for k in ("outcome", "sim_s", "coverage", "detected", "identified"):
         print(f"{k:14s}{str(fm[k]):>22s}{str(fw[k]):>22s}")
+    for vid in fm["nav_rms_m"]:
+        print(
+            f"{'nav rms ' + vid + ' [m]':14s}{fm['nav_rms_m'][vid]:22.2f}{fw['nav_rms_m'].get(vid, float('nan')):22.2f}"
+        )
     return 0
 
 
