@@ -25,7 +25,7 @@ from auvlcm import programs
 VEHICLE = "AUV1"
 ORIGIN = (41.52, -70.67)  # the simulator's default world origin (sim.environment.EnvParams)
 SILENT_AT, SILENT_FOR, ABORT_AT = 75.0, 6.0, 95.0
-WARP = 2.0
+WARP = 4.0
 
 CONFIG = f"""
 vehicle: {{id: {VEHICLE}}}
