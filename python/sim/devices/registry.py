@@ -13,9 +13,9 @@ from sim.devices.ahrs_nmea import AhrsNmea
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
+from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.maestro_wire import MaestroWire
 from sim.devices.micromodem import MicroModemWire
-from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.nmea_gps import NmeaGps
 from sim.devices.time_link import TimeLink
 
