@@ -18,6 +18,7 @@ driver process's own (/proc/PID/schedstat, nanoseconds).
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import select
 import signal
@@ -65,11 +66,9 @@ class Driver:
     def __init__(self, feed: Feed, tmp: Path, lc: lcm.LCM) -> None:
         self.feed, self.lc = feed, lc
         self.status: list[driver_status_t] = []
-        self.sub = lc.subscribe(
-            f"{VEHICLE}.DRIVER.{feed.device}", lambda c, d: self.status.append(driver_status_t.decode(d))
-        )
         self.master, slave = os.openpty()
         link = tmp / feed.program
+        self.sub = lc.subscribe(f"{VEHICLE}.DRIVER.{feed.device}", lambda c, d: self._on_status(d, f"{link}@"))
         os.symlink(os.ttyname(slave), link)
         os.close(slave)
         cmd = programs.device_driver(
@@ -80,6 +79,11 @@ class Driver:
             self.proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
         self.written = 0  # bytes the device wrote to the driver
         self.heard = 0  # bytes the driver wrote to the device
+
+    def _on_status(self, data: bytes, port: str) -> None:
+        s = driver_status_t.decode(data)
+        if s.port.startswith(port):  # not the last words of the previous run's driver
+            self.status.append(s)
 
     def cpu(self) -> float:
         return cpu_s(self.proc.pid)
@@ -134,27 +138,30 @@ def drops(s: driver_status_t) -> int:
 
 def fast_pty(d: Driver, row: Row, n_bytes: int) -> int:
     """Bursts written as fast as the driver reads them; returns the ticks used."""
-    feed, parts, size = d.feed, [], 0
-    while size < n_bytes:
-        parts.append(feed.fast_burst(len(parts)))
-        size += len(parts[-1])
-    data = b"".join(parts)
+    feed, chunks, buf, size, n = d.feed, [], bytearray(), 0, 0
+    while size < n_bytes:  # writes of whole bursts: the device's answers go between them
+        buf += feed.fast_burst(n)
+        n += 1
+        if len(buf) >= CHUNK or size + len(buf) >= n_bytes:
+            chunks.append(bytes(buf))
+            size += len(buf)
+            buf.clear()
     s0 = d.wait(lambda s: s.port_open, 10)
     assert s0 is not None, f"{feed.label}: the port never opened"
     c0 = d.cpu()
-    for i in range(0, len(data), CHUNK):
-        d.write(data[i : i + CHUNK])
+    for chunk in chunks:
+        d.write(chunk)
         d.service()
     # the driver's own counts (its 1 Hz status): a Python subscriber would lose messages at this rate
     s = d.wait(lambda s: s.bytes_read >= d.written, 120)
     cpu = d.cpu() - c0
     assert s is not None, f"{feed.label}: {d.written} bytes written, the driver read {d.status[-1].bytes_read}"
-    row.max_bps, row.max_fps = len(data) / cpu, (s.frames_decoded - s0.frames_decoded) / cpu
+    row.max_bps, row.max_fps = size / cpu, (s.frames_decoded - s0.frames_decoded) / cpu
     print(
-        f"{feed.label}: {len(data)} bytes as fast as fed, {s.frames_decoded - s0.frames_decoded} frames, "
+        f"{feed.label}: {size} bytes as fast as fed, {s.frames_decoded - s0.frames_decoded} frames, "
         f"{s.messages_published - s0.messages_published} published, {drops(s) - drops(s0)} dropped, {cpu:.2f} s CPU"
     )
-    return len(parts)
+    return n
 
 
 def fast_lcm(d: Driver, row: Row, n: int) -> None:
@@ -208,29 +215,39 @@ def fast_replay(feed: Feed, row: Row, tmp: Path, n_bytes: int) -> None:
 
 
 def at_rate(d: Driver, row: Row, i0: int, seconds: float) -> None:
-    """The device at its real rate for `seconds`: the driver's CPU over the wall time."""
+    """The device at its real rate for `seconds`, after a second of it as a warm-up
+    (the silence after a fast run, the driver's first answers): the driver's CPU
+    over the wall time."""
     feed = d.feed
     assert d.wait(lambda s: s.port_open, 10) is not None, f"{feed.label}: the port never opened"
-    s0 = d.next_status()  # fresh: what the run before it left is not this run's
+    warm = math.ceil(feed.rate_hz) if feed.rate_hz >= 1 else 0
     n = max(1, round(seconds * feed.rate_hz))
-    w0, h0, c0, t0 = d.written, d.heard, d.cpu(), time.monotonic()
-    for k in range(n + 1):
-        due = t0 + k / feed.rate_hz
-        while (left := due - time.monotonic()) > 0:
+    t_start, k, end = time.monotonic(), 0, -1
+
+    def done() -> bool:  # after the run, the device goes on until the next status
+        return end >= 0 and len(d.status) > end
+
+    while not done():
+        due = t_start + k / feed.rate_hz
+        while (left := due - time.monotonic()) > 0 and not done():
             d.service(min(left, 0.05))
-        if k == n:
-            break
+        if k == warm:
+            s0, w0, h0, c0, t0 = d.status[-1], d.written, d.heard, d.cpu(), time.monotonic()
+        if k == warm + n:
+            wall, cpu, end = time.monotonic() - t0, d.cpu() - c0, len(d.status)
+            row.cpu_pct, row.line_bps = 100 * cpu / wall, (d.written - w0 + d.heard - h0) / wall
         d.write(feed.burst(i0 + k))
         cmd = feed.command(i0 + k)
         if cmd is not None:
             d.lc.publish(f"{VEHICLE}.{cmd[0]}", cmd[1])
-    wall, cpu = time.monotonic() - t0, d.cpu() - c0
-    row.cpu_pct, row.line_bps = 100 * cpu / wall, (d.written - w0 + d.heard - h0) / wall
-    s = d.next_status()
+        k += 1
+    s = d.status[-1]
+    before = dict(zip(s0.reason, s0.reason_count))
+    dropped = {r: c - before.get(r, 0) for r, c in zip(s.reason, s.reason_count) if c > before.get(r, 0)}
     print(
         f"{feed.label} at {feed.rate_text}: {wall:.1f} s, {row.line_bps:.0f} B/s on the line, "
-        f"{s.frames_decoded - s0.frames_decoded} frames, {drops(s) - drops(s0)} dropped "
-        f"{dict((r, c) for r, c in zip(s.reason, s.reason_count) if c)}; {row.cpu_pct:.3f} % of a core"
+        f"{s.frames_decoded - s0.frames_decoded} frames (status at 1 Hz), dropped {dropped}; "
+        f"{row.cpu_pct:.3f} % of a core"
     )
 
 
