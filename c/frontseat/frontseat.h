@@ -9,7 +9,7 @@
  * flags, the clock, the raw recording, the drop counts and the status are
  * the framework's (device "FRONTSEAT": <V>.RAW.FRONTSEAT, <V>.DRIVER.FRONTSEAT).
  * What depends on the vehicle is a protocol, fs_proto: one file each
- * (iver3.c), listed in fs_protocols.c. */
+ * (iver3.c, bluefin.c), listed in fs_protocols.c. */
 #ifndef FRONTSEAT_H
 #define FRONTSEAT_H
 
@@ -80,8 +80,9 @@ typedef struct {
 
 /* the protocols (fs_protocols.c) */
 const fs_proto *fs_proto_find(const char *name);
-const char *fs_proto_names(void); /* "iver3" */
+const char *fs_proto_names(void); /* "iver3, bluefin" */
 extern const fs_proto iver3_proto;
+extern const fs_proto bluefin_proto;
 
 /* ---- setpoint_t -> request (fs_setpoint.c): pure, so the tests hold it.
  * Returns NULL with *rq filled (clamped says why if something was brought

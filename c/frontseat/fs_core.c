@@ -359,7 +359,7 @@ static void fs_reset(void *state, drv_ctx *ctx)
 }
 
 static const drv_flag fs_flags[] = {
-    {"--protocol", "NAME", "the frontseat's protocol: iver3 (default)", set_protocol},
+    {"--protocol", "NAME", "the frontseat's protocol: iver3 (default) or bluefin", set_protocol},
     {"--origin", "LAT,LON", "the world's origin: NAV's north_m and east_m (NaN without)", set_origin},
     {"--max-depth", "M", "deeper setpoints are clamped to this (default 100)", set_max_depth},
     {"--min-speed", "M/S", "slower setpoints are refused (default 0.5)", set_min_speed},

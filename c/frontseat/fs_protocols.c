@@ -6,6 +6,7 @@
 
 static const fs_proto *const protocols[] = {
     &iver3_proto,
+    &bluefin_proto,
 };
 
 const fs_proto *fs_proto_find(const char *name)
@@ -16,4 +17,4 @@ const fs_proto *fs_proto_find(const char *name)
     return NULL;
 }
 
-const char *fs_proto_names(void) { return "iver3"; }
+const char *fs_proto_names(void) { return "iver3, bluefin"; }

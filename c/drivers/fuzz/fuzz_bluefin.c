@@ -1,0 +1,134 @@
+/* Fuzz entry point for auv-frontseat with Bluefin's payload interface (c/frontseat/bluefin.c): any
+ * bytes from the frontseat, in reads cut by the input itself, with setpoints
+ * made of the input's bytes (any doubles, NaN and infinities included) between
+ * them. Every NAV it publishes must decode and hold a position on the earth, a
+ * depth and a heading in range; every request it writes must be one $BPRMB
+ * inside the limits it was given: nothing the frontseat or the navigator says
+ * may put a value outside them on the wire (libFuzzer, or the project's driver
+ * c/chasm/fuzz/fuzz_driver.c). */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "auv/auv_frontseat_status_t.h"
+#include "auv/auv_nav_solution_t.h"
+#include "common/lcm_rx.h"
+#include "frontseat/frontseat.h"
+
+#define MAX_DEPTH 40.0
+#define MAX_SPEED 2.0
+
+static void check(int ok, const char *what)
+{
+    if (!ok) {
+        fprintf(stderr, "fuzz_bluefin: broken: %s\n", what);
+        abort();
+    }
+}
+
+static void sink(void *user, const char *channel, const auv_type_entry_t *type, const void *data, int len)
+{
+    (void)user;
+    if (!strcmp(channel, "FUZZ.NAV")) {
+        auv_nav_solution_t m;
+        check(rx_decode(type, data, len, &m) == 0, "a NAV decodes");
+        check(fabs(m.latitude_deg) <= 90.0 && fabs(m.longitude_deg) <= 180.0, "a position on the earth");
+        check(isfinite(m.depth_m) && m.depth_m >= -10.0 && m.depth_m <= 6000.0, "a depth in range");
+        check(m.heading_rad >= 0.0 && m.heading_rad < 2.0 * M_PI, "a heading in [0, 2pi)");
+        check(m.altitude_m == -1.0 || (m.altitude_m >= 0.0 && m.altitude_m <= 1000.0), "an altitude");
+        check(isnan(m.u_mps) || (m.u_mps >= 0.0 && m.u_mps <= 10.0), "a speed in range");
+        auv_nav_solution_t_decode_cleanup(&m);
+    } else {
+        check(!strcmp(channel, "FUZZ.FRONTSEAT"), "only NAV and FRONTSEAT");
+        auv_frontseat_status_t m;
+        check(rx_decode(type, data, len, &m) == 0, "a status decodes");
+        check(m.state >= 0 && m.state <= 5, "a state");
+        check(!m.has_control || m.state == AUV_FRONTSEAT_STATUS_T_STATE_PAYLOAD, "control only in payload state");
+        auv_frontseat_status_t_decode_cleanup(&m);
+    }
+}
+
+/* Every byte written must be one whole $BPLOG, $BPSTS or $BPRMB sentence, the
+ * RMB's numbers inside the limits. */
+static int on_write(void *user, const uint8_t *data, size_t n)
+{
+    (void)user;
+    char buf[256];
+    check(n < sizeof buf, "a sentence of sane length");
+    memcpy(buf, data, n);
+    buf[n] = '\0';
+    check(n > 5 && buf[n - 2] == '\r' && buf[n - 1] == '\n', "CR LF");
+    if (!strncmp(buf, "$BPLOG,", 7) || !strncmp(buf, "$BPSTS,", 7))
+        return 0;
+    double h, d, v;
+    int hh, mm, ss, ms, dm, sm, hm;
+    if (sscanf(buf, "$BPRMB,%2d%2d%2d.%3d,0,0,2,0,0,1*", &hh, &mm, &ss, &ms) == 4 && strstr(buf, ",0,0,2,0,0,1*"))
+        return 0; /* a stop */
+    check(sscanf(buf, "$BPRMB,%2d%2d%2d.%3d,%lf,%lf,%d,%lf,%d,%d*", &hh, &mm, &ss, &ms, &h, &d, &dm, &v, &sm, &hm) == 10,
+          "a $BPRMB");
+    check(hh < 24 && mm < 60 && ss < 60 && ms < 1000, "a time of day");
+    check(h >= 0.0 && h < 360.05, "a heading in [0, 360)");
+    check(d >= 0.0 && d <= MAX_DEPTH + 0.05, "a depth inside the limit");
+    check(v >= 0.0 && v <= MAX_SPEED + 0.005, "a speed inside the limit");
+    check(dm == 0 && sm == 1 && hm == 0, "a depth, a speed, a heading");
+    return 0;
+}
+
+static double take_double(const uint8_t *data, size_t size, size_t *i)
+{
+    double d = 0.0;
+    if (*i + sizeof d <= size) {
+        memcpy(&d, data + *i, sizeof d);
+        *i += sizeof d;
+    }
+    return d;
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    fs_state *fs = calloc(1, sizeof *fs);
+    drv_ctx ctx;
+    drv_ctx_init(&ctx, "fuzz_bluefin", "FUZZ", "FRONTSEAT", sink, NULL);
+    ctx.quiet = 1;
+    ctx.write = on_write;
+    char err[128];
+    for (const drv_flag *f = frontseat_protocol.flags; f->name; f++) {
+        if (!strcmp(f->name, "--protocol"))
+            check(f->set(fs, "bluefin", err, sizeof err) == 0, "--protocol");
+        if (!strcmp(f->name, "--max-depth"))
+            check(f->set(fs, "40", err, sizeof err) == 0, "--max-depth");
+        if (!strcmp(f->name, "--max-speed"))
+            check(f->set(fs, "2", err, sizeof err) == 0, "--max-speed");
+        if (!strcmp(f->name, "--origin"))
+            check(f->set(fs, "41.5,-70.7", err, sizeof err) == 0, "--origin");
+    }
+    check(frontseat_protocol.init(fs, &ctx) == 0, "init");
+    int64_t t = INT64_C(1700000000000000);
+    unsigned cut = size ? data[0] : 5;
+    for (size_t i = 0; i < size;) {
+        t += 20000 * (1 + (int64_t)((data[i] ^ cut) % 64));
+        frontseat_protocol.tick(fs, &ctx, t);
+        if ((data[i] & 0x1f) == 0x1f) { /* a setpoint of the input's bytes */
+            i++;
+            auv_setpoint_t sp;
+            memset(&sp, 0, sizeof sp);
+            sp.utime = t - (int64_t)(i % 3) * 1000000;
+            sp.vertical_mode = (int8_t)(i % 4);
+            sp.speed_mode = (int8_t)((i / 4) % 3);
+            sp.heading_rad = take_double(data, size, &i);
+            sp.depth_m = take_double(data, size, &i);
+            sp.altitude_m = take_double(data, size, &i);
+            sp.speed_mps = take_double(data, size, &i);
+            frontseat_protocol.subscriptions[0].handler(fs, &ctx, &sp, t);
+            continue;
+        }
+        size_t n = 1 + (cut + i) % 48;
+        if (n > size - i)
+            n = size - i;
+        frontseat_protocol.feed(fs, &ctx, data + i, n, t);
+        i += n;
+    }
+    free(fs);
+    return 0;
+}
