@@ -386,7 +386,8 @@ const drv_protocol frontseat_protocol = {
     .program = "auv-frontseat",
     .summary = "A commercial vehicle's frontseat from its backseat: the navigator's setpoints (<V>.SETPOINT) as "
                "the frontseat's requests, its navigation on <V>.NAV, its state on <V>.FRONTSEAT "
-               "(docs/frontseat.md).",
+               "(docs/frontseat.md). Protocols (--protocol): iver3, the Iver3 Remote Helm; bluefin, Bluefin's "
+               "standard payload interface (Huxley, usually --tcp HOST:29500).",
     .default_baud = 19200,
     .state_size = sizeof(fs_state),
     .flags = fs_flags,
