@@ -187,13 +187,16 @@ class Launcher:
         # first, so the note below is in every log: two runs count the same events),
         # recording once the first message is in the file (its own lockstep
         # registration, sent as it starts), asked every 10 ms.
+        # lcm-logger may create its file before it subscribes (a loaded fresh-clone run
+        # lost the note and waited 20 s for a byte): while its file stays empty the
+        # note is sent again every 0.5 s, so a log may hold it more than once.
         deadline = time.monotonic() + 20
-        noted = False
+        next_note = 0.0
         while time.monotonic() < deadline and self.logger.poll() is None:
             if self.log_path.exists():
-                if not noted:
+                if time.monotonic() >= next_note:
                     self.notes.event("logger", f"{self.recorder} pid {self.logger.pid} recording {self.log_path.name}")
-                    noted = True
+                    next_note = time.monotonic() + (0.5 if self.recorder == "lcm-logger" else float("inf"))
                 if self.recorder == "lcm-logger":
                     time.sleep(0.3)
                 if self.log_path.stat().st_size > 0:
