@@ -6,7 +6,6 @@
  * refusal in a $BFACK), the state ($BFMIS, $BFMSC, $BFCTL, $BFSHT, silence) and
  * the hostile corpus of tests/drivers/corpus/bluefin/ (each file: the stream,
  * and the counts it must give). */
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,6 +17,7 @@
 #include "drivers/common/nmea.h"
 #include "frontseat/frontseat.h"
 #include "../harness/unit.h"
+#include "corpus_expect.h"
 
 #define T0 INT64_C(1700000000000000)
 #define MS INT64_C(1000)
@@ -380,55 +380,23 @@ static long expected(const rig *r, const char *name)
     return (long)count(r, name);
 }
 
+static void *corpus_open(void) { return rig_new(NULL); }
+
+static void corpus_read(void *p, const uint8_t *data, size_t n, size_t k)
+{
+    rig *r = p;
+    (void)k;
+    frontseat_protocol.feed(&r->fs, &r->ctx, data, n, T0);
+}
+
+static long corpus_figure(void *p, const char *name) { return expected(p, name); }
+
+static const char *corpus_last_error(void *p) { return ((rig *)p)->ctx.last_error; }
+
 static void test_hostile_corpus(void)
 {
-    const char *dir = "tests/drivers/corpus/bluefin";
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
-    if (!d)
-        return;
-    int files = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d))) {
-        if (ent->d_name[0] == '.')
-            continue;
-        char path[512];
-        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
-        FILE *f = fopen(path, "rb");
-        CHECK(f != NULL);
-        if (!f)
-            continue;
-        static char data[1 << 16];
-        size_t n = fread(data, 1, sizeof data - 1, f);
-        fclose(f);
-        data[n] = '\0';
-        CHECK(!strncmp(data, "# expect:", 9));
-        size_t head = strcspn(data, "\n");
-        char expect[512];
-        snprintf(expect, sizeof expect, "%.*s", (int)(head - 9), data + 9);
-        rig *r = rig_new(NULL);
-        for (size_t i = head + 1; i < n; i += 13) /* reads of 13 bytes */
-            frontseat_protocol.feed(&r->fs, &r->ctx, (const uint8_t *)data + i, n - i < 13 ? n - i : 13, T0);
-        for (char *tok = strtok(expect, " "); tok; tok = strtok(NULL, " ")) {
-            char *eq = strrchr(tok, '=');
-            CHECK(eq != NULL);
-            if (!eq)
-                continue;
-            *eq = '\0';
-            for (char *c = tok; *c; c++)
-                if (*c == '_')
-                    *c = ' ';
-            long want = strtol(eq + 1, NULL, 10), got = expected(r, tok);
-            if (got != want)
-                fprintf(stderr, "%s: %s: want %ld, got %ld (last error: %s)\n", ent->d_name, tok, want, got,
-                        r->ctx.last_error);
-            CHECK(got == want);
-        }
-        free(r);
-        files++;
-    }
-    closedir(d);
-    CHECK(files >= 3);
+    const corpus_rig c = {13, corpus_open, corpus_read, NULL, corpus_figure, corpus_last_error};
+    CHECK(corpus_check("tests/drivers/corpus/bluefin", &c) >= 3); /* reads of 13 bytes */
 }
 
 static const unit_test tests[] = {

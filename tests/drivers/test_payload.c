@@ -5,7 +5,6 @@
  * garbage), a frame found inside a refused one, and the hostile corpus
  * tests/drivers/corpus/payload/ (each file: a first line "# expect:
  * reason=count ...", then the stream). */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -15,6 +14,7 @@
 #include "common/lcm_rx.h"
 #include "drivers/payload/payload.h"
 #include "../harness/unit.h"
+#include "corpus_expect.h"
 
 #define STAMP0 INT64_C(1700000000000000)
 #define MAX_OUT 16
@@ -216,59 +216,29 @@ static long expected(rig *r, const char *name)
     return (long)count(r, name);
 }
 
+static void *corpus_open(void) { return rig_new(); }
+
+static void corpus_read(void *p, const uint8_t *data, size_t n, size_t k)
+{
+    rig *r = p;
+    (void)k;
+    feed(r, data, n, STAMP0 + (int64_t)k * 1000); /* 1 ms apart */
+}
+
+static void corpus_end(void *p, size_t reads)
+{
+    rig *r = p;
+    payload_protocol.tick(&r->s, &r->ctx, STAMP0 + (int64_t)reads * 1000 + 1000000); /* the end: a half frame is cut */
+}
+
+static long corpus_figure(void *p, const char *name) { return expected(p, name); }
+
+static const char *corpus_last_error(void *p) { return ((rig *)p)->ctx.last_error; }
+
 static void test_hostile_corpus(void)
 {
-    const char *dir = "tests/drivers/corpus/payload";
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
-    if (!d)
-        return;
-    int files = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d))) {
-        if (ent->d_name[0] == '.')
-            continue;
-        char path[512];
-        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
-        FILE *fp = fopen(path, "rb");
-        CHECK(fp != NULL);
-        if (!fp)
-            continue;
-        static uint8_t data[1 << 17];
-        size_t n = fread(data, 1, sizeof data - 1, fp);
-        fclose(fp);
-        CHECK(n > 9 && !memcmp(data, "# expect:", 9));
-        size_t head = 0;
-        while (head < n && data[head] != '\n')
-            head++;
-        char expect[512] = "";
-        size_t elen = head - 9 < sizeof expect - 1 ? head - 9 : sizeof expect - 1;
-        memcpy(expect, data + 9, elen);
-        rig *r = rig_new();
-        int64_t t = STAMP0;
-        for (size_t i = head + 1; i < n; i += 13, t += 1000) /* reads of 13 bytes, 1 ms apart */
-            feed(r, data + i, n - i < 13 ? n - i : 13, t);
-        payload_protocol.tick(&r->s, &r->ctx, t + 1000000); /* the end: a half frame is cut */
-        for (char *tok = strtok(expect, " "); tok; tok = strtok(NULL, " ")) {
-            char *eq = strrchr(tok, '=');
-            CHECK(eq != NULL);
-            if (!eq)
-                continue;
-            *eq = '\0';
-            for (char *ch = tok; *ch; ch++)
-                if (*ch == '_')
-                    *ch = ' ';
-            long want = strtol(eq + 1, NULL, 10), got = expected(r, tok);
-            if (got != want)
-                fprintf(stderr, "%s: %s: want %ld, got %ld (last error: %s)\n", ent->d_name, tok, want, got,
-                        r->ctx.last_error);
-            CHECK(got == want);
-        }
-        free(r);
-        files++;
-    }
-    closedir(d);
-    CHECK(files >= 3);
+    const corpus_rig c = {13, corpus_open, corpus_read, corpus_end, corpus_figure, corpus_last_error};
+    CHECK(corpus_check("tests/drivers/corpus/payload", &c) >= 3); /* reads of 13 bytes */
 }
 
 static const unit_test tests[] = {

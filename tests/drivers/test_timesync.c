@@ -4,7 +4,6 @@
  * confirmed by a second sentence), each refusal reason, --clock sim refused,
  * and the hostile corpus tests/drivers/corpus/timesync/ (each file: a first
  * line "# expect: reason=count ...", then the stream). */
-#include <dirent.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,6 +13,7 @@
 #include "drivers/common/drv_options.h"
 #include "drivers/timesync/timesync.h"
 #include "../harness/unit.h"
+#include "corpus_expect.h"
 
 #define STAMP0 INT64_C(1700000000000000)
 #define MAX_CLOCKS 64
@@ -189,55 +189,23 @@ static long expected(rig *r, const char *name)
     return (long)count(r, name);
 }
 
+static void *corpus_open(void) { return rig_new(); }
+
+static void corpus_read(void *p, const uint8_t *data, size_t n, size_t k)
+{
+    rig *r = p;
+    (void)k;
+    timesync_protocol.feed(&r->s, &r->ctx, data, n, STAMP0);
+}
+
+static long corpus_figure(void *p, const char *name) { return expected(p, name); }
+
+static const char *corpus_last_error(void *p) { return ((rig *)p)->ctx.last_error; }
+
 static void test_hostile_corpus(void)
 {
-    const char *dir = "tests/drivers/corpus/timesync";
-    DIR *d = opendir(dir);
-    CHECK(d != NULL);
-    if (!d)
-        return;
-    int files = 0;
-    struct dirent *ent;
-    while ((ent = readdir(d))) {
-        if (ent->d_name[0] == '.')
-            continue;
-        char path[512];
-        snprintf(path, sizeof path, "%s/%s", dir, ent->d_name);
-        FILE *f = fopen(path, "rb");
-        CHECK(f != NULL);
-        if (!f)
-            continue;
-        static char data[1 << 16];
-        size_t n = fread(data, 1, sizeof data - 1, f);
-        fclose(f);
-        data[n] = '\0';
-        CHECK(!strncmp(data, "# expect:", 9));
-        size_t head = strcspn(data, "\n");
-        char expect[512];
-        snprintf(expect, sizeof expect, "%.*s", (int)(head - 9), data + 9);
-        rig *r = rig_new();
-        for (size_t i = head + 1; i < n; i += 11) /* reads of 11 bytes */
-            timesync_protocol.feed(&r->s, &r->ctx, (const uint8_t *)data + i, n - i < 11 ? n - i : 11, STAMP0);
-        for (char *tok = strtok(expect, " "); tok; tok = strtok(NULL, " ")) {
-            char *eq = strrchr(tok, '=');
-            CHECK(eq != NULL);
-            if (!eq)
-                continue;
-            *eq = '\0';
-            for (char *c = tok; *c; c++)
-                if (*c == '_')
-                    *c = ' ';
-            long want = strtol(eq + 1, NULL, 10), got = expected(r, tok);
-            if (got != want)
-                fprintf(stderr, "%s: %s: want %ld, got %ld (last error: %s)\n", ent->d_name, tok, want, got,
-                        r->ctx.last_error);
-            CHECK(got == want);
-        }
-        free(r);
-        files++;
-    }
-    closedir(d);
-    CHECK(files >= 3);
+    const corpus_rig c = {11, corpus_open, corpus_read, NULL, corpus_figure, corpus_last_error};
+    CHECK(corpus_check("tests/drivers/corpus/timesync", &c) >= 3); /* reads of 11 bytes */
 }
 
 static const unit_test tests[] = {

@@ -148,7 +148,10 @@ def test_the_recorder_hears_whatever_is_sent_once_its_file_exists(tmp_path, lcm_
             lc.publish("TEST.FIRST", b"first")
         finally:
             os.kill(rec.pid, signal.SIGCONT)
-            time.sleep(0.2)  # the kernel has the datagram; let the recorder take it in
+            # until the message is written (a deadline, not a guess of how long it takes)
+            until = time.monotonic() + 10
+            while ("TEST.FIRST", b"first") not in events(log) and time.monotonic() < until:
+                time.sleep(0.01)
             rc = stop(rec, signal.SIGTERM)
             out, err = rec.communicate()
         assert rc == 0, out + err
