@@ -14,7 +14,6 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from auv import log_annotation_t as A
 from auvlcm.offline import OfflineLcm
 from auvlcm.paths import ROOT
 from tools.launch.annotate import Annotator
@@ -24,17 +23,9 @@ from tools.scenario.scenario_file import Scenario
 def start_notes(sc: Scenario, files: dict[str, dict[str, Path]]) -> list[tuple[str, bytes]]:
     """What the launcher notes at the start; files[vid]: its wired `sim` and `nav` configs."""
     lc = OfflineLcm(keep=True)
-    notes = Annotator(lc, "auv-hil-wire", ROOT, paced=False)
-    notes.note(A.KIND_SCENARIO, sc.path.name, sc.text)
-    if sc.survey is not None:
-        notes.note(A.KIND_NOTE, sc.survey.name, sc.survey.read_text())
-    for v in sc.vehicles:
-        for key in ("sim", "nav"):
-            notes.note(A.KIND_SCENARIO, files[v.id][key].name, files[v.id][key].read_text(), v.id)
-        for m in v.managers:
-            notes.plan(m.plan, v.id)
-            notes.binding(m.bind, v.id)
-    notes.types()
+    sims = {vid: f["sim"] for vid, f in files.items()}
+    navs = {vid: f["nav"] for vid, f in files.items()}
+    Annotator(lc, "auv-hil-wire", ROOT, paced=False).run(sc, sims, navs)
     return lc.published
 
 

@@ -26,7 +26,7 @@ from auvlcm.paths import ROOT
 from auvlcm.url import check_local, with_receive_buffer
 from confcheck import ConfigError
 from tools.launch.annotate import Annotator
-from tools.launch.launcher import EXIT
+from tools.launch.launcher import EXIT, manager_cmd
 from tools.launch.mission_watch import MissionWatch
 from tools.launch.procs import TIER_FILTER, TIER_MANAGER, TIER_RECORDER, TIER_SIMULATOR, Child, stop_together
 from tools.scenario.scenario_file import Scenario, load_scenario
@@ -78,18 +78,7 @@ class VehicleComputer:
         nav = programs.auv_nav(build, config=a.nav_config, vehicle=vid, lcm_url=self.url, rate_hz=self.v.nav.rate_hz)
         self.start(f"{vid}.NAV", nav, TIER_FILTER)
         for m in self.v.managers:
-            cmd = programs.chasm_manager(
-                build,
-                plan=m.plan,
-                bind=m.bind,
-                vehicle=vid,
-                name=m.name,
-                lcm_url=self.url,
-                rate_hz=m.rate_hz,
-                status_rate_hz=m.status_rate_hz,
-                plugin_path=m.plugin_path or [build / "plugins"],
-                params=m.params,
-            )
+            cmd = manager_cmd(build, self.url, vid, m)
             self.start(f"{vid}.{m.name}", cmd, TIER_MANAGER)
         for m in self.v.managers:
             self.notes.plan(m.plan, vid)

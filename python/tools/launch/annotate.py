@@ -72,6 +72,22 @@ class Annotator:
         for p in plan_files(plan):
             self.file(log_annotation_t.KIND_PLAN, p, vehicle)
 
+    def run(self, sc, sim_configs: dict, nav_configs: dict) -> None:
+        """What a run is noted with at its start: the scenario, its survey, each
+        vehicle's simulator and nav configurations (sc: a tools.scenario Scenario;
+        configs by vehicle id, where it has them), plans and bindings, the types."""
+        self.note(log_annotation_t.KIND_SCENARIO, sc.path.name, sc.text)
+        if sc.survey is not None:
+            self.note(log_annotation_t.KIND_NOTE, sc.survey.name, sc.survey.read_text())
+        for v in sc.vehicles:
+            for configs in (sim_configs, nav_configs):
+                if v.id in configs:
+                    self.note(log_annotation_t.KIND_SCENARIO, configs[v.id].name, configs[v.id].read_text(), v.id)
+            for m in v.managers:
+                self.plan(m.plan, v.id)
+                self.binding(m.bind, v.id)
+        self.types()
+
     def binding(self, bind: Path, vehicle: str) -> None:
         # a binding file's `include "FILE"` has the plans' syntax and resolution
         for p in plan_files(bind):

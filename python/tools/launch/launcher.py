@@ -102,6 +102,22 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
     return errors
 
 
+def manager_cmd(build: Path, url: str, vid: str, m) -> list[str]:
+    """The command line of a scenario's manager m (tools.scenario) of vehicle vid."""
+    return programs.chasm_manager(
+        build,
+        plan=m.plan,
+        bind=m.bind,
+        vehicle=vid,
+        name=m.name,
+        lcm_url=url,
+        rate_hz=m.rate_hz,
+        status_rate_hz=m.status_rate_hz,
+        plugin_path=m.plugin_path or [build / "plugins"],
+        params=m.params,
+    )
+
+
 class Launcher:
     def __init__(
         self,
@@ -212,22 +228,7 @@ class Launcher:
             return None
 
     def annotate(self) -> None:
-        from auv import log_annotation_t as A
-
-        self.notes.note(A.KIND_SCENARIO, self.sc.path.name, self.sc.text)
-        if self.sc.survey is not None:
-            self.notes.note(A.KIND_NOTE, self.sc.survey.name, self.sc.survey.read_text())
-        for v in self.sc.vehicles:
-            if v.id in self.sim_configs:
-                cfg = self.sim_configs[v.id]
-                self.notes.note(A.KIND_SCENARIO, cfg.name, cfg.read_text(), v.id)
-            if v.id in self.nav_configs:
-                nav = self.nav_configs[v.id]
-                self.notes.note(A.KIND_SCENARIO, nav.name, nav.read_text(), v.id)
-            for m in v.managers:
-                self.notes.plan(m.plan, v.id)
-                self.notes.binding(m.bind, v.id)
-        self.notes.types()
+        self.notes.run(self.sc, self.sim_configs, self.nav_configs)
 
     def sim_cmd(self, vid: str) -> list[str]:
         # On the launcher's clock every simulator runs lockstep; otherwise their configuration decides.
@@ -235,18 +236,7 @@ class Launcher:
         return programs.simulator(self.sim_configs[vid], lcm_url=self.child_url, clock=clock)
 
     def manager_cmd(self, vid: str, m) -> list[str]:
-        return programs.chasm_manager(
-            self.build,
-            plan=m.plan,
-            bind=m.bind,
-            vehicle=vid,
-            name=m.name,
-            lcm_url=self.child_url,
-            rate_hz=m.rate_hz,
-            status_rate_hz=m.status_rate_hz,
-            plugin_path=m.plugin_path or [self.build / "plugins"],
-            params=m.params,
-        )
+        return manager_cmd(self.build, self.child_url, vid, m)
 
     def nav_cmd(self, v) -> list[str]:
         return programs.auv_nav(
