@@ -66,5 +66,9 @@ def test_a_resumed_server_never_sends_time_backwards(procs, tmp_path, child_env,
         text = p.text()
         stopped = re.search(r"stopped: .*", text)
         assert stopped, (name, text)
-        # what each node itself received: its clock never went back either
-        assert " 0 regressions" in stopped.group(0), (name, stopped.group(0))
+        # what each node itself took: no value behind its clock within a term.
+        # An old term's clock refused is the gate at work, not a fault: a node
+        # starved of the CPU can win (or hear) the next term before it drains
+        # the last clocks the frozen server sent before it stopped; the
+        # listener's order above is what proves no server sent one late.
+        assert "regression " not in stopped.group(0).split("time drops")[-1], (name, stopped.group(0))
