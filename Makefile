@@ -98,7 +98,10 @@ CXXFLAGS_ALL := -std=c++17 $(WARN) $(OPT) -fPIC -Ic -I$(GEN)/c -I$(LCM_INC) -I$(
 # memcpy(NULL, src, 0) when decoding an empty variable-length byte array (harmless,
 # but UBSan's nonnull-attribute check stops on it), so that check is off there too.
 GEN_CFLAGS := -Wno-cast-function-type -fno-sanitize=nonnull-attribute
-SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+# The sanitized variant at -O1 with line tables only (-g1, enough for ASan's and
+# UBSan's file:line): it compiles in two thirds of -O2 -g's time (the C++ filter's
+# files most of all), and it comes after OPT on the line, so it wins.
+SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g1
 LCM_LDLIBS := -L$(LCM_LIB) -Wl,-rpath,$(LCM_LIB) -llcm
 LDLIBS_ALL := -lm -ldl -lpthread
 

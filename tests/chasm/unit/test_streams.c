@@ -60,7 +60,7 @@ static void stream_missed_and_capacity(void)
     if (!m) return;
     CHECK(info(m, "rx").capacity == 4);
     chasm_start(m, 0);
-    char t[8];
+    char t[12]; /* any int: -O1 cannot bound i */
     for (int i = 1; i <= 10; i++) {
         snprintf(t, sizeof t, "%d", i);
         add(m, "rx", t, 0.05);
