@@ -12,7 +12,17 @@ import sys
 import time
 
 from browser import Browser
-from console_fixtures import ARTIFACTS, LAUNCH, Console, chromium, read_until, stop_launcher, vehicle, write_scenario  # noqa: F401
+from console_fixtures import (  # noqa: F401
+    ARTIFACTS,
+    LAUNCH,
+    Console,
+    chromium,
+    read_until,
+    stop_launcher,
+    vehicle,
+    write_run_log,
+    write_scenario,
+)
 
 
 def _panel(vid: str, manager: str, part: str) -> str:
@@ -123,3 +133,33 @@ def test_live_map_shows_the_run_and_a_pause_round_trips(tmp_path, lcm_url, child
         assert console.stop() == 0
     print(json.dumps({"screenshots": sorted(p.name for p in ARTIFACTS.glob("*.png"))}))
     time.sleep(0)
+
+
+def test_the_page_shows_who_flies_a_commercial_vehicle(tmp_path, child_env, chromium):
+    """A log where AUV1's frontseat gives our plan control, an operator takes it, and
+    it comes back: the vehicle's panel says who has control at each time."""
+    write_run_log(tmp_path / "r.lcmlog")
+    console = Console(["--log", str(tmp_path / "r.lcmlog")], child_env)
+    browser = Browser(chromium)
+    fs = "(document.querySelector('.vehicle[data-id=\"AUV1\"] .frontseat') || {}).textContent || ''"
+    try:
+        browser.open(console.url)
+        browser.wait_for("document.querySelectorAll('.vehicle').length === 2", what="two vehicles in the log")
+        text = browser.wait_for(
+            f"(t => t.includes('payload (our plan) has control') && t)({fs})", what="ours at the end"
+        )
+        assert "iver3" in text and "mode A" in text and "granted 2" in text and "lost 1" in text, text
+        assert browser.eval("document.querySelector('.vehicle[data-id=\"AUV2\"] .frontseat') === null")
+        browser.eval(
+            "(() => { const s = document.querySelector('#slider'); s.value = 3.5;"
+            " s.dispatchEvent(new Event('input')); })()"
+        )
+        text = browser.wait_for(
+            f"(t => t.includes('an operator has control') && t)({fs})", what="the operator's at 3.5 s"
+        )
+        assert "manual" in text and "mode M" in text, text
+        assert browser.eval("!!document.querySelector('.vehicle[data-id=\"AUV1\"] .fs-operator')")
+        browser.screenshot(ARTIFACTS / "frontseat.png")
+    finally:
+        browser.close()
+        assert console.stop() == 0

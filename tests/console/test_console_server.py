@@ -12,7 +12,7 @@ from urllib.parse import urlparse
 import pytest
 import yaml
 from conftest import ROOT
-from console_fixtures import Console
+from console_fixtures import Console, write_run_log
 from manager_world import ManagerWorld
 
 from tools.console.model import Model, Series, Trail
@@ -192,44 +192,12 @@ def test_the_page_sees_a_real_manager_and_a_pause_round_trips(lcm_url, child_env
         assert world.close() == 0
 
 
-def _write_run_log(path) -> None:
-    """Two vehicles over 6 s of sim time: truth, nav, navigator status (running, then
-    AUV2 aborted at 4 s), a contact, a heard modem frame; logged 50 ms apart."""
-    import lcm as _lcm
-
-    from auv import chasm_status_t, ground_truth_t, modem_rx_t, nav_solution_t, sidescan_contact_t
-
-    log = _lcm.EventLog(str(path), "w", overwrite=True)
-    for i in range(60):
-        utime = i * 100_000
-        for k, vid in enumerate(("AUV1", "AUV2")):
-            tr = ground_truth_t()
-            tr.utime, tr.vehicle, tr.eta = utime, vid, [i * 1.0, 20.0 * k, 5.0, 0.0, 0.0, 0.0]
-            nav = nav_solution_t()
-            nav.utime, nav.vehicle, nav.north_m, nav.east_m = utime, vid, i * 1.0 + 0.5, 20.0 * k
-            st = chasm_status_t()
-            st.utime, st.vehicle, st.manager, st.cycle = utime, vid, "NAVIGATOR", i
-            aborted = vid == "AUV2" and i >= 40
-            st.run_state = 4 if aborted else 1
-            st.active_path, st.path_len, st.time_in_state_s = (["emergency"] if aborted else ["run"]), 1, [0.0]
-            for ch, m in ((f"{vid}.TRUTH", tr), (f"{vid}.NAV", nav), (f"{vid}.CHASM.NAVIGATOR", st)):
-                log.write_event(1_000_000 + i * 50_000 + k, ch, m.encode())
-        if i == 30:
-            c = sidescan_contact_t()
-            c.utime, c.vehicle, c.classification, c.north_m = utime, "AUV1", "mine_like", 12.0
-            log.write_event(1_000_000 + i * 50_000 + 5, "AUV1.CONTACTS", c.encode())
-            rx = modem_rx_t()
-            rx.utime, rx.vehicle, rx.src_vehicle = utime, "AUV2", "AUV1"
-            log.write_event(1_000_000 + i * 50_000 + 6, "AUV2.MODEM_RX", rx.encode())
-    log.close()
-
-
 def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
     import subprocess
 
     from lcm_proc import lcm_tool
 
-    _write_run_log(tmp_path / "r.lcmlog")
+    write_run_log(tmp_path / "r.lcmlog")
     console = Console(["--lcm-url", lcm_url], child_env)
     player = None
     try:
@@ -254,7 +222,7 @@ def test_lcm_logplayer_replay_shows_like_live(tmp_path, lcm_url, child_env):
 
 
 def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
-    _write_run_log(tmp_path / "r.lcmlog")
+    write_run_log(tmp_path / "r.lcmlog")
     console = Console(["--log", str(tmp_path / "r.lcmlog")], child_env)
     try:
         page = Page(console.url)
@@ -269,10 +237,15 @@ def test_a_finished_log_opens_with_seeks_forward_and_back(tmp_path, child_env):
         assert now["vehicles"]["AUV2"]["managers"]["NAVIGATOR"]["run"] == "running"
         assert len(page.series["AUV1.true"]) == 21 and page.series.get("contacts", []) == []
         assert now["vehicles"]["AUV1"]["truth"]["n"] == 20.0
+        fs = now["vehicles"]["AUV1"]["frontseat"]
+        assert (fs["control"], fs["state"], fs["mode"], fs["granted"]) == ("payload", "payload", "A", 1), fs
+        assert now["vehicles"]["AUV2"]["frontseat"] is None  # a vehicle with our own pilot
         assert page.post("/api/seek", {"t": 3.05})[1] == {"t": 3.05}  # forward: only what is new
         now = page.until(lambda n: n["t"] == 3.05, what="t = 3.05 s")
         assert len(page.series["AUV1.true"]) == 31 and len(page.series["contacts"]) == 1
         assert [ln["src"] for ln in now["links"]] == ["AUV1"]
+        fs = now["vehicles"]["AUV1"]["frontseat"]
+        assert (fs["control"], fs["state"], fs["lost"]) == ("operator", "manual", 1), fs
         assert page.post("/api/seek", {"t": 1e9})[1] == {"t": info["end"]}  # clamped
         assert page.post("/api/seek", {"t": "soon"})[0] == 400
         assert page.post("/api/command", {"vehicle": "AUV1", "command": "pause"})[0] == 409

@@ -34,8 +34,10 @@ def station_errors(log):
 
 
 def test_the_follower_keeps_station_on_the_leaders_status(tmp_path, lcm_url, child_env):
-    sc = st.variant(SCENARIO, tmp_path / "lf.yaml")
-    st.fly(sc, tmp_path / "run", lcm_url, child_env)
+    # ended after the first line (the time limit: exit 6); the whole scenario to
+    # its end is flown by the next test, whose follower goes home
+    sc = st.variant(SCENARIO, tmp_path / "lf.yaml", limit_s=200)
+    st.fly(sc, tmp_path / "run", lcm_url, child_env, expect_rc=6)
     log = tmp_path / "run" / "run.lcmlog"
     err = station_errors(log)
     # along the first line (after a minute to close up, before its end at 300 m):

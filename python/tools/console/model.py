@@ -124,6 +124,7 @@ class Model:
                 "nav_status": None,
                 "managers": {},
                 "modem": None,
+                "frontseat": None,
                 "acks": [],
             }
             self.trails[vid + ".true"] = Trail()
@@ -308,6 +309,37 @@ def _modem_status(m: Model, ch: str, msg: Any) -> bool:
     return True
 
 
+FRONTSEAT_STATES = ("not connected", "silent", "frontseat", "payload", "error", "manual")
+
+
+def _frontseat(m: Model, ch: str, msg: Any) -> bool:
+    """A commercial vehicle's frontseat as auv-frontseat sees it (docs/frontseat.md):
+    who flies the vehicle now (the payload's requests, the frontseat's own
+    mission, or an operator), its error, and how long since it was heard."""
+    if not ch.endswith(".FRONTSEAT"):
+        return False
+    v = m._vehicle(_vehicle_id(ch))
+    state = FRONTSEAT_STATES[msg.state] if 0 <= msg.state < len(FRONTSEAT_STATES) else str(msg.state)
+    v["frontseat"] = {
+        "protocol": msg.protocol,
+        "state": state,
+        # who has control, in the operator's words
+        "control": "payload" if msg.has_control else ("operator" if state == "manual" else "frontseat"),
+        "has_control": bool(msg.has_control),
+        "requesting": bool(msg.requesting),
+        "mode": msg.mode,
+        "error": msg.error_text if msg.error else "",
+        "age_s": round(msg.last_message_age_s, 1),
+        "granted": msg.control_granted,
+        "lost": msg.control_lost,
+        "refused": msg.setpoints_refused,
+        "clamped": msg.setpoints_clamped,
+        "last_refusal": msg.last_refusal,
+        "t": msg.utime / 1e6,
+    }
+    return True
+
+
 def _ack(m: Model, ch: str, msg: Any) -> bool:
     v = m._vehicle(_vehicle_id(ch))
     v["acks"] = (
@@ -366,6 +398,7 @@ _HANDLERS = {
     "target_field_t": _targets,
     "modem_rx_t": _modem_rx,
     "modem_status_t": _modem_status,
+    "frontseat_status_t": _frontseat,
     "mission_ack_t": _ack,
     "sim_clock_t": _clock,
     "agent_table_t": _agent,
@@ -373,7 +406,7 @@ _HANDLERS = {
 
 # Only these channels are decoded at all (liblcm filters by this regex in C).
 CHANNELS = (
-    r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK)"
+    r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK|FRONTSEAT)"
     r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
     r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS"
 )

@@ -148,6 +148,17 @@ function vehicleHtml(v) {
       (m.deaf ? ` · missed while sending ${m.deaf}` : '') +
       (refused ? ` · <span class="bad">refused ${refused}</span> (${esc(m.last_refusal)})` : '') + '</div>');
   }
+  if (v.frontseat) {   // a commercial vehicle: who flies it now (docs/frontseat.md)
+    const f = v.frontseat;
+    const who = f.control === 'payload' ? 'payload (our plan) has control'
+      : f.control === 'operator' ? '<span class="bad">an operator has control</span>'
+      : `frontseat has control${f.requesting ? ' (asked)' : ''}`;
+    const state = ['silent', 'error', 'not connected'].includes(f.state) ? `<span class="bad">${esc(f.state)}</span>` : esc(f.state);
+    out.push(`<div class="frontseat fs-${esc(f.control)}">frontseat ${esc(f.protocol)}: <b>${who}</b> · ${state}` +
+      (f.mode ? ` · mode ${esc(f.mode)}` : '') + (f.error ? ` · <span class="bad">error ${esc(f.error)}</span>` : '') +
+      ` · heard ${f.age_s < 0 ? 'never' : fmt(f.age_s) + ' s ago'} · granted ${f.granted} · lost ${f.lost}` +
+      (f.refused ? ` · refused ${f.refused} (${esc(f.last_refusal)})` : '') + '</div>');
+  }
   return out.join('');
 }
 
