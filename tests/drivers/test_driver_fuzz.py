@@ -42,7 +42,15 @@ def test_corpus_and_mutations_do_not_crash(name, variant_dir, child_env, tmp_pat
         pytest.fail(f"{exe} is not built: run `make build sanitize` first")
     corpus = corpus_of(name)
     p = subprocess.run(
-        [str(exe), "--no-dict", "--runs", str(RUNS["sanitized" if variant_dir.name == "san" else "normal"]), "--seed", "7", str(corpus)],
+        [
+            str(exe),
+            "--no-dict",
+            "--runs",
+            str(RUNS["sanitized" if variant_dir.name == "san" else "normal"]),
+            "--seed",
+            "7",
+            str(corpus),
+        ],
         env=child_env,
         cwd=tmp_path,
         capture_output=True,
