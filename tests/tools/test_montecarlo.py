@@ -5,6 +5,7 @@ mean and 95 % interval with a plot; the statistics on their own; usage."""
 from __future__ import annotations
 
 import json
+import math
 import subprocess
 import sys
 
@@ -13,7 +14,7 @@ import pytest
 from conftest import BUILD, ROOT
 
 from auv import ground_truth_t
-from tools.montecarlo.summary import interval, summarize
+from tools.montecarlo.summary import interval, metrics_of, summarize, summary_text
 
 MC = [sys.executable, "-m", "tools.montecarlo"]
 # One vehicle, two short lines over part of the demo's target field: a few minutes of sim time.
@@ -39,12 +40,22 @@ PLAN = [
 ]
 
 
-def test_interval_is_the_t_interval_of_the_mean():
+def test_interval_is_the_t_interval_of_the_mean_within_the_figures_range():
     s = interval([1.0, 2.0, 3.0, 4.0])
     assert s["mean"] == 2.5 and s["min"] == 1.0 and s["max"] == 4.0
     half = 3.182 * (1.6666666666666667**0.5) / 2  # t(0.975, 3) * sd / sqrt(n)
     assert s["lo"] == pytest.approx(2.5 - half) and s["hi"] == pytest.approx(2.5 + half)
-    assert interval([5.0])["lo"] == interval([5.0])["hi"] == 5.0
+    assert not s["clipped"]
+    # a count: never below zero (the user's study: false alarms [-25.3, 38.3])
+    c = interval([0.0, 1.0, 12.0], (0.0, math.inf))
+    assert c["lo"] == 0.0 and c["hi"] > 12.0 and c["clipped"], c
+    # a fraction: never over one
+    f = interval([0.9, 1.0, 1.0, 1.0], (0.0, 1.0))
+    assert f["hi"] == 1.0 and 0.8 < f["lo"] < 0.95 and f["clipped"], f
+    # two runs: no interval, it says so (a t-interval on 2 runs is 12.7 standard errors wide)
+    two = interval([10.0, 50.0], (0.0, math.inf))
+    assert two["lo"] is None and two["hi"] is None and "too small" in two["too_few"], two
+    assert (two["mean"], two["min"], two["max"]) == (30.0, 10.0, 50.0)
     runs = [
         {
             "seed": 1,
@@ -61,6 +72,32 @@ def test_interval_is_the_t_interval_of_the_mean():
     ]
     s = summarize(runs)
     assert s["reported"] == 1 and s["failed_runs"] == {"2": "launcher exit 5"} and "pd" not in s["metrics"]
+    assert not s["team"] and "team:" not in summary_text(s)  # a survey has no team figures
+
+
+def test_a_team_study_carries_the_teams_figures():
+    """From auv-report's team section: identified, their fraction, false
+    identifications, detection to identification; in the JSON and the text."""
+
+    def rep(identified: int, false_ids: int, latency: float | None) -> dict:
+        team = {"mine_like_targets": 4, "mine_like_identified": identified, "false_identifications": [{}] * false_ids}
+        team["detect_to_identify_s"] = {"mean": latency} if latency is not None else None
+        return {"duration_s": 600.0, "outcome": "done", "team": team}
+
+    runs = [
+        {"seed": k, "metrics": metrics_of(rep(i, f, lat))}
+        for k, (i, f, lat) in enumerate([(4, 0, 120.0), (3, 1, 180.0), (4, 0, None)])
+    ]
+    s = summarize(runs)
+    assert s["team"]
+    m = s["metrics"]
+    assert m["mine_like_identified"]["mean"] == pytest.approx(11 / 3) and m["mine_like_identified"]["n"] == 3
+    assert m["identified_fraction"]["hi"] <= 1.0 and m["identified_fraction"]["mean"] == pytest.approx(11 / 12)
+    assert m["false_identifications"]["lo"] == 0.0 and m["false_identifications"]["clipped"]
+    assert m["detect_to_identify_s"]["n"] == 2 and m["detect_to_identify_s"]["lo"] is None  # one run had none
+    text = summary_text(s)
+    assert "team: mine-like identified" in text and "team: false identifications" in text, text
+    assert "detection to identification" in text and "too small for an interval" in text, text
 
 
 @pytest.mark.parametrize(
@@ -136,8 +173,11 @@ def test_two_seeds_on_a_local_dask_cluster(tmp_path, child_env):
     assert s["runs"] == s["reported"] == 2 and s["outcomes"] == {"done": 2}, s
     for key in ("coverage", "nav_error_rms_m", "mission_time_s", "false_alarms"):
         m = s["metrics"][key]
-        assert m["n"] == 2 and m["lo"] <= m["mean"] <= m["hi"], (key, m)
-    assert "95 % interval" in run.stdout and (out / "montecarlo.png").stat().st_size > 1000
+        assert m["n"] == 2 and m["min"] <= m["mean"] <= m["max"] and m["lo"] is None, (key, m)
+    assert "too small for an interval" in run.stdout and (out / "montecarlo.png").stat().st_size > 1000
+    # a clean end: no warning from Dask as its cluster closes (lost tasks, a closed stream)
+    noise = [ln for ln in run.stderr.splitlines() if "WARNING" in ln or "Traceback" in ln or "lost" in ln.lower()]
+    assert not noise, run.stderr[-3000:]
     runs = json.loads((out / "runs.json").read_text())
     assert sorted(r["seed"] for r in runs) == [3, 4]
     worlds = []

@@ -188,7 +188,11 @@ def main(argv: list[str] | None = None) -> int:
         print("montecarlo: interrupted", file=sys.stderr)
         return 130
     finally:
-        for h in reversed(held or ()):
+        # the client first, its futures released, then the cluster: a cluster
+        # closed under a live client loses the results it still holds, and its
+        # scheduler warns of "lost" tasks at the end of a run that went well
+        futures = []
+        for h in held or ():
             h.close()
     s = summarize(runs)
     (out / "runs.json").write_text(json.dumps(runs, indent=1))

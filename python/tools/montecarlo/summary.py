@@ -2,20 +2,32 @@
 summary over the runs as mean and 95 % interval, as text, JSON and a plot.
 
 The interval is the 95 % confidence interval of the mean (Student's t over
-the runs): what a user needs to tell a change in their plan from noise."""
+the runs): what a user needs to tell a change in their plan from noise. Each
+figure has the range it can take (a count is never negative, a fraction never
+over 1): the interval is cut to it and says so. Under MIN_N runs no interval is
+given (two runs make a t-interval 12.7 standard errors wide): the summary says
+n is too small and shows the runs' range."""
 
 from __future__ import annotations
 
 import math
 from pathlib import Path
 
-# (key, label, unit, scale to the unit)
+INF = math.inf
+MIN_N = 3  # runs for an interval
+
+# (key, label, unit, scale to the unit, the figure's range in its own units)
 METRICS = [
-    ("coverage", "coverage once", "%", 100.0),
-    ("pd", "PD (mine-like, covered area)", "", 1.0),
-    ("false_alarms", "false alarms", "", 1.0),
-    ("nav_error_rms_m", "nav error rms (mean of vehicles)", "m", 1.0),
-    ("mission_time_s", "mission time", "min", 1 / 60),
+    ("coverage", "coverage once", "%", 100.0, (0.0, 1.0)),
+    ("pd", "PD (mine-like, covered area)", "", 1.0, (0.0, 1.0)),
+    ("false_alarms", "false alarms", "", 1.0, (0.0, INF)),
+    ("nav_error_rms_m", "nav error rms (mean of vehicles)", "m", 1.0, (0.0, INF)),
+    ("mission_time_s", "mission time", "min", 1 / 60, (0.0, INF)),
+    # a team mission's own figures (auv-report's team section, docs/team.md)
+    ("mine_like_identified", "team: mine-like identified", "", 1.0, (0.0, INF)),
+    ("identified_fraction", "team: identified / mine-like", "%", 100.0, (0.0, 1.0)),
+    ("false_identifications", "team: false identifications", "", 1.0, (0.0, INF)),
+    ("detect_to_identify_s", "team: detection to identification", "min", 1 / 60, (0.0, INF)),
 ]
 
 # two-sided 95 % Student t quantiles for 1..30 degrees of freedom; 1.96 beyond
@@ -58,34 +70,37 @@ def metrics_of(rep: dict) -> dict:
     cov, det = rep.get("coverage") or {}, rep.get("detection") or {}
     nav = [e["rms_m"] for e in rep.get("navigation_error", {}).values()]
     pd = det.get("pd_in_covered_area", det.get("pd"))
+    team = rep.get("team") or {}
+    mines = team.get("mine_like_targets")
+    lat = team.get("detect_to_identify_s") or {}
     return {
         "coverage": cov.get("fraction_once"),
         "pd": pd,
         "false_alarms": det.get("false_alarms"),
         "nav_error_rms_m": sum(nav) / len(nav) if nav else None,
         "mission_time_s": rep.get("duration_s"),
+        "mine_like_identified": team.get("mine_like_identified"),
+        "identified_fraction": team["mine_like_identified"] / mines if mines else None,
+        "false_identifications": len(team["false_identifications"]) if "false_identifications" in team else None,
+        "detect_to_identify_s": lat.get("mean"),
         "outcome": rep.get("outcome"),
         "truth_samples_lost": sum(r["missing"] for r in rep.get("record", {}).values()),
     }
 
 
-def interval(values: list[float]) -> dict:
-    """Mean and 95 % confidence interval of the mean; with one value the interval is that value."""
+def interval(values: list[float], bounds: tuple[float, float] = (-INF, INF)) -> dict:
+    """Mean and 95 % confidence interval of the mean, cut to the figure's range
+    (`clipped` says it was); under MIN_N values no interval (lo, hi None) and
+    `too_few` says why."""
     n = len(values)
     mean = sum(values) / n
-    if n < 2:
-        return {"n": n, "mean": mean, "lo": mean, "hi": mean, "min": mean, "max": mean}
+    out = {"n": n, "mean": mean, "min": min(values), "max": max(values)}
+    if n < MIN_N:
+        return {**out, "lo": None, "hi": None, "too_few": f"n {n} is too small for an interval (at least {MIN_N})"}
     sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (n - 1))
     half = (_T95[n - 2] if n - 1 <= len(_T95) else 1.96) * sd / math.sqrt(n)
-    return {
-        "n": n,
-        "mean": mean,
-        "lo": mean - half,
-        "hi": mean + half,
-        "min": min(values),
-        "max": max(values),
-        "sd": sd,
-    }
+    lo, hi = max(bounds[0], mean - half), min(bounds[1], mean + half)
+    return {**out, "lo": lo, "hi": hi, "sd": sd, "clipped": lo != mean - half or hi != mean + half}
 
 
 def summarize(runs: list[dict]) -> dict:
@@ -99,12 +114,17 @@ def summarize(runs: list[dict]) -> dict:
         },
         "failed_runs": {str(r["seed"]): r.get("error", "") for r in runs if not r.get("metrics")},
         "metrics": {},
+        # a team mission's runs: its figures are listed (with "-" where none came)
+        "team": any(r["metrics"].get("mine_like_identified") is not None for r in ok),
     }
-    for key, *_ in METRICS:
+    for key, _label, _unit, _scale, bounds in METRICS:
         vals = [r["metrics"][key] for r in ok if r["metrics"].get(key) is not None]
         if vals:
-            out["metrics"][key] = interval([float(v) for v in vals])
+            out["metrics"][key] = interval([float(v) for v in vals], bounds)
     return out
+
+
+TEAM_KEYS = ("mine_like_identified", "identified_fraction", "false_identifications", "detect_to_identify_s")
 
 
 def summary_text(s: dict) -> str:
@@ -114,16 +134,21 @@ def summary_text(s: dict) -> str:
     ]
     for seed, err in s["failed_runs"].items():
         lines.append(f"  seed {seed}: no report ({err})")
-    for key, label, unit, scale in METRICS:
+    for key, label, unit, scale, _bounds in METRICS:
         m = s["metrics"].get(key)
         if m is None:
-            lines.append(f"  {label:34s} -")
+            if not key.startswith(TEAM_KEYS) or s.get("team"):
+                lines.append(f"  {label:34s} -")
             continue
         u = f" {unit}" if unit else ""
+        spread = f"range {m['min'] * scale:.3f}..{m['max'] * scale:.3f}"
+        if m["lo"] is None:
+            lines.append(f"  {label:34s} mean {m['mean'] * scale:8.3f}{u}  {m['too_few']}; {spread}{u}")
+            continue
+        cut = ", cut to the figure's range" if m.get("clipped") else ""
         lines.append(
             f"  {label:34s} mean {m['mean'] * scale:8.3f}{u}  95 % interval "
-            f"[{m['lo'] * scale:.3f}, {m['hi'] * scale:.3f}]{u}  (n {m['n']}, "
-            f"range {m['min'] * scale:.3f}..{m['max'] * scale:.3f})"
+            f"[{m['lo'] * scale:.3f}, {m['hi'] * scale:.3f}]{u}  (n {m['n']}{cut}, {spread})"
         )
     return "\n".join(lines) + "\n"
 
@@ -139,18 +164,21 @@ def plot(runs: list[dict], s: dict, out: Path) -> list[Path]:
     if not keys:
         return []
     fig, axes = plt.subplots(1, len(keys), figsize=(3 * len(keys), 3.2), squeeze=False)
-    for ax, (key, label, unit, scale) in zip(axes[0], keys):
+    for ax, (key, label, unit, scale, _bounds) in zip(axes[0], keys):
         vals = [r["metrics"][key] * scale for r in runs if r.get("metrics") and r["metrics"].get(key) is not None]
         m = s["metrics"][key]
         ax.plot([0] * len(vals), vals, "o", alpha=0.6)
-        ax.errorbar(
-            [0.3],
-            [m["mean"] * scale],
-            yerr=[[(m["mean"] - m["lo"]) * scale], [(m["hi"] - m["mean"]) * scale]],
-            fmt="s",
-            color="k",
-            capsize=4,
-        )
+        if m["lo"] is None:  # too few runs: the mean alone
+            ax.plot([0.3], [m["mean"] * scale], "s", color="k")
+        else:
+            ax.errorbar(
+                [0.3],
+                [m["mean"] * scale],
+                yerr=[[(m["mean"] - m["lo"]) * scale], [(m["hi"] - m["mean"]) * scale]],
+                fmt="s",
+                color="k",
+                capsize=4,
+            )
         ax.set_xlim(-0.5, 0.8)
         ax.set_xticks([])
         ax.set_title(label, fontsize=8)
