@@ -150,6 +150,8 @@ def test_the_page_shows_who_flies_a_commercial_vehicle(tmp_path, child_env, chro
         )
         assert "iver3" in text and "mode A" in text and "granted 2" in text and "lost 1" in text, text
         assert browser.eval("document.querySelector('.vehicle[data-id=\"AUV2\"] .frontseat') === null")
+        # the log opens at its end, and says so (it once said "disconnected: retrying")
+        assert browser.eval("document.querySelector('#mode').textContent") == "log r.lcmlog · end of the log"
         browser.eval(
             "(() => { const s = document.querySelector('#slider'); s.value = 3.5;"
             " s.dispatchEvent(new Event('input')); })()"
@@ -158,6 +160,7 @@ def test_the_page_shows_who_flies_a_commercial_vehicle(tmp_path, child_env, chro
             f"(t => t.includes('an operator has control') && t)({fs})", what="the operator's at 3.5 s"
         )
         assert "manual" in text and "mode M" in text, text
+        assert browser.eval("document.querySelector('#mode').textContent") == "log r.lcmlog"
         assert browser.eval("!!document.querySelector('.vehicle[data-id=\"AUV1\"] .fs-operator')")
         browser.screenshot(ARTIFACTS / "frontseat.png")
     finally:

@@ -8,7 +8,7 @@ depth.*     depth (left axis, down) and altitude (right axis) over time, per veh
 states.*    each CHASM's leaf-state timeline, aborts marked with their cause
 
 Colours stay the same between runs: a vehicle's from its name's place among
-the vehicles, a state's from its name.
+the vehicles, a state's from its name (state_colour: never red, red marks aborts).
 """
 
 from __future__ import annotations
@@ -33,9 +33,61 @@ def vehicle_colour(run: RunData, vid: str):
     return plt.get_cmap("tab10")(sorted(run.vehicles).index(vid) % 10 if vid in run.vehicles else 9)
 
 
+# tab20 without its two reds (6, 7): red marks aborts and nothing else; then tab20b
+# without its red group (12-15) and tab20c, for more names
+STATE_PALETTE = (
+    [plt.get_cmap("tab20")(i) for i in range(20) if i not in (6, 7)]
+    + [plt.get_cmap("tab20b")(i) for i in range(20) if not 12 <= i < 16]
+    + [plt.get_cmap("tab20c")(i) for i in range(16)]
+)
+# The leaf states of the shipped and planned missions, each its own colour (their
+# index in STATE_PALETTE), chosen so that the ones a plot shows together are far
+# apart; another name takes its name's hash's (so a name's colour never depends on
+# what else a run holds; two such names may share one)
+KNOWN_STATES = {
+    "survey": 0,  # blue
+    "dive": 1,  # light blue
+    "route": 2,  # orange
+    "transit": 3,  # light orange
+    "reacquire": 4,  # green
+    "mission": 5,  # light green
+    "linger": 6,  # purple
+    "altitude": 7,  # light purple
+    "recover": 8,  # brown
+    "surface": 9,  # light brown
+    "follow": 10,  # pink
+    "alone": 11,  # light pink
+    "emergency": 12,  # grey (its abort is the red mark and the hatching)
+    "idle": 13,  # light grey
+    "gps_fix": 14,  # olive
+    "line": 15,  # light olive
+    "depth": 16,  # cyan
+    "transect": 17,  # light cyan
+    # the box survey's legs (missions/box_survey): lines dark, turns pale
+    "line1": 18,
+    "line2": 22,
+    "line3": 26,
+    "line4": 30,
+    "line5": 34,
+    "turn2": 24,
+    "turn3": 28,
+    "turn4": 32,
+    "turn5": 37,
+    "initial_fix": 20,
+    "climb": 40,
+    "fly": 44,
+    "frontseat_lost": 48,
+    "pitch": 19,
+    "rpm": 23,
+    "mps": 27,
+    "lines": 42,
+}
+
+
 def state_colour(name: str):
-    """From the name, not from which states a run happened to visit."""
-    return plt.get_cmap("tab20")(zlib.crc32(name.encode()) % 20)
+    """From the name alone, never red (red marks aborts)."""
+    k = KNOWN_STATES.get(name)
+    return STATE_PALETTE[k if k is not None else zlib.crc32(name.encode()) % len(STATE_PALETTE)]
 
 
 def _save(fig, out: Path, name: str) -> list[Path]:

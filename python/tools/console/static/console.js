@@ -42,12 +42,21 @@ stream.onmessage = ev => {
   S.now = d.now; S.dirty = true;
   updatePanel();
 };
-stream.onerror = () => { $('mode').textContent = 'disconnected: retrying…'; };
-stream.onopen = () => { $('mode').textContent = S.info.mode === 'log' ? `log ${S.info.log}` : 'live'; };
+// A lost stream is the console process gone (a log's end keeps it open: see modeText)
+stream.onerror = () => { S.streamLost = true; $('mode').textContent = 'console unreachable: retrying…'; };
+stream.onopen = () => { S.streamLost = false; $('mode').textContent = modeText(); };
+}
+
+// What the page shows: live, or a log and whether its end is reached (nothing is
+// broken there: the run ended, the view holds its last state)
+function modeText() {
+  if (S.info.mode !== 'log') return 'live';
+  const atEnd = S.now && S.now.t >= S.info.end - 1e-6;
+  return `log ${S.info.log}` + (atEnd ? ' · end of the log' : '');
 }
 
 function setupMode() {
-  $('mode').textContent = S.info.mode === 'log' ? `log ${S.info.log}` : 'live';
+  $('mode').textContent = modeText();
   if (S.info.mode !== 'log') return;
   const sl = $('slider'), player = $('player');
   player.hidden = false;
@@ -95,7 +104,10 @@ function updatePanel() {
   const now = S.now;
   $('clock').textContent = `t = ${fmt(now.t, 1)} s` + (now.clock.mode ? ` · ${now.clock.mode}` : '') +
     (now.clock.mode === 'scaled' ? ` ×${fmt(now.clock.warp, 0)}` : '');
-  if (S.info && S.info.mode === 'log') $('slider-time').textContent = `${fmt(now.t, 1)} / ${fmt(S.info.end, 1)} s`;
+  if (S.info && S.info.mode === 'log') {
+    $('slider-time').textContent = `${fmt(now.t, 1)} / ${fmt(S.info.end, 1)} s`;
+    if (!S.streamLost) $('mode').textContent = modeText();
+  }
   const ids = vehicleIds();
   for (const el of document.querySelectorAll('.vehicle')) if (!ids.includes(el.dataset.id)) { el.remove(); delete S.built[el.dataset.id]; }
   for (const vid of ids) {
