@@ -158,11 +158,13 @@ static void test_navigation(void)
 }
 
 /* what a stack frame left behind: a caller's local that is never set reads it */
+static volatile long stack_sink;
 static __attribute__((noinline)) void scribble_stack(void)
 {
     volatile long junk[256];
     for (int i = 0; i < 256; i++)
         junk[i] = -1L - i;
+    stack_sink = junk[255];
 }
 
 static void test_empty_quality(void)
