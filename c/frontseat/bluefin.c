@@ -5,7 +5,8 @@
  * $BF...:
  *
  *   payload -> vehicle  $BPLOG,ID,ON                 send me sentence ID (once each,
- *                                                    at the start and every minute)
+ *                                                    when the port opens and every
+ *                                                    minute)
  *                       $BPSTS,TIME,1,TEXT           the payload's heartbeat
  *                       $BPRMB,TIME,HDG,DEPTH,0,SPEED,1,0
  *                                                    fly this heading [deg], depth [m]

@@ -182,6 +182,28 @@ static void test_empty_quality(void)
     free(r);
 }
 
+static void test_logging_asked_when_the_port_opens(void)
+{
+    /* the driver polls from its start, the port perhaps not open yet (a vehicle's
+     * TCP server not up): those $BPLOG went nowhere; once it opens they are asked
+     * again, the first at the next poll (else only after 300 polls: a minute) */
+    rig *r = rig_new(NULL);
+    for (int i = 0; i < 10; i++)
+        frontseat_protocol.tick(&r->fs, &r->ctx, T0 + i * 200 * MS);
+    CHECK(frontseat_protocol.opened != NULL);
+    if (frontseat_protocol.opened)
+        frontseat_protocol.opened(&r->fs, &r->ctx);
+    const char *ids[] = {"ACK", "NVG", "NVR", "MIS", "MSC", "CTL", "SHT"};
+    for (int i = 0; i < 7; i++) {
+        r->written[0] = '\0';
+        frontseat_protocol.tick(&r->fs, &r->ctx, T0 + (10 + i) * 200 * MS);
+        char body[32];
+        snprintf(body, sizeof body, "BPLOG,%s,ON", ids[i]);
+        CHECK_STR(r->written, sentence(body));
+    }
+    free(r);
+}
+
 static void test_requests(void)
 {
     rig *r = rig_new(NULL);
@@ -427,6 +449,7 @@ static void test_hostile_corpus(void)
 static const unit_test tests[] = {
     {"bluefin_navigation", test_navigation},
     {"bluefin_empty_quality", test_empty_quality},
+    {"bluefin_logging_when_opened", test_logging_asked_when_the_port_opens},
     {"bluefin_requests", test_requests},
     {"bluefin_limits", test_limits},
     {"bluefin_states", test_states},
