@@ -151,6 +151,7 @@ def test_bad_lines_are_counted_and_dropped():
     em.receive(b"$BPRMB,00" + compose("BPSTS,000001.000,1,auv-frontseat"), 1.0)
     em.receive(b"$" + b"9" * 700 + b"\r\n", 1.0)
     em.receive(compose("GPGGA,1"), 1.0)
+    em.receive(compose("BP*X,1"), 1.0)
     em.receive(compose("BPABT,000001.000"), 1.0)
     em.receive(compose("BPLOG,XYZ,ON"), 1.0)
     assert em.request is None and em.heartbeats == 1
@@ -160,7 +161,7 @@ def test_bad_lines_are_counted_and_dropped():
         "bad character": 1,
         "truncated": 1,
         "too long": 1,
-        "unknown sentence": 1,
+        "unknown sentence": 2,
         "unsupported sentence": 1,
         "bad $BPLOG": 1,
     }

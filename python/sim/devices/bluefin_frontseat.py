@@ -59,6 +59,7 @@ MAX_SPEED_MPS = 10.0
 DECIMAL = re.compile(r"-?(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)")  # plain decimals: no exponent, no inf, no nan
 TIME = re.compile(r"[0-9]{6}(?:\.[0-9]*)?")
 ECHO = re.compile(r"[0-9.]{0,16}")
+ADDRESS = re.compile(r"BP[A-Z]{3}")  # the payload's sentences
 
 # $BFACK statuses
 INVALID, NOT_PROCESSED, PROCESSED = 0, 1, 2
@@ -108,7 +109,7 @@ class BluefinFrontseat(FrontseatProtocol):
 
     def sentence(self, fields: list[str], t: float) -> None:
         address = fields[0]
-        if len(address) != 5 or not address.startswith("BP"):
+        if not ADDRESS.fullmatch(address):
             self._refuse("unknown sentence")
             return
         kind = address[2:]
