@@ -5,7 +5,8 @@
  * $BF...:
  *
  *   payload -> vehicle  $BPLOG,ID,ON                 send me sentence ID (once each,
- *                                                    at the start and every minute)
+ *                                                    when the port opens and every
+ *                                                    minute)
  *                       $BPSTS,TIME,1,TEXT           the payload's heartbeat
  *                       $BPRMB,TIME,HDG,DEPTH,0,SPEED,1,0
  *                                                    fly this heading [deg], depth [m]
@@ -85,7 +86,7 @@ static void nvg(fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stam
         return;
     }
     double tod, lat = NAN, lon = NAN;
-    long quality;
+    long quality = 0; /* empty: not known (not used beyond this check) */
     if (nmea_field_time_of_day(m, 0, &tod) < 0) {
         drv_drop(ctx, "bad time", "NVG time '%.20s'", m->field[0]);
         return;

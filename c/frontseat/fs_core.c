@@ -358,6 +358,16 @@ static void fs_reset(void *state, drv_ctx *ctx)
     fs->proto->reset(proto_state(fs));
 }
 
+/* the port opened (the first time too): a new stream. What was written before,
+ * into a port not yet open (Bluefin's $BPLOG at the first polls), the vehicle
+ * never heard: the protocol starts over and asks again. */
+static void fs_opened(void *state, drv_ctx *ctx)
+{
+    (void)ctx;
+    fs_state *fs = state;
+    fs->proto->reset(proto_state(fs));
+}
+
 static const drv_flag fs_flags[] = {
     {"--protocol", "NAME", "the frontseat's protocol: iver3 (default) or bluefin", set_protocol},
     {"--origin", "LAT,LON", "the world's origin: NAV's north_m and east_m (NaN without)", set_origin},
@@ -395,6 +405,7 @@ const drv_protocol frontseat_protocol = {
     .init = fs_init,
     .feed = fs_feed,
     .tick = fs_tick,
+    .opened = fs_opened,
     .reset = fs_reset,
 };
 DRV_REGISTER(frontseat_protocol)

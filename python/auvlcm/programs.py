@@ -175,6 +175,7 @@ def frontseat(
     max_speed_mps: float | None = None,
     helm_version: int | None = None,
     silent_after_s: float | None = None,
+    setpoint_timeout_s: float | None = None,
     raw: bool = False,
     clock: str = "system",
 ) -> list[str]:
@@ -190,6 +191,7 @@ def frontseat(
         ("--min-speed", min_speed_mps),
         ("--max-speed", max_speed_mps),
         ("--silent-after", silent_after_s),
+        ("--setpoint-timeout", setpoint_timeout_s),
     ):
         if value is not None:
             extra += [flag, f"{value:g}"]

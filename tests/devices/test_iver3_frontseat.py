@@ -13,6 +13,7 @@ import pytest
 from confcheck import ConfigError
 from sim.config import loads
 from sim.devices.emulator import DeviceContext
+from sim.devices.frontseat_wire import PAYLOAD
 from sim.devices.iver3_frontseat import FT, KN, Iver3Frontseat, Iver3Options, compose
 from sim.model import Truth
 
@@ -58,7 +59,7 @@ def test_a_poll_is_answered_with_the_compass_and_the_state():
     tr = Truth(t=3.0, eta=(0.0, 0.0, 6.096, 0.0, math.radians(-2.0), math.radians(90.0)), nu=(1.5, 0, 0, 0, 0, 0))
     tr.latitude_deg, tr.longitude_deg, tr.altitude_m = 41.5, -70.7, 10.0
     em.truth = tr
-    em.report.mode = "A"
+    em.report.helm = PAYLOAD
     em.receive(compose("OSD,G,C,S,P,,,,"), 3.0)
     assert len(sent) == 1
     text = sent[0].decode()

@@ -10,6 +10,7 @@ import os
 import re
 import select
 import signal
+import socket
 import struct
 import subprocess
 import threading
@@ -133,6 +134,13 @@ class PtyDevice:
     def close(self) -> None:
         self.stop = True
         self.thread.join(2)
+
+
+def free_tcp_port() -> int:
+    """A TCP port nothing listens on now (for a simulator's server to take)."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
 
 
 def start(cmd: Sequence[str], tmp_path: Path, child_env: dict, name: str = "driver") -> subprocess.Popen:

@@ -157,6 +157,53 @@ static void test_navigation(void)
     free(r);
 }
 
+/* what a stack frame left behind: a caller's local that is never set reads it */
+static volatile long stack_sink;
+static __attribute__((noinline)) void scribble_stack(void)
+{
+    volatile long junk[256];
+    for (int i = 0; i < 256; i++)
+        junk[i] = -1L - i;
+    stack_sink = junk[255];
+}
+
+static void test_empty_quality(void)
+{
+    /* the quality is a field like the others: empty, it is not known, and the
+     * navigation stands (it was read from an unset local: refused or not by chance) */
+    rig *r = rig_new(NULL);
+    for (int i = 0; i < 20; i++) {
+        scribble_stack();
+        feed(r, sentence("BFNVG,221320.000,4130.0000,N,07042.0000,W,,10.0,3.5,82.8,-2.6,-3.9,221319.900"),
+             T0 + i * 100 * MS);
+    }
+    CHECK(r->n_nav == 20 && count(r, "bad position quality") == 0 && r->ctx.reasons.total == 0);
+    CHECK(fabs(r->nav.latitude_deg - 41.5) < 1e-9 && fabs(r->nav.depth_m - 3.5) < 1e-9);
+    free(r);
+}
+
+static void test_logging_asked_when_the_port_opens(void)
+{
+    /* the driver polls from its start, the port perhaps not open yet (a vehicle's
+     * TCP server not up): those $BPLOG went nowhere; once it opens they are asked
+     * again, the first at the next poll (else only after 300 polls: a minute) */
+    rig *r = rig_new(NULL);
+    for (int i = 0; i < 10; i++)
+        frontseat_protocol.tick(&r->fs, &r->ctx, T0 + i * 200 * MS);
+    CHECK(frontseat_protocol.opened != NULL);
+    if (frontseat_protocol.opened)
+        frontseat_protocol.opened(&r->fs, &r->ctx);
+    const char *ids[] = {"ACK", "NVG", "NVR", "MIS", "MSC", "CTL", "SHT"};
+    for (int i = 0; i < 7; i++) {
+        r->written[0] = '\0';
+        frontseat_protocol.tick(&r->fs, &r->ctx, T0 + (10 + i) * 200 * MS);
+        char body[32];
+        snprintf(body, sizeof body, "BPLOG,%s,ON", ids[i]);
+        CHECK_STR(r->written, sentence(body));
+    }
+    free(r);
+}
+
 static void test_requests(void)
 {
     rig *r = rig_new(NULL);
@@ -401,6 +448,8 @@ static void test_hostile_corpus(void)
 
 static const unit_test tests[] = {
     {"bluefin_navigation", test_navigation},
+    {"bluefin_empty_quality", test_empty_quality},
+    {"bluefin_logging_when_opened", test_logging_asked_when_the_port_opens},
     {"bluefin_requests", test_requests},
     {"bluefin_limits", test_limits},
     {"bluefin_states", test_states},

@@ -7,12 +7,12 @@ stream on a pty is counted per reason and publishes nothing."""
 
 from __future__ import annotations
 
-import socket
 import subprocess
 import time
 
 import lcm
 from conftest import c_program, fresh_url
+from driver_bus import free_tcp_port
 from lcm_proc import pump, start_simulator, stop
 from test_gps_driver import Pty, finish, start
 
@@ -60,12 +60,6 @@ class Bus:
     def reasons(self) -> dict[str, int]:
         s = self.status[-1]
         return dict(zip(s.reason, s.reason_count))
-
-
-def free_tcp_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def test_contacts_and_looks_over_the_links(tmp_path, child_env, lcm_url):

@@ -9,7 +9,6 @@ counted per reason; --clock sim is refused."""
 from __future__ import annotations
 
 import select
-import socket
 import statistics
 import subprocess
 import time
@@ -18,6 +17,7 @@ from datetime import datetime, timezone
 import lcm
 import pytest
 from conftest import c_program, fresh_url
+from driver_bus import free_tcp_port
 from lcm_proc import pump, start_simulator, stop
 from test_gps_driver import Pty, finish, nmea, start
 
@@ -72,12 +72,6 @@ def pump_both(a: Bus, b: Bus, seconds: float) -> None:
     while time.monotonic() < end:
         for fd in select.select(list(by_fd), [], [], 0.05)[0]:
             by_fd[fd].handle()
-
-
-def free_tcp_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 @pytest.mark.parametrize(

@@ -10,11 +10,14 @@ docs/frontseat.md, "Iver3", which names the public sources of every field):
     frontseat -> backseat  $OSI,...                 mode, position, speed, error, ...
                            $C<h>P<p>R<r>T<t>D<ft>   attitude and depth
 
-This module is the protocol alone (I/O-free, no physics): the emulator keeps the
-newest request and answers a data request with what sim.frontseat (the vehicle
-behind it: its own loops, its mission, the control rules, the faults) tells it
-the vehicle is doing (`report`). A device no sensor polls: the simulator adds it
-(Simulator.devices.add) from the `frontseat:` section.
+This module is the protocol alone (I/O-free, no physics), behind the plug every
+frontseat protocol is (sim.devices.frontseat_wire): the emulator keeps the newest
+request and answers a data request with what sim.frontseat (the vehicle behind it:
+its own loops, its mission, the control rules, the faults) tells it the vehicle is
+doing (`report`: mode A while the backseat flies it, M manual, S stopped with the
+abort's error word, else N). It acknowledges nothing: a request the vehicle does not
+fly (at the surface, during an abort) is simply not flown. A device no sensor polls:
+the simulator adds it (Simulator.devices.add) from the `frontseat:` section.
 """
 
 from __future__ import annotations
@@ -23,13 +26,14 @@ import math
 from dataclasses import dataclass
 
 from confcheck import setting
-from sim.devices.emulator import DeviceContext, Emulator
-from sim.devices.nmea import checksum
-from sim.model import Truth
+from sim.devices.emulator import DeviceContext
+from sim.devices.frontseat_wire import MANUAL, PAYLOAD, STOPPED, FrontseatProtocol, Request, compose
+
+__all__ = ["FT", "KN", "Iver3Frontseat", "Iver3Options", "compose"]
 
 FT = 0.3048
 KN = 1852.0 / 3600.0
-LINE_MAX = 250
+MODES = {PAYLOAD: "A", MANUAL: "M", STOPPED: "S"}  # else N: its own mission
 
 
 @dataclass
@@ -39,84 +43,16 @@ class Iver3Options:
     helm_version: int = setting(5, ge=1, le=99)
 
 
-@dataclass
-class Request:
-    """One $OMS: what the backseat asks for, heard at sim time t."""
-
-    t: float
-    heading_rad: float
-    depth_m: float
-    max_pitch_rad: float
-    speed_mps: float
-    timeout_s: float
-
-
-@dataclass
-class Report:
-    """What the frontseat says of itself in its $OSI."""
-
-    mode: str = "N"  # N its mission, A the backseat's requests, M manual, S stopped, ...
-    error: str = "N"  # N none, else its error word (Stl, Sop, ...)
-
-
-def compose(body: str) -> bytes:
-    return f"${body}*{checksum(body)}\r\n".encode("ascii")
-
-
-class Iver3Frontseat(Emulator):
-    sensor = "frontseat"  # the simulator's part it belongs to (not a sensor: Devices.add)
+class Iver3Frontseat(FrontseatProtocol):
     protocol = "iver3"
     Options = Iver3Options
     options: Iver3Options
 
     def __init__(self, ctx: DeviceContext) -> None:
         super().__init__(ctx)
-        self._line = bytearray()
-        self._in_line = False
-        self.request: Request | None = None  # the newest good $OMS
-        self.requests = 0
         self.polls = 0
-        self.refused: dict[str, int] = {}  # sentences it could not take, by reason
-        self.report = Report()
-        self.truth: Truth | None = None  # the vehicle now (sim.frontseat sets it each step)
-        self.silent = False  # the link is dead: nothing heard, nothing said
 
-    def encode(self, msg, truth) -> list[bytes]:
-        return []  # it speaks when asked
-
-    def _refuse(self, reason: str) -> None:
-        self.refused[reason] = self.refused.get(reason, 0) + 1
-
-    def receive(self, data: bytes, t: float) -> None:
-        if self.silent:
-            self.ignored += len(data)
-            return
-        for b in data:
-            if b == ord("$"):
-                self._line = bytearray(b"$")
-                self._in_line = True
-            elif b in (13, 10):
-                if self._in_line:
-                    self._sentence(self._line.decode("ascii", "replace"), t)
-                self._in_line = False
-            elif self._in_line:
-                if len(self._line) >= LINE_MAX:
-                    self._refuse("too long")
-                    self._in_line = False
-                else:
-                    self._line.append(b)
-            else:
-                self.ignored += 1
-
-    def _sentence(self, line: str, t: float) -> None:
-        body, star, cs = line[1:].rpartition("*")
-        if not star or len(cs) != 2:
-            self._refuse("no checksum")
-            return
-        if checksum(body) != cs.upper():
-            self._refuse("bad checksum")
-            return
-        fields = body.split(",")
+    def sentence(self, fields: list[str], t: float) -> None:
         if fields[0] == "OSD":
             self.polls += 1
             self._answer(t)
@@ -138,7 +74,7 @@ class Iver3Frontseat(Emulator):
             self._refuse("$OMS out of range")
             return
         depth_m = depth if self.options.helm_version >= 5 else depth * FT
-        self.request = Request(t, math.radians(hdg), depth_m, math.radians(pitch), kn * KN, timeout)
+        self.request = Request(t, math.radians(hdg), depth_m, kn * KN, timeout, max_pitch_rad=math.radians(pitch))
         self.requests += 1
 
     def _answer(self, t: float) -> None:
@@ -148,13 +84,14 @@ class Iver3Frontseat(Emulator):
         hdg = math.degrees(tr.eta[5]) % 360.0
         vn, ve, _ = tr.velocity_ned()
         sog_kn = math.hypot(vn, ve) / KN
-        r = self.report
+        mode = MODES.get(self.report.helm, "N")
+        error = self.report.error or "N"
         # Goby3's field order: fins and motor (hex), mode, next waypoint, latitude,
         # longitude, speed [kn], distance to the next waypoint, error, altimeter [ft],
         # park time, magnetic declination, mission, time remaining, true heading, depth [ft]
         osi = (
-            f"OSI,8080808080,{r.mode},0,{tr.latitude_deg:.7f},{tr.longitude_deg:.7f},{sog_kn:.2f},0.0,"
-            f"{r.error},{tr.altitude_m / FT:.1f},P0,0.0,sim,0.0,{hdg:.1f},{tr.eta[2] / FT:.2f}"
+            f"OSI,8080808080,{mode},0,{tr.latitude_deg:.7f},{tr.longitude_deg:.7f},{sog_kn:.2f},0.0,"
+            f"{error},{tr.altitude_m / FT:.1f},P0,0.0,sim,0.0,{hdg:.1f},{tr.eta[2] / FT:.2f}"
         )
         compass = f"C{hdg:.1f}P{math.degrees(tr.eta[4]):.1f}R{math.degrees(tr.eta[3]):.1f}T15.0D{tr.eta[2] / FT:.2f}"
         self.send(compose(compass) + compose(osi), t)

@@ -27,22 +27,22 @@ def sentence(address: str, fields: Iterable[str]) -> bytes:
     return f"${body}*{checksum(body)}\r\n".encode("ascii")
 
 
-def _degrees_minutes(value: float, deg_width: int) -> str:
-    scale = 10**MINUTE_DIGITS
-    total = round(abs(value) * 60 * scale)  # in units of 1e-5 minute: no 60.00000 minutes
+def _degrees_minutes(value: float, deg_width: int, digits: int) -> str:
+    scale = 10**digits
+    total = round(abs(value) * 60 * scale)  # in units of the last digit: no 60.00000 minutes
     deg, rest = divmod(total, 60 * scale)
     minutes, frac = divmod(rest, scale)
-    return f"{deg:0{deg_width}d}{minutes:02d}.{frac:0{MINUTE_DIGITS}d}"
+    return f"{deg:0{deg_width}d}{minutes:02d}.{frac:0{digits}d}"
 
 
-def latitude(deg: float) -> tuple[str, str]:
-    """ddmm.mmmmm and N or S."""
-    return _degrees_minutes(deg, 2), "N" if deg >= 0 else "S"
+def latitude(deg: float, digits: int = MINUTE_DIGITS) -> tuple[str, str]:
+    """ddmm.mmmmm (`digits` decimals of the minute) and N or S."""
+    return _degrees_minutes(deg, 2, digits), "N" if deg >= 0 else "S"
 
 
-def longitude(deg: float) -> tuple[str, str]:
-    """dddmm.mmmmm and E or W."""
-    return _degrees_minutes(deg, 3), "E" if deg >= 0 else "W"
+def longitude(deg: float, digits: int = MINUTE_DIGITS) -> tuple[str, str]:
+    """dddmm.mmmmm (`digits` decimals of the minute) and E or W."""
+    return _degrees_minutes(deg, 3, digits), "E" if deg >= 0 else "W"
 
 
 def utc_at(start: datetime, utime_us: int) -> datetime:

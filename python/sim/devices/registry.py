@@ -10,6 +10,7 @@ drives it instead (`modem`, `actuators`: those sections' `wire:`).
 from __future__ import annotations
 
 from sim.devices.ahrs_nmea import AhrsNmea
+from sim.devices.bluefin_frontseat import BluefinFrontseat
 from sim.devices.digiquartz import Digiquartz
 from sim.devices.dvl_pd0 import DvlPd0
 from sim.devices.emulator import Emulator
@@ -33,6 +34,7 @@ EMULATORS: tuple[type[Emulator], ...] = (
     IdentifyFrame,
     TimeLink,
     Iver3Frontseat,
+    BluefinFrontseat,
 )
 
 
