@@ -505,3 +505,15 @@ def test_a_grid_beside_the_analytic_fields_is_refused(tmp_path):
         f"{tmp_path}/cfg.yaml:7:5: environment.ocean.front: the grid file gives the water: "
         "no analytic front, water masses or thermocline beside it"
     ]
+
+
+def test_the_launcher_names_an_ocean_grid_from_the_merged_files_folder(tmp_path):
+    """A scenario's run folder holds the merged configuration: a grid named
+    relative to its own file is made absolute there, as a bathymetry grid is."""
+    from tools.launch.simconfig import _absolute_grid
+
+    env = {"ocean": {"grid": "worlds/bay.nc", "plumes": []}, "bathymetry": {"grid": "b.npz"}, "seed": 3}
+    out = _absolute_grid(env, tmp_path)
+    assert out["ocean"] == {"grid": str((tmp_path / "worlds" / "bay.nc").resolve()), "plumes": []}
+    assert out["bathymetry"]["grid"] == str((tmp_path / "b.npz").resolve()) and out["seed"] == 3
+    assert _absolute_grid({"ocean": {"front": {"offset_m": 1}}}, tmp_path) == {"ocean": {"front": {"offset_m": 1}}}

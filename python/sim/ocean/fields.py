@@ -42,8 +42,6 @@ from sim.ocean.params import OceanParams
 Drift = Callable[[float, float, float, float, float], tuple[float, float]]
 # samples along a straight acoustic path (harmonic mean: the travel time)
 PATH_SAMPLES = 16
-# beyond this many standard deviations a plume adds nothing
-PLUME_CUTOFF = 6.0
 
 
 def _no_drift(depth: float, north: float, east: float, t0: float, t1: float) -> tuple[float, float]:
@@ -129,16 +127,21 @@ class Ocean:
 
     def _plumes(self, t, north, east, depth, temp, salt):
         temp, salt = np.array(temp, float), np.array(salt, float)
-        times = np.unique(t)
+        flat = t.reshape(-1)
+        if flat.size == 0 or bool(np.all(flat == flat[0])):  # one time (a sample, a path): no masks
+            groups = [(float(flat[0]) if flat.size else 0.0, None)]
+        else:
+            groups = [(float(tk), t == tk) for tk in np.unique(flat)]
         for i, pl in enumerate(self.params.plumes):
-            for tk in times:
-                c = self.plume_centre(i, float(tk))
+            for tk, mask in groups:
+                c = self.plume_centre(i, tk)
                 if c is None:
                     continue
-                var = pl.radius_m**2 + 2.0 * pl.diffusivity_m2ps * (float(tk) - pl.start_s)
-                peak = pl.radius_m**2 / var
+                var = pl.radius_m**2 + 2.0 * pl.diffusivity_m2ps * (tk - pl.start_s)
                 q = ((north - c[0]) ** 2 + (east - c[1]) ** 2) / var + ((depth - c[2]) / pl.thickness_m) ** 2
-                g = np.where((t == tk) & (q < PLUME_CUTOFF**2), peak * np.exp(-0.5 * q), 0.0)
+                g = pl.radius_m**2 / var * np.exp(-0.5 * q)  # far away it underflows to 0
+                if mask is not None:
+                    g = np.where(mask, g, 0.0)
                 temp += g * pl.temperature_c
                 salt += g * pl.salinity_psu
         return temp, np.maximum(salt, 0.0)

@@ -19,12 +19,20 @@ from __future__ import annotations
 import gsw
 import numpy as np
 
+try:  # gsw.p_from_z's own ufunc: its Python wrapper spends 70 us a call checking z with numpy.ma
+    from gsw._gsw_ufuncs import p_from_z as _p_from_z
+except ImportError:  # pragma: no cover - another gsw layout
+
+    def _p_from_z(z, lat, geo_strf_dyn_height, sea_surface_geopotential):
+        return gsw.p_from_z(z, lat, geo_strf_dyn_height, sea_surface_geopotential)
+
+
 MS_PER_CM_PER_S_PER_M = 10.0  # 1 S/m = 10 mS/cm
 
 
 def pressure_dbar(depth_m, lat_deg: float):
-    """Sea pressure at a depth (positive down) [dbar]."""
-    return gsw.p_from_z(-np.asarray(depth_m, float), lat_deg)
+    """Sea pressure at a depth (positive down) [dbar] (gsw.p_from_z)."""
+    return _p_from_z(-np.asarray(depth_m, float), lat_deg, 0.0, 0.0)
 
 
 def depth_from_pressure(p_dbar, lat_deg: float):
