@@ -23,7 +23,7 @@ from sim.bathymetry import SHAPES, Bathymetry, BathymetryError, make_ref
 from sim.devices.config import INPUT_DEVICE_KEYS, check_distinct, parse_wire
 from sim.devices.maestro import ChannelTable, TableError, parse_table
 from sim.environment import ENV_VARIABLES, CurrentLayer, EnvParams, Transponder
-from sim.sensors import REGISTRY
+from sim.sensors import FITTED_UNLESS_LISTED, REGISTRY
 from sim.sonar.config import SonarConfig
 from sim.vehicle import REMUS100, VehicleParams
 
@@ -251,14 +251,14 @@ def _waves(doc: Checker, wnode, env: EnvParams) -> None:
                 setattr(env, attr, v)
 
 
-def _environment(doc: Checker, node, base: Path) -> EnvParams:
+def _environment(doc: Checker, node, base: Path, initial: InitialState, duration_s: float) -> EnvParams:
     env = EnvParams()
     items = doc.mapping(node, "environment")
     special = {
         "current": lambda n, k: _list_of(doc, n, k, lambda: CurrentLayer(0.0, 0.0, 0.0, 0.0)),
         "transponders": lambda n, k: _list_of(doc, n, k, lambda: Transponder(0, 0.0, 0.0, 0.0, 0.0)),
     }
-    doc.fill(node, "environment", env, skip=("waves", "bathymetry", "bathymetry_ref"), special=special)
+    doc.fill(node, "environment", env, skip=("waves", "bathymetry", "bathymetry_ref", "ocean"), special=special)
     if "bathymetry_ref" in items:
         doc.unknown({"bathymetry_ref": items["bathymetry_ref"]}, [], "environment")
     seen: set[int] = set()
@@ -276,6 +276,20 @@ def _environment(doc: Checker, node, base: Path) -> EnvParams:
         ref = _bathymetry(doc, items["bathymetry"][1], base)
         if ref is not None:
             env.bathymetry_ref = ref
+    if "ocean" in items:
+        from sim.ocean.config import check_ocean
+
+        start = (initial.north_m, initial.east_m, initial.depth_m)
+        env.ocean = check_ocean(
+            doc,
+            items["ocean"][1],
+            base,
+            env.origin_latitude_deg,
+            env.origin_longitude_deg,
+            start,
+            env.transponders,
+            duration_s,
+        )
     return env
 
 
@@ -345,7 +359,7 @@ def _needs_served(doc: Checker, node, sensors: dict[str, Any], mh: MultiHil) -> 
     items = doc.mapping(node, "multihil")
     if "needs" not in items:
         return  # the default asks for everything
-    fitted = sensors or {name: cfg_cls() for name, (cfg_cls, _) in REGISTRY.items()}
+    fitted = sensors or {name: REGISTRY[name][0]() for name in FITTED_UNLESS_LISTED}
     for name, scfg in fitted.items():
         missing = [v for v in REGISTRY[name][1].env_needs if v not in mh.needs]
         if scfg.enabled and missing:
@@ -408,7 +422,7 @@ def _check(doc: Checker, path: Path) -> SimConfig:
     vid, vp = _vehicle(doc, get("vehicle"))
     sim = doc.fill(get("simulation"), "simulation", SimSettings())
     initial = doc.fill(get("initial"), "initial", InitialState())
-    env = _environment(doc, get("environment"), path.parent)
+    env = _environment(doc, get("environment"), path.parent, initial, sim.duration_s)
     wires: dict[str, tuple[Any, Any]] = {}  # every port of the simulator: no two on one
     sensors = _sensors(doc, get("sensors"), path.parent, wires)
     actuators = _actuators(doc, get("actuators"), path.parent, wires)

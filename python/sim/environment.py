@@ -1,4 +1,4 @@
-"""The world's environment: currents, waves, bathymetry, sound speed, LBL.
+"""The world's environment: currents, waves, bathymetry, sound speed, LBL, the ocean.
 
 Everything here is a deterministic function of (time, position, seed), built
 from exactly the parameters that auv.env_model_t carries. Why: any simulator
@@ -16,10 +16,20 @@ from pathlib import Path
 
 from confcheck import setting
 from sim.bathymetry import Bathymetry
+from sim.ocean import (
+    UNIFORM_SALINITY_PSU,
+    UNIFORM_TEMPERATURE_C,
+    Front,
+    Ocean,
+    OceanParams,
+    Plume,
+    Thermocline,
+    WaterMass,
+)
 
 # What of the world a vehicle may ask a multi-HIL world for (multihil.needs,
 # env_needs_t), and what a sensor declares it reads (Sensor.env_needs).
-ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl")
+ENV_VARIABLES = ("current", "waves", "bathymetry", "sound_speed", "lbl", "ocean")
 G = 9.81
 RHO_SEAWATER = 1025.0  # kg/m^3, the depth sensor's conversion too
 # Spatial wavelength of the slow current variation [m]: large against a
@@ -61,6 +71,9 @@ class EnvParams:
     sound_speed_mps: float = setting(1500.0, gt=0.0)
     sound_speed_gradient_per_m: float = 0.0
     transponders: list[Transponder] = field(default_factory=list)
+    # temperature and salinity (sim.ocean, docs/sampling.md); None: uniform water
+    # and the constant sound speed above
+    ocean: OceanParams | None = None
 
 
 def _pm_weight(ratio: float) -> float:
@@ -97,6 +110,11 @@ class Environment:
         self._var_cos, self._var_sin = math.cos(self._var_dir), math.sin(self._var_dir)
         # per wave component: a w (orbital speed amplitude at the surface), -k, k, w, phase
         self._orbital = [(a * w, -k, k, w, ph) for a, w, k, ph in self._waves]
+        self.ocean: Ocean | None = None
+        if p.ocean is not None:
+            self.ocean = Ocean(
+                p.ocean, p.seed, p.origin_latitude_deg, p.origin_longitude_deg, self.current_displacement, base_dir
+            )
 
     def replace_with(self, other: "Environment") -> None:
         """Become other's world, in place: every part that holds this object (the
@@ -155,6 +173,27 @@ class Environment:
             return (cn + wh * wc, ce + wh * ws, cd + wv), (ah * wc, ah * ws, av)
         return (cn, ce, cd), (0.0, 0.0, 0.0)
 
+    def current_displacement(
+        self, depth: float, north: float, east: float, t0: float, t1: float
+    ) -> tuple[float, float]:
+        """How far the water at a depth moves horizontally over [t0, t1] [m]: the
+        profile's current, plus the slow variation integrated in closed form with
+        its phase held at (north, east) (its wavelength, 10 km, is long against
+        the distance water moves in hours); the waves' orbits close on themselves
+        (no Stokes drift). What carries the ocean's plumes."""
+        cn, ce, _ = self.current_profile(depth)
+        dt = t1 - t0
+        dn, de = cn * dt, ce * dt
+        if self._varies:
+            p = self.params
+            w = 2.0 * math.pi / p.current_variation_period_s
+            s = north * self._var_cos + east * self._var_sin
+            ph = 2.0 * math.pi * s / CURRENT_VARIATION_WAVELENGTH_M + self._var_phase
+            disp = p.current_variation_mps / w * (math.cos(w * t0 + ph) - math.cos(w * t1 + ph))
+            dn += disp * self._var_cos
+            de += disp * self._var_sin
+        return dn, de
+
     # ---------------------------------------------------------------- waves
     def wave_orbital(self, t: float, north: float, east: float, depth: float) -> tuple[float, float]:
         """Deep-water orbital velocity: along the wave direction, and down [m/s]
@@ -209,13 +248,36 @@ class Environment:
     def water_depth(self, north: float, east: float) -> float:
         return self.bathymetry.depth(north, east)
 
-    def sound_speed(self, depth: float) -> float:
+    def sound_speed(self, depth: float, t: float = 0.0, north: float = 0.0, east: float = 0.0) -> float:
+        """Sound speed at a point [m/s]: TEOS-10's of the ocean's water there, or,
+        in a world without `ocean:`, the constant plus the gradient times depth."""
+        if self.ocean is not None:
+            return self.ocean.sound_speed(t, north, east, depth)
         p = self.params
         return p.sound_speed_mps + p.sound_speed_gradient_per_m * depth
 
     def mean_sound_speed(self, depth_a: float, depth_b: float) -> float:
-        """Mean speed along a straight path between two depths (linear profile)."""
+        """Mean speed along a straight path between two depths (linear profile;
+        with an ocean: along the vertical at the origin at time 0)."""
+        if self.ocean is not None:
+            return self.ocean.path_sound_speed(0.0, (0.0, 0.0, depth_a), (0.0, 0.0, depth_b))
         return self.sound_speed(0.5 * (depth_a + depth_b))
+
+    def path_sound_speed(self, t: float, a: tuple[float, float, float], b: tuple[float, float, float]) -> float:
+        """The speed that gives the travel time of sound from a to b (north, east,
+        depth) at time t: with an ocean, the harmonic mean of the local speeds
+        along the straight path (sim.ocean.Ocean.path_sound_speed); without, the
+        linear profile's mean between the two depths, as always."""
+        if self.ocean is not None:
+            return self.ocean.path_sound_speed(t, a, b)
+        return self.mean_sound_speed(a[2], b[2])
+
+    def temperature_salinity(self, t: float, north: float, east: float, depth: float) -> tuple[float, float]:
+        """In-situ temperature [degC] and practical salinity [PSU] of the water at a
+        point (uniform 12 degC, 35 PSU in a world without `ocean:`)."""
+        if self.ocean is not None:
+            return self.ocean.temperature_salinity(t, north, east, depth)
+        return UNIFORM_TEMPERATURE_C, UNIFORM_SALINITY_PSU
 
     # ------------------------------------------------------ env_model_t I/O
     def to_env_model(self, utime: int, server_id: str = "", term: int = 0):
@@ -257,7 +319,71 @@ class Environment:
             )
             m.transponders.append(x)
         m.n_transponders = len(m.transponders)
+        self._ocean_to_env_model(m)
         return m
+
+    def _ocean_to_env_model(self, m) -> None:
+        from auv import ocean_plume_t
+
+        o = self.params.ocean
+        m.ocean = o is not None
+        m.plumes = []
+        if o is None:
+            m.n_plumes = 0
+            return
+        m.ocean_grid_ref, m.ocean_grid_start = o.grid, o.grid_start
+        m.ocean_grid_sha256 = self.ocean.grid.sha256 if self.ocean is not None and self.ocean.grid is not None else ""
+        f = o.front
+        m.front_offset_m, m.front_angle_rad, m.front_amplitude_m = f.offset_m, f.angle_rad, f.amplitude_m
+        m.front_wavelength_m, m.front_period_s, m.front_width_m = f.wavelength_m, f.period_s, f.width_m
+        m.front_drift_mps = f.drift_mps
+        m.water_a_temperature_c, m.water_a_salinity_psu = o.water_a.temperature_c, o.water_a.salinity_psu
+        m.water_b_temperature_c, m.water_b_salinity_psu = o.water_b.temperature_c, o.water_b.salinity_psu
+        m.deep_temperature_c, m.deep_salinity_psu = o.deep.temperature_c, o.deep.salinity_psu
+        m.thermocline_depth_m, m.thermocline_thickness_m = o.thermocline.depth_m, o.thermocline.thickness_m
+        for pl in o.plumes:
+            x = ocean_plume_t()
+            x.north_m, x.east_m, x.depth_m, x.start_s = pl.north_m, pl.east_m, pl.depth_m, pl.start_s
+            x.radius_m, x.thickness_m, x.diffusivity_m2ps = pl.radius_m, pl.thickness_m, pl.diffusivity_m2ps
+            x.temperature_c, x.salinity_psu = pl.temperature_c, pl.salinity_psu
+            m.plumes.append(x)
+        m.n_plumes = len(m.plumes)
+
+    @staticmethod
+    def _ocean_from_env_model(m) -> OceanParams | None:
+        if not m.ocean:
+            return None
+        return OceanParams(
+            front=Front(
+                m.front_offset_m,
+                m.front_angle_rad,
+                m.front_amplitude_m,
+                m.front_wavelength_m,
+                m.front_period_s,
+                m.front_width_m,
+                m.front_drift_mps,
+            ),
+            water_a=WaterMass(m.water_a_temperature_c, m.water_a_salinity_psu),
+            water_b=WaterMass(m.water_b_temperature_c, m.water_b_salinity_psu),
+            deep=WaterMass(m.deep_temperature_c, m.deep_salinity_psu),
+            thermocline=Thermocline(m.thermocline_depth_m, m.thermocline_thickness_m),
+            plumes=[
+                Plume(
+                    x.north_m,
+                    x.east_m,
+                    x.depth_m,
+                    x.start_s,
+                    x.radius_m,
+                    x.thickness_m,
+                    x.diffusivity_m2ps,
+                    x.temperature_c,
+                    x.salinity_psu,
+                )
+                for x in m.plumes
+            ],
+            grid=m.ocean_grid_ref,
+            grid_start=m.ocean_grid_start,
+        )
 
     @staticmethod
     def params_from_env_model(m) -> EnvParams:
@@ -276,4 +402,5 @@ class Environment:
             sound_speed_mps=m.sound_speed_mps,
             sound_speed_gradient_per_m=m.sound_speed_gradient_per_m,
             transponders=[Transponder(t.id, t.north_m, t.east_m, t.depth_m, t.turnaround_s) for t in m.transponders],
+            ocean=Environment._ocean_from_env_model(m),
         )

@@ -46,17 +46,18 @@ from sim.environment import Environment
 from sim.model import Truth, VehicleModel
 from sim.modem.node import make_modem, wire_modem
 from sim.periodic import Periodic
-from sim.sensors import REGISTRY
+from sim.sensors import FITTED_UNLESS_LISTED, REGISTRY
 from sim.sensors.base import utime
 from sim.wire import Encoder
 
 
 def build_sensors(cfg: SimConfig, model: VehicleModel) -> list:
-    """Every enabled sensor of the configuration (all of them if none are listed),
+    """Every enabled sensor of the configuration (if none are listed, all those
+    fitted unless listed: sim.sensors.FITTED_UNLESS_LISTED),
     each given the parts of the world it declares it uses (Sensor.uses)."""
     out = []
     world = {"env": model.env, "frame": model.frame}
-    names = cfg.sensors or {name: REGISTRY[name][0]() for name in REGISTRY}
+    names = cfg.sensors or {name: REGISTRY[name][0]() for name in FITTED_UNLESS_LISTED}
     for name, scfg in names.items():
         if not scfg.enabled or getattr(scfg, "channel", "") == "off":
             continue

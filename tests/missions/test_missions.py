@@ -174,6 +174,40 @@ def test_yoyo_transect_stays_in_its_depth_band(tmp_path, lcm_url, child_env):
     assert surfaced_since(rec, t_end) is not None
 
 
+# ---------------------------------------------------------------- CTD front
+
+
+def test_ctd_front_crossing_turns_back_once_the_ctd_reads_the_far_water(tmp_path, lcm_url, child_env):
+    """ctd_front.chasm in remus100_ctd.yaml's ocean: the plan reads the CTD (`ctd.*`,
+    bound by sensors.bind) and leaves its transect for the surface just past the
+    meandering front, long before the line's end."""
+    from confcheck.checker import resolved
+    from sim.config import load
+    from sim.environment import Environment
+    from sim.ocean import OceanParams
+
+    ctd_world = resolved(MISSIONS / "sim" / "remus100_ctd.yaml")
+    sim = {
+        **SEA,
+        "environment": {"ocean": ctd_world["environment"]["ocean"]},
+        "sensors": {"ctd": ctd_world["sensors"]["ctd"]},
+        "multihil": {"needs": ctd_world["multihil"]["needs"]},
+    }
+    with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "ctd_front.chasm", sim=sim) as m:
+        rec = m.fly(done_and_surfaced, max_sim_s=600)
+        env = Environment(load(m.sim_cfg).env)
+    assert isinstance(env.params.ocean, OceanParams)
+    assert [s[1] for s in rec.states] == ["transect", "recover"], rec.states
+    t_turn, _, why = rec.states[1]
+    assert why == "far_water and upper and ctd_ok"
+    p = at(rec.truth, t_turn)
+    front = env.ocean.front_position(t_turn, p.n)
+    print(f"\nCTD front: turned at {t_turn:.1f} s, east {p.e:.1f} m, the front at {front:.1f} m there")
+    assert front < p.e < front + 60.0  # past the front, well before the line's end at 600 m
+    assert env.temperature_salinity(t_turn, p.n, p.e, p.depth)[1] > 34.0
+    assert surfaced_since(rec, t_turn) is not None
+
+
 # ---------------------------------------------------------------- aborts
 
 ABORTS = {

@@ -290,3 +290,32 @@ def test_a_server_stopped_after_its_loop_check_sends_nothing_more_of_its_term():
     assert sent == [] and node.role == "reconfirming", (sent, node.role)
     node.poll()  # what it says of the gap
     assert any("stopped serving term" in line for line in log), log
+
+
+def test_the_server_serves_the_ocean_and_a_client_adopts_it():
+    """One world, one ocean: the server samples temperature and salinity (and the
+    sound speed of that water) for a client that needs them, and a client whose
+    own world has no ocean takes the server's from SIM.ENV, front, plumes and all."""
+    from sim.ocean import Front, OceanParams, Plume
+
+    ocean = OceanParams(front=Front(offset_m=50.0, amplitude_m=20.0, period_s=600.0), plumes=[Plume(10.0, 5.0, 4.0)])
+    server_env = Environment(EnvParams(seed=9, current=[CurrentLayer(0, 0.2, 0.0)], ocean=ocean))
+    needs = env_needs_t()
+    needs.utime, needs.client_id, needs.vehicle = 30_000_000, "C-sim", "C"
+    needs.variables, needs.n_variables = ["ocean", "sound_speed"], 2
+    needs.north_m, needs.east_m, needs.depth_m = 12.0, 40.0, 4.0
+    s = evaluate(server_env, needs, term=2)
+    assert s.valid_mask == env_sample_t.HAS_OCEAN | env_sample_t.HAS_SOUND_SPEED
+    assert (s.temperature_c, s.salinity_psu) == server_env.temperature_salinity(30.0, 12.0, 40.0, 4.0)
+    assert s.sound_speed_mps == server_env.sound_speed(4.0, 30.0, 12.0, 40.0) and s.sound_speed_mps != 1500.0
+    log: list[str] = []
+    lc, node = memq_node(log)
+    assert node.env.ocean is None
+    node.election.on_heartbeat("S-sim", 2, 5)
+    lc.publish("SIM.ENV", server_env.to_env_model(30_000_000, "S-sim", 2).encode())
+    lc.handle_timeout(100)
+    assert node.env_adoptions == 1 and node.env.params.ocean == ocean
+    pts = [(t, n, 40.0, d) for t in (0.0, 30.0, 400.0) for n, d in ((12.0, 4.0), (-80.0, 30.0))]
+    assert [node.env.temperature_salinity(*x) for x in pts] == [server_env.temperature_salinity(*x) for x in pts]
+    node._on_sample("SIM.ENV_SAMPLE.C-sim", s)  # cross-checked against its own: no mismatch
+    assert node.samples_received == 1 and node.sample_mismatches == 0

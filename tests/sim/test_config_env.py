@@ -38,7 +38,7 @@ def test_every_error_at_once_with_file_line_and_key():
         "cfg.yaml:4:3: simulation.clok: unknown key; did you mean 'clock'?",
         "cfg.yaml:5:9: simulation.warp: expected a number, got 'fast'",
         "cfg.yaml:7:18: sensors.dvl.rate_hz: must be > 0 [Hz]",
-        "cfg.yaml:8:3: sensors.gyro: unknown key; expected one of: ahrs, altimeter, depth, dvl, gps, ins, lbl, leak",
+        "cfg.yaml:8:3: sensors.gyro: unknown key; expected one of: ahrs, altimeter, ctd, depth, dvl, gps, ins, lbl, leak",
     ]
 
 

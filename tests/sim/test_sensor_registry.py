@@ -9,7 +9,7 @@ import pytest
 
 from sim.config import ENV_VARIABLES, RESERVED_TOPICS, SIM_TOPICS, ConfigError, loads
 from sim.hil import build_model, build_sensors
-from sim.sensors import REGISTRY, SENSORS, SensorConfig
+from sim.sensors import FITTED_UNLESS_LISTED, REGISTRY, SENSORS, SensorConfig
 
 
 def test_every_sensor_declares_itself_completely():
@@ -21,7 +21,7 @@ def test_every_sensor_declares_itself_completely():
 
 
 def test_reserved_topics_are_every_sensors_but_the_ins():
-    assert RESERVED_TOPICS == SIM_TOPICS | {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "LEAK"}
+    assert RESERVED_TOPICS == SIM_TOPICS | {"AHRS", "DEPTH", "DVL", "ALTIMETER", "GPS", "LBL", "LEAK", "CTD"}
     # the leak probes' channel was missing from the hand-kept list: an INS could publish over it
     with pytest.raises(ConfigError) as exc:
         loads("sensors:\n  ins: {channel: LEAK}\n", Path("c.yaml"))
@@ -32,9 +32,14 @@ def test_each_sensor_gets_the_world_it_uses():
     cfg = loads("vehicle: {id: AUV1}\n", Path("c.yaml"))
     model = build_model(cfg)
     built = {s.name: s for s in build_sensors(cfg, model)}
-    assert list(built) == [s.name for s in SENSORS]  # none listed: all, in the registry's order
+    # none listed: all the vehicle's own, in the registry's order; a payload (the CTD) only where listed
+    assert list(built) == [s.name for s in SENSORS if s.fitted_unless_listed] == list(FITTED_UNLESS_LISTED)
+    assert "ctd" not in built and "ctd" in REGISTRY
     assert built["lbl"].env is model.env
     assert built["gps"].frame is model.frame and built["ins"].frame is model.frame
+    listed = loads("sensors: {ctd: {}, depth: {}}\n", Path("c.yaml"))
+    ctd = {s.name: s for s in build_sensors(listed, build_model(listed))}["ctd"]
+    assert ctd.env is not None and ctd.topic == "CTD"
 
 
 def test_a_listed_multihil_needs_serves_the_fitted_sensors():
@@ -46,3 +51,6 @@ def test_a_listed_multihil_needs_serves_the_fitted_sensors():
         "c.yaml:2:19: multihil.needs: sensors.lbl reads sound_speed, lbl from the world: add them",
         "c.yaml:2:19: multihil.needs: sensors.dvl reads bathymetry from the world: add it",
     ]
+    with pytest.raises(ConfigError) as exc:
+        loads("sensors: {ctd: {}}\nmultihil: {needs: [current]}\n", Path("c.yaml"))
+    assert exc.value.errors == ["c.yaml:2:19: multihil.needs: sensors.ctd reads ocean from the world: add it"]

@@ -3,7 +3,8 @@
 A frame sent at t0 from P arrives at the first physics step t at which its
 wavefront, a sphere of radius c * (t - t0), has reached the receiver's true
 position p(t); its arrival time is t0 + |p(t) - P| / c, with c the mean sound
-speed between the two depths. Receiver motion during the flight is thus
+speed along the straight path (Environment.path_sound_speed: the linear
+profile's between the two depths, or the ocean's harmonic mean along it). Receiver motion during the flight is thus
 accounted for. Beyond max_range_m the frame is never delivered; within it,
 the range curve and a seeded draw decide (acoustics.py).
 
@@ -110,7 +111,7 @@ class Receiver:
         i = tr.first_at_or_after(max(self._next_check.get(id(f), t0), t0))
         while i < len(tr) and tr.times[i] <= horizon + 1e-9:
             t, position = tr.times[i], tr.positions[i]
-            c = self.env.mean_sound_speed(f.tx_depth_m, position[2])
+            c = self.env.path_sound_speed(t0, tx_pos, position)
             d = distance_3d(tx_pos, position)
             gap = d - c * (t - t0)
             if gap <= EPS_M:
@@ -141,8 +142,9 @@ class Receiver:
         for f in self.pending + self.foreign:
             if f.utime / 1e6 > h + 1e-9:
                 continue  # not judged yet: which of them are in is not certain
-            c = self.env.mean_sound_speed(f.tx_depth_m, position[2])
-            d = distance_3d((f.tx_north_m, f.tx_east_m, f.tx_depth_m), position)
+            tx_pos = (f.tx_north_m, f.tx_east_m, f.tx_depth_m)
+            c = self.env.path_sound_speed(f.utime / 1e6, tx_pos, position)
+            d = distance_3d(tx_pos, position)
             if d <= self.cfg.max_range_m:
                 start = f.utime / 1e6 + d / c
                 out.append((f, (start, start + f.duration_us / 1e6)))

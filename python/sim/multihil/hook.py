@@ -11,7 +11,7 @@ set up here so that hil.py carries only those lines:
   done once its physics reached it and its outputs are out, and holds every
   actuator command until its time stamp (a command for t_n acts from t_n on,
   whichever arrives first: the clock or the command);
-- a client adopts the server's world (currents, waves, bathymetry, origin).
+- a client adopts the server's world (currents, waves, bathymetry, ocean, origin).
 
 It changes the simulator only through the simulator's extension points
 (docs/simulator.md, "Extension points"): set_clock_source(), join_at(),
@@ -29,6 +29,7 @@ from sim.lockstep_follow import LockstepFollower
 from sim.multihil.clock import LocalClock
 from sim.multihil.election import Timing
 from sim.multihil.node import EnvNode, NodeConfig
+from sim.ocean import OceanError
 
 
 def apply_cli(cfg, args) -> None:
@@ -118,13 +119,18 @@ class SimHook:
         params = Environment.params_from_env_model(m)
         try:
             fresh = Environment(params, self.sim.cfg.path.parent)
-        except (BathymetryError, OSError) as exc:
+        except (BathymetryError, OceanError, OSError) as exc:
             self.env_errors += 1
             self.log(f"multihil: cannot build the server's world ({exc}); keeping this one")
             return False
         if fresh.bathymetry.sha256 != m.bathymetry_sha256:
             self.env_errors += 1
             self.log(f"multihil: bathymetry {m.bathymetry_ref} differs from the server's (SHA-256); keeping this one")
+            return False
+        grid = fresh.ocean.grid if fresh.ocean is not None else None
+        if grid is not None and grid.sha256 != m.ocean_grid_sha256:
+            self.env_errors += 1
+            self.log(f"multihil: ocean grid {m.ocean_grid_ref} differs from the server's (SHA-256); keeping this one")
             return False
         self.sim.replace_world(fresh)
         return True

@@ -526,6 +526,10 @@ class EnvNode:
             mine = self.env.current(t, s.north_m, s.east_m, s.depth_m)
             if max(abs(a - b) for a, b in zip(mine, s.current_ned_mps)) > 1e-6:
                 self.sample_mismatches += 1
+        if s.valid_mask & env_sample_t.HAS_OCEAN:
+            temp, salt = self.env.temperature_salinity(t, s.north_m, s.east_m, s.depth_m)
+            if abs(temp - s.temperature_c) > 1e-6 or abs(salt - s.salinity_psu) > 1e-6:
+                self.sample_mismatches += 1
 
     def _on_lockstep(self, _ch: str, m: lockstep_t) -> None:
         self.election.check_gap()

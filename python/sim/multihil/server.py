@@ -15,6 +15,7 @@ VARIABLE_BITS = {
     "waves": env_sample_t.HAS_WAVES,
     "bathymetry": env_sample_t.HAS_BATHYMETRY,
     "sound_speed": env_sample_t.HAS_SOUND_SPEED,
+    "ocean": env_sample_t.HAS_OCEAN,
 }
 
 
@@ -32,6 +33,7 @@ def evaluate(env: Environment, needs: env_needs_t, term: int) -> env_sample_t:
     s.current_ned_mps = [0.0, 0.0, 0.0]
     s.wave_orbital_ned_mps = [0.0, 0.0, 0.0]
     s.wave_elevation_m = s.water_depth_m = s.sound_speed_mps = 0.0
+    s.temperature_c = s.salinity_psu = 0.0
     mask = 0
     for var in needs.variables:
         mask |= VARIABLE_BITS.get(var, 0)
@@ -45,7 +47,9 @@ def evaluate(env: Environment, needs: env_needs_t, term: int) -> env_sample_t:
     if mask & env_sample_t.HAS_BATHYMETRY:
         s.water_depth_m = env.water_depth(n, e)
     if mask & env_sample_t.HAS_SOUND_SPEED:
-        s.sound_speed_mps = env.sound_speed(d)
+        s.sound_speed_mps = env.sound_speed(d, t, n, e)
+    if mask & env_sample_t.HAS_OCEAN:
+        s.temperature_c, s.salinity_psu = env.temperature_salinity(t, n, e, d)
     s.valid_mask = mask
     return s
 

@@ -51,6 +51,10 @@ class Sensor:
     # The parts of the simulated world its constructor takes, as keywords:
     # "env" (sim.environment.Environment), "frame" (the geodetic frame).
     uses: tuple[str, ...] = ()
+    # Built when a configuration lists no sensors (`sensors:` absent): the
+    # vehicle's own instruments. A payload not every vehicle carries (the CTD)
+    # says False and is fitted only where a configuration lists it.
+    fitted_unless_listed: bool = True
 
     @classmethod
     def nav_config(cls, cfg: "SensorConfig", env: Any) -> list[str]:

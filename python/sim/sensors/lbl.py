@@ -2,8 +2,9 @@
 
 One interrogation at t0: the ping travels to each transponder, waits its
 turnaround time and comes back to where the vehicle is by then. Travel time
-is range / mean sound speed (straight rays through a linear profile), plus
-Gaussian timing noise, plus occasional long outliers (multipath: a reflected
+is range / the mean sound speed along the straight path (Environment.
+path_sound_speed: a linear profile's mean, or, in a world with an ocean, the
+harmonic mean of TEOS-10's speeds along it), plus Gaussian timing noise, plus occasional long outliers (multipath: a reflected
 path is always longer, never shorter). The message is published when the
 last reply has arrived, stamped with t0, as a real receiver would.
 """
@@ -17,6 +18,7 @@ from auv import lbl_ranges_t
 from confcheck import setting
 from sim.environment import Environment
 from sim.model import Truth
+from sim.ocean import Ocean
 from sim.sensors.base import Sensor, SensorConfig, utime
 
 
@@ -45,6 +47,12 @@ class Lbl(Sensor):
         lines = [f"lbl_range_noise_m {max(math.hypot(cfg.noise, cfg.bias), 0.01):.6g}"]
         if cfg.assumed_sound_speed_mps > 0:
             lines.append(f"sound_speed_mps {cfg.assumed_sound_speed_mps:.9g}")
+        elif p.ocean is not None:
+            # the vehicle's profile: a straight line through a cast at the origin before the run
+            deepest = max([t.depth_m for t in p.transponders] + [50.0])
+            ocean = Ocean(p.ocean, p.seed, p.origin_latitude_deg, p.origin_longitude_deg)
+            c0, gradient = ocean.profile_fit(deepest)
+            lines += [f"sound_speed_mps {c0:.9g}", f"sound_speed_gradient_per_m {gradient:.9g}"]
         else:
             lines += [
                 f"sound_speed_mps {p.sound_speed_mps:.9g}",
@@ -89,7 +97,7 @@ class Lbl(Sensor):
             dist = math.sqrt((x.north_m - n0) ** 2 + (x.east_m - e0) ** 2 + (x.depth_m - d0) ** 2)
             if dist > c.max_range_m:
                 continue
-            cs = env.mean_sound_speed(d0, x.depth_m)
+            cs = env.path_sound_speed(tr.t, (n0, e0, d0), (x.north_m, x.east_m, x.depth_m))
             t_out = dist / cs
             # where the vehicle is when the reply arrives: constant velocity
             # over the few seconds, solved by two fixed-point passes
@@ -98,7 +106,7 @@ class Lbl(Sensor):
                 dt = t_out + x.turnaround_s + t_back
                 n1, e1, d1 = n0 + vn * dt, e0 + ve * dt, d0 + vd * dt
                 back = math.sqrt((x.north_m - n1) ** 2 + (x.east_m - e1) ** 2 + (x.depth_m - d1) ** 2)
-                t_back = back / env.mean_sound_speed(d1, x.depth_m)
+                t_back = back / env.path_sound_speed(tr.t, (n1, e1, d1), (x.north_m, x.east_m, x.depth_m))
             extra_m = c.bias + self.gauss(c.noise)
             if c.outlier_probability > 0.0 and self.rng.random() < c.outlier_probability:
                 extra_m += self.rng.uniform(0.0, c.outlier_max_m)
@@ -109,7 +117,7 @@ class Lbl(Sensor):
             turn.append(x.turnaround_s)
         m = lbl_ranges_t()
         m.utime, m.vehicle = utime(tr.t), self.vehicle
-        m.sound_speed_mps = c.assumed_sound_speed_mps or env.mean_sound_speed(d0, d0)
+        m.sound_speed_mps = c.assumed_sound_speed_mps or env.sound_speed(d0, tr.t, n0, e0)
         m.n_replies = len(ids)
         m.transponder_id, m.two_way_travel_s, m.turnaround_s = ids, twtt, turn
         publish_at = tr.t + max(twtt, default=0.0)

@@ -24,11 +24,12 @@ def merge(base: dict, over: dict) -> dict:
 
 
 def _absolute_grid(env: dict, base: Path) -> dict:
-    """A bathymetry grid file named relative to its own YAML file, made absolute:
-    the merged file lives in the run folder."""
-    bathy = env.get("bathymetry")
-    if isinstance(bathy, dict) and isinstance(bathy.get("grid"), str):
-        env = dict(env, bathymetry=dict(bathy, grid=str((base / bathy["grid"]).resolve())))
+    """A bathymetry or ocean grid file named relative to its own YAML file, made
+    absolute: the merged file lives in the run folder."""
+    for section in ("bathymetry", "ocean"):
+        sub = env.get(section)
+        if isinstance(sub, dict) and isinstance(sub.get("grid"), str) and sub["grid"]:
+            env = dict(env, **{section: dict(sub, grid=str((base / sub["grid"]).resolve()))})
     return env
 
 
@@ -65,9 +66,9 @@ def _ins_out_of_the_way(v: Vehicle, cfg: dict) -> dict:
     and a present one only the sensors it names, so all are named first."""
     if v.nav.source != "ekf":
         return cfg
-    from sim.sensors import REGISTRY
+    from sim.sensors import FITTED_UNLESS_LISTED
 
-    sensors = cfg.get("sensors") or {name: {} for name in REGISTRY}
+    sensors = cfg.get("sensors") or {name: {} for name in FITTED_UNLESS_LISTED}
     ins = sensors.get("ins", False)
     if ins is False or (isinstance(ins, dict) and ins.get("channel", "NAV") != "NAV"):
         return dict(cfg, sensors=sensors)  # no INS, or already elsewhere
@@ -94,9 +95,9 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     cfg = merge(cfg, {"vehicle": {"id": v.id}})
     for f in sc.faults:  # a planned leak: the probes sense water from its time on
         if f.vehicle == v.id and f.do == "leak":
-            from sim.sensors import REGISTRY
+            from sim.sensors import FITTED_UNLESS_LISTED
 
-            listed = cfg.get("sensors") or {name: {} for name in REGISTRY}  # none listed: all of them
+            listed = cfg.get("sensors") or {name: {} for name in FITTED_UNLESS_LISTED}  # none listed: all of them
             cfg["sensors"] = merge(listed, {"leak": {"at_s": f.at_s}})
     return count_in(sc, cfg)  # the launcher takes part in a lockstep world (the end, planned losses)
 

@@ -20,13 +20,13 @@ import sys
 from pathlib import Path
 
 from sim.config import SimConfig, load_or_report
-from sim.sensors import REGISTRY
+from sim.sensors import FITTED_UNLESS_LISTED, REGISTRY
 
 
 def _sensor(cfg: SimConfig, name: str):
     """The sensor's configuration as the simulator runs it (defaults if unlisted)."""
     if not cfg.sensors:
-        return REGISTRY[name][0]()
+        return REGISTRY[name][0]() if name in FITTED_UNLESS_LISTED else None
     return cfg.sensors.get(name)
 
 

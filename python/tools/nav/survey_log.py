@@ -62,9 +62,9 @@ def apply_overrides(text: str, sets: list[str], path: Path = Path("<config>")) -
     if any(item.startswith("sensors.") for item in sets) and not doc.get("sensors"):
         # an absent section means "every sensor at its defaults"; a listed one
         # means "only these": list them all before changing one
-        from sim.sensors import REGISTRY
+        from sim.sensors import FITTED_UNLESS_LISTED
 
-        doc["sensors"] = {name: {} for name in REGISTRY}
+        doc["sensors"] = {name: {} for name in FITTED_UNLESS_LISTED}
     for item in sets:
         key, sep, value = item.partition("=")
         if not sep or not re.fullmatch(r"[A-Za-z_][A-Za-z0-9_]*(\.[A-Za-z_][A-Za-z0-9_]*)*", key):
