@@ -211,9 +211,12 @@ def test_the_reduced_team_in_backseat_mode_agrees_with_the_message_level(tmp_pat
       in both. So the backseat run goes on to BACKSEAT_LIMIT_S (520 s), where it has
       identified one to three (the message level's RI vehicle was done at 374 s with
       its two; at 450 s the backseat run had one or none);
-    - navigation: the frontseat's own (the truth through the $OSI's 1e-7 deg and the
-      sentence's time on the 19200 baud line, ~80 ms at 1.5 m/s): RMS under 0.5 m, far
-      under the message level's onboard filter (1 to 2 m, dead reckoning);
+    - navigation: the frontseat's own, the truth through the $OSI's 1e-7 deg, stamped
+      when the sentence arrives (~80 ms on the 19200 baud line: 0.1 m at 1.5 m/s; an
+      answer a stalled simulator of a loaded machine sends late is stamped late, 1.5 m
+      per second of delay): RMS under 1 m and under the message level's onboard filter
+      (1.3 to 1.6 m, dead reckoning). Measured 0.10 to 0.11 m, 0.33 m at a load average
+      of 6 (the world's clock ran on 7.7 s without an answer, twice);
     - the mode itself: no PILOT ran and nothing commanded the actuators (no
       ACTUATORS, no CHASM.PILOT), the simulated INS was moved to NAV_INS, and each
       frontseat granted the payload control.
@@ -246,7 +249,8 @@ def test_the_reduced_team_in_backseat_mode_agrees_with_the_message_level(tmp_pat
     assert abs(ta["mine_like_identified"] - tb["mine_like_identified"]) <= 1, (ta, tb)
     assert tb["mine_like_detected"] >= 2 and tb["mine_like_identified"] >= 1, tb
     for vid in VC:
-        assert b["navigation_error"][vid]["rms_m"] < 0.5, (vid, b["navigation_error"][vid])
+        eb = b["navigation_error"][vid]["rms_m"]
+        assert eb < 1.0 and eb < a["navigation_error"][vid]["rms_m"], (vid, b["navigation_error"][vid])
     print(
         f"backseat x{BACKSEAT_WARP:g}: {wall:.0f} s wall, {b['duration_s']:.0f} s sim; detected "
         f"{ta['mine_like_detected']}/{tb['mine_like_detected']}, identified "
