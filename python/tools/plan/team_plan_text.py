@@ -9,7 +9,10 @@ lingers on the link for `linger` so its last reports get acknowledged, and
 surfaces. The reacquire-identify (RI) vehicle flies through the reported
 targets (`ri_reacquire`) until the search is over and its queue is empty.
 The behaviors' tuning is in `param`s at the top of each plan so a user can
-adjust it without rerunning the planner.
+adjust it without rerunning the planner. A vehicle flown from its backseat
+(auv-plan-survey --backseat, docs/frontseat.md) gets the same plan, surfacing by
+asking its frontseat for 0 m (`surface_speed`) and riding out a frontseat's
+silence for BACKSEAT_NAV_TIMEOUT_S (its NAV is the frontseat's).
 """
 
 from __future__ import annotations
