@@ -144,6 +144,7 @@ def test_plans_pass_chasm_check(tmp_path):
         (["--polygon", "@/nonexistent/poly.txt", "--range", "40"], "No such file"),
         (["--polygon", POLY, "--range", "40", "--status-rate", "-1"], "--status-rate -1: out of range"),
         (["--polygon", POLY, "--range", "40", "--status-rate", "nan"], "--status-rate nan: out of range"),
+        (["--polygon", POLY, "--range", "40", "--backseat", "AUV1"], "--backseat: with --team only"),
     ],
 )
 def test_bad_input_exits_2(tmp_path, args, msg):

@@ -119,9 +119,43 @@ def test_the_onboard_filter_for_the_whole_team(tmp_path):
     assert {v["sim"]["multihil"]["lockstep_participants"] for v in sc["vehicles"]} == {16}
 
 
+def test_backseat_vehicles_get_a_frontseat_no_pilot_and_a_scaled_world(tmp_path):
+    """--backseat (docs/frontseat.md, "The team in backseat mode"): the vehicles named get
+    the simulator's frontseat, no PILOT, auv-frontseat's depth limit and a plan that
+    surfaces by asking for 0 m; the whole world runs on the simulators' scaled clock."""
+    run = run_team(tmp_path / "b", "--backseat", "AUV1,AUV4", "--warp", "3", "--nav", "ekf")
+    assert run.returncode == 0, run.stderr
+    assert "AUV1, AUV4 from the backseat, scaled clock x3" in run.stdout
+    sc = yaml.safe_load((tmp_path / "b" / "b.yaml").read_text())
+    assert sc["time"] == {"mode": "scaled", "warp": 3.0, "source": "simulators", "limit": sc["time"]["limit"]}
+    by_id = {v["id"]: v for v in sc["vehicles"]}
+    for vid, v in by_id.items():
+        assert v["sim"]["simulation"] == {"clock": "scaled", "warp": 3.0}
+        assert v["sim"]["multihil"]["enabled"] and "lockstep_participants" not in v["sim"]["multihil"]
+        names = [m["name"] for m in v["managers"]]
+        plan = (tmp_path / "b" / f"{vid}.chasm").read_text()
+        if vid in ("AUV1", "AUV4"):
+            fs = v["sim"]["frontseat"]
+            assert names == ["NAVIGATOR"] and "nav" not in v and v["backseat"] == {"max_depth": 60.0}
+            assert fs["wire"] == {"protocol": "iver3", "pty": f"{vid}.frontseat", "baud": 19200}
+            assert fs["mission_depth_m"] == 5.0 and fs["mission_speed_mps"] == 1.5
+            assert param(plan, "surface_speed") == "1.5 m/s" and "do surface(speed = $surface_speed)" in plan
+            assert param(plan, "nav_timeout") == "15 s"  # NAV is the frontseat's: its silence is ridden out
+        else:
+            assert names == ["PILOT", "NAVIGATOR"] and v["nav"] == "ekf" and "frontseat" not in v["sim"]
+            assert "surface_speed" not in plan and "do surface()" in plan and param(plan, "nav_timeout") == "5 s"
+    # the server of the world: the first vehicle (the best priority)
+    prios = [v["sim"]["multihil"]["priority"] for v in sc["vehicles"]]
+    assert prios == sorted(prios, reverse=True) and len(set(prios)) == 4
+    assert json.loads((tmp_path / "b" / "survey.json").read_text())["team"]["backseat"] == ["AUV1", "AUV4"]
+
+
 @pytest.mark.parametrize(
     "extra,msg",
     [
+        (["--backseat", "AUV9"], "--backseat AUV9: AUV9: not of the team AUV1,AUV2,AUV3,AUV4"),
+        (["--backseat", "all", "--time-source", "launcher"], "cannot take part in the launcher's lockstep"),
+        (["--backseat", "all", "--warp", "0"], "--warp 0"),
         (["--team", "0"], "1 to 14 search vehicles"),
         (["--team", "15"], "1 to 14 search vehicles"),
         (["--ri-start", "x"], "--ri-start"),

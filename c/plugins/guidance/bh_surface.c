@@ -2,7 +2,10 @@
  *
  * surface and surface_fix stop the prop (or run it at `rpm`) and ask the pilot
  * for a bow-up pitch: the positively buoyant vehicle floats up, and with the
- * prop turning the pitch drives it up. surface is done above `depth`;
+ * prop turning the pitch drives it up. surface with a `speed` asks instead for
+ * a depth of 0 m at that speed: a commercial vehicle's frontseat, flown from
+ * its backseat (docs/frontseat.md), holds depths and speeds, never a pitch or
+ * an rpm. surface is done above `depth`;
  * surface_fix stays at the surface until a GPS fix newer than the state's
  * entry arrives (done) or `timeout` passes (failed, for `when failed`). */
 #include <math.h>
@@ -21,11 +24,15 @@ const chasm_param_spec gd_surface_params[SURF_NPARAMS] = {
     [SURF_PITCH] = PITCH_PARAM,
     [SURF_RPM] = RPM_PARAM,
     [SURF_DEPTH] = CHASM_PARAM_DOUBLE_RANGE("depth", "m", 0.5, 0.1, 10, "done when shallower than this"),
+    [SURF_SPEED] = CHASM_PARAM_DOUBLE_RANGE("speed", "m/s", 0, 0, 5.0,
+                                            "> 0: ask a depth of 0 m at this speed (a frontseat), not pitch and rpm"),
     [SURF_IN_DEPTH] = GD_IN_DEPTH,
     [SURF_OUT_VERTICAL_MODE] = GD_OUT_VERTICAL_MODE,
     [SURF_OUT_PITCH] = GD_OUT_PITCH,
     [SURF_OUT_SPEED_MODE] = GD_OUT_SPEED_MODE,
     [SURF_OUT_RPM] = GD_OUT_RPM,
+    [SURF_OUT_DEPTH] = GD_OUT_DEPTH,
+    [SURF_OUT_SPEED] = GD_OUT_SPEED,
 };
 
 const chasm_param_spec gd_surface_fix_params[FIX_NPARAMS] = {
@@ -58,17 +65,31 @@ static void float_up(chasm_ctx *c, int pitch, int rpm, int out_vertical_mode)
     chasm_write_double(c, out_vertical_mode + 3, chasm_param_double(c, rpm) / RPM_TO_RADPS);
 }
 
+/* surface: floated up (pitch, rpm), or driven up to a depth of 0 m at `speed` */
+static void surface_out(chasm_ctx *c)
+{
+    double speed = chasm_param_double(c, SURF_SPEED);
+    if (speed <= 0.0) {
+        float_up(c, SURF_PITCH, SURF_RPM, SURF_OUT_VERTICAL_MODE);
+        return;
+    }
+    chasm_write_int(c, SURF_OUT_VERTICAL_MODE, GD_VERTICAL_DEPTH);
+    chasm_write_double(c, SURF_OUT_DEPTH, 0.0);
+    chasm_write_int(c, SURF_OUT_SPEED_MODE, GD_SPEED_MPS);
+    chasm_write_double(c, SURF_OUT_SPEED, speed);
+}
+
 int gd_surface_start(chasm_ctx *c, void *state)
 {
     (void)state;
-    float_up(c, SURF_PITCH, SURF_RPM, SURF_OUT_VERTICAL_MODE);
+    surface_out(c);
     return 0;
 }
 
 chasm_status_code gd_surface_step(chasm_ctx *c, void *state)
 {
     (void)state;
-    float_up(c, SURF_PITCH, SURF_RPM, SURF_OUT_VERTICAL_MODE);
+    surface_out(c);
     return chasm_read_double(c, SURF_IN_DEPTH) < chasm_param_double(c, SURF_DEPTH) ? CHASM_DONE : CHASM_RUNNING;
 }
 

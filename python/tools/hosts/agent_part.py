@@ -1,7 +1,8 @@
 """One host's part of a scenario, as a host agent runs it (docs/hosts.md).
 
 The same processes `auv-launch --host HOST` would start (simulators, onboard
-filters, managers, with the same command lines), plus the recorder the
+filters, the auv-frontseat of a vehicle flown from its backseat, managers, with
+the same command lines), plus the recorder the
 scenario names (tools/launch/recorder_cmd.py) when it logs on this host; every check
 the launcher makes comes first, and any failure refuses the whole part. What the agent does not run is the
 launcher's clock and mission watch: `agentctl watch` runs those when the
@@ -15,6 +16,7 @@ from pathlib import Path
 
 from auvlcm.url import check_local
 from confcheck import ConfigError
+from tools.launch.backseat import frontseat_ports
 from tools.launch.launcher import Launcher, check_plans, nav_configs
 from tools.launch.procs import TIER_FILTER, TIER_MANAGER, TIER_RECORDER, TIER_SIMULATOR
 from tools.launch.recorder_cmd import recorder_cmd, recorder_takes_part
@@ -33,8 +35,9 @@ class ProcSpec:
 class _Commands(Launcher):
     """The launcher's command lines without its LCM, clock or children."""
 
-    def __init__(self, sc: Scenario, url: str, sim_configs: dict, navs: dict, build: Path) -> None:
+    def __init__(self, sc: Scenario, url: str, sim_configs: dict, navs: dict, build: Path, frontseats: dict) -> None:
         self.sc, self.url, self.sim_configs, self.nav_configs, self.build = sc, url, sim_configs, navs, build
+        self.frontseats = frontseats
 
 
 class PartError(Exception):
@@ -79,10 +82,11 @@ def host_part(
     # the same participants as on the clock's host: the recorder too, wherever it runs
     sim_configs, errors = write_configs(sc, mine.vehicles, run_dir, recorder_takes_part(sc, sc.log_recorder))
     navs, nav_errors = nav_configs(mine, sim_configs, run_dir, build)
-    errors += nav_errors + check_plans(mine, build)
+    frontseats, fs_errors = frontseat_ports(mine, sim_configs)
+    errors += nav_errors + fs_errors + check_plans(mine, build)
     if errors:
         raise PartError(errors)
-    cmds = _Commands(sc, url, sim_configs, navs, build)
+    cmds = _Commands(sc, url, sim_configs, navs, build, frontseats)
     procs = []
     if sc.log_enabled and sc.log_host == host:
         log, stats = run_dir / sc.log_file, run_dir / "recorder.json"
@@ -93,6 +97,9 @@ def host_part(
     for v in mine.vehicles:
         if v.id in navs:
             procs.append(ProcSpec(f"{v.id}.NAV", cmds.nav_cmd(v), run_dir / f"{v.id}.nav.out", TIER_FILTER))
+        if v.id in frontseats:
+            out = run_dir / f"{v.id}.frontseat.out"
+            procs.append(ProcSpec(f"{v.id}.FRONTSEAT", cmds.frontseat_cmd(v), out, TIER_FILTER))
     for v in mine.vehicles:
         for m in v.managers:
             out = run_dir / f"{v.id}.{m.name}.out"

@@ -4,8 +4,10 @@
     auv-launch SCENARIO.yaml [--host NAME] [--out DIR] [--lcm-url URL]
 
 Order: the recorder (auv-recorder, or lcm-logger if chosen), the files the run uses annotated into the log, the
-simulators, the onboard navigation filters (vehicles with `nav: ekf`), the
-managers; then the global clock starts. The mission ends when
+simulators, the onboard navigation filters (vehicles with `nav: ekf`) and the
+auv-frontseat of each vehicle flown from its backseat (a `frontseat:` in its
+simulator configuration: tools/launch/backseat.py), the managers; then the
+global clock starts. The mission ends when
 every vehicle's navigator is done, aborted or failed, or at the time limit;
 Ctrl-C, SIGTERM or any process dying ends it too. In a lockstep world the end
 is a step, marked in the log (`mission end`) before anything stops
@@ -33,6 +35,7 @@ from auvlcm.paths import ROOT, build_dir
 from auvlcm.url import check_local, default_url
 from confcheck import ConfigError
 from sim import clock_modes
+from tools.launch.backseat import frontseat_ports
 from tools.launch.launcher import EXIT, Launcher, check_plans, nav_configs
 from tools.launch.procs import children_batch
 from tools.launch.recorder_cmd import recorder_takes_part
@@ -132,6 +135,8 @@ def main(argv: list[str] | None = None) -> int:
     sim_configs, errors = write_configs(sc, sc.vehicles, args.out, records)
     navs, nav_errors = nav_configs(Scenario(**{**sc.__dict__, "vehicles": mine}), sim_configs, args.out, args.build)
     errors += nav_errors
+    frontseats, fs_errors = frontseat_ports(sc, sim_configs)
+    errors += fs_errors
     errors += check_plans(Scenario(**{**sc.__dict__, "vehicles": mine}), args.build)
     if errors:
         print("\n".join(errors), file=sys.stderr)
@@ -153,7 +158,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"launch: {why_not}", file=sys.stderr)
         batch = False
     children_batch(batch)  # every process started from here on
-    run = Launcher(sc, args, url, sim_configs, navs)
+    run = Launcher(sc, args, url, sim_configs, navs, frontseats=frontseats)
     print(
         f"launch: {sc.name}: {len(mine)} vehicle(s){f' on host {args.host}' if args.host else ''}, "
         f"time {sc.time.mode}{'' if sc.time.mode != 'scaled' else f' x{args.warp or sc.time.warp:g}'}, "

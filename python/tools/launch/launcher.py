@@ -2,7 +2,9 @@
 
 `Launcher` starts the recorder (auv-recorder, or lcm-logger if chosen), the files
 the run uses annotated into the log, the simulators, the onboard navigation
-filters (vehicles with `nav: ekf`), the managers; then the global clock starts.
+filters (vehicles with `nav: ekf`) and the auv-frontseat of each vehicle flown
+from its backseat (tools/launch/backseat.py), the managers; then the global
+clock starts.
 The mission ends when every vehicle's navigator is done, aborted or failed, or at
 the time limit; Ctrl-C, SIGTERM or any process dying ends it too. Everything is
 stopped a kind at a time (managers, filters, simulators), the recorder last, so
@@ -39,6 +41,7 @@ from auvlcm.paths import ROOT
 from auvlcm.url import with_receive_buffer
 from sim.multihil.lockstep import lockstep_msg
 from tools.launch.annotate import Annotator
+from tools.launch.backseat import FrontseatPort, frontseat_cmd
 from tools.launch.fault_step import FaultStepper, takes_part
 from tools.launch.lockstep_names import participants
 from tools.launch.mission_watch import MissionWatch
@@ -127,9 +130,11 @@ class Launcher:
         sim_configs: dict[str, Path],
         nav_configs: dict[str, Path] | None = None,
         agents: bool = False,
+        frontseats: dict[str, FrontseatPort] | None = None,
     ) -> None:
         self.sc, self.args, self.url, self.sim_configs = sc, args, url, sim_configs
         self.nav_configs = nav_configs or {}
+        self.frontseats = frontseats or {}  # the backseat vehicles' frontseat ports (tools/launch/backseat.py)
         self.agents = agents
         self.host = args.host
         self.out: Path = args.out
@@ -140,7 +145,7 @@ class Launcher:
         self.own_clock = sc.time.source == "launcher" and (self.host is None or self.host == sc.time.host)
         # with --agents the log host's agent records, not this process
         self.own_log = not agents and sc.log_enabled and (self.host is None or self.host == sc.log_host)
-        self.watch = MissionWatch(self.lc, sc)
+        self.watch = MissionWatch(self.lc, sc, self.frontseats)
         # with agents the log host's agent records what the scenario names
         self.recorder = sc.log_recorder if agents else (args.recorder or sc.log_recorder)
         # lcm-logger's queue of 30 overflows on a burst of annotations: paced for it;
@@ -243,15 +248,21 @@ class Launcher:
             self.build, config=self.nav_configs[v.id], vehicle=v.id, lcm_url=self.child_url, rate_hz=v.nav.rate_hz
         )
 
+    def frontseat_cmd(self, v) -> list[str]:
+        return frontseat_cmd(self.build, self.child_url, v.id, self.frontseats[v.id], v.backseat)
+
     def start_all(self) -> None:
         if self.own_log:
             self.start_logger()
             self.annotate()
         for v in self.mine:
             self._start(Child(f"{v.id}.sim", self.sim_cmd(v.id), self.out / f"{v.id}.sim.out", tier=TIER_SIMULATOR))
-        for v in self.mine:  # the onboard filter, before the managers that read it
+        for v in self.mine:  # the onboard filter or the frontseat's driver, before the managers that read it
             if v.id in self.nav_configs:
                 self._start(Child(f"{v.id}.NAV", self.nav_cmd(v), self.out / f"{v.id}.nav.out", tier=TIER_FILTER))
+            if v.id in self.frontseats:
+                out = self.out / f"{v.id}.frontseat.out"
+                self._start(Child(f"{v.id}.FRONTSEAT", self.frontseat_cmd(v), out, tier=TIER_FILTER))
         for v in self.mine:
             for m in v.managers:
                 out = self.out / f"{v.id}.{m.name}.out"

@@ -1,7 +1,8 @@
 """What the launcher knows about a running world, from LCM alone.
 
 - ready: every simulator (ACTUATOR_STATE), every onboard navigation filter
-  (NAV_STATUS, vehicles with `nav: ekf`) and every manager (CHASM status) of
+  (NAV_STATUS, vehicles with `nav: ekf`), every auv-frontseat (FRONTSEAT,
+  vehicles flown from their backseat) and every manager (CHASM status) of
   the scenario has reported, on any host: a filter that subscribes after the
   clock starts misses the first GPS fix and aligns a second later, so the
   mission would not be the same from run to run;
@@ -28,11 +29,12 @@ from __future__ import annotations
 
 import re
 import select
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import lcm
 
-from auv import actuator_state_t, chasm_status_t, nav_filter_status_t, sim_clock_t
+from auv import actuator_state_t, chasm_status_t, frontseat_status_t, nav_filter_status_t, sim_clock_t
 from auvlcm.rx import Receiver
 from auvlcm.timepolicy import ClockGate, InputGate, TimeDrops
 from tools.launch.annotate import plan_files
@@ -99,7 +101,8 @@ class VehicleState:
 
 
 class MissionWatch:
-    def __init__(self, lc: lcm.LCM, sc: Scenario) -> None:
+    def __init__(self, lc: lcm.LCM, sc: Scenario, backseat: Iterable[str] = ()) -> None:
+        """backseat: the vehicles flown from their backseat (tools/launch/backseat.py)."""
         self.lc = lc
         self.rx = Receiver(lc)
         self.time_drops = TimeDrops("launch", lambda line: print(line, flush=True))
@@ -127,6 +130,10 @@ class MissionWatch:
                 sub = self.rx.subscribe(f"{v.id}.CHASM.{m.name}", chasm_status_t, self._on_status, queue_capacity=1000)
                 if m.name != v.end_manager:
                     self._until_seen[sub.channel] = sub
+        for vid in backseat:  # auv-frontseat: ready at its first state, then no longer heard
+            self.expected.add(f"{vid}.FRONTSEAT")
+            sub = self.rx.subscribe(f"{vid}.FRONTSEAT", frontseat_status_t, self._on_frontseat, queue_capacity=100)
+            self._until_seen[sub.channel] = sub
         self.rx.subscribe("SIM.CLOCK", sim_clock_t, self._on_clock, queue_capacity=1000)
 
     def _fresh(self, channel: str, utime: int) -> bool:
@@ -148,6 +155,14 @@ class MissionWatch:
         if not self._fresh(ch, m.utime):
             return
         self.seen.add(f"{m.vehicle}.NAV")
+
+    def _on_frontseat(self, ch: str, m) -> None:
+        if not self._fresh(ch, m.utime) or ch != f"{m.vehicle}.FRONTSEAT":
+            return
+        self.seen.add(ch)
+        sub = self._until_seen.pop(ch, None)
+        if sub is not None:
+            self.rx.unsubscribe(sub)
 
     def _on_status(self, ch: str, m) -> None:
         if not self._fresh(ch, m.utime):

@@ -59,12 +59,19 @@ def _targets_publisher(sc: Scenario, v: Vehicle, cfg: dict) -> dict:
     return merge(cfg, {"sonar": {"publish_targets": "yes" if first is v else "no"}})
 
 
+def backseat(cfg: dict) -> bool:
+    """Whether a merged simulator configuration is a vehicle flown from its backseat
+    (a `frontseat:` section: tools/launch/backseat.py)."""
+    return cfg.get("frontseat") not in (None, False)
+
+
 def _ins_out_of_the_way(v: Vehicle, cfg: dict) -> dict:
-    """With the onboard filter (`nav: ekf`) auv-nav owns <ID>.NAV: the simulated
-    INS moves to <ID>.NAV_INS, kept in the log for comparison (one writer per
-    channel). An absent `sensors` section means every sensor at its defaults
-    and a present one only the sensors it names, so all are named first."""
-    if v.nav.source != "ekf":
+    """With the onboard filter (`nav: ekf`) auv-nav owns <ID>.NAV, on a backseat
+    vehicle auv-frontseat (the frontseat's navigation): the simulated INS moves to
+    <ID>.NAV_INS, kept in the log for comparison (one writer per channel). An
+    absent `sensors` section means every sensor at its defaults and a present
+    one only the sensors it names, so all are named first."""
+    if v.nav.source != "ekf" and not backseat(cfg):
         return cfg
     from sim.sensors import FITTED_UNLESS_LISTED
 
@@ -102,7 +109,7 @@ def _merged_config(sc: Scenario, v: Vehicle, index: int) -> dict:
     return count_in(sc, cfg)  # the launcher takes part in a lockstep world (the end, planned losses)
 
 
-def _source_position(v: Vehicle, key: str, sc: Scenario) -> str:
+def source_position(v: Vehicle, key: str, sc: Scenario) -> str:
     """Where the simulator key `a.b.c` came from: the scenario's world or the
     vehicle's `sim:` overrides if it is there, else the vehicle's base file."""
     parts = [p for p in re.split(r"[.\[\]]", key) if p and not p.isdigit()]
@@ -146,7 +153,7 @@ def write_configs(
             for line in exc.errors:
                 m = re.match(r".*?:\d+:\d+: ([\w.\[\]]+): (.*)", line)
                 key, msg = (m.group(1), m.group(2)) if m else ("sim", line)
-                errors.append(f"{_source_position(v, key, sc)}: vehicles[{index}].sim: {key}: {msg}")
+                errors.append(f"{source_position(v, key, sc)}: vehicles[{index}].sim: {key}: {msg}")
             continue
         paths[v.id] = path
     return paths, errors

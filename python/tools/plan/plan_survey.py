@@ -171,6 +171,13 @@ def main(argv: list[str] | None = None) -> int:
         ap.add_argument("--" + key.replace("_", "-"), type=Path, default=default)
     args = ap.parse_args(argv)
     lim = Limits(**{k: getattr(args, k) for k in vars(lim)})
+    if args.backseat and args.team is None:
+        print(
+            "plan_survey: --backseat: with --team only (a plain survey's GPS fixes surface by pitch, "
+            "which a frontseat does not take)",
+            file=sys.stderr,
+        )
+        return 2
     if args.team is not None:
         if not 1 <= args.team <= 15 - args.ri:
             print(
@@ -288,9 +295,14 @@ def main(argv: list[str] | None = None) -> int:
     )
     if team is not None:
         t = team["team"]
+        clock = (
+            f"{', '.join(t['backseat'])} from the backseat, scaled clock x{args.warp:g} from the simulators"
+            if t.get("backseat")
+            else f"lockstep clock from the {args.time_source}"
+        )
         print(
             f"  team {','.join(t['roster'])}: TDMA {t['slots']} slots of {t['slot_s']:g} s "
-            f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), lockstep clock from the {args.time_source}"
+            f"({t['frame_bytes']} B frames of {t['frame_s']:g} s), {clock}"
         )
     for vid, v, st in zip(ids, sv.vehicles, starts):
         print(

@@ -12,6 +12,14 @@ slot is computed from the modem of the search vehicles' simulator configuration 
 `--time lockstep` (default; multi-HIL lockstep, every simulator and manager
 finishes each step: reruns are identical) or `fast` (the launcher's clock).
 docs/missions.md, "Team mission".
+
+`--backseat AUV1,AUV2` flies those vehicles from their backseat (docs/frontseat.md,
+"The team in backseat mode"): their simulator configuration gets the simulator's
+Iver3 frontseat (`frontseat:`, its own mission: the launch heading at the survey
+depth and speed), their managers no PILOT (auv-launch starts auv-frontseat in its
+place), their plans surface by asking for 0 m; a frontseat is a device on a port,
+which cannot take part in a lockstep world, so the whole world then runs on the
+simulators' scaled clock (multi-HIL, `--warp`).
 """
 
 from __future__ import annotations
@@ -46,13 +54,42 @@ TEAM_DEFAULTS = {
 STATUS_RATE_HZ = 2.0
 
 
-def vehicle_managers(args, out: Path, nav_plan: str, nav_bind: Path) -> list[dict]:
-    """A vehicle's PILOT (20 Hz) and NAVIGATOR (10 Hz) as a scenario lists them."""
+def vehicle_managers(args, out: Path, nav_plan: str, nav_bind: Path, backseat: bool = False) -> list[dict]:
+    """A vehicle's PILOT (20 Hz) and NAVIGATOR (10 Hz) as a scenario lists them; a
+    backseat vehicle's NAVIGATOR alone (auv-frontseat stands where the PILOT stands)."""
     status = {"status_rate": args.status_rate}
+    pilot = {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20}
     return [
-        {"name": "PILOT", "plan": _rel(args.pilot_plan, out), "bind": _rel(args.pilot_bind, out), "rate": 20, **status},
+        *([] if backseat else [{**pilot, **status}]),
         {"name": "NAVIGATOR", "plan": nav_plan, "bind": _rel(nav_bind, out), "rate": 10, **status},
     ]
+
+
+def parse_backseat(text: str | None, roster: list[str]) -> set[str]:
+    """--backseat: vehicle ids of the roster, comma-separated, or `all` (GeometryError if not)."""
+    if not text:
+        return set()
+    ids = roster if text.strip() == "all" else [i.strip() for i in text.split(",") if i.strip()]
+    unknown = [i for i in ids if i not in roster]
+    if unknown or not ids:
+        raise GeometryError(
+            f"--backseat {text}: {', '.join(unknown) or 'no vehicle'}: not of the team {','.join(roster)}"
+        )
+    return set(ids)
+
+
+def frontseat_section(vid: str, heading_rad: float, lim: Limits) -> dict:
+    """The simulator's Iver3 frontseat of a backseat vehicle (python/sim/frontseat.py):
+    granted the backseat's requests from 1 m down; its own mission (before the first
+    grant, and whenever it takes the vehicle back) the launch heading at the survey
+    depth and speed; on a pty in the run folder (beside the merged configuration)."""
+    return {
+        "control_min_depth_m": 1.0,
+        "mission_heading_deg": round(math.degrees(heading_rad) % 360.0, 1) % 360.0,
+        "mission_depth_m": lim.depth_m if lim.depth_m > 0 else 3.0,
+        "mission_speed_mps": lim.speed_mps,
+        "wire": {"protocol": "iver3", "pty": f"{vid}.frontseat", "baud": 19200},
+    }
 
 
 def add_team_options(ap) -> None:
@@ -82,6 +119,13 @@ def add_team_options(ap) -> None:
         default="simulators",
         help="whose lockstep clock: the simulators' multi-HIL nodes (default) or the launcher's",
     )
+    g.add_argument(
+        "--backseat",
+        metavar="IDS",
+        help="fly these vehicles (comma-separated, or `all`) from their backseat: the simulator's Iver3 "
+        "frontseat, auv-frontseat for the PILOT; the world then runs scaled (docs/frontseat.md)",
+    )
+    g.add_argument("--warp", type=float, default=4.0, help="with --backseat: the simulators' scaled clock (default 4)")
     for key, default in TEAM_DEFAULTS.items():
         g.add_argument("--" + key.replace("_", "-"), type=Path, default=default)
 
@@ -137,6 +181,14 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
     modem = modem_of(args.search_config)
     ri_ids = [f"AUV{len(ids) + 1}"] if args.ri else []
     roster = ids + ri_ids
+    backseat = parse_backseat(args.backseat, roster)
+    if backseat and args.time_source != "simulators":
+        raise GeometryError(
+            "--backseat: a frontseat is a device on a port, which cannot take part in the launcher's lockstep "
+            "clock: leave --time-source at simulators (the world then runs on their scaled clock)"
+        )
+    if backseat and not (0 < args.warp <= 100):
+        raise GeometryError(f"--warp {args.warp:g}: a scaled clock's warp is in (0, 100]")
     if ri_ids:
         ri_modem = modem_of(args.ri_config)
         if (ri_modem.frame_bytes, round(ri_modem.frame_s, 6)) != (modem.frame_bytes, round(modem.frame_s, 6)):
@@ -167,7 +219,17 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
         )
         path.write_text(
             search_plan(
-                vid, link, lim, timeout, sv.operating_area, path, v.legs[0].start, v.legs[-1].end, summary, args.linger
+                vid,
+                link,
+                lim,
+                timeout,
+                sv.operating_area,
+                path,
+                v.legs[0].start,
+                v.legs[-1].end,
+                summary,
+                args.linger,
+                vid in backseat,
             )
         )
         paths.append(path)
@@ -183,6 +245,7 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
                 sv.operating_area,
                 path,
                 f"Starts at {ri_st[0]:.1f}, {ri_st[1]:.1f}; identifies what the search reports.",
+                vid in backseat,
             )
         )
         paths.append(path)
@@ -197,21 +260,31 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
             "config": _rel(args.ri_config if vid in ri_ids else args.search_config, out),
             "initial": {"north_m": round(st[0], 1), "east_m": round(st[1], 1), "heading_rad": round(heading, 4)},
         }
-        if args.time_source == "simulators":
+        if backseat:  # one world on the simulators' scaled clock; the first vehicle serves it
+            sim["simulation"] = {"clock": "scaled", "warp": args.warp}
+            sim["multihil"] = {"enabled": True, "priority": 10 * (len(roster) - len(vehicles))}
+        elif args.time_source == "simulators":
             sim["simulation"] = {"clock": "lockstep"}
             sim["multihil"] = {"enabled": True, "lockstep_participants": participants}
+        if vid in backseat:
+            sim["frontseat"] = frontseat_section(vid, heading, lim)
         vehicles.append(
             {
                 "id": vid,
                 "sim": sim,
-                **({"nav": args.nav} if args.nav != "ins" else {}),
+                # a backseat vehicle's NAV is its frontseat's
+                **({"nav": args.nav} if args.nav != "ins" and vid not in backseat else {}),
+                **({"backseat": {"max_depth": lim.max_depth_m}} if vid in backseat else {}),
                 "managers": vehicle_managers(
-                    args, out, f"{vid}.chasm", args.ri_bind if vid in ri_ids else args.team_bind
+                    args, out, f"{vid}.chasm", args.ri_bind if vid in ri_ids else args.team_bind, vid in backseat
                 ),
             }
         )
     limit = round(timeout + 120)
-    time = {"mode": clock_modes.LOCKSTEP, "source": args.time_source, "limit": limit}
+    if backseat:
+        time = {"mode": clock_modes.SCALED, "warp": args.warp, "source": args.time_source, "limit": limit}
+    else:
+        time = {"mode": clock_modes.LOCKSTEP, "source": args.time_source, "limit": limit}
     team = {
         "roster": roster,
         "search": ids,
@@ -221,6 +294,7 @@ def write_team(sv: Survey, ids: list[str], starts, args, lim: Limits, out: Path)
         "frame_bytes": modem.frame_bytes,
         "frame_s": round(modem.frame_s, 3),
         "lines": lines,
+        **({"backseat": sorted(backseat)} if backseat else {}),
     }
     return {"time": time, "vehicles": vehicles, "team": team}, paths
 

@@ -9,13 +9,16 @@ lingers on the link for `linger` so its last reports get acknowledged, and
 surfaces. The reacquire-identify (RI) vehicle flies through the reported
 targets (`ri_reacquire`) until the search is over and its queue is empty.
 The behaviors' tuning is in `param`s at the top of each plan so a user can
-adjust it without rerunning the planner.
+adjust it without rerunning the planner. A vehicle flown from its backseat
+(auv-plan-survey --backseat, docs/frontseat.md) gets the same plan, surfacing by
+asking its frontseat for 0 m (`surface_speed`) and riding out a frontseat's
+silence for BACKSEAT_NAV_TIMEOUT_S (its NAV is the frontseat's).
 """
 
 from __future__ import annotations
 
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from tools.plan.plan_text import NAVIGATOR_IO, TEAM_SAFETY, Limits
@@ -35,6 +38,35 @@ class TeamLink:
 
 # Every team plan ends its mission state the same way: up to the surface.
 _RECOVER = ["    state recover {", "        do surface()", "    }", "}"]
+# ... a backseat's by asking its frontseat for 0 m (it takes no pitch or rpm: docs/frontseat.md)
+_RECOVER_BACKSEAT = ["    state recover {", "        do surface(speed = $surface_speed)", "    }", "}"]
+
+
+def _recover(backseat: bool) -> list[str]:
+    return _RECOVER_BACKSEAT if backseat else _RECOVER
+
+
+# A backseat's NAV is its frontseat's, published at each of its answers: NAV's age is the
+# frontseat's silence, which the frontseat rides out on its own (the last request until its
+# timeout, then its own mission), not an emergency the shared rules abort for at once.
+BACKSEAT_NAV_TIMEOUT_S = 15.0
+
+
+def _backseat(lim: Limits, backseat: bool) -> Limits:
+    """The limits a backseat plan is written with: NAV older than BACKSEAT_NAV_TIMEOUT_S
+    at least before the shared rules abort."""
+    return replace(lim, nav_timeout_s=max(lim.nav_timeout_s, BACKSEAT_NAV_TIMEOUT_S)) if backseat else lim
+
+
+def _backseat_params(lim: Limits) -> list[str]:
+    """A plan flown from the backseat surfaces (recover, emergency) by asking for 0 m."""
+    return [
+        "",
+        "# Flown from the backseat (docs/frontseat.md): the frontseat holds depths and speeds",
+        "# only, so the way up (recover, the safety rules' emergency) asks it for 0 m at this speed;",
+        "# NAV is the frontseat's (nav_timeout above: its silence is ridden out, not aborted for).",
+        f"param surface_speed = {lim.speed_mps:g} m/s",
+    ]
 
 
 def lines_string(shares: list[list[tuple[tuple[float, float], tuple[float, float]]]]) -> str:
@@ -113,8 +145,11 @@ def search_plan(
     end,
     summary: str,
     linger_s: float = 120.0,
+    backseat: bool = False,
 ) -> str:
+    lim = _backseat(lim, backseat)
     out = _header(vid, "search", link, lim, timeout_s, area, plan_path, [f"# {summary}"])
+    out += _backseat_params(lim) if backseat else []
     out += [
         "input  contacts    : messages(256)",
         "",
@@ -143,13 +178,24 @@ def search_plan(
         "        test lingered : elapsed > $linger",
         "        when lingered -> recover",
         "    }",
-        *_RECOVER,
+        *_recover(backseat),
     ]
     return "\n".join(out + _footer(plan_path))
 
 
-def ri_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_path: Path, summary: str) -> str:
+def ri_plan(
+    vid: str,
+    link: TeamLink,
+    lim: Limits,
+    timeout_s: float,
+    area,
+    plan_path: Path,
+    summary: str,
+    backseat: bool = False,
+) -> str:
+    lim = _backseat(lim, backseat)
     out = _header(vid, "reacquire-identify", link, lim, timeout_s, area, plan_path, [f"# {summary}"])
+    out += _backseat_params(lim) if backseat else []
     out += [
         "input  looks       : messages(256)",
         "",
@@ -169,6 +215,6 @@ def ri_plan(vid: str, link: TeamLink, lim: Limits, timeout_s: float, area, plan_
         "look_timeout = $look_timeout, ident_error = $ident_error, runout = $runout, speed = $speed, depth = $depth)",
         "        next recover",
         "    }",
-        *_RECOVER,
+        *_recover(backseat),
     ]
     return "\n".join(out + _footer(plan_path))

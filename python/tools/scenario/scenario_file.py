@@ -63,6 +63,18 @@ class NavChoice:
 
 
 @dataclass
+class BackseatLimits:
+    """auv-frontseat's limits on a vehicle flown from its backseat (docs/frontseat.md,
+    "The team in backseat mode"): its simulator configuration has a `frontseat:`;
+    the defaults are auv-frontseat's own."""
+
+    max_depth_m: float = setting(100.0, ge=0.0, le=6000.0, key="max_depth")  # deeper: clamped
+    min_speed_mps: float = setting(0.5, ge=0.0, le=20.0, key="min_speed")  # slower: refused
+    max_speed_mps: float = setting(2.5, ge=0.01, le=20.0, key="max_speed")  # faster: clamped
+    silent_after_s: float = setting(3.0, ge=0.2, le=600.0, key="silent_after")  # the frontseat is silent
+
+
+@dataclass
 class Vehicle:
     id: str
     host: str
@@ -73,6 +85,8 @@ class Vehicle:
     where: str = ""
     nav: NavChoice = field(default_factory=NavChoice)
     sim_node: Any = None  # the `sim:` mapping node, for error positions
+    backseat: BackseatLimits | None = None  # `backseat:` given (the mode itself is the sim's `frontseat:`)
+    backseat_where: str = ""  # file:line:col of `backseat:`
 
 
 @dataclass
@@ -238,10 +252,28 @@ class _Scenario:
         nav.config = self.file(n, "config", join(key, "nav")) if "config" in n else None
         return nav
 
+    def backseat(self, items: dict, key: str) -> BackseatLimits | None:
+        """`backseat: {max_depth: 40, min_speed: 0.5, max_speed: 2, silent_after: 3}`: auv-frontseat's limits."""
+        if "backseat" not in items:
+            return None
+        node = items["backseat"][1]
+        errors_before = len(self.c.errors)
+        lim = self.c.fill(node, join(key, "backseat"), BackseatLimits())
+        if len(self.c.errors) == errors_before and lim.min_speed_mps >= lim.max_speed_mps:
+            self.c.err(
+                node,
+                join(key, "backseat"),
+                f"min_speed {lim.min_speed_mps:g} m/s is not below max_speed {lim.max_speed_mps:g} m/s",
+            )
+        return lim
+
     def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
         c = self.c
         items = self.section(
-            node, key, ("id", "host", "sim", "managers", "end_manager", "nav"), ("id", "sim", "managers")
+            node,
+            key,
+            ("id", "host", "sim", "managers", "end_manager", "nav", "backseat"),
+            ("id", "sim", "managers"),
         )
         if items is None:
             return None
@@ -278,9 +310,13 @@ class _Scenario:
                 f"no manager named '{end}' (its status ends the mission)",
             )
         nav = self.nav(items, key)
+        backseat = self.backseat(items, key)
         if not vid or cfg is None or not managers:
             return None
-        return Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node)
+        veh = Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node, backseat)
+        if backseat is not None:
+            veh.backseat_where = c.where(items["backseat"][1])
+        return veh
 
     def host(self, items: dict, k: str, key: str, hosts: list[str]) -> str:
         """One of the scenario's hosts (the first if not given)."""

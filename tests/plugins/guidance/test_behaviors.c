@@ -353,6 +353,31 @@ void surface_floats_up(void)
     chasm_free(m);
 }
 
+/* surface(speed = ...): a frontseat holds depths and speeds only (docs/frontseat.md):
+ * the way up is a depth of 0 m at that speed, and it is done above `depth` as the other */
+void surface_at_a_speed_asks_for_depth_zero(void)
+{
+    chasm_machine *m = gd_load("state up {\n    do surface(speed = 1.2 m/s)\n    when done -> top\n}\n"
+                               "state top {\n}\n");
+    if (!m)
+        return;
+    kin_vehicle v = vehicle_at(0, 0, 0);
+    v.depth = 10;
+    begin(m, &v);
+    CHECK(pt_get(m, "setpoint.vertical_mode") == 0 && pt_get(m, "setpoint.speed_mode") == 0);
+    CHECK(pt_get(m, "setpoint.depth_m") == 0.0);
+    CHECK_NEAR(pt_get(m, "setpoint.speed_mps"), 1.2, 1e-12);
+    double t = 0;
+    for (; t < 100 && !strcmp(pt_leaf(m), "up"); t += DT) {
+        v.depth -= 0.25 * DT;
+        fly(m, &v, t, DT);
+        CHECK(pt_get(m, "setpoint.vertical_mode") == 0 || strcmp(pt_leaf(m), "up"));
+    }
+    CHECK(!strcmp(pt_leaf(m), "top"));
+    CHECK(v.depth < 0.5 && v.depth > 0.4);
+    chasm_free(m);
+}
+
 void yoyo_stays_in_its_band(void)
 {
     chasm_machine *m = gd_load("state profile {\n    do yoyo(min_depth = 4 m, max_depth = 12 m, pitch = 15 deg)\n}\n");
