@@ -47,6 +47,19 @@ Gated kalman_update(FilterState &s, const Eigen::Matrix<double, M, 1> &y, const 
     return g;
 }
 
+// The sizes the sensors use are compiled once, in ekf_update.cpp: each instance
+// is a fully unrolled 10-state Joseph update, and compiling it in every sensor's
+// file (with the sanitizers' checks on every element) was most of the build.
+extern template Gated kalman_update<1>(FilterState &, const Eigen::Matrix<double, 1, 1> &,
+                                       const Eigen::Matrix<double, 1, N> &, const Eigen::Matrix<double, 1, 1> &,
+                                       double, uint32_t);
+extern template Gated kalman_update<2>(FilterState &, const Eigen::Matrix<double, 2, 1> &,
+                                       const Eigen::Matrix<double, 2, N> &, const Eigen::Matrix<double, 2, 2> &,
+                                       double, uint32_t);
+extern template Gated kalman_update<3>(FilterState &, const Eigen::Matrix<double, 3, 1> &,
+                                       const Eigen::Matrix<double, 3, N> &, const Eigen::Matrix<double, 3, 3> &,
+                                       double, uint32_t);
+
 }  // namespace nav
 
 #endif
