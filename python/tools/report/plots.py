@@ -81,6 +81,8 @@ KNOWN_STATES = {
     "rpm": 23,
     "mps": 27,
     "lines": 42,
+    "leg2": 21,  # missions/frontseat/backseat_line.chasm
+    "zigzag": 25,  # missions/examples/ctd_zigzag.chasm (sampling)
 }
 
 
