@@ -67,13 +67,15 @@ enum { LOITER_NORTH, LOITER_EAST, LOITER_RADIUS, LOITER_SPEED, LOITER_CLOCKWISE,
 GD_DECLARE(loiter, LOITER_NPARAMS);
 
 /* ---- yoyo (bh_yoyo.c): a ramped depth or altitude setpoint between two limits */
-enum { YOYO_MIN_DEPTH, YOYO_MAX_DEPTH, YOYO_MIN_ALTITUDE, YOYO_MAX_ALTITUDE, YOYO_PITCH, YOYO_IN_DEPTH,
-       YOYO_IN_ALTITUDE, YOYO_IN_SPEED, YOYO_OUT_VERTICAL_MODE, YOYO_OUT_DEPTH, YOYO_OUT_ALTITUDE, YOYO_NPARAMS };
+enum { YOYO_MIN_DEPTH, YOYO_MAX_DEPTH, YOYO_MIN_ALTITUDE, YOYO_MAX_ALTITUDE, YOYO_PITCH, YOYO_RATE, YOYO_FLOOR,
+       YOYO_IN_DEPTH, YOYO_IN_ALTITUDE, YOYO_IN_SPEED, YOYO_OUT_VERTICAL_MODE, YOYO_OUT_DEPTH, YOYO_OUT_ALTITUDE,
+       YOYO_OUT_PROFILES, YOYO_NPARAMS };
 typedef struct {
     int altitude_mode;  /* 1: between altitudes */
     double lo, hi;      /* the band, in depth or altitude */
     double target;      /* the ramped setpoint */
     int down;           /* 1: depth increasing (altitude decreasing) */
+    int64_t profiles;   /* dives and climbs completed (reversals) */
 } gd_yoyo_state;
 GD_DECLARE(yoyo, YOYO_NPARAMS);
 

@@ -21,6 +21,7 @@ const unit_test plugin_tests[] = {
     {"surface_fix_needs_a_new_fix", surface_fix_needs_a_new_fix},
     {"surface_floats_up", surface_floats_up},
     {"yoyo_stays_in_its_band", yoyo_stays_in_its_band},
+    {"yoyo_rate_floor_and_profiles", yoyo_rate_floor_and_profiles},
     {"holds_and_speed", holds_and_speed},
     {"loiter_circles_the_point", loiter_circles_the_point},
     {NULL, NULL},
