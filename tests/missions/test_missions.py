@@ -12,6 +12,7 @@ drift and the GPS noise of remus100.yaml stay. Each test prints its figures
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 from closed_loop import MISSIONS, Mission, Pose, Record
@@ -206,6 +207,56 @@ def test_ctd_front_crossing_turns_back_once_the_ctd_reads_the_far_water(tmp_path
     assert front < p.e < front + 60.0  # past the front, well before the line's end at 600 m
     assert env.temperature_salinity(t_turn, p.n, p.e, p.depth)[1] > 34.0
     assert surfaced_since(rec, t_turn) is not None
+
+
+# ---------------------------------------------------------------- front-crossing zig-zag
+
+ZIGZAG_LOG = re.compile(
+    r"NAVIGATOR (?P<t>[\d.]+) zigzag: front_zigzag: crossing (?P<k>\d+) at (?P<n>-?[\d.]+) N (?P<e>-?[\d.]+) E "
+    r"\(t (?P<tc>[\d.]+) s\)"
+)
+
+
+def test_front_zigzag_turns_after_each_crossing_of_the_ctd_front(tmp_path, lcm_url, child_env):
+    """ctd_zigzag.chasm in remus100_ctd.yaml's ocean (its meandering front, which
+    also moves across itself at up to 0.14 m/s), from 50 m west of the front at 5 m:
+    three crossings, each reported within 10 m of where the front was (across it,
+    the truth's), each turn on the far side within 50 m of it."""
+    from confcheck.checker import resolved
+    from sim.config import load
+    from sim.environment import Environment
+
+    ctd_path = MISSIONS / "sim" / "remus100_ctd.yaml"
+    ocean = Environment(load(ctd_path).env).ocean
+    start_e = ocean.front_position(0.0, 0.0) - 50.0
+    ctd_world = resolved(ctd_path)
+    sim = {
+        **SEA,
+        "environment": {"ocean": ctd_world["environment"]["ocean"]},
+        "sensors": {"ctd": ctd_world["sensors"]["ctd"]},
+        "multihil": {"needs": ctd_world["multihil"]["needs"]},
+        "initial": {"north_m": 0.0, "east_m": start_e, "depth_m": 5.0, "heading_rad": math.radians(60)},
+    }
+    with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "ctd_zigzag.chasm", params={"crossings": "3"}, sim=sim) as m:
+        rec = m.fly(lambda r: r.entered("recover") is not None, max_sim_s=400)
+        log = (tmp_path / "navigator.out").read_text()
+    crossings = [
+        (float(x["t"]), int(x["k"]), float(x["n"]), float(x["e"]), float(x["tc"])) for x in ZIGZAG_LOG.finditer(log)
+    ]
+    assert [k for _, k, *_ in crossings] == [1, 2, 3], log[-3000:]
+    assert rec.entered("recover") is not None and rec.entered("recover")[2] == "done"
+    for i, (t_turn, k, n, e, t_c) in enumerate(crossings):
+        front_then = ocean.front_position(t_c, n)
+        turn = at(rec.truth, t_turn)
+        # across the front, positive on the side the leg went to (east on the odd legs)
+        past = (turn.e - ocean.front_position(t_turn, turn.n)) * (1 if i % 2 == 0 else -1)
+        print(
+            f"\ncrossing {k}: reported at {n:.1f} N {e:.1f} E, t {t_c:.1f} s, the front {front_then:.1f} E "
+            f"(off by {e - front_then:+.1f} m); turned at {t_turn:.1f} s, {past:.1f} m past the front"
+        )
+        assert abs(e - front_then) < 10.0
+        assert 0.0 < past < 50.0
+    assert rec.entered("recover")[0] < 400
 
 
 # ---------------------------------------------------------------- aborts
