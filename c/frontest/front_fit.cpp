@@ -20,38 +20,92 @@ struct Lm {
     bool converged = false;
 };
 
-// Residuals (model - data) and, with J, the Jacobian; the sum of squares.
-// Fixed sizes for the P parameters (5 or 8): Eigen's dynamic-size solvers
-// trip GCC's maybe-uninitialized under -Werror.
+// The sigma of a prior on q[k] (on ln width: the width's relative sigma).
+double prior_sigma(const Prior &p, int k)
+{
+    switch (k) {
+    case OFFSET: return p.sigma.offset_m;
+    case ANGLE: return p.sigma.angle_rad;
+    case TA: return p.sigma.ta_c;
+    case TB: return p.sigma.tb_c;
+    default: return p.sigma.width_m / p.front.width_m;
+    }
+}
+
+// The prior's form of its field (front_model.hpp, canonical()) whose angle is
+// nearest `angle`: a prior is a distance in q, so it must be in the fit's form.
+Prior aligned(Prior p, double angle)
+{
+    if (std::fabs(std::remainder(angle - p.front.angle_rad, 2 * kPi)) > kPi / 2) {
+        p.front.angle_rad += kPi;
+        p.front.offset_m = -p.front.offset_m;
+        std::swap(p.front.ta_c, p.front.tb_c);
+        std::swap(p.sigma.ta_c, p.sigma.tb_c);
+    }
+    p.front.angle_rad = angle - std::remainder(angle - p.front.angle_rad, 2 * kPi);
+    p.front.meander = false;
+    return p;
+}
+
+// What is fitted: the samples, each residual divided by data_sigma (1 when
+// there are no priors: the residuals' own scale then sets sigma^2), and the
+// priors, one row per straight parameter, (q_k - p_k) / sigma_k.
+struct Problem {
+    const std::vector<Sample> &xs;
+    double data_sigma = 1.0;
+    std::vector<Prior> priors;  // aligned to the start (align())
+    Eigen::Index rows() const { return (Eigen::Index)(xs.size() + kStraightParams * priors.size()); }
+};
+
+// Residuals and, with J, the Jacobian; the sum of squares. Fixed sizes for
+// the P parameters (5 or 8): Eigen's dynamic-size solvers trip GCC's
+// maybe-uninitialized under -Werror.
 template <int P>
-double residuals(const std::vector<Sample> &xs, const Vec &q, Vec &r, Eigen::Matrix<double, Eigen::Dynamic, P> *J)
+double residuals(const Problem &pb, const Vec &q, Vec &r, Eigen::Matrix<double, Eigen::Dynamic, P> *J)
 {
     double grad[kMeanderParams];
     double rss = 0;
-    for (size_t i = 0; i < xs.size(); i++) {
-        const double m = model(q, xs[i].north_m, xs[i].east_m, J ? grad : nullptr);
-        r[(Eigen::Index)i] = m - xs[i].temperature_c;
-        rss += r[(Eigen::Index)i] * r[(Eigen::Index)i];
+    const double w = 1.0 / pb.data_sigma;
+    Eigen::Index i = 0;
+    for (const Sample &x : pb.xs) {
+        const double m = model(q, x.north_m, x.east_m, J ? grad : nullptr);
+        r[i] = (m - x.temperature_c) * w;
+        rss += r[i] * r[i];
         if (J)
             for (int k = 0; k < P; k++)
-                (*J)((Eigen::Index)i, k) = grad[k];
+                (*J)(i, k) = grad[k] * w;
+        i++;
+    }
+    for (const Prior &p : pb.priors) {
+        const Vec qp = to_q(p.front);
+        for (int k = 0; k < kStraightParams; k++) {
+            const double sd = prior_sigma(p, k);
+            r[i] = (q[k] - qp[k]) / sd;
+            rss += r[i] * r[i];
+            if (J) {
+                for (int j = 0; j < P; j++)
+                    (*J)(i, j) = 0;
+                (*J)(i, k) = 1 / sd;
+            }
+            i++;
+        }
     }
     return rss;
 }
 
-double rss_of(const std::vector<Sample> &xs, const Vec &q)
+double rss_of(const Problem &pb, const Vec &q)
 {
-    Vec r((Eigen::Index)xs.size());
-    return residuals<kStraightParams>(xs, q, r, nullptr);
+    Vec r(pb.rows());
+    return residuals<kStraightParams>(pb, q, r, nullptr);
 }
 
 // Levenberg-Marquardt (Marquardt's scaling: lambda times the diagonal of J^T J).
 template <int P>
-Lm levenberg_marquardt(const std::vector<Sample> &xs, Vec q, int max_iterations)
+Lm levenberg_marquardt(const Problem &xs, Vec q, int max_iterations)
 {
     using MatP = Eigen::Matrix<double, P, P>;
     using VecP = Eigen::Matrix<double, P, 1>;
-    const Eigen::Index n = (Eigen::Index)xs.size();
+    const Eigen::Index n = xs.rows();
     Vec r(n), r_new(n);
     Eigen::Matrix<double, Eigen::Dynamic, P> J(n, P);
     Lm out;
@@ -99,10 +153,14 @@ Lm levenberg_marquardt(const std::vector<Sample> &xs, Vec q, int max_iterations)
     return out;
 }
 
-Lm fit_from(const std::vector<Sample> &xs, const Vec &q0, int max_iterations)
+// LM from q0, the priors in q0's form.
+Lm fit_from(const Problem &pb, const Vec &q0, int max_iterations)
 {
-    return q0.size() == kMeanderParams ? levenberg_marquardt<kMeanderParams>(xs, q0, max_iterations)
-                                       : levenberg_marquardt<kStraightParams>(xs, q0, max_iterations);
+    Problem at{pb.xs, pb.data_sigma, {}};
+    for (const Prior &p : pb.priors)
+        at.priors.push_back(aligned(p, q0[ANGLE]));
+    return q0.size() == kMeanderParams ? levenberg_marquardt<kMeanderParams>(at, q0, max_iterations)
+                                       : levenberg_marquardt<kStraightParams>(at, q0, max_iterations);
 }
 
 double percentile(std::vector<double> v, double f)
@@ -155,7 +213,7 @@ std::pair<Vec, double> start_at(const std::vector<Sample> &xs, double angle)
     f.tb_c = tb;
     f.width_m = width;
     Vec q = to_q(f);
-    return {q, rss_of(xs, q)};
+    return {q, rss_of(Problem{xs, 1.0, {}}, q)};
 }
 
 struct Cov {
@@ -167,11 +225,11 @@ struct Cov {
 // (J^T J)^-1 sigma^2, refused when J^T J is singular to the precision of doubles
 // once scaled to a unit diagonal.
 template <int P>
-Cov covariance_p(const std::vector<Sample> &xs, const Vec &q, double sigma2)
+Cov covariance_p(const Problem &xs, const Vec &q, double sigma2)
 {
     using MatP = Eigen::Matrix<double, P, P>;
     using VecP = Eigen::Matrix<double, P, 1>;
-    const Eigen::Index n = (Eigen::Index)xs.size();
+    const Eigen::Index n = xs.rows();
     Vec r(n);
     Eigen::Matrix<double, Eigen::Dynamic, P> J(n, P);
     residuals<P>(xs, q, r, &J);
@@ -202,7 +260,7 @@ Cov covariance_p(const std::vector<Sample> &xs, const Vec &q, double sigma2)
     return out;
 }
 
-Cov covariance(const std::vector<Sample> &xs, const Vec &q, double sigma2)
+Cov covariance(const Problem &xs, const Vec &q, double sigma2)
 {
     return q.size() == kMeanderParams ? covariance_p<kMeanderParams>(xs, q, sigma2)
                                       : covariance_p<kStraightParams>(xs, q, sigma2);
@@ -255,39 +313,56 @@ const char *status_name(Status s)
     return "?";
 }
 
-FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const Front *warm)
+FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const Front *warm,
+                    const std::vector<Prior> &priors, double data_sigma_c)
 {
     const int n = static_cast<int>(xs.size());
-    if (n < opt.min_samples)
-        return refuse(Status::TOO_FEW, n, "%.0f samples: the fit needs %.0f", n, opt.min_samples);
+    const bool fused = !priors.empty();
     for (const Sample &x : xs)
         if (!std::isfinite(x.temperature_c) || !std::isfinite(x.north_m) || !std::isfinite(x.east_m))
             return refuse(Status::DIVERGED, n, "a sample is not a number (at %.1f N %.1f E)", x.north_m, x.east_m);
+    for (const Prior &p : priors)
+        for (int k = 0; k < kStraightParams; k++)
+            if (!(std::isfinite(to_q(p.front)[k]) && prior_sigma(p, k) > 0 && std::isfinite(prior_sigma(p, k))))
+                return refuse(Status::DIVERGED, n, "a teammate's summary is not a number or has no sigma");
+    if (fused && !(data_sigma_c > 0))
+        return refuse(Status::DIVERGED, n, "no sigma for the samples beside the teammates' summaries");
     std::vector<double> temps(xs.size());
     for (size_t i = 0; i < xs.size(); i++)
         temps[i] = xs[i].temperature_c;
-    const double contrast = percentile(temps, 0.95) - percentile(temps, 0.05);
-    if (!(contrast >= opt.min_contrast_c))
+    const double contrast = n > 0 ? percentile(temps, 0.95) - percentile(temps, 0.05) : 0.0;
+    const bool enough = n >= opt.min_samples, both_waters = contrast >= opt.min_contrast_c;
+    if (!fused && !enough)
+        return refuse(Status::TOO_FEW, n, "%.0f samples: the fit needs %.0f", n, opt.min_samples);
+    if (!fused && !both_waters)
         return refuse(Status::TOO_FEW, n,
                       "the temperatures span %.2f degC (5th to 95th percentile), under %.2f: one water only",
                       contrast, opt.min_contrast_c);
+    const Problem pb{xs, fused ? data_sigma_c : 1.0, priors};
 
-    // 2. the straight front from the best starts
+    // 2. the straight front from the best starts (and the teammates' estimates)
     std::vector<std::pair<double, Vec>> starts;
-    for (int k = 0; k < 36; k++) {
-        auto s = start_at(xs, k * kPi / 36);
-        starts.push_back({s.second, s.first});
+    if (enough && both_waters) {
+        for (int k = 0; k < 36; k++) {
+            auto s = start_at(xs, k * kPi / 36);
+            starts.push_back({s.second, s.first});
+        }
+        std::sort(starts.begin(), starts.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
+        starts.resize(3);
     }
-    std::sort(starts.begin(), starts.end(), [](const auto &a, const auto &b) { return a.first < b.first; });
-    starts.resize(3);
     if (warm && std::isfinite(warm->width_m) && warm->width_m > 0) {
         Front w = *warm;
         w.meander = false;
         starts.push_back({0, to_q(w)});
     }
+    for (const Prior &p : priors) {
+        Front f = p.front;
+        f.meander = false;
+        starts.push_back({0, to_q(f)});
+    }
     Lm best;
     for (const auto &s : starts) {
-        Lm lm = fit_from(xs, s.second, opt.max_iterations);
+        Lm lm = fit_from(pb, s.second, opt.max_iterations);
         if (lm.converged && lm.rss < best.rss)
             best = lm;
     }
@@ -313,7 +388,7 @@ FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const 
             std::snprintf(buf, sizeof buf, "; meander not fitted: the samples near the front span %.0f m along it, "
                                            "under %.0f", span, opt.meander_span_m);
             meander_note = buf;
-        } else if (n > kMeanderParams + 10) {
+        } else if (enough && both_waters && n > kMeanderParams + 10) {
             Lm mb;
             std::vector<Vec> mstarts;
             for (double lf : {0.5, 1.0, 2.0})
@@ -328,14 +403,14 @@ FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const 
             if (warm && warm->meander)
                 mstarts.push_back(to_q(*warm));
             for (const Vec &q0 : mstarts) {
-                Lm lm = fit_from(xs, q0, opt.max_iterations);
+                Lm lm = fit_from(pb, q0, opt.max_iterations);
                 if (lm.converged && lm.rss < mb.rss)
                     mb = lm;
             }
             bool keep = false;
             if (mb.converged && mb.rss < rss5) {
                 const double F = (rss5 - mb.rss) / 3 / (mb.rss / (n - kMeanderParams));
-                const Cov c = covariance(xs, mb.q, mb.rss / (n - kMeanderParams));
+                const Cov c = covariance(pb, mb.q, fused ? 1.0 : mb.rss / (n - kMeanderParams));
                 const Front m = from_q(mb.q);
                 const double sa = c.ok ? std::sqrt(c.c(AMPLITUDE, AMPLITUDE)) : INFINITY;
                 keep = F > opt.meander_f && std::fabs(m.amplitude_m) > 3 * sa && m.wavelength_m <= 2 * span &&
@@ -362,8 +437,12 @@ FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const 
                           ? "width %.3g m: no front in the data (a gradient, wider than %.0f m)"
                           : "width %.3g m: a step no sample lies in (under %.1f m)",
                       raw.width_m, raw.width_m > opt.max_width_m ? opt.max_width_m : opt.min_width_m);
-    const double sigma2 = best.rss / std::max(1, n - p);
-    const Cov cov = covariance(xs, best.q, sigma2);
+    // with priors the residuals are in sigmas already (the samples' sigma given)
+    const double sigma2 = fused ? 1.0 : best.rss / std::max(1, n - p);
+    Problem at{xs, pb.data_sigma, {}};
+    for (const Prior &pr : priors)
+        at.priors.push_back(aligned(pr, best.q[ANGLE]));
+    const Cov cov = covariance(at, best.q, sigma2);
     if (!cov.ok) {
         FitResult f = refuse(Status::DIVERGED, n, "the data do not determine the front (J^T J singular)");
         if (cov.weakest >= 0)
@@ -375,12 +454,25 @@ FitResult fit_front(const std::vector<Sample> &xs, const FitOptions &opt, const 
     out.status = Status::OK;
     out.n = n;
     out.iterations = best.iterations;
-    out.rms_c = std::sqrt(best.rss / n);
+    double rss_c = 0;  // of the samples alone, in degC
+    for (const Sample &x : xs) {
+        const double d = model(best.q, x.north_m, x.east_m) - x.temperature_c;
+        rss_c += d * d;
+    }
+    out.rms_c = n > 0 ? std::sqrt(rss_c / n) : 0.0;
     report(best.q, cov.c, out.front, out.sigma);
     char buf[200];
-    std::snprintf(buf, sizeof buf, "%s front from %d samples, rms %.3f degC", out.front.meander ? "meandering" : "straight",
-                  n, out.rms_c);
-    out.text = std::string(buf) + meander_note;
+    const char *shape = out.front.meander ? "meandering" : "straight";
+    const std::string team = std::to_string(priors.size()) + (priors.size() == 1 ? " teammate's summary" : " teammates' summaries");
+    if (n == 0) {
+        out.text = std::string(shape) + " front from " + team + " only (no samples of its own)";
+        return out;
+    }
+    std::snprintf(buf, sizeof buf, "%s front from %d samples, rms %.3f degC", shape, n, out.rms_c);
+    out.text = buf;
+    if (fused)
+        out.text += " and " + team;
+    out.text += meander_note;
     return out;
 }
 

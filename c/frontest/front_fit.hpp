@@ -55,7 +55,20 @@ struct FitResult {
     int n = 0;                      // samples
 };
 
-FitResult fit_front(const std::vector<Sample> &samples, const FitOptions &opt, const Front *warm = nullptr);
+// A teammate's estimate of the straight front (its summary over the team
+// link) with its sigmas: fitted as a prior, one residual (q_k - p_k) / sigma_k
+// per parameter beside the samples' (T - model) / data_sigma_c. With priors
+// the TOO_FEW checks are off (a vehicle that has seen one water, or none,
+// takes its teammates' estimate), the samples' residuals are scaled by
+// data_sigma_c (their own fit's rms) and the covariance is (J^T J)^-1. The
+// summaries must come from the teammates' own samples only, or an estimate
+// would count itself again through them.
+struct Prior {
+    Front front, sigma;
+};
+
+FitResult fit_front(const std::vector<Sample> &samples, const FitOptions &opt, const Front *warm = nullptr,
+                    const std::vector<Prior> &priors = {}, double data_sigma_c = 0.0);
 
 const char *status_name(Status s);
 
