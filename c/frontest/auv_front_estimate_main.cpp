@@ -2,15 +2,17 @@
 // (docs/sampling.md, "The on-board front estimator").
 //
 //   auv-front-estimate --vehicle AUV1 [--lcm-url URL] [--clock sim|system] [--rate HZ]
-//                      [--channel CH] [--max-age S] [--max-depth M] [--bin M]
+//                      [--channel CH] [--team-channel CH] [--max-age S] [--max-depth M] [--bin M]
 //                      [--min-samples N] [--min-contrast C] [--meander-span M]
 //
-// Reads <VEHICLE>.CTD (ctd_t) and <VEHICLE>.NAV (nav_solution_t); fits the
-// front model of docs/sampling.md to the temperatures at their positions by
-// Levenberg-Marquardt and publishes front_estimate_t on
-// <VEHICLE>.FRONT_ESTIMATE at --rate Hz of mission time: the parameters,
-// their sigmas from (J^T J)^-1 sigma^2, the samples used and dropped by
-// reason, OK / TOO_FEW / DIVERGED with a text. --clock sim follows SIM.CLOCK
+// Reads <VEHICLE>.CTD (ctd_t) and <VEHICLE>.NAV (nav_solution_t), and the
+// teammates' front summaries in the team-link frames of <VEHICLE>.MODEM_RX;
+// fits the front model of docs/sampling.md to the temperatures at their
+// positions by Levenberg-Marquardt and publishes front_estimate_t at --rate
+// Hz of mission time, from its own samples on <VEHICLE>.FRONT_ESTIMATE and
+// with the teammates' summaries as priors on <VEHICLE>.FRONT_TEAM: the
+// parameters, their sigmas from (J^T J)^-1 sigma^2, the samples used and
+// dropped by reason, OK / TOO_FEW / DIVERGED with a text. --clock sim follows SIM.CLOCK
 // (nothing is published before it ticks), system the host's. SIGINT/SIGTERM
 // end it cleanly (exit 0); 2: usage or LCM failure.
 #include <csignal>
@@ -32,14 +34,15 @@ void usage(FILE *out)
 {
     std::fprintf(out,
                  "usage: auv-front-estimate --vehicle ID [--lcm-url URL] [--clock sim|system] [--rate HZ]\n"
-                 "                          [--channel CH] [--max-age S] [--max-depth M] [--bin M]\n"
+                 "                          [--channel CH] [--team-channel CH] [--max-age S] [--max-depth M] [--bin M]\n"
                  "                          [--min-samples N] [--min-contrast C] [--meander-span M]\n"
                  "  --lcm-url URL       LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
                  "                      --url is the old spelling of it\n"
                  "  --clock sim|system  SIM.CLOCK's time (default) or the host's\n"
                  "  --rate HZ           estimates a second of mission time (default 0.2)\n"
-                 "  --channel CH        default <VEHICLE>.FRONT_ESTIMATE\n"
-                 "  --max-age S         readings older than this are dropped (default 1800)\n"
+                 "  --channel CH        its own samples' estimate (default <VEHICLE>.FRONT_ESTIMATE)\n"
+                 "  --team-channel CH   with the teammates' summaries (default <VEHICLE>.FRONT_TEAM)\n"
+                 "  --max-age S         readings and teammates' summaries older than this are dropped (default 1800)\n"
                  "  --max-depth M       readings deeper than this are not of the upper water (default 15)\n"
                  "  --bin M             readings averaged over this much of the path (default 1)\n"
                  "  --min-samples N     bins a fit needs (default 30)\n"
@@ -77,6 +80,7 @@ bool parse_args(int argc, char **argv, frontest::NodeOptions &o)
         if (a == "--vehicle") o.vehicle = v;
         else if (a == "--lcm-url" || a == "--url") o.url = v;
         else if (a == "--channel") o.channel = v;
+        else if (a == "--team-channel") o.team_channel = v;
         else if (a == "--clock" && (!std::strcmp(v, "sim") || !std::strcmp(v, "system"))) o.sim_clock = !std::strcmp(v, "sim");
         else if (a == "--rate") ok = number("--rate", v, 1e-3, 100, o.rate_hz);
         else if (a == "--max-age") ok = number("--max-age", v, 1, 1e6, o.intake.max_age_s);
