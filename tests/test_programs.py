@@ -50,6 +50,11 @@ def test_manager_nav_recorder_and_simulator_builders_use_documented_flags(tmp_pa
     _every_flag_documented(manager, [manager[0]])
     nav = programs.auv_nav(BUILD, config="a.nav", vehicle="AUV1", lcm_url="udpm://x", rate_hz=20)
     _every_flag_documented(nav, [str(c_program("bin/auv-nav"))])
+    front = programs.auv_front_estimate(
+        BUILD, vehicle="AUV1", lcm_url="udpm://x", rate_hz=0.5, max_age_s=600, max_depth_m=20
+    )
+    assert front[front.index("--max-age") + 1] == "600"
+    _every_flag_documented(front, [str(c_program("bin/auv-front-estimate"))])
     rec = programs.auv_recorder(BUILD, lcm_url="udpm://239.255.76.67:7667?ttl=0", log=tmp_path / "l", stats="s")
     assert "recv_buf_size=" in rec[rec.index("--lcm-url") + 1]
     _every_flag_documented(rec, [str(c_program("bin/auv-recorder"))])
@@ -124,6 +129,7 @@ def test_driver_builders_use_documented_flags():
     [
         "chasm-manager",
         "auv-nav",
+        "auv-front-estimate",
         "auv-recorder",
         "auv-gps",
         "auv-dvl",

@@ -1,4 +1,4 @@
-"""One builder per program's command line: chasm-manager, auv-nav, the simulator,
+"""One builder per program's command line: chasm-manager, auv-nav, auv-front-estimate, the simulator,
 the recorders, the device drivers and their replay.
 
 Every process that starts one of these (the launcher, the host agents through the
@@ -65,6 +65,28 @@ def auv_nav(
     cmd = [str(build / "bin" / "auv-nav"), "--config", str(config), "--vehicle", vehicle]
     if rate_hz is not None:
         cmd += ["--rate", f"{rate_hz:g}"]
+    return cmd + ["--clock", clock, "--lcm-url", lcm_url] + [str(x) for x in extra]
+
+
+def auv_front_estimate(
+    build: Path,
+    *,
+    vehicle: str,
+    lcm_url: str,
+    rate_hz: float | None = None,
+    clock: str = "sim",
+    max_age_s: float | None = None,
+    max_depth_m: float | None = None,
+    extra: Iterable[PathLike] = (),
+) -> list[str]:
+    """The on-board front estimator of `vehicle` (c/frontest, docs/sampling.md): its
+    CTD at its navigated positions in, front_estimate_t on <vehicle>.FRONT_ESTIMATE
+    at `rate_hz` of mission time out; readings older than `max_age_s` or deeper
+    than `max_depth_m` are not fitted."""
+    cmd = [str(build / "bin" / "auv-front-estimate"), "--vehicle", vehicle]
+    for flag, value in (("--rate", rate_hz), ("--max-age", max_age_s), ("--max-depth", max_depth_m)):
+        if value is not None:
+            cmd += [flag, f"{value:g}"]
     return cmd + ["--clock", clock, "--lcm-url", lcm_url] + [str(x) for x in extra]
 
 

@@ -12,11 +12,15 @@ drift and the GPS noise of remus100.yaml stay. Each test prints its figures
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 from closed_loop import MISSIONS, Mission, Pose, Record
+from conftest import BUILD
+from lcm_proc import pump
 
-from auv import chasm_status_t
+from auv import chasm_status_t, front_estimate_t
+from auvlcm import programs
 
 EXAMPLES = MISSIONS / "examples"
 # Every shipped mission flies in the default sea state (remus100.yaml's 0.5 m, 6 s swell).
@@ -206,6 +210,84 @@ def test_ctd_front_crossing_turns_back_once_the_ctd_reads_the_far_water(tmp_path
     assert front < p.e < front + 60.0  # past the front, well before the line's end at 600 m
     assert env.temperature_salinity(t_turn, p.n, p.e, p.depth)[1] > 34.0
     assert surfaced_since(rec, t_turn) is not None
+
+
+# ---------------------------------------------------------------- front-crossing zig-zag
+
+ZIGZAG_LOG = re.compile(
+    r"NAVIGATOR (?P<t>[\d.]+) zigzag: front_zigzag: crossing (?P<k>\d+) at (?P<n>-?[\d.]+) N (?P<e>-?[\d.]+) E "
+    r"\(t (?P<tc>[\d.]+) s\)"
+)
+
+
+def test_front_zigzag_turns_after_each_crossing_of_the_ctd_front(tmp_path, lcm_url, child_env):
+    """ctd_zigzag.chasm in remus100_ctd.yaml's ocean (its meandering front, which
+    also moves across itself at up to 0.14 m/s), from 50 m west of the front at 5 m:
+    three crossings, each reported within 10 m of where the front was (across it,
+    the truth's), each turn on the far side within 50 m of it. auv-front-estimate
+    rides along: its estimate from the CTD at the vehicle's navigation puts the front
+    within 5 m of the truth's where the vehicle is."""
+    from confcheck.checker import resolved
+    from sim.config import load
+    from sim.environment import Environment
+
+    ctd_path = MISSIONS / "sim" / "remus100_ctd.yaml"
+    ocean = Environment(load(ctd_path).env).ocean
+    start_e = ocean.front_position(0.0, 0.0) - 50.0
+    ctd_world = resolved(ctd_path)
+    sim = {
+        **SEA,
+        "environment": {"ocean": ctd_world["environment"]["ocean"]},
+        "sensors": {"ctd": ctd_world["sensors"]["ctd"]},
+        "multihil": {"needs": ctd_world["multihil"]["needs"]},
+        "initial": {"north_m": 0.0, "east_m": start_e, "depth_m": 5.0, "heading_rad": math.radians(60)},
+    }
+    estimates: list[front_estimate_t] = []
+    with Mission(tmp_path, lcm_url, child_env, EXAMPLES / "ctd_zigzag.chasm", params={"crossings": "3"}, sim=sim) as m:
+        m.rx.subscribe("AUV1.FRONT_ESTIMATE", front_estimate_t, lambda c, x: estimates.append(x), 100)
+        m._start(
+            "estimator",
+            programs.auv_front_estimate(BUILD, vehicle="AUV1", lcm_url=lcm_url, rate_hz=0.5),
+            "publishing every",
+        )
+        rec = m.fly(lambda r: r.entered("recover") is not None, max_sim_s=400)
+        t_end = rec.entered("recover")[0]
+        pump(m.lc, lambda: bool(estimates) and estimates[-1].utime / 1e6 >= t_end - 2.0, timeout=10)
+        log = (tmp_path / "navigator.out").read_text()
+    crossings = [
+        (float(x["t"]), int(x["k"]), float(x["n"]), float(x["e"]), float(x["tc"])) for x in ZIGZAG_LOG.finditer(log)
+    ]
+    assert [k for _, k, *_ in crossings] == [1, 2, 3], log[-3000:]
+    assert rec.entered("recover") is not None and rec.entered("recover")[2] == "done"
+    for i, (t_turn, k, n, e, t_c) in enumerate(crossings):
+        front_then = ocean.front_position(t_c, n)
+        turn = at(rec.truth, t_turn)
+        # across the front, positive on the side the leg went to (east on the odd legs)
+        past = (turn.e - ocean.front_position(t_turn, turn.n)) * (1 if i % 2 == 0 else -1)
+        print(
+            f"\ncrossing {k}: reported at {n:.1f} N {e:.1f} E, t {t_c:.1f} s, the front {front_then:.1f} E "
+            f"(off by {e - front_then:+.1f} m); turned at {t_turn:.1f} s, {past:.1f} m past the front"
+        )
+        assert abs(e - front_then) < 10.0
+        assert 0.0 < past < 50.0
+    assert rec.entered("recover")[0] < 400
+    # the estimator: never an OK with a NaN; the last estimate, at the vehicle
+    assert all(math.isfinite(x.offset_m + x.angle_rad + x.width_m) for x in estimates if x.status == 0)
+    last = estimates[-1]
+    assert last.status == front_estimate_t.STATUS_OK, last.status_text
+    t = last.utime / 1e6
+    here = at(rec.truth, t)
+    # the estimated front's east at the vehicle's north: r = offset on the front's line
+    est_e = (last.offset_m + here.n * math.sin(last.angle_rad)) / math.cos(last.angle_rad)
+    true_e = ocean.front_position(t, here.n)
+    print(
+        f"estimate at {t:.0f} s from {last.samples_used} bins: offset {last.offset_m:.1f} +- {last.offset_sigma_m:.2f} m, "
+        f"angle {last.angle_rad:+.3f} +- {last.angle_sigma_rad:.3f} rad, width {last.width_m:.1f} m, "
+        f"{last.temperature_a_c:.2f} / {last.temperature_b_c:.2f} degC, rms {last.residual_rms_c:.3f} degC; "
+        f"at {here.n:.0f} N the front {est_e:.1f} E, truly {true_e:.1f} E"
+    )
+    assert abs(est_e - true_e) < 5.0
+    assert abs(last.temperature_a_c - 16.0) < 0.2 and abs(last.temperature_b_c - 12.0) < 0.2
 
 
 # ---------------------------------------------------------------- aborts

@@ -52,6 +52,9 @@ def test_declared_sizes_hold():
     assert s.by_name("ack").nbytes <= 4
     assert s.by_name("ident").nbytes <= 12
     assert sum(s.by_name(n).bits for n in ("status", "contact", "ack")) <= 8 * 32
+    # a front summary (docs/sampling.md) beside a status in the team link's 32-byte frame (docs/team.md)
+    assert s.by_name("front").nbytes <= 16
+    assert math.ceil((s.by_name("status").bits + s.by_name("front").bits) / 8) <= 32
     for m in s.messages:
         assert m.bits == 4 + sum(f.bits for f in m.fields)
         for f in m.fields:

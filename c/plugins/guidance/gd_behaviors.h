@@ -67,15 +67,56 @@ enum { LOITER_NORTH, LOITER_EAST, LOITER_RADIUS, LOITER_SPEED, LOITER_CLOCKWISE,
 GD_DECLARE(loiter, LOITER_NPARAMS);
 
 /* ---- yoyo (bh_yoyo.c): a ramped depth or altitude setpoint between two limits */
-enum { YOYO_MIN_DEPTH, YOYO_MAX_DEPTH, YOYO_MIN_ALTITUDE, YOYO_MAX_ALTITUDE, YOYO_PITCH, YOYO_IN_DEPTH,
-       YOYO_IN_ALTITUDE, YOYO_IN_SPEED, YOYO_OUT_VERTICAL_MODE, YOYO_OUT_DEPTH, YOYO_OUT_ALTITUDE, YOYO_NPARAMS };
+enum { YOYO_MIN_DEPTH, YOYO_MAX_DEPTH, YOYO_MIN_ALTITUDE, YOYO_MAX_ALTITUDE, YOYO_PITCH, YOYO_RATE, YOYO_FLOOR,
+       YOYO_IN_DEPTH, YOYO_IN_ALTITUDE, YOYO_IN_SPEED, YOYO_OUT_VERTICAL_MODE, YOYO_OUT_DEPTH, YOYO_OUT_ALTITUDE,
+       YOYO_OUT_PROFILES, YOYO_NPARAMS };
 typedef struct {
     int altitude_mode;  /* 1: between altitudes */
     double lo, hi;      /* the band, in depth or altitude */
     double target;      /* the ramped setpoint */
     int down;           /* 1: depth increasing (altitude decreasing) */
+    int64_t profiles;   /* dives and climbs completed (reversals) */
 } gd_yoyo_state;
 GD_DECLARE(yoyo, YOYO_NPARAMS);
+
+/* ---- front_zigzag (bh_zigzag.c): legs at +-angle to a course, turning when
+ * the CTD's temperature says the front has been crossed */
+enum { ZZ_COURSE, ZZ_ANGLE, ZZ_DELTA, ZZ_FRACTION, ZZ_STEADY, ZZ_WINDOW, ZZ_SETTLE, ZZ_MAX_LEG, ZZ_CROSSINGS,
+       ZZ_FIRST_RIGHT, ZZ_SPEED, ZZ_LOOKAHEAD, ZZ_INTEGRAL, ZZ_IN_NORTH, ZZ_IN_EAST, ZZ_IN_TEMPERATURE, ZZ_IN_VALID,
+       ZZ_OUT_HEADING, ZZ_OUT_SPEED, ZZ_OUT_SPEED_MODE, ZZ_OUT_CROSSINGS, ZZ_OUT_CROSSING_NORTH,
+       ZZ_OUT_CROSSING_EAST, ZZ_OUT_CROSSING_TIME, ZZ_OUT_LEG, ZZ_NPARAMS };
+#define GD_ZZ_CAP 64 /* samples of the along-track window (it holds about 21) */
+typedef struct {
+    double s;          /* along the leg [m] */
+    double t_c;        /* temperature, the mean of the bin [degC] */
+    double n, e, time; /* where and when (mean of the bin) [m, m, s] */
+} gd_zz_sample;
+/* The along-track fit of the temperature over the window (gd_zz_fit). */
+typedef struct {
+    int ok;            /* enough samples over enough of the window */
+    double level;      /* at the newest sample [degC] */
+    double gradient;   /* d temperature / d along-track [degC/m] */
+    gd_zz_sample centre; /* mean position and time of the window's samples */
+} gd_zz_fit_t;
+typedef struct {
+    gd_line line;
+    gd_los los;
+    int side;          /* +1: this leg is course + angle; -1: course - angle */
+    int leg;           /* legs begun, from 1 */
+    int64_t crossings;
+    gd_zz_sample buf[GD_ZZ_CAP]; /* binned samples, oldest first from head */
+    int head, count;
+    long bin;          /* index of the bin being filled (along / bin width) */
+    double acc_s, acc_t, acc_n, acc_e, acc_time;
+    int acc_k;         /* readings in it */
+    int have_ref;      /* the leg's reference temperature is taken */
+    double t_ref, g_peak;
+    gd_zz_sample at_peak;
+} gd_zz_state;
+GD_DECLARE(front_zigzag, ZZ_NPARAMS);
+/* Least-squares line of temperature against along-track over the last
+ * `window` metres of s's samples (exposed for the unit tests). */
+PU_HIDDEN gd_zz_fit_t gd_zz_fit(const gd_zz_state *s, double window);
 
 /* ---- surface, surface_fix, timer (bh_surface.c) */
 enum { SURF_PITCH, SURF_RPM, SURF_DEPTH, SURF_SPEED, SURF_IN_DEPTH, SURF_OUT_VERTICAL_MODE, SURF_OUT_PITCH,

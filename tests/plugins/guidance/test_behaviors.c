@@ -246,6 +246,9 @@ void bad_combinations_fail_at_entry(void)
         {"yoyo(min_depth = 2 m, max_altitude = 10 m, pitch = 10 deg)",
          "yoyo: give min_depth and max_depth, or min_altitude and max_altitude"},
         {"yoyo(min_depth = 12 m, max_depth = 10 m, pitch = 10 deg)", "yoyo: the band is empty"},
+        {"yoyo(min_depth = 2 m, max_depth = 10 m)", "yoyo: give either pitch (a flight-path angle) or rate (a vertical speed), not neither"},
+        {"yoyo(min_depth = 2 m, max_depth = 10 m, pitch = 10 deg, rate = 0.2 m/s)", "not both"},
+        {"yoyo(min_altitude = 2 m, max_altitude = 10 m, rate = 0.2 m/s, floor = 3 m)", "yoyo: floor is for the depth form"},
         {"set_speed()", "set_speed: give either speed (m/s) or rpm, not neither"},
         {"set_speed(speed = 1 m/s, rpm = 1000 rpm)", "set_speed: give either speed (m/s) or rpm, not both"},
     };
@@ -415,6 +418,44 @@ void yoyo_stays_in_its_band(void)
     pt_set(m, "nav.altitude_m", -1, 0); /* unknown: starts from the top of the band */
     begin(m, &v);
     CHECK(pt_get(m, "setpoint.vertical_mode") == 1 && pt_get(m, "setpoint.altitude_m") == 9);
+    chasm_free(m);
+}
+
+void yoyo_rate_floor_and_profiles(void)
+{
+    /* the rate form ramps at the given vertical speed; a floor of 3 m over a
+     * seabed at 12 m turns every dive back up at 9 m, short of the 20 m limit;
+     * each reversal is counted in the variable the plan binds */
+    chasm_machine *m = gd_load("var n : int = 0\n"
+                               "state profile {\n    do yoyo(min_depth = 2 m, max_depth = 20 m, rate = 0.25 m/s, "
+                               "floor = 3 m, out_profiles = n)\n}\n");
+    if (!m)
+        return;
+    kin_vehicle v = vehicle_at(0, 0, 0);
+    v.depth = 2;
+    const double seabed = 12;
+    pt_set(m, "nav.altitude_m", seabed - v.depth, 0);
+    begin(m, &v);
+    double deepest = 0, sp_deepest = 0, ramp = 0;
+    int64_t profiles = 0;
+    for (double t = 0; t < 400; t += DT) {
+        pt_set(m, "nav.altitude_m", seabed - v.depth, t);
+        double before = pt_get(m, "setpoint.depth_m");
+        fly(m, &v, t, DT);
+        double sp = pt_get(m, "setpoint.depth_m");
+        if (t > 1 && t < 10) /* the first dive, far from both limits */
+            ramp = fmax(ramp, (sp - before) / DT);
+        v.depth += fmax(-0.5, fmin(0.5, 0.5 * (sp - v.depth))) * DT;
+        deepest = fmax(deepest, v.depth);
+        sp_deepest = fmax(sp_deepest, sp);
+        profiles = (int64_t)pt_get(m, "n");
+    }
+    CHECK_NEAR(ramp, 0.25, 1e-9);
+    /* the floor: 12 m - 3 m; the setpoint leads the vehicle by its lag (0.5 m) */
+    CHECK(sp_deepest < 9.6 && deepest < 9.2);
+    CHECK(deepest > 8.9);
+    /* 7 m down and up at 0.25 m/s (eased at the top): about 60 s a round trip */
+    CHECK(profiles >= 10 && profiles <= 14);
     chasm_free(m);
 }
 

@@ -21,7 +21,12 @@ const unit_test plugin_tests[] = {
     {"surface_fix_needs_a_new_fix", surface_fix_needs_a_new_fix},
     {"surface_floats_up", surface_floats_up},
     {"yoyo_stays_in_its_band", yoyo_stays_in_its_band},
+    {"yoyo_rate_floor_and_profiles", yoyo_rate_floor_and_profiles},
     {"holds_and_speed", holds_and_speed},
+    {"zigzag_turns_after_each_crossing", zigzag_turns_after_each_crossing},
+    {"zigzag_falls_back_to_max_leg", zigzag_falls_back_to_max_leg},
+    {"zigzag_skips_bad_readings", zigzag_skips_bad_readings},
+    {"zigzag_window_fit", zigzag_window_fit},
     {"loiter_circles_the_point", loiter_circles_the_point},
     {NULL, NULL},
 };
