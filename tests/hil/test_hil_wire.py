@@ -5,7 +5,7 @@ level (auv-launch, lockstep) and at the wire (auv-hil-wire over TCP between
 network namespaces: a simulator PC, a computer per vehicle, each computer's LCM
 world its own), and the two reports compared. The same team flown in backseat
 mode (docs/frontseat.md) is compared with the same message-level run, flown once
-for both (a module fixture); its tolerances are in its own docstring.
+for both (a session fixture); its tolerances are in its own docstring.
 
 Why the tolerances (the wire run is scaled time, not lockstep, so it is one
 sample of a run that differs from run to run; the message-level run is
@@ -112,11 +112,12 @@ def hosts():
     h.close()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def message_level(tmp_path_factory) -> tuple[Path, dict]:
     """The reference: the reduced team at the message level (auv-launch, lockstep,
-    every vehicle on its PILOT and auv-nav), flown once for the module's tests; the
-    scenario and its report."""
+    every vehicle on its PILOT and auv-nav), flown once for the module's tests (the
+    session's: a module fixture is flown again when a worker runs another file's
+    tests between this file's two); the scenario and its report."""
     tmp = tmp_path_factory.mktemp("message_level")
     env = child_environment()
     sc = plan(tmp / "team")
