@@ -167,7 +167,7 @@ $(PYC_STAMP): $(GEN_PY_STAMP) $(shell find python -name '*.py' 2>/dev/null)
 	$(VPY) -m compileall -q python $(GEN)/python >/dev/null
 	@touch $@
 
-.PHONY: all build sanitize test lint format demo spy bench clean distclean setup validate stress chromium gpsd
+.PHONY: all build sanitize test test-slow lint format demo spy bench clean distclean setup validate stress chromium gpsd
 setup: $(VENV_STAMP)
 build: $(GEN_PY_STAMP) $(C_OUTPUTS) $(JAR_TARGET) $(PYC_STAMP)
 sanitize: $(SAN_OUTPUTS)
@@ -218,6 +218,11 @@ format: $(VENV_STAMP)
 # reference, PASS/FAIL, non-zero exit on a failure. No LCM.
 validate: $(GEN_PY_STAMP)
 	$(VENV)/bin/auv-sim-validate
+
+# The tests too long for the suite's budget (each says so when `make test` skips
+# it): today the backseat team flight (tests/hil/test_hil_wire.py).
+test-slow: build sanitize
+	AUV_SLOW_TESTS=1 tests/isolated_net.sh $(VPY) -m pytest -p no:xdist -rs tests/hil/test_hil_wire.py $(PYTEST_ARGS)
 
 # The suite STRESS_RUNS times in a row with demos running beside it: a test
 # that waits on wall time instead of on what it waits for fails here.
