@@ -13,6 +13,21 @@
 
 namespace synth {
 
+constexpr double kPi = 3.141592653589793;
+
+// The tests' straight front: 300 m to the right of the origin at 0.2 rad, 16 C
+// water on its left, 12 C on its right, 20 m wide.
+inline frontest::Front straight_front()
+{
+    frontest::Front f;
+    f.offset_m = 300;
+    f.angle_rad = 0.2;
+    f.ta_c = 16;
+    f.tb_c = 12;
+    f.width_m = 20;
+    return f;
+}
+
 struct Noise {
     std::mt19937 rng;
     explicit Noise(uint32_t seed) : rng(seed) {}

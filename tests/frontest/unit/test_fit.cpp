@@ -14,18 +14,7 @@ using frontest::Status;
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
-Front straight_truth()
-{
-    Front f;
-    f.offset_m = 300;
-    f.angle_rad = 0.2;
-    f.ta_c = 16;
-    f.tb_c = 12;
-    f.width_m = 20;
-    return f;
-}
+using synth::kPi;
 
 // |estimate - truth| in sigmas, per field (angle and phase the short way round)
 struct Z {
@@ -68,7 +57,7 @@ void print(const char *what, const frontest::FitResult &r, const Front &t)
 
 TEST(model_gradient_matches_finite_differences)
 {
-    Front f = straight_truth();
+    Front f = synth::straight_front();
     f.meander = true;
     f.amplitude_m = 30;
     f.wavelength_m = 500;
@@ -93,7 +82,7 @@ TEST(canonical_form_is_the_same_field)
 {
     for (double angle : {-3.0, -1.2, 0.0, 1.0, 1.7, 2.9, 4.5})
         for (int meander = 0; meander < 2; meander++) {
-            Front f = straight_truth();
+            Front f = synth::straight_front();
             f.angle_rad = angle;
             f.meander = meander;
             f.amplitude_m = -25;
@@ -112,7 +101,7 @@ TEST(canonical_form_is_the_same_field)
 
 TEST(straight_front_recovered_within_its_sigmas)
 {
-    const Front t = straight_truth();
+    const Front t = synth::straight_front();
     // legs at 60 degrees to the front, 60 m either side, over 300 m along it: 8 crossings
     const auto xs = synth::zigzag(t, -150, 300, 60, 60 * kPi / 180, 1.0, 0.02, 1);
     const frontest::FitResult r = frontest::fit_front(xs, frontest::FitOptions{});
@@ -134,7 +123,7 @@ TEST(straight_front_recovered_within_its_sigmas)
 TEST(sigmas_are_honest_over_noise_draws)
 {
     // 40 draws of the noise: each parameter within 2 of its sigmas about 95 % of the time
-    const Front t = straight_truth();
+    const Front t = synth::straight_front();
     int within[5] = {0}, runs = 40;
     double worst = 0;
     for (int k = 0; k < runs; k++) {
@@ -157,7 +146,7 @@ TEST(sigmas_are_honest_over_noise_draws)
 
 TEST(meandering_front_recovered_where_the_data_span_it)
 {
-    Front t = straight_truth();
+    Front t = synth::straight_front();
     t.meander = true;
     t.amplitude_m = 40;
     t.wavelength_m = 600;
@@ -180,7 +169,7 @@ TEST(meandering_front_recovered_where_the_data_span_it)
 
 TEST(too_few_or_one_water_is_too_few)
 {
-    const Front t = straight_truth();
+    const Front t = synth::straight_front();
     auto xs = synth::zigzag(t, -150, 300, 60, 60 * kPi / 180, 1.0, 0.02, 1);
     std::vector<frontest::Sample> some(xs.begin(), xs.begin() + 20);
     frontest::FitResult r = frontest::fit_front(some, frontest::FitOptions{});
@@ -201,7 +190,7 @@ TEST(too_few_or_one_water_is_too_few)
 
 TEST(degenerate_data_diverge_never_ok)
 {
-    const Front t = straight_truth();
+    const Front t = synth::straight_front();
     const frontest::Vec q = frontest::to_q(t);
     // one straight pass across the front: its angle and its width cannot be told apart
     std::vector<frontest::Sample> line;

@@ -16,23 +16,12 @@ using frontest::Status;
 
 namespace {
 
-constexpr double kPi = 3.141592653589793;
-
-Front truth()
-{
-    Front f;
-    f.offset_m = 300;
-    f.angle_rad = 0.2;
-    f.ta_c = 16;
-    f.tb_c = 12;
-    f.width_m = 20;
-    return f;
-}
+using synth::kPi;
 
 // A teammate's own fit: its zig-zag further along the front, sent and received.
 frontest::Prior teammate(double s0, uint32_t seed, double noise_c = 0.05)
 {
-    const auto xs = synth::zigzag(truth(), s0, 300, 60, 60 * kPi / 180, 2.0, noise_c, seed);
+    const auto xs = synth::zigzag(synth::straight_front(), s0, 300, 60, 60 * kPi / 180, 2.0, noise_c, seed);
     const FitResult r = frontest::fit_front(xs, frontest::FitOptions{});
     team_msg_front m;
     CHECK(frontest::to_summary(r, 2, 1234.7, m));
@@ -47,7 +36,7 @@ frontest::Prior teammate(double s0, uint32_t seed, double noise_c = 0.05)
 
 std::vector<frontest::Sample> one_pass()
 {
-    const frontest::Vec q = frontest::to_q(truth());
+    const frontest::Vec q = frontest::to_q(synth::straight_front());
     std::vector<frontest::Sample> line;
     synth::Noise noise(3);
     for (int k = 0; k < 200; k++) {
@@ -64,7 +53,7 @@ std::vector<frontest::Sample> one_pass()
 
 TEST(summary_fits_its_bytes_and_the_frame)
 {
-    const auto xs = synth::zigzag(truth(), -150, 300, 60, 60 * kPi / 180, 1.0, 0.02, 1);
+    const auto xs = synth::zigzag(synth::straight_front(), -150, 300, 60, 60 * kPi / 180, 1.0, 0.02, 1);
     const FitResult r = frontest::fit_front(xs, frontest::FitOptions{});
     team_msg_front m;
     CHECK(frontest::to_summary(r, 3, 20000.0, m)); // mission time wraps at 16384 s
@@ -106,7 +95,7 @@ TEST(summary_fits_its_bytes_and_the_frame)
 
 TEST(teammates_summaries_rescue_and_tighten_the_fit)
 {
-    const Front t = truth();
+    const Front t = synth::straight_front();
     const frontest::Prior peer = teammate(150, 21);
     // one straight pass alone cannot tell the angle from the width ...
     const auto line = one_pass();
