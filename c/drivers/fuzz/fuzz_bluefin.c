@@ -14,6 +14,7 @@
 #include "auv/auv_frontseat_status_t.h"
 #include "auv/auv_nav_solution_t.h"
 #include "common/lcm_rx.h"
+#include "drivers/fuzz/fuzz_frontseat.h"
 #include "frontseat/frontseat.h"
 
 #define MAX_DEPTH 40.0
@@ -75,60 +76,7 @@ static int on_write(void *user, const uint8_t *data, size_t n)
     return 0;
 }
 
-static double take_double(const uint8_t *data, size_t size, size_t *i)
-{
-    double d = 0.0;
-    if (*i + sizeof d <= size) {
-        memcpy(&d, data + *i, sizeof d);
-        *i += sizeof d;
-    }
-    return d;
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    fs_state *fs = calloc(1, sizeof *fs);
-    drv_ctx ctx;
-    drv_ctx_init(&ctx, "fuzz_bluefin", "FUZZ", "FRONTSEAT", sink, NULL);
-    ctx.quiet = 1;
-    ctx.write = on_write;
-    char err[128];
-    for (const drv_flag *f = frontseat_protocol.flags; f->name; f++) {
-        if (!strcmp(f->name, "--protocol"))
-            check(f->set(fs, "bluefin", err, sizeof err) == 0, "--protocol");
-        if (!strcmp(f->name, "--max-depth"))
-            check(f->set(fs, "40", err, sizeof err) == 0, "--max-depth");
-        if (!strcmp(f->name, "--max-speed"))
-            check(f->set(fs, "2", err, sizeof err) == 0, "--max-speed");
-        if (!strcmp(f->name, "--origin"))
-            check(f->set(fs, "41.5,-70.7", err, sizeof err) == 0, "--origin");
-    }
-    check(frontseat_protocol.init(fs, &ctx) == 0, "init");
-    int64_t t = INT64_C(1700000000000000);
-    unsigned cut = size ? data[0] : 5;
-    for (size_t i = 0; i < size;) {
-        t += 20000 * (1 + (int64_t)((data[i] ^ cut) % 64));
-        frontseat_protocol.tick(fs, &ctx, t);
-        if ((data[i] & 0x1f) == 0x1f) { /* a setpoint of the input's bytes */
-            i++;
-            auv_setpoint_t sp;
-            memset(&sp, 0, sizeof sp);
-            sp.utime = t - (int64_t)(i % 3) * 1000000;
-            sp.vertical_mode = (int8_t)(i % 4);
-            sp.speed_mode = (int8_t)((i / 4) % 3);
-            sp.heading_rad = take_double(data, size, &i);
-            sp.depth_m = take_double(data, size, &i);
-            sp.altitude_m = take_double(data, size, &i);
-            sp.speed_mps = take_double(data, size, &i);
-            frontseat_protocol.subscriptions[0].handler(fs, &ctx, &sp, t);
-            continue;
-        }
-        size_t n = 1 + (cut + i) % 48;
-        if (n > size - i)
-            n = size - i;
-        frontseat_protocol.feed(fs, &ctx, data + i, n, t);
-        i += n;
-    }
-    free(fs);
-    return 0;
+    return fuzz_frontseat_one("fuzz_bluefin", "bluefin", sink, on_write, data, size);
 }
