@@ -112,6 +112,66 @@ def simulator(
     return cmd + [str(x) for x in extra]
 
 
+def radio_sim(
+    *,
+    vehicles: Iterable[str],
+    lcm_url: str,
+    clock: str = "sim",
+    settings: Mapping[str, object] | None = None,
+    python: PathLike = sys.executable,
+) -> list[str]:
+    """The simulated surface radio (`python -m sim.radio`, docs/radio.md); settings:
+    sim.radio.link.RadioConfig's fields, each a flag (bitrate_bps -> --bitrate-bps)."""
+    cmd = [str(python), "-m", "sim.radio", "--vehicles", ",".join(vehicles), "--clock", clock, "--lcm-url", lcm_url]
+    for k, v in (settings or {}).items():
+        cmd += ["--" + k.replace("_", "-"), f"{v:g}" if isinstance(v, float) else str(v)]
+    return cmd
+
+
+def radio_shore(
+    *,
+    vehicles: Iterable[str],
+    lcm_url: str,
+    clock: str = "sim",
+    acoustic: Mapping[str, int] | None = None,
+    link_timeout_s: float | None = None,
+    retry_s: float | None = None,
+    python: PathLike = sys.executable,
+) -> list[str]:
+    """The shore radio gateway (docs/radio.md); acoustic: team index per vehicle."""
+    cmd = [str(python), "-m", "tools.radio.shore_gateway", "--vehicles", ",".join(vehicles), "--clock", clock]
+    if acoustic:
+        cmd += ["--acoustic", ",".join(f"{v}={i}" for v, i in acoustic.items())]
+    if link_timeout_s is not None:
+        cmd += ["--link-timeout-s", f"{link_timeout_s:g}"]
+    if retry_s is not None:
+        cmd += ["--retry-s", f"{retry_s:g}"]
+    return cmd + ["--lcm-url", lcm_url]
+
+
+def radio_vehicle(
+    *,
+    vehicle: str,
+    spool: PathLike,
+    lcm_url: str,
+    clock: str = "sim",
+    team_index: int | None = None,
+    report_period_s: float | None = None,
+    end_manager: str | None = None,
+    python: PathLike = sys.executable,
+) -> list[str]:
+    """A vehicle's radio gateway (docs/radio.md); spool: its partial transfers."""
+    cmd = [str(python), "-m", "tools.radio.vehicle_gateway", "--vehicle", vehicle, "--spool", str(spool)]
+    cmd += ["--clock", clock]
+    if team_index is not None:
+        cmd += ["--team-index", str(team_index)]
+    if report_period_s is not None:
+        cmd += ["--report-period-s", f"{report_period_s:g}"]
+    if end_manager is not None:
+        cmd += ["--end-manager", end_manager]
+    return cmd + ["--lcm-url", lcm_url]
+
+
 def auv_recorder(build: Path, *, lcm_url: str, log: PathLike, stats: PathLike | None = None) -> list[str]:
     """auv-recorder (c/recorder), with a large receive buffer; its counts go to
     `stats` at exit."""

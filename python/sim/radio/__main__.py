@@ -1,0 +1,165 @@
+"""auv-radio-sim: the surface radio of a simulated world (docs/radio.md).
+
+    auv-radio-sim --vehicles AUV1,AUV2 [--clock sim|system] [--bitrate-bps 115200] ...
+
+In:  <VEHICLE>.TRUTH (where each vehicle is: the radio is part of the world),
+     RADIO.TX.<NODE> (radio_frame_t from the gateways), SIM.CLOCK (--clock sim).
+     SHORE.MODEM_TX (modem_tx_t: the shore gateway's acoustic commands).
+Out: RADIO.RX.<NODE> (the frames that arrived), <VEHICLE>.RADIO_LINK
+     (radio_link_t: 1 Hz and at every change of the link), SIM.ACOUSTIC (the
+     shore modem's frames, from the shore station's transducer at
+     --shore-modem-depth-m: the vehicles' simulated modems hear them as any
+     other frame), a summary at exit.
+
+Every setting of the model (sim.radio.link.RadioConfig) is a flag:
+--bitrate-bps, --latency-s, --loss, --max-range-m, --antenna-height-m,
+--wave-height-m, --shore-north-m, --shore-east-m, ...
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+import signal
+import sys
+import time
+
+import lcm
+
+from auv import ground_truth_t, modem_status_t, modem_tx_t, radio_frame_t, radio_link_t, sim_clock_t
+from auvlcm import programs
+from auvlcm.rx import Receiver
+from auvlcm.url import check_local, default_url
+from sim.modem.config import ModemConfig
+from sim.modem.transmitter import Transmitter
+from sim.radio.link import SHORE, RadioConfig, RadioLink
+
+NODE_RE = r"[A-Za-z0-9_]+"
+
+
+def _parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="auv-radio-sim", description=__doc__.split("\n\n")[0])
+    programs.add_lcm_url_argument(ap, "LCM URL (default $LCM_DEFAULT_URL or the project's)", default=None)
+    ap.add_argument("--vehicles", required=True, help="comma-separated vehicle ids")
+    ap.add_argument("--clock", choices=("sim", "system"), default="sim", help="SIM.CLOCK or this machine's")
+    ap.add_argument("--shore-modem-depth-m", type=float, default=2.0, help="the shore modem's transducer depth")
+    for f in dataclasses.fields(RadioConfig):
+        ap.add_argument("--" + f.name.replace("_", "-"), type=type(f.default), default=f.default, metavar="X")
+    return ap
+
+
+class RadioSim:
+    def __init__(self, lc: lcm.LCM, cfg: RadioConfig, vehicles: list[str], sim_clock: bool) -> None:
+        self.lc, self.cfg, self.vehicles = lc, cfg, vehicles
+        self.link = RadioLink(cfg, vehicles)
+        self.sim_clock = sim_clock
+        self.now: float | None = None if sim_clock else time.time()
+        self.was_up: dict[str, bool] = {}
+        self.next_status = 0.0
+        self.seq = 0
+        self.rx = Receiver(lc)
+        for v in vehicles:
+            self.rx.subscribe(f"{v}\\.TRUTH", ground_truth_t, self._on_truth)
+        self.rx.subscribe(f"RADIO\\.TX\\.{NODE_RE}", radio_frame_t, self._on_frame)
+        if sim_clock:
+            self.rx.subscribe("SIM\\.CLOCK", sim_clock_t, self._on_clock)
+        self.refused = 0
+        self.shore_modem = Transmitter(ModemConfig(), SHORE, modem_status_t())
+        self.shore_modem_depth_m = 2.0
+        self.modem_requests: list[modem_tx_t] = []
+        self.rx.subscribe("SHORE\\.MODEM_TX", modem_tx_t, lambda c, m: self.modem_requests.append(m))
+
+    def _on_truth(self, channel: str, m: ground_truth_t) -> None:
+        v = channel.split(".", 1)[0]
+        self.link.set_position(v, m.eta[0], m.eta[1], m.eta[2])
+
+    def _on_clock(self, channel: str, m: sim_clock_t) -> None:
+        t = m.utime * 1e-6
+        if self.now is None or t > self.now:
+            self.now = t
+            self.step()
+
+    def _on_frame(self, channel: str, f: radio_frame_t) -> None:
+        src = channel.rsplit(".", 1)[1]
+        if self.now is None or f.src != src or f.n_bytes != len(f.payload):
+            self.refused += 1
+            return
+        self.link.send(src, f.dst, bytes(f.payload), self.now)
+
+    def step(self) -> None:
+        assert self.now is not None
+        for fr in self.link.step(self.now):
+            out = radio_frame_t()
+            self.seq += 1
+            out.utime, out.src, out.dst, out.seq = int(fr.t_arrive * 1e6), fr.src, fr.dst, self.seq
+            out.n_bytes, out.payload = len(fr.payload), fr.payload
+            self.lc.publish(f"RADIO.RX.{fr.dst}", out.encode())
+        self._shore_modem()
+        due = self.now >= self.next_status
+        for v in self.vehicles:
+            up = self.link.up(v, SHORE)
+            if due or self.was_up.get(v) != up:
+                self.was_up[v] = up
+                self._publish_link(v, up)
+        if due:
+            self.next_status = self.now + self.cfg.status_period_s
+
+    def _shore_modem(self) -> None:
+        """The shore's acoustic frames go into the water from the shore station."""
+        assert self.now is not None
+        pos = (self.cfg.shore_north_m, self.cfg.shore_east_m, self.shore_modem_depth_m)
+        for m in [m for m in self.modem_requests if m.utime * 1e-6 <= self.now][:1]:
+            out = self.shore_modem.send(self.now, pos, m)
+            if isinstance(out, str):
+                if out.startswith("busy"):
+                    return  # the modem is still sending: try at the next step
+                print(f"auv-radio-sim: shore modem refused a frame: {out}", file=sys.stderr)
+            else:
+                self.lc.publish("SIM.ACOUSTIC", out.encode())
+            self.modem_requests.remove(m)
+
+    def _publish_link(self, v: str, up: bool) -> None:
+        m = radio_link_t()
+        c = self.link.counts[v]
+        m.utime, m.vehicle, m.up, m.antenna_clear = int(self.now * 1e6), v, up, self.link.clear(v)
+        m.depth_m, m.range_m, m.bitrate_bps = self.link.nodes[v].depth, self.link.range_m(v, SHORE), self.cfg.bitrate_bps
+        m.frames_sent, m.frames_delivered = c.sent, c.delivered
+        m.frames_lost, m.frames_dropped, m.bytes_delivered = c.lost, c.dropped, c.bytes_delivered
+        m.queue_bytes = self.link.queued(v)
+        self.lc.publish(f"{v}.RADIO_LINK", m.encode())
+
+    def summary(self) -> str:
+        parts = [f"{n}: sent {c.sent} delivered {c.delivered} lost {c.lost} dropped {c.dropped}"
+                 for n, c in self.link.counts.items()]
+        reasons = ", ".join(f"{k} {v}" for k, v in sorted(self.link.drop_reasons.items()))
+        return "auv-radio-sim: " + "; ".join(parts) + (f" (drops: {reasons})" if reasons else "") + (
+            f"; refused {self.refused} frames" if self.refused else ""
+        )
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = _parser().parse_args(argv)
+    try:
+        url = check_local(args.url or default_url())
+    except ValueError as exc:
+        print(f"auv-radio-sim: {exc}", file=sys.stderr)
+        return 2
+    cfg = RadioConfig(**{f.name: getattr(args, f.name) for f in dataclasses.fields(RadioConfig)})
+    vehicles = [v for v in args.vehicles.split(",") if v]
+    lc = lcm.LCM(url)
+    sim = RadioSim(lc, cfg, vehicles, args.clock == "sim")
+    sim.shore_modem_depth_m = args.shore_modem_depth_m
+    stop = []
+    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
+    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
+    while not stop:
+        lc.handle_timeout(10)
+        if not sim.sim_clock:
+            sim.now = time.time()
+            sim.step()
+    print(sim.summary(), file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
