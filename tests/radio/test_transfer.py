@@ -10,7 +10,8 @@ import os
 
 import pytest
 
-from auv import radio_ack_t, radio_chunk_t, radio_command_status_t as cs
+from auv import radio_ack_t, radio_chunk_t
+from auv import radio_command_status_t as cs
 from tools.radio import assembler as asm
 from tools.radio.assembler import Assembler
 from tools.radio.outbox import Outbox

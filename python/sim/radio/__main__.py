@@ -122,18 +122,27 @@ class RadioSim:
         m = radio_link_t()
         c = self.link.counts[v]
         m.utime, m.vehicle, m.up, m.antenna_clear = int(self.now * 1e6), v, up, self.link.clear(v)
-        m.depth_m, m.range_m, m.bitrate_bps = self.link.nodes[v].depth, self.link.range_m(v, SHORE), self.cfg.bitrate_bps
+        m.depth_m, m.range_m, m.bitrate_bps = (
+            self.link.nodes[v].depth,
+            self.link.range_m(v, SHORE),
+            self.cfg.bitrate_bps,
+        )
         m.frames_sent, m.frames_delivered = c.sent, c.delivered
         m.frames_lost, m.frames_dropped, m.bytes_delivered = c.lost, c.dropped, c.bytes_delivered
         m.queue_bytes = self.link.queued(v)
         self.lc.publish(f"{v}.RADIO_LINK", m.encode())
 
     def summary(self) -> str:
-        parts = [f"{n}: sent {c.sent} delivered {c.delivered} lost {c.lost} dropped {c.dropped}"
-                 for n, c in self.link.counts.items()]
+        parts = [
+            f"{n}: sent {c.sent} delivered {c.delivered} lost {c.lost} dropped {c.dropped}"
+            for n, c in self.link.counts.items()
+        ]
         reasons = ", ".join(f"{k} {v}" for k, v in sorted(self.link.drop_reasons.items()))
-        return "auv-radio-sim: " + "; ".join(parts) + (f" (drops: {reasons})" if reasons else "") + (
-            f"; refused {self.refused} frames" if self.refused else ""
+        return (
+            "auv-radio-sim: "
+            + "; ".join(parts)
+            + (f" (drops: {reasons})" if reasons else "")
+            + (f"; refused {self.refused} frames" if self.refused else "")
         )
 
 

@@ -12,6 +12,13 @@ one line per ack, "VEHICLE MANAGER ok|rejected|failed: message". Without
 --manager every manager of the vehicle is addressed; those heard on
 <VEHICLE>.CHASM.* while waiting are the ones expected to answer.
 
+With --shore the command goes to the radio's shore gateway instead
+(SHORE.<VEHICLE>.MISSION_CMD, SHORE.<VEHICLE>.PLUGIN_UPLOAD; docs/radio.md): each
+change of its state is printed ("AUV1 upload survey 1: in flight 40%"), and
+the acknowledgements come home on SHORE.<VEHICLE>.MISSION_ACK when the
+vehicle next surfaces (give --timeout accordingly). An expired or refused
+command exits 1.
+
 Exit status: 0 every ack ok (status: the vehicle was heard); 1 a manager
 rejected or failed the command; 2 usage or file error; 3 no answer within
 --timeout (nothing heard from the vehicle).
@@ -31,6 +38,7 @@ from auvlcm import programs
 from auvlcm.url import check_local, default_url
 from tools.console import mission_commands as mc
 from tools.console.model import Model
+from tools.console.radio_view import STATES
 from tools.console.sources import decode
 
 SETTLE_S = 0.5  # after the last expected ack, wait this long for stragglers
@@ -40,6 +48,7 @@ def _parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="auvctl", description=__doc__.split("\n\n")[0])
     programs.add_lcm_url_argument(ap, "LCM URL (default $LCM_DEFAULT_URL or the project's)", default=None)
     ap.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for answers (default 5)")
+    ap.add_argument("--shore", action="store_true", help="send through the radio's shore gateway (docs/radio.md)")
     sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     for name in ("pause", "resume", "abort", "stop"):
         p = sub.add_parser(name, help=f"{name} the mission")
@@ -91,9 +100,13 @@ def main(argv: list[str] | None = None) -> int:
         return _status(lc, model, vid, args)
 
     seq = mc.first_seq()
+    prefix = "SHORE." if args.shore else ""
+    radio = RadioProgress(lc, vid, seq) if args.shore else None
+    if args.shore:
+        lc.subscribe(rf"SHORE\.{vid}\.MISSION_ACK", on_raw)
     if args.cmd == "upload":
         msg = mc.upload(vid, args.manager, args.plugin, seq, args.version, args.name)
-        lc.publish(f"{vid}.PLUGIN_UPLOAD", msg.encode())
+        lc.publish(f"{prefix}{vid}.PLUGIN_UPLOAD", msg.encode())
     else:
         msg = mc.command(
             vid,
@@ -104,8 +117,10 @@ def main(argv: list[str] | None = None) -> int:
             plan_text=plan_text if args.cmd == "load" else "",
             reason=getattr(args, "reason", "") or f"auvctl ({mc.who()})",
         )
-        lc.publish(f"{vid}.MISSION_CMD", msg.encode())
-    acks = _wait_acks(lc, model, vid, seq, args.manager, args.timeout)
+        lc.publish(f"{prefix}{vid}.MISSION_CMD", msg.encode())
+    acks = _wait_acks(lc, model, vid, seq, args.manager, args.timeout, radio)
+    if radio is not None and radio.failed:
+        return 1
     if not acks:
         print(
             f"auvctl: no acknowledgement from {vid} {args.manager or '(any manager)'} within "
@@ -118,11 +133,35 @@ def main(argv: list[str] | None = None) -> int:
     return 0 if all(a["result"] == "ok" for a in acks) else 1
 
 
-def _wait_acks(lc: lcm.LCM, model: Model, vid: str, seq: int, manager: str, timeout: float) -> list[dict]:
+class RadioProgress:
+    """Prints each state of the command as the shore gateway reports it."""
+
+    def __init__(self, lc: lcm.LCM, vid: str, seq: int) -> None:
+        self.seq, self.last, self.failed = seq, "", False
+        lc.subscribe(rf"SHORE\.{vid}\.RADIO_CMD_STATUS", self._on)
+
+    def _on(self, channel: str, data: bytes) -> None:
+        m = decode(data)
+        if m is None or getattr(m, "seq", None) != self.seq:
+            return
+        state = STATES[m.state] if 0 <= m.state < len(STATES) else str(m.state)
+        pct = f" {100 * m.bytes_held // max(m.bytes_total, 1)}%" if state in ("queued", "in flight") else ""
+        line = f"{m.vehicle} {m.what} ({m.route}): {state}{pct}" + (f": {m.message}" if m.message else "")
+        if line != self.last:
+            print(line, flush=True)
+            self.last = line
+        self.failed = self.failed or state in ("expired", "refused")
+
+
+def _wait_acks(
+    lc: lcm.LCM, model: Model, vid: str, seq: int, manager: str, timeout: float, radio: RadioProgress | None = None
+) -> list[dict]:
     deadline = time.monotonic() + timeout
     complete_at = None
     while time.monotonic() < deadline:
         lc.handle_timeout(50)
+        if radio is not None and radio.failed:
+            return []
         v = model.vehicles.get(vid)
         if v is None:
             continue

@@ -38,6 +38,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--scenario", type=Path, help="scenario YAML: survey, seabed and LBL net from the start")
     ap.add_argument("--log", type=Path, help="open a finished log instead of live LCM")
     ap.add_argument("--rate", type=float, default=5.0, help="page updates per second at most (default 5)")
+    ap.add_argument(
+        "--shore", action="store_true", help="send commands through the radio's shore gateway (SHORE.<V>.MISSION_CMD)"
+    )
     args = ap.parse_args(argv)
 
     model = Model()
@@ -52,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
             where = f"log {args.log} ({source.end_t - source.start_t:.0f} s of sim time)"
         else:
             url = check_local(args.url or default_url())
-            source = LiveSource(model, world, url)
+            source = LiveSource(model, world, url, "SHORE." if args.shore else "")
             where = f"live on {url}"
     except (WorldError, ValueError, OSError) as exc:
         print(f"console: {exc}", file=sys.stderr)

@@ -16,6 +16,7 @@ from collections import deque
 from typing import Any
 
 from sim import clock_modes
+from tools.console import radio_view
 
 RUN_NAMES = ("loading", "running", "paused", "done", "aborted", "failed")
 NAV_BITS = (
@@ -125,6 +126,7 @@ class Model:
                 "managers": {},
                 "modem": None,
                 "frontseat": None,
+                "radio": None,
                 "acks": [],
             }
             self.trails[vid + ".true"] = Trail()
@@ -341,7 +343,7 @@ def _frontseat(m: Model, ch: str, msg: Any) -> bool:
 
 
 def _ack(m: Model, ch: str, msg: Any) -> bool:
-    v = m._vehicle(_vehicle_id(ch))
+    v = m._vehicle(msg.vehicle if ch.startswith("SHORE.") else _vehicle_id(ch))  # relayed home by the radio
     v["acks"] = (
         v["acks"]
         + [
@@ -402,11 +404,12 @@ _HANDLERS = {
     "mission_ack_t": _ack,
     "sim_clock_t": _clock,
     "agent_table_t": _agent,
+    **radio_view.HANDLERS,
 }
 
 # Only these channels are decoded at all (liblcm filters by this regex in C).
 CHANNELS = (
     r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK|FRONTSEAT)"
     r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
-    r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS"
+    r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS" + radio_view.CHANNELS
 )

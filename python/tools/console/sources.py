@@ -43,8 +43,9 @@ def decode(data: bytes) -> Any | None:
 class LiveSource:
     mode = "live"
 
-    def __init__(self, model: Model, world: WorldBuilder, url: str) -> None:
+    def __init__(self, model: Model, world: WorldBuilder, url: str, command_prefix: str = "") -> None:
         self.model, self.world = model, world
+        self.command_prefix = command_prefix  # "SHORE.": commands go through the radio's shore gateway
         self.lc = lcm.LCM(url)
         self.decode_errors = 0
         self._seq = mission_commands.first_seq()
@@ -87,7 +88,7 @@ class LiveSource:
         msg = mission_commands.command(
             vehicle, manager, name, seq, utime, plan_name, plan_text, reason=f"console ({mission_commands.who()})"
         )
-        self.lc.publish(f"{vehicle}.MISSION_CMD", msg.encode())
+        self.lc.publish(f"{self.command_prefix}{vehicle}.MISSION_CMD", msg.encode())
         return seq
 
 

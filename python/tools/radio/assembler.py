@@ -158,9 +158,7 @@ class Assembler:
                 return self._refuse("unknown transfer", f"chunk {c.index} of a transfer not held: send from 0", 0)
             self.expire(now_s)
             if len(self.partials) >= MAX_TRANSFERS:
-                return self._refuse(
-                    "busy", f"{MAX_TRANSFERS} transfers already in progress: try later", 0, final=True
-                )
+                return self._refuse("busy", f"{MAX_TRANSFERS} transfers already in progress: try later", 0, final=True)
             p = Partial(head)
             self.partials[tid] = p
             self._paths(tid)[0].write_bytes(b"")
@@ -177,7 +175,9 @@ class Assembler:
         if len(c.data) != n or not 0 < n <= MAX_CHUNK_BYTES:
             return self._refuse("bad chunk", f"chunk {c.index}: {n} bytes", p.next_index)
         if held + n > c.total_bytes:
-            return self._refuse("too many", f"chunk {c.index} goes past the declared {c.total_bytes} bytes", p.next_index)
+            return self._refuse(
+                "too many", f"chunk {c.index} goes past the declared {c.total_bytes} bytes", p.next_index
+            )
         if c.index == c.count - 1 and held + n != c.total_bytes:
             return self._refuse("too few", f"{held + n} of {c.total_bytes} bytes at the last chunk", p.next_index)
         data_path, _ = self._paths(tid)

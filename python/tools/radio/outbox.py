@@ -21,7 +21,8 @@ import secrets
 from collections import deque
 from dataclasses import dataclass, field
 
-from auv import radio_ack_t, radio_chunk_t, radio_command_status_t as cs
+from auv import radio_ack_t, radio_chunk_t
+from auv import radio_command_status_t as cs
 
 MAX_QUEUE = 64  # commands waiting per vehicle; more are refused at the shore
 

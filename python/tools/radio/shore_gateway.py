@@ -32,9 +32,11 @@ from auv import (
     modem_tx_t,
     plugin_upload_t,
     radio_ack_t,
-    radio_command_status_t as cs,
     radio_frame_t,
     radio_report_t,
+)
+from auv import (
+    radio_command_status_t as cs,
 )
 from auvlcm import programs
 from auvlcm.decode import DecodeError, decode_strict

@@ -35,7 +35,6 @@ import lcm
 
 from auv import (
     chasm_status_t,
-    mission_ack_t,
     mission_command_t,
     modem_rx_t,
     modem_tx_t,
@@ -55,8 +54,11 @@ from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
 SHORE_INDEX = 15
-ACOUSTIC_KINDS = {1: ("abort", mission_command_t.CMD_ABORT), 2: ("pause", mission_command_t.CMD_PAUSE),
-                  3: ("resume", mission_command_t.CMD_RESUME)}
+ACOUSTIC_KINDS = {
+    1: ("abort", mission_command_t.CMD_ABORT),
+    2: ("pause", mission_command_t.CMD_PAUSE),
+    3: ("resume", mission_command_t.CMD_RESUME),
+}
 RUN = {0: "LOADING", 1: "RUNNING", 2: "PAUSED", 3: "DONE", 4: "ABORTED", 5: "FAILED"}
 MAX_ACKS = 32  # managers' answers kept for the next surfacing
 ACK_SENDS = 3  # each sent at this many reports: the radio may lose one
@@ -128,7 +130,13 @@ class VehicleGateway:
             name, code = ACOUSTIC_KINDS[vals["kind"]]
             cmd = mission_command_t()
             now = self.clock.now() or m.utime * 1e-6
-            cmd.utime, cmd.vehicle, cmd.manager, cmd.seq, cmd.command = int(now * 1e6), self.v, "", vals["counter"], code
+            cmd.utime, cmd.vehicle, cmd.manager, cmd.seq, cmd.command = (
+                int(now * 1e6),
+                self.v,
+                "",
+                vals["counter"],
+                code,
+            )
             cmd.plan_name, cmd.plan_text, cmd.reason = "", "", f"shore, acoustic {name} #{vals['counter']}"
             self.lc.publish(f"{self.v}.MISSION_CMD", cmd.encode())
             self.stats["acoustic_commands"] += 1
@@ -166,8 +174,10 @@ class VehicleGateway:
     def summary(self) -> str:
         refused = ", ".join(f"{k} {n}" for k, n in sorted(self.asm.refused.items())) or "none"
         s = self.stats
-        return (f"auv-radio-vehicle {self.v}: delivered {s['delivered']}, acoustic commands "
-                f"{s['acoustic_commands']}, frames dropped {s['frames_dropped']}, refused: {refused}")
+        return (
+            f"auv-radio-vehicle {self.v}: delivered {s['delivered']}, acoustic commands "
+            f"{s['acoustic_commands']}, frames dropped {s['frames_dropped']}, refused: {refused}"
+        )
 
 
 def parser() -> argparse.ArgumentParser:

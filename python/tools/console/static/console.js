@@ -160,6 +160,7 @@ function vehicleHtml(v) {
       (m.deaf ? ` · missed while sending ${m.deaf}` : '') +
       (refused ? ` · <span class="bad">refused ${refused}</span> (${esc(m.last_refusal)})` : '') + '</div>');
   }
+  if (v.radio) out.push(radioHtml(v.radio));
   if (v.frontseat) {   // a commercial vehicle: who flies it now (docs/frontseat.md)
     const f = v.frontseat;
     const who = f.control === 'payload' ? 'payload (our plan) has control'
@@ -170,6 +171,32 @@ function vehicleHtml(v) {
       (f.mode ? ` · mode ${esc(f.mode)}` : '') + (f.error ? ` · <span class="bad">error ${esc(f.error)}</span>` : '') +
       ` · heard ${f.age_s < 0 ? 'never' : fmt(f.age_s) + ' s ago'} · granted ${f.granted} · lost ${f.lost}` +
       (f.refused ? ` · refused ${f.refused} (${esc(f.last_refusal)})` : '') + '</div>');
+  }
+  return out.join('');
+}
+
+// The surface radio (docs/radio.md): the link, the last status home and its
+// age, each command sent through the shore gateway with its progress.
+function radioHtml(r) {
+  const out = [];
+  if (r.link) {
+    const l = r.link;
+    out.push(`<div class="radio">radio: ${l.up ? '<b>up</b>' : '<span class="bad">down</span>'}` +
+      ` (${l.clear ? 'antenna clear' : 'under water'}, ${fmt(l.range_m)} m) · delivered ${l.delivered}` +
+      ` · lost ${l.lost} · dropped ${l.dropped}</div>`);
+  }
+  if (r.report) {
+    const p = r.report;
+    out.push(`<div class="radio">last report ${fmt(S.now.t - p.t)} s ago: N ${fmt(p.n)} E ${fmt(p.e)} depth ${fmt(p.depth)} m` +
+      ` · ${esc(p.mission)} · contacts ${p.contacts}` + (p.refused ? ` · <span class="bad">refused ${p.refused}</span>` : '') + '</div>');
+  }
+  for (const c of r.commands) {
+    const pct = c.total ? Math.round(100 * c.held / c.total) : 0;
+    const bad = ['expired', 'refused'].includes(c.state);
+    out.push(`<div class="radio">${esc(c.what)} (${esc(c.route)}): ` +
+      `${bad ? `<span class="bad">${esc(c.state)}</span>` : esc(c.state)}` +
+      (c.state === 'in flight' || c.state === 'queued' ? ` ${pct}% of ${c.total} bytes` : '') +
+      (c.message ? ` · ${esc(c.message)}` : '') + '</div>');
   }
   return out.join('');
 }
