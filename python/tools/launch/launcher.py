@@ -48,6 +48,7 @@ from tools.launch.mission_watch import MissionWatch
 from tools.launch.procs import TIER_FILTER, TIER_MANAGER, TIER_SIMULATOR, Child, stop_together
 from tools.launch.recorder_cmd import recorder_cmd, recorder_takes_part
 from tools.launch.worldclock import WorldClock
+from tools.scenario import radio_section
 from tools.scenario.scenario_file import Scenario
 
 # the exit status of each result (auv-launch exits with it)
@@ -267,6 +268,31 @@ class Launcher:
             for m in v.managers:
                 out = self.out / f"{v.id}.{m.name}.out"
                 self._start(Child(f"{v.id}.{m.name}", self.manager_cmd(v.id, m), out, tier=TIER_MANAGER))
+        if self.sc.radio is not None:
+            self.start_radio()
+
+    def start_radio(self) -> None:
+        """The surface radio (docs/radio.md): its model and the shore gateway on the
+        clock's host, a gateway for each vehicle of this host. They follow SIM.CLOCK
+        and are not lockstep participants."""
+        r, url = self.sc.radio, self.child_url
+        if self.host is None or self.host == self.sc.time.host:
+            ids = [v.id for v in self.sc.vehicles]
+            cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=radio_section.model_settings(r))
+            self._start(Child("SHORE.radio", cmd, self.out / "radio.out", tier=TIER_SIMULATOR))
+            cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic)
+            self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
+        for v in self.mine:
+            spool = self.out / f"{v.id}.radio_spool"
+            cmd = programs.radio_vehicle(
+                vehicle=v.id,
+                spool=spool,
+                lcm_url=url,
+                team_index=r.acoustic.get(v.id),
+                report_period_s=r.report_period_s,
+                end_manager=v.end_manager,
+            )
+            self._start(Child(f"{v.id}.radio", cmd, self.out / f"{v.id}.radio.out", tier=TIER_MANAGER))
 
     # ------------------------------------------------------------ supervise
     def _dead(self) -> Child | None:

@@ -22,6 +22,7 @@ from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from sim import clock_modes
 from tools.scenario.faults import PlannedFault, check_faults
+from tools.scenario import radio_section
 from tools.scenario.plan_params import declared_params
 
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
@@ -118,6 +119,7 @@ class Scenario:
     survey: Path | None = None  # the planner's survey.json, for reports and plots
     world_node: Any = None  # the `world:` mapping node, for error positions
     faults: list[PlannedFault] = field(default_factory=list)  # tools/scenario/faults.py
+    radio: Any = None  # tools/scenario/radio_section.RadioSection: the surface radio, docs/radio.md
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -339,7 +341,7 @@ class _Scenario:
         return got
 
 
-TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults")
+TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults", "radio")
 
 
 def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
@@ -410,6 +412,7 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
         survey=s.file(top, "survey", ""),
         world_node=world_node,
         faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s),
+        radio=radio_section.parse(c, top["radio"][1] if "radio" in top else None, [v.id for v in vehicles]),
     )
     c.raise_errors()
     return sc
