@@ -172,3 +172,18 @@ def test_no_program_spells_the_url_flag_the_old_way():
                 f"{f}:{n}" for n, line in enumerate(text.splitlines(), 1) if re.search(r"[\"' ]--url\b", line)
             ]
     assert not offenders, offenders
+
+
+def test_radio_builders_use_documented_flags(tmp_path):
+    sim = programs.radio_sim(vehicles=["AUV1", "AUV2"], lcm_url="udpm://x", settings={"bitrate_bps": 9600.0})
+    assert sim[sim.index("--bitrate-bps") + 1] == "9600" and sim[sim.index("--vehicles") + 1] == "AUV1,AUV2"
+    _every_flag_documented(sim, sim[:3])
+    shore = programs.radio_shore(
+        vehicles=["AUV1"], lcm_url="udpm://x", acoustic={"AUV1": 0}, link_timeout_s=1, retry_s=1
+    )
+    assert shore[shore.index("--acoustic") + 1] == "AUV1=0"
+    _every_flag_documented(shore, shore[:3])
+    veh = programs.radio_vehicle(
+        vehicle="AUV1", spool=tmp_path, lcm_url="udpm://x", team_index=0, report_period_s=1, end_manager="PILOT"
+    )
+    _every_flag_documented(veh, veh[:3])
