@@ -21,8 +21,8 @@ import yaml
 from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from sim import clock_modes
-from tools.scenario.faults import PlannedFault, check_faults
 from tools.scenario import radio_section
+from tools.scenario.faults import PlannedFault, check_faults
 from tools.scenario.plan_params import declared_params
 
 MANAGER_NAME = r"[A-Z][A-Z0-9_]{0,23}"
