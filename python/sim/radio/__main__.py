@@ -29,7 +29,7 @@ import lcm
 from auv import ground_truth_t, modem_status_t, modem_tx_t, radio_frame_t, radio_link_t, sim_clock_t
 from auvlcm import programs
 from auvlcm.rx import Receiver
-from auvlcm.url import check_local, default_url
+from auvlcm.url import check_local, default_url, with_receive_buffer
 from sim.modem.config import ModemConfig
 from sim.modem.transmitter import Transmitter
 from sim.radio.link import SHORE, RadioConfig, RadioLink
@@ -91,11 +91,11 @@ class RadioSim:
         for fr in self.link.step(self.now):
             out = radio_frame_t()
             self.seq += 1
-            out.utime, out.src, out.dst, out.seq = int(fr.t_arrive * 1e6), fr.src, fr.dst, self.seq
+            out.utime, out.src, out.dst, out.seq = round(fr.t_arrive * 1e6), fr.src, fr.dst, self.seq
             out.n_bytes, out.payload = len(fr.payload), fr.payload
             self.lc.publish(f"RADIO.RX.{fr.dst}", out.encode())
         self._shore_modem()
-        due = self.now >= self.next_status
+        due = self.now >= self.next_status - 1e-6  # a period of 0.05 s adds up to a hair over the clock
         for v in self.vehicles:
             up = self.link.up(v, SHORE)
             if due or self.was_up.get(v) != up:
@@ -121,7 +121,7 @@ class RadioSim:
     def _publish_link(self, v: str, up: bool) -> None:
         m = radio_link_t()
         c = self.link.counts[v]
-        m.utime, m.vehicle, m.up, m.antenna_clear = int(self.now * 1e6), v, up, self.link.clear(v)
+        m.utime, m.vehicle, m.up, m.antenna_clear = round(self.now * 1e6), v, up, self.link.clear(v)
         m.depth_m, m.range_m, m.bitrate_bps = (
             self.link.nodes[v].depth,
             self.link.range_m(v, SHORE),
@@ -143,6 +143,7 @@ class RadioSim:
             + "; ".join(parts)
             + (f" (drops: {reasons})" if reasons else "")
             + (f"; refused {self.refused} frames" if self.refused else "")
+            + f"; heard {sum(s.stats.delivered for s in self.rx.subscriptions)} messages, clock at {self.now or 0:.2f} s"
         )
 
 
@@ -155,14 +156,18 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     cfg = RadioConfig(**{f.name: getattr(args, f.name) for f in dataclasses.fields(RadioConfig)})
     vehicles = [v for v in args.vehicles.split(",") if v]
-    lc = lcm.LCM(url)
+    lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
     sim = RadioSim(lc, cfg, vehicles, args.clock == "sim")
     sim.shore_modem_depth_m = args.shore_modem_depth_m
     stop = []
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
+    print("auv-radio-sim: ready", flush=True)  # subscribed: what is published from now on is heard
     while not stop:
-        lc.handle_timeout(10)
+        try:
+            lc.handle_timeout(10)
+        except OSError:  # EINTR from the signal that stops us: the loop checks
+            continue
         if not sim.sim_clock:
             sim.now = time.time()
             sim.step()

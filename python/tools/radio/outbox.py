@@ -118,10 +118,11 @@ class Outbox:
         self.heard_s = now_s
         if holding is None:
             return
+        # A report is a snapshot that may be older than the last ack: it only moves a
+        # transfer forward. A vehicle that holds less than acknowledged (it lost its
+        # spool) says so in its answer to the next chunk, and on_ack goes back.
         for t in self.queue:
-            if t.state == cs.STATE_IN_FLIGHT and t.tid not in holding and t.acked > 0:
-                t.acked = t.next_send = 0  # it lost the transfer (spool wiped): from the start
-            elif t.tid in holding and holding[t.tid] != t.acked:
+            if holding.get(t.tid, -1) > t.acked:
                 t.acked = t.next_send = holding[t.tid]
                 t.changed = True
 

@@ -48,7 +48,7 @@ from auvlcm import programs
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
-from auvlcm.url import check_local, default_url
+from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.radio.assembler import Assembler
 from tools.radio.wire import Clock, frame, payload
 
@@ -201,13 +201,17 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         print(f"auv-radio-vehicle: {exc}", file=sys.stderr)
         return 2
-    lc = lcm.LCM(url)
+    lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
     gw = VehicleGateway(lc, args)
     stop: list[int] = []
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
+    print("auv-radio-vehicle: ready", flush=True)  # subscribed: what is published from now on is heard
     while not stop:
-        lc.handle_timeout(20)
+        try:
+            lc.handle_timeout(20)
+        except OSError:  # EINTR from the signal that stops us: the loop checks
+            continue
         gw.tick()
     print(gw.summary(), file=sys.stderr)
     return 0
