@@ -182,8 +182,8 @@ def test_radio_builders_use_documented_flags(tmp_path):
         vehicles=["AUV1"], lcm_url="udpm://x", acoustic={"AUV1": 0}, link_timeout_s=1, retry_s=1
     )
     assert shore[shore.index("--acoustic") + 1] == "AUV1=0"
-    _every_flag_documented(shore, shore[:3])
+    _every_flag_documented(shore[2:], shore[:3])
     veh = programs.radio_vehicle(
         vehicle="AUV1", spool=tmp_path, lcm_url="udpm://x", team_index=0, report_period_s=1, end_manager="PILOT"
     )
-    _every_flag_documented(veh, veh[:3])
+    _every_flag_documented(veh[2:], veh[:3])
