@@ -191,14 +191,24 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
 
         # an abort at depth goes through the water, and its answer comes home at the surface
         w.sail(3.0, 8.0)
-        abort = mission_command_t()
-        abort.utime, abort.vehicle, abort.seq, abort.command = w.utime, "AUV1", 503, mission_command_t.CMD_ABORT
-        abort.reason = "test"
-        w.lc.publish("SHORE.AUV1.MISSION_CMD", abort.encode())
+        ctl = subprocess.Popen(
+            [sys.executable, "-m", "tools.console.auvctl", "--lcm-url", lcm_url, "--timeout", "60", "--shore"]
+            + ["abort", "AUV1", "--reason", "test"],
+            env=child_env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        assert w.sail(30.0, 8.0, lambda: len(w.status_by) > 2), "auvctl sent nothing"
+        seq = next(s for s in w.status_by if s not in (501, 502))
         assert w.sail(3.0, 8.0, lambda: w.leaf() == "surface"), w.leaf()
-        assert w.last(503).route == "acoustic" and w.last(503).state == cs.STATE_IN_FLIGHT
-        assert any(a.seq == 503 and a.result == mission_ack_t.RESULT_OK for a in w.acks)
-        assert w.sail(5.0, 0.0, lambda: w.last(503).state == cs.STATE_ACKNOWLEDGED), w.last(503)
+        assert w.last(seq).route == "acoustic" and w.last(seq).state == cs.STATE_IN_FLIGHT
+        counter = seq & 0xFFFFFF
+        assert any(a.seq == counter and a.result == mission_ack_t.RESULT_OK for a in w.acks)
+        assert w.sail(5.0, 0.0, lambda: w.last(seq).state == cs.STATE_ACKNOWLEDGED), w.last(seq)
+        out, err = ctl.communicate(timeout=30)
+        assert ctl.returncode == 0, out + err
+        assert "AUV1 abort (acoustic): in flight" in out and "acknowledged: NAVIGATOR ok: aborting" in out, out
     finally:
         codes = [stop(p, signal.SIGTERM) for p in procs]
         errs = [p.stderr.read() for p in procs]

@@ -14,10 +14,10 @@ one line per ack, "VEHICLE MANAGER ok|rejected|failed: message". Without
 
 With --shore the command goes to the radio's shore gateway instead
 (SHORE.<VEHICLE>.MISSION_CMD, SHORE.<VEHICLE>.PLUGIN_UPLOAD; docs/radio.md): each
-change of its state is printed ("AUV1 upload survey 1: in flight 40%"), and
-the acknowledgements come home on SHORE.<VEHICLE>.MISSION_ACK when the
-vehicle next surfaces (give --timeout accordingly). An expired or refused
-command exits 1.
+change of its state is printed ("AUV1 upload survey 1 (radio): in flight 40%"),
+the last one, acknowledged, with the managers' answers, once the vehicle
+surfaced and sent them home (give --timeout accordingly). An expired or
+refused command, or an answer that is not ok, exits 1.
 
 Exit status: 0 every ack ok (status: the vehicle was heard); 1 a manager
 rejected or failed the command; 2 usage or file error; 3 no answer within
@@ -102,8 +102,6 @@ def main(argv: list[str] | None = None) -> int:
     seq = mc.first_seq()
     prefix = "SHORE." if args.shore else ""
     radio = RadioProgress(lc, vid, seq) if args.shore else None
-    if args.shore:
-        lc.subscribe(rf"SHORE\.{vid}\.MISSION_ACK", on_raw)
     if args.cmd == "upload":
         msg = mc.upload(vid, args.manager, args.plugin, seq, args.version, args.name)
         lc.publish(f"{prefix}{vid}.PLUGIN_UPLOAD", msg.encode())
@@ -118,9 +116,9 @@ def main(argv: list[str] | None = None) -> int:
             reason=getattr(args, "reason", "") or f"auvctl ({mc.who()})",
         )
         lc.publish(f"{prefix}{vid}.MISSION_CMD", msg.encode())
-    acks = _wait_acks(lc, model, vid, seq, args.manager, args.timeout, radio)
-    if radio is not None and radio.failed:
-        return 1
+    if radio is not None:
+        return radio.wait(lc, args.timeout)
+    acks = _wait_acks(lc, model, vid, seq, args.manager, args.timeout)
     if not acks:
         print(
             f"auvctl: no acknowledgement from {vid} {args.manager or '(any manager)'} within "
@@ -134,10 +132,12 @@ def main(argv: list[str] | None = None) -> int:
 
 
 class RadioProgress:
-    """Prints each state of the command as the shore gateway reports it."""
+    """Prints each state of the command as the shore gateway reports it. The
+    managers' answer is in the acknowledged state's message (an acoustic
+    command reaches them under another seq, its 24-bit counter)."""
 
     def __init__(self, lc: lcm.LCM, vid: str, seq: int) -> None:
-        self.seq, self.last, self.failed = seq, "", False
+        self.seq, self.last, self.failed, self.answer = seq, "", False, None
         lc.subscribe(rf"SHORE\.{vid}\.RADIO_CMD_STATUS", self._on)
 
     def _on(self, channel: str, data: bytes) -> None:
@@ -151,17 +151,27 @@ class RadioProgress:
             print(line, flush=True)
             self.last = line
         self.failed = self.failed or state in ("expired", "refused")
+        if state == "acknowledged":
+            self.answer = m.message
+
+    def wait(self, lc: lcm.LCM, timeout: float) -> int:
+        """0 the managers answered ok, 1 not ok, expired or refused, 3 nothing in time."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline and not self.failed and self.answer is None:
+            lc.handle_timeout(50)
+        if self.failed:
+            return 1
+        if self.answer is None:
+            print(f"auvctl: not acknowledged within {timeout:g} s (seq {self.seq}): {self.last}", file=sys.stderr)
+            return 3
+        return 0 if " ok" in self.answer and not any(w in self.answer for w in (" rejected", " failed")) else 1
 
 
-def _wait_acks(
-    lc: lcm.LCM, model: Model, vid: str, seq: int, manager: str, timeout: float, radio: RadioProgress | None = None
-) -> list[dict]:
+def _wait_acks(lc: lcm.LCM, model: Model, vid: str, seq: int, manager: str, timeout: float) -> list[dict]:
     deadline = time.monotonic() + timeout
     complete_at = None
     while time.monotonic() < deadline:
         lc.handle_timeout(50)
-        if radio is not None and radio.failed:
-            return []
         v = model.vehicles.get(vid)
         if v is None:
             continue
