@@ -1,0 +1,62 @@
+"""A scenario with `radio:`: the launcher starts the radio model, the shore
+gateway and the vehicle's gateway with the rest, and the vehicle's status
+comes home over the radio into the log (SHORE.AUV1.RADIO_REPORT)."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import lcm
+import yaml
+from conftest import ROOT
+
+from auv import radio_link_t, radio_report_t
+
+SIM = str(ROOT / "missions" / "sim" / "remus100_multihil.yaml")
+PLAN = str(ROOT / "tests" / "tools" / "scenarios" / "mission.chasm")
+BIND = str(ROOT / "missions" / "bindings" / "direct_actuators.bind")
+
+
+def test_the_launcher_starts_the_radio_and_the_status_comes_home(tmp_path, lcm_url, child_env):
+    sc = {
+        "name": "radio_launch",
+        "seed": 1,
+        "time": {"mode": "lockstep", "limit": 8, "wall_limit": 120},
+        "radio": {"report_period_s": 1.0, "acoustic": {"AUV1": 0}},
+        "vehicles": [
+            {
+                "id": "AUV1",
+                "sim": {"config": SIM},
+                "managers": [
+                    {"name": "NAVIGATOR", "plan": PLAN, "bind": BIND, "rate": 10, "params": {"cycles": 100000}}
+                ],
+            }
+        ],
+    }
+    path = tmp_path / "radio.yaml"
+    path.write_text(yaml.safe_dump(sc, sort_keys=False))
+    run = subprocess.run(
+        [sys.executable, "-m", "tools.launch", str(path), "--out", str(tmp_path / "run"), "--lcm-url", lcm_url]
+        + ["--progress", "0"],
+        env=child_env,
+        capture_output=True,
+        text=True,
+        timeout=180,
+    )
+    assert run.returncode == 6, run.stdout + run.stderr  # the time limit: the plan runs on
+    out = tmp_path / "run"
+    assert "auv-radio-vehicle AUV1: delivered 0" in (out / "AUV1.radio.out").read_text()
+    assert "auv-radio-shore: frames dropped 0" in (out / "shore_gateway.out").read_text()
+    reports, links = [], []
+    for ev in lcm.EventLog(str(out / "run.lcmlog"), "r"):
+        if ev.channel == "SHORE.AUV1.RADIO_REPORT":
+            reports.append(radio_report_t.decode(ev.data))
+        elif ev.channel == "AUV1.RADIO_LINK":
+            links.append(radio_link_t.decode(ev.data))
+    # at the surface, the hull bobs: the antenna (0.5 m) is clear of crests 0.1 m high above 0.4 m
+    links = [m for m in links if m.depth_m < 1e8]  # not before the first truth
+    assert len(links) > 5 and all(m.up == (m.depth_m < 0.4) for m in links), [(m.depth_m, m.up) for m in links]
+    assert sum(m.up for m in links) > len(links) / 2
+    assert len(reports) >= 4, len(reports)
+    assert reports[-1].mission.startswith("RUNNING run") and reports[-1].vehicle == "AUV1", reports[-1].mission
