@@ -101,13 +101,17 @@ class Outbox:
     finished: deque[Transfer] = field(default_factory=lambda: deque(maxlen=64))
     heard_s: float = -1e18
 
-    def submit(self, channel: str, data: bytes, seq: int, what: str, now_s: float) -> Transfer:
+    def submit(self, channel: str, data: bytes, seq: int, what: str, now_s: float, urgent: bool = False) -> Transfer:
+        """Queue a command (urgent: before everything not yet in flight)."""
         if len(self.queue) >= MAX_QUEUE:
             raise OverflowError(f"{self.vehicle}: {MAX_QUEUE} commands already queued")
         t = Transfer(
             secrets.randbits(62) or 1, self.vehicle, channel, data, seq, what, now_s, self.expiry_s, self.chunk_bytes
         )
-        self.queue.append(t)
+        if urgent:
+            self.queue.insert(sum(1 for x in self.queue if x.state == cs.STATE_IN_FLIGHT), t)
+        else:
+            self.queue.append(t)
         return t
 
     def link_up(self, now_s: float) -> bool:

@@ -45,7 +45,7 @@ from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.console.mission_commands import COMMANDS
 from tools.radio.assembler import MAX_BYTES
-from tools.radio.outbox import Outbox, Transfer
+from tools.radio.outbox import MAX_QUEUE, Outbox, Transfer
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -53,6 +53,7 @@ SHORE_INDEX = 15
 NAMES = {code: name for name, code in COMMANDS.items()}
 ACOUSTIC = {mission_command_t.CMD_ABORT: 1, mission_command_t.CMD_PAUSE: 2, mission_command_t.CMD_RESUME: 3}
 COUNTER_MASK = (1 << 24) - 1
+MAX_ACOUSTIC_FRAMES = 48  # waiting for the shore's modem, repeats included
 
 
 def describe(channel: str, data: bytes) -> tuple[int, str, int]:
@@ -93,13 +94,8 @@ class ShoreGateway:
         box = self.boxes[v]
         seq, what, code = describe(suffix, data)
         t0 = now if now is not None else 0.0
-        if len(data) > MAX_BYTES or len(box.queue) >= 64 or now is None:
-            t = Transfer(0, v, suffix, b"", seq, what, t0, 0.0, 1)
-            why = "no clock yet" if now is None else ("too large" if len(data) > MAX_BYTES else "queue full")
-            t.set(cs.STATE_REFUSED, f"refused at the shore: {why}")
-            box.finished.append(t)
-            return
-        if code in ACOUSTIC and not box.link_up(now) and v in self.team:
+        acoustic_room = len(self.acoustic) < MAX_ACOUSTIC_FRAMES  # else by radio, at the next surfacing
+        if now is not None and code in ACOUSTIC and not box.link_up(now) and v in self.team and acoustic_room:
             t = Transfer(seq & COUNTER_MASK or 1, v, suffix, data, seq, what, now, box.expiry_s, box.chunk_bytes)
             t.route = "acoustic"
             t.set(cs.STATE_IN_FLIGHT)
@@ -108,7 +104,14 @@ class ShoreGateway:
             body = self.codec.encode("command", msg)
             self.acoustic += [(now + i * self.acoustic_interval_s, body, v) for i in range(self.repeats)]
             return
-        box.submit(suffix, data, seq, what, now)
+        if len(data) > MAX_BYTES or len(box.queue) >= MAX_QUEUE or now is None:
+            t = Transfer(0, v, suffix, b"", seq, what, t0, 0.0, 1)
+            why = "no clock yet" if now is None else ("too large" if len(data) > MAX_BYTES else "queue full")
+            t.set(cs.STATE_REFUSED, f"refused at the shore: {why}")
+            self.lc.publish(f"SHORE.{v}.RADIO_CMD_STATUS", t.status(int(t0 * 1e6)).encode())  # kept nowhere
+            return
+        # abort, pause and resume go before any plan or plugin still waiting
+        box.submit(suffix, data, seq, what, now, urgent=code in ACOUSTIC)
 
     def _on_frame(self, channel: str, f: radio_frame_t) -> None:
         now = self.clock.now()
