@@ -25,6 +25,7 @@ from auv import radio_ack_t, radio_chunk_t
 from auv import radio_command_status_t as cs
 
 MAX_QUEUE = 64  # commands waiting per vehicle; more are refused at the shore
+MAX_URGENT = 16  # abort, pause, resume: taken beyond a queue full of plans and plugins
 
 
 @dataclass
@@ -103,7 +104,7 @@ class Outbox:
 
     def submit(self, channel: str, data: bytes, seq: int, what: str, now_s: float, urgent: bool = False) -> Transfer:
         """Queue a command (urgent: before everything not yet in flight)."""
-        if len(self.queue) >= MAX_QUEUE:
+        if len(self.queue) >= MAX_QUEUE + (MAX_URGENT if urgent else 0):
             raise OverflowError(f"{self.vehicle}: {MAX_QUEUE} commands already queued")
         t = Transfer(
             secrets.randbits(62) or 1, self.vehicle, channel, data, seq, what, now_s, self.expiry_s, self.chunk_bytes

@@ -45,7 +45,7 @@ from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.console.mission_commands import COMMANDS
 from tools.radio.assembler import MAX_BYTES
-from tools.radio.outbox import MAX_QUEUE, Outbox, Transfer
+from tools.radio.outbox import MAX_QUEUE, MAX_URGENT, Outbox, Transfer
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -104,7 +104,8 @@ class ShoreGateway:
             body = self.codec.encode("command", msg)
             self.acoustic += [(now + i * self.acoustic_interval_s, body, v) for i in range(self.repeats)]
             return
-        if len(data) > MAX_BYTES or len(box.queue) >= MAX_QUEUE or now is None:
+        full = len(box.queue) >= (MAX_QUEUE + MAX_URGENT if code in ACOUSTIC else MAX_QUEUE)
+        if len(data) > MAX_BYTES or full or now is None:
             t = Transfer(0, v, suffix, b"", seq, what, t0, 0.0, 1)
             why = "no clock yet" if now is None else ("too large" if len(data) > MAX_BYTES else "queue full")
             t.set(cs.STATE_REFUSED, f"refused at the shore: {why}")
