@@ -145,7 +145,11 @@ class RadioProgress:
         if m is None or getattr(m, "seq", None) != self.seq:
             return
         state = STATES[m.state] if 0 <= m.state < len(STATES) else str(m.state)
-        pct = f" {100 * m.bytes_held // max(m.bytes_total, 1)}%" if state in ("queued", "in flight") else ""
+        pct = (
+            f" {100 * m.bytes_held // max(m.bytes_total, 1)}%"
+            if state in ("queued", "in flight") and m.route == "radio"
+            else ""
+        )
         line = f"{m.vehicle} {m.what} ({m.route}): {state}{pct}" + (f": {m.message}" if m.message else "")
         if line != self.last:
             print(line, flush=True)

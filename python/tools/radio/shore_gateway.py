@@ -84,12 +84,16 @@ class ShoreGateway:
         self.seq = 0
         self.codec = TeamCodec()
         self.dropped = 0
+        self.pending: list[tuple[str, bytes]] = []
         vs = "|".join(self.vehicles)
         lc.subscribe(f"SHORE\\.({vs})\\.(MISSION_CMD|PLUGIN_UPLOAD)", self._on_command)
         Receiver(lc).subscribe("RADIO\\.RX\\.SHORE", radio_frame_t, self._on_frame)
 
     def _on_command(self, channel: str, data: bytes) -> None:
         now = self.clock.now()
+        if now is None and len(self.pending) < MAX_QUEUE:  # before the world's first clock: held until it
+            self.pending.append((channel, data))
+            return
         _, v, suffix = channel.split(".")
         box = self.boxes[v]
         seq, what, code = describe(suffix, data)
@@ -146,6 +150,9 @@ class ShoreGateway:
         if now is None:
             return
         us = int(now * 1e6)
+        for channel, data in self.pending:
+            self._on_command(channel, data)
+        self.pending.clear()
         for v, box in self.boxes.items():
             for c in box.due(now, us):
                 self.seq += 1

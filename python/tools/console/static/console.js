@@ -195,7 +195,7 @@ function radioHtml(r) {
     const bad = ['expired', 'refused'].includes(c.state);
     out.push(`<div class="radio">${esc(c.what)} (${esc(c.route)}): ` +
       `${bad ? `<span class="bad">${esc(c.state)}</span>` : esc(c.state)}` +
-      (c.state === 'in flight' || c.state === 'queued' ? ` ${pct}% of ${c.total} bytes` : '') +
+      (c.route === 'radio' && (c.state === 'in flight' || c.state === 'queued') ? ` ${pct}% of ${c.total} bytes` : '') +
       (c.message ? ` · ${esc(c.message)}` : '') + '</div>');
   }
   return out.join('');
