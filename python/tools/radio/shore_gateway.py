@@ -46,6 +46,7 @@ from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.console.mission_commands import COMMANDS
 from tools.radio.assembler import MAX_BYTES
 from tools.radio.outbox import MAX_QUEUE, MAX_URGENT, Outbox, Transfer
+from tools.radio.pipe import BytePipe, serve
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -87,7 +88,9 @@ class ShoreGateway:
         self.pending: list[tuple[str, bytes]] = []
         vs = "|".join(self.vehicles)
         lc.subscribe(f"SHORE\\.({vs})\\.(MISSION_CMD|PLUGIN_UPLOAD)", self._on_command)
-        Receiver(lc).subscribe("RADIO\\.RX\\.SHORE", radio_frame_t, self._on_frame)
+        self.pipe = BytePipe(args.tcp, args.device) if args.tcp or args.device else None
+        if self.pipe is None:  # the simulated radio; else frames come through the pipe
+            Receiver(lc).subscribe("RADIO\\.RX\\.SHORE", radio_frame_t, self._on_frame)
 
     def _on_command(self, channel: str, data: bytes) -> None:
         now = self.clock.now()
@@ -156,7 +159,11 @@ class ShoreGateway:
         for v, box in self.boxes.items():
             for c in box.due(now, us):
                 self.seq += 1
-                self.lc.publish("RADIO.TX.SHORE", frame(SHORE, v, self.seq, us, c.encode()))
+                out = frame(SHORE, v, self.seq, us, c.encode())
+                if self.pipe is not None:
+                    self.pipe.write(out)
+                else:
+                    self.lc.publish("RADIO.TX.SHORE", out)
             for t in box.finished:
                 if t.route == "acoustic" and t.state == cs.STATE_IN_FLIGHT and now - t.created_s > t.expiry_s:
                     t.set(cs.STATE_EXPIRED, "no answer heard")
@@ -182,6 +189,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--link-timeout-s", type=float, default=5.0, help="the link is down after this long unheard")
     ap.add_argument("--expiry-s", type=float, default=3600.0, help="a command not delivered by then expires")
     ap.add_argument("--acoustic", default="", help="team indices for acoustic commands: AUV1=0,AUV2=1")
+    pipe = ap.add_mutually_exclusive_group()
+    pipe.add_argument("--tcp", default="", metavar="HOST:PORT", help="a real radio's TCP port (docs/radio.md)")
+    pipe.add_argument("--device", default="", metavar="PATH", help="a real radio's serial device")
     ap.add_argument("--acoustic-repeats", type=int, default=3)
     ap.add_argument("--acoustic-interval-s", type=float, default=10.0)
     return ap
@@ -202,13 +212,9 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
     print("auv-radio-shore: ready", flush=True)  # subscribed: what is published from now on is heard
-    while not stop:
-        try:
-            lc.handle_timeout(20)
-        except OSError:  # EINTR from the signal that stops us: the loop checks
-            continue
-        gw.tick()
-    print(f"auv-radio-shore: frames dropped {gw.dropped}", file=sys.stderr)
+    serve(lc, gw.pipe, gw._on_frame, gw.tick, stop)
+    pipe = f", pipe dropped {dict(gw.pipe.deframer.dropped)}" if gw.pipe is not None else ""
+    print(f"auv-radio-shore: frames dropped {gw.dropped}{pipe}", file=sys.stderr)
     return 0
 
 

@@ -50,6 +50,7 @@ from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.radio.assembler import Assembler
+from tools.radio.pipe import BytePipe, serve
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -82,7 +83,9 @@ class VehicleGateway:
         self.stats = {"delivered": 0, "acoustic_commands": 0, "frames_dropped": 0}
         rx = self.rx = Receiver(lc)
         v = self.v
-        rx.subscribe(f"RADIO\\.RX\\.{v}", radio_frame_t, self._on_frame)
+        self.pipe = BytePipe(args.tcp, args.device) if args.tcp or args.device else None
+        if self.pipe is None:  # the simulated radio; else frames come through the pipe
+            rx.subscribe(f"RADIO\\.RX\\.{v}", radio_frame_t, self._on_frame)
         rx.subscribe(f"{v}\\.NAV", nav_solution_t, lambda c, m: setattr(self, "nav", m))
         rx.subscribe(f"{v}\\.CHASM\\.{self.end_manager}", chasm_status_t, self._on_status)
         rx.subscribe(f"{v}\\.MODEM_RX", modem_rx_t, self._on_modem)
@@ -92,7 +95,11 @@ class VehicleGateway:
     def _send(self, data: bytes) -> None:
         now = self.clock.now() or 0.0
         self.seq += 1
-        self.lc.publish(f"RADIO.TX.{self.v}", frame(self.v, SHORE, self.seq, int(now * 1e6), data))
+        out = frame(self.v, SHORE, self.seq, int(now * 1e6), data)
+        if self.pipe is not None:
+            self.pipe.write(out)
+        else:
+            self.lc.publish(f"RADIO.TX.{self.v}", out)
 
     def _on_status(self, channel: str, m: chasm_status_t) -> None:
         self.mission = f"{RUN.get(m.run_state, '?')} {'/'.join(m.active_path)}"
@@ -174,9 +181,10 @@ class VehicleGateway:
     def summary(self) -> str:
         refused = ", ".join(f"{k} {n}" for k, n in sorted(self.asm.refused.items())) or "none"
         s = self.stats
+        pipe = f", pipe dropped {dict(self.pipe.deframer.dropped)}" if self.pipe is not None else ""
         return (
             f"auv-radio-vehicle {self.v}: delivered {s['delivered']}, acoustic commands "
-            f"{s['acoustic_commands']}, frames dropped {s['frames_dropped']}, refused: {refused}"
+            f"{s['acoustic_commands']}, frames dropped {s['frames_dropped']}, refused: {refused}{pipe}"
         )
 
 
@@ -190,6 +198,9 @@ def parser() -> argparse.ArgumentParser:
     ap.add_argument("--end-manager", default="NAVIGATOR", help="the manager whose state is reported home")
     ap.add_argument("--surface-depth-m", type=float, default=0.5, help="at the surface above this nav depth")
     ap.add_argument("--report-period-s", type=float, default=2.0)
+    pipe = ap.add_mutually_exclusive_group()
+    pipe.add_argument("--tcp", default="", metavar="HOST:PORT", help="a real radio's TCP port (docs/radio.md)")
+    pipe.add_argument("--device", default="", metavar="PATH", help="a real radio's serial device")
     ap.add_argument("--idle-expiry-s", type=float, default=3600.0, help="drop a partial transfer idle this long")
     return ap
 
@@ -207,12 +218,7 @@ def main(argv: list[str] | None = None) -> int:
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
     print("auv-radio-vehicle: ready", flush=True)  # subscribed: what is published from now on is heard
-    while not stop:
-        try:
-            lc.handle_timeout(20)
-        except OSError:  # EINTR from the signal that stops us: the loop checks
-            continue
-        gw.tick()
+    serve(lc, gw.pipe, gw._on_frame, gw.tick, stop)
     print(gw.summary(), file=sys.stderr)
     return 0
 
