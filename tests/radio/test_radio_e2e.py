@@ -5,8 +5,9 @@ for the radio) as a simulator would, and publishes what the operator's tool
 would on the shore's side (SHORE.AUV1.*).
 
 - a vehicle out of range: the upload waits, queued;
-- an upload started at the surface, cut by a dive, completed at the next
-  surfacing, then used by a plan (`use test_other`) loaded over the radio;
+- an upload started at the surface, cut by a dive (the vehicle's gateway
+  restarting down there), completed at the next surfacing from what its spool
+  held, then used by a plan (`use test_other`) loaded over the radio;
 - that plan is larger than one surfacing window;
 - an abort delivered acoustically to the vehicle at depth (the shore modem's
   frame goes into SIM.ACOUSTIC from the radio model; the test stands for the
@@ -162,6 +163,13 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         assert w.last(501).state == cs.STATE_IN_FLIGHT and 0 < held < len(other), held
         assert list(pdir.iterdir()) == [] and w.links[-1].up is False
         assert [p.suffix for p in spool.iterdir() if p.suffix == ".part"] == [".part"]
+        # the vehicle's gateway restarts while down there: it holds the chunks in its spool
+        assert stop(procs[2], signal.SIGTERM) == 0
+        first_life = procs[2].stderr.read()
+        procs[2] = subprocess.Popen(
+            procs[2].args, env=child_env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+        )
+        wait_for_line(procs[2], ": ready", timeout=30)
         # at the next surfacing it resumes from what the vehicle holds, and the manager loads it
         assert w.sail(10.0, 0.0, lambda: w.last(501).state == cs.STATE_ACKNOWLEDGED), w.last(501)
         assert "NAVIGATOR ok" in w.last(501).message, w.last(501).message
@@ -217,4 +225,6 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         print("MANAGER:", code, mgr.stderr.read()[-2000:], file=sys.stderr)
         assert code == 0
     assert codes == [0, 0, 0], errs
+    assert "auv-radio-vehicle AUV1: delivered 0, acoustic commands 0" in first_life, first_life
     assert "auv-radio-vehicle AUV1: delivered 2, acoustic commands 1" in errs[2], errs[2]
+    assert "unknown transfer" not in errs[2], errs[2]  # it resumed from its spool, never from chunk 0
