@@ -44,8 +44,8 @@ from auv import (
 )
 from auvlcm import programs
 
-PACE_S = 0.005  # wall seconds per 0.05 s step
-BITRATE = 40000.0  # bit/s: the plugin takes seconds of air
+PACE_S = 0.006  # wall seconds per 0.05 s step
+BITRATE = 20000.0  # bit/s: the plugin takes seconds of air
 
 
 class Sea(World):
@@ -96,7 +96,7 @@ class Sea(World):
                 assert time.monotonic() < deadline, "the radio model fell behind"
                 self.lc.handle_timeout(5)
             # the gateways follow the clock on their own: a few ms of wall time per step for them
-            # (x10 real time), or a slow one would send at the surface what arrives after a dive
+            # (about x8 real time), or a slow one would send at the surface what arrives after a dive
             pace = time.monotonic() + PACE_S
             while time.monotonic() < pace:
                 self.lc.handle_timeout(1)
@@ -155,8 +155,8 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         assert not w.reports  # nothing heard from it
 
         w.north = 100.0  # in range: the upload starts ...
-        assert w.sail(5.0, 0.0, lambda: 0 < (w.last(501).bytes_held or 0)), w.status_by
-        assert w.sail(3.0, 0.0, lambda: w.last(501).bytes_held > 4000), w.last(501)
+        assert w.sail(20.0, 0.0, lambda: 0 < (w.last(501).bytes_held or 0)), w.status_by
+        assert w.sail(20.0, 0.0, lambda: w.last(501).bytes_held > 1000), w.last(501)
         assert w.reports and w.reports[-1].mission.startswith("RUNNING")
         w.sail(3.0, 8.0)  # ... and a dive cuts it
         held = w.last(501).bytes_held
@@ -171,7 +171,7 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         )
         wait_for_line(procs[2], ": ready", timeout=30)
         # at the next surfacing it resumes from what the vehicle holds, and the manager loads it
-        assert w.sail(10.0, 0.0, lambda: w.last(501).state == cs.STATE_ACKNOWLEDGED), w.last(501)
+        assert w.sail(40.0, 0.0, lambda: w.last(501).state == cs.STATE_ACKNOWLEDGED), w.last(501)
         assert "NAVIGATOR ok" in w.last(501).message, w.last(501).message
         assert (pdir / "chasm_test_other.so").read_bytes() == other
         assert not list(spool.glob("*.part"))
@@ -189,11 +189,11 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         cmd.utime, cmd.vehicle, cmd.seq, cmd.command = w.utime, "AUV1", 502, mission_command_t.CMD_LOAD_PLAN
         cmd.plan_name, cmd.plan_text, cmd.reason = "radio.chasm", text, "test"
         w.lc.publish("SHORE.AUV1.MISSION_CMD", cmd.encode())
-        assert w.sail(1.0, 0.0, lambda: (w.last(502) and w.last(502).bytes_held or 0) > 0)
+        assert w.sail(20.0, 0.0, lambda: (w.last(502) and w.last(502).bytes_held or 0) > 0)
         w.sail(0.4, 0.0)
         w.sail(3.0, 8.0)
         assert 0 < w.last(502).bytes_held < len(cmd.encode()), w.last(502)
-        assert w.sail(10.0, 0.0, lambda: w.last(502).state == cs.STATE_ACKNOWLEDGED), w.last(502)
+        assert w.sail(40.0, 0.0, lambda: w.last(502).state == cs.STATE_ACKNOWLEDGED), w.last(502)
         assert "NAVIGATOR ok" in w.last(502).message, w.last(502).message
         print("load:", w.last(502).message, file=sys.stderr)
 
@@ -209,11 +209,11 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         )
         assert w.sail(30.0, 8.0, lambda: len(w.status_by) > 2), "auvctl sent nothing"
         seq = next(s for s in w.status_by if s not in (501, 502))
-        assert w.sail(3.0, 8.0, lambda: w.leaf() == "surface"), w.leaf()
+        assert w.sail(20.0, 8.0, lambda: w.leaf() == "surface"), w.leaf()
         assert w.last(seq).route == "acoustic" and w.last(seq).state == cs.STATE_IN_FLIGHT
         counter = seq & 0xFFFFFF
         assert any(a.seq == counter and a.result == mission_ack_t.RESULT_OK for a in w.acks)
-        assert w.sail(5.0, 0.0, lambda: w.last(seq).state == cs.STATE_ACKNOWLEDGED), w.last(seq)
+        assert w.sail(40.0, 0.0, lambda: w.last(seq).state == cs.STATE_ACKNOWLEDGED), w.last(seq)
         out, err = ctl.communicate(timeout=30)
         assert ctl.returncode == 0, out + err
         assert "AUV1 abort (acoustic): in flight" in out and "acknowledged: NAVIGATOR ok: aborting" in out, out
