@@ -48,6 +48,10 @@ PACE_S = 0.006  # wall seconds per 0.05 s step
 BITRATE = 20000.0  # bit/s: the plugin takes seconds of air
 
 
+def _show(m) -> str:
+    return f"state {m.state} held {m.bytes_held}/{m.bytes_total} {m.message!r}" if m is not None else "none"
+
+
 class Sea(World):
     """World's clock and NAV, plus where the vehicle truly is, for the radio."""
 
@@ -124,7 +128,7 @@ def _procs(url: str, env: dict, spool) -> list[subprocess.Popen]:
             lcm_url=url,
             settings={"bitrate_bps": BITRATE, "max_range_m": 1000.0, "status_period_s": 0.05},
         ),
-        programs.radio_shore(vehicles=["AUV1"], lcm_url=url, acoustic={"AUV1": 0}, link_timeout_s=1.0, retry_s=0.5),
+        programs.radio_shore(vehicles=["AUV1"], lcm_url=url, acoustic={"AUV1": 0}, link_timeout_s=1.0, retry_s=1.0),
         programs.radio_vehicle(vehicle="AUV1", spool=spool, lcm_url=url, team_index=0, report_period_s=0.3),
     ]
     procs = [subprocess.Popen(c, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for c in cmds]
@@ -171,7 +175,7 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         )
         wait_for_line(procs[2], ": ready", timeout=30)
         # at the next surfacing it resumes from what the vehicle holds, and the manager loads it
-        assert w.sail(40.0, 0.0, lambda: w.last(501).state == cs.STATE_ACKNOWLEDGED), w.last(501)
+        assert w.sail(40.0, 0.0, lambda: w.last(501).state == cs.STATE_ACKNOWLEDGED), _show(w.last(501))
         assert "NAVIGATOR ok" in w.last(501).message, w.last(501).message
         assert (pdir / "chasm_test_other.so").read_bytes() == other
         assert not list(spool.glob("*.part"))
@@ -193,7 +197,7 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         w.sail(0.4, 0.0)
         w.sail(3.0, 8.0)
         assert 0 < w.last(502).bytes_held < len(cmd.encode()), w.last(502)
-        assert w.sail(40.0, 0.0, lambda: w.last(502).state == cs.STATE_ACKNOWLEDGED), w.last(502)
+        assert w.sail(40.0, 0.0, lambda: w.last(502).state == cs.STATE_ACKNOWLEDGED), _show(w.last(502))
         assert "NAVIGATOR ok" in w.last(502).message, w.last(502).message
         print("load:", w.last(502).message, file=sys.stderr)
 
@@ -213,7 +217,7 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         assert w.last(seq).route == "acoustic" and w.last(seq).state == cs.STATE_IN_FLIGHT
         counter = seq & 0xFFFFFF
         assert any(a.seq == counter and a.result == mission_ack_t.RESULT_OK for a in w.acks)
-        assert w.sail(40.0, 0.0, lambda: w.last(seq).state == cs.STATE_ACKNOWLEDGED), w.last(seq)
+        assert w.sail(40.0, 0.0, lambda: w.last(seq).state == cs.STATE_ACKNOWLEDGED), _show(w.last(seq))
         out, err = ctl.communicate(timeout=30)
         assert ctl.returncode == 0, out + err
         assert "AUV1 abort (acoustic): in flight" in out and "acknowledged: NAVIGATOR ok: aborting" in out, out

@@ -163,3 +163,16 @@ def test_the_outbox_resumes_after_a_dive_and_expires_what_never_goes():
     assert late.state == cs.STATE_EXPIRED and "nothing changed" in late.message
     states = [(s.transfer_id == t.tid, s.state) for s in box.statuses(0)]
     assert (True, cs.STATE_ACKNOWLEDGED) in states and (False, cs.STATE_EXPIRED) in states
+
+
+def test_retries_back_off_and_start_again_at_the_next_surfacing():
+    """Unanswered chunks are resent after retry_s, then 2, 4, 8, 16 x that: a slow
+    air must not fill the radio's queue with copies; heard again after a dive,
+    the shore starts over from what the vehicle holds at once."""
+    box = Outbox("AUV1", chunk_bytes=512, window=2, retry_s=1.0, link_timeout_s=100.0)
+    box.submit("PLUGIN_UPLOAD", DATA, 1, "upload", 0.0)
+    box.heard(0.0)
+    resent = [t for t in (x * 0.25 for x in range(1, 200)) if box.due(t, 0)]
+    assert resent == pytest.approx([0.25, 1.5, 3.75, 8.0, 16.25, 32.5, 48.75])
+    box.heard(200.0)  # the link timed out meanwhile: it surfaced
+    assert [c.index for c in box.due(200.0, 0)] == [0, 1]

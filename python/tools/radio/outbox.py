@@ -7,7 +7,9 @@ passes through untouched). The link counts as up while the vehicle was heard
 within `link_timeout_s` (its acks and reports come back over the same radio).
 Sending is go-back-N: at most `window` chunks beyond the last one the vehicle
 acknowledged, and after `retry_s` without progress the chunks from that one
-again. A vehicle report lists the partial transfers it holds, so after a dive
+again (the wait doubling at each retry without progress, up to 16 x; back to
+`retry_s`, from what the vehicle holds, when it is heard again after a
+silence: it surfaced). A vehicle report lists the partial transfers it holds, so after a dive
 or a restart of either side the shore resumes from the first chunk missing.
 One transfer is sent at a time, in queue order: a short command never waits
 behind a long plugin for more than the current transfer, and it is expired
@@ -44,6 +46,7 @@ class Transfer:
     acked: int = 0  # the first chunk the vehicle lacks
     next_send: int = 0
     last_progress_s: float = 0.0
+    backoff: int = 0  # retries since the last progress: each waits twice as long
     message: str = ""
     route: str = "radio"
     changed: bool = True  # a status is due
@@ -120,6 +123,10 @@ class Outbox:
 
     def heard(self, now_s: float, holding: dict[int, int] | None = None) -> None:
         """The vehicle was heard; with its report, the partial transfers it holds."""
+        if not self.link_up(now_s):  # back from a dive: what was on the air then is lost
+            for t in self.queue:
+                if t.state == cs.STATE_IN_FLIGHT:
+                    t.next_send, t.backoff, t.last_progress_s = t.acked, 0, now_s
         self.heard_s = now_s
         if holding is None:
             return
@@ -145,7 +152,7 @@ class Outbox:
             self._finish(t)
         elif 0 <= ack.next_index <= t.count:
             if ack.next_index > t.acked:
-                t.last_progress_s, t.changed = now_s, True
+                t.last_progress_s, t.changed, t.backoff = now_s, True, 0
                 t.acked, t.next_send = ack.next_index, max(t.next_send, ack.next_index)
             elif ack.next_index < t.acked:  # it holds less than it said (restarted): resend from there
                 t.acked = t.next_send = ack.next_index
@@ -175,8 +182,12 @@ class Outbox:
         if t.state == cs.STATE_QUEUED:
             t.set(cs.STATE_IN_FLIGHT)
             t.last_progress_s = now_s
-        if now_s - t.last_progress_s > self.retry_s:  # go back to what the vehicle holds
-            t.next_send, t.last_progress_s = t.acked, now_s
+        # Go back to what the vehicle holds after retry_s without progress, then after
+        # twice that, ... (up to 16 x): what was sent may still wait in the radio's queue,
+        # and resending it at a fixed pace can fill that queue with copies faster than
+        # the air empties it (the transfer then stalls behind its own duplicates).
+        if now_s - t.last_progress_s > self.retry_s * (1 << t.backoff):
+            t.next_send, t.last_progress_s, t.backoff = t.acked, now_s, min(t.backoff + 1, 4)
         out = []
         while t.next_send < min(t.count, t.acked + self.window):
             out.append(t.chunk(t.next_send, utime))
