@@ -25,7 +25,7 @@
 
 /* ---- team_link (bh_team_link.c) */
 enum { LINK_TEAM, LINK_ME, LINK_SLOT, LINK_SLOTS, LINK_MY_SLOT, LINK_WINDOW, LINK_FRAME_BYTES, LINK_SILENT,
-       LINK_REPEAT, LINK_RX, LINK_TX, LINK_EVENTS, LINK_NPARAMS };
+       LINK_REPEAT, LINK_RX, LINK_TX, LINK_EVENTS, LINK_FRONT, LINK_NPARAMS };
 TM_DECLARE(link, LINK_NPARAMS);
 
 /* ---- team_status (bh_team_status.c) */

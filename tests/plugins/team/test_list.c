@@ -18,6 +18,7 @@ const unit_test plugin_tests[] = {
     {"repeats_are_acked_again_and_merged_once", repeats_are_acked_again_and_merged_once},
     {"hostile_frames_are_counted", hostile_frames_are_counted},
     {"time_stamps_unwrap", time_stamps_unwrap},
+    {"frames_carry_the_front_summary", frames_carry_the_front_summary},
     {"plan_refuses_bad_roster_and_lines", plan_refuses_bad_roster_and_lines},
     {"search_vehicle_reports_until_acked", search_vehicle_reports_until_acked},
     {"ri_vehicle_merges_routes_and_identifies", ri_vehicle_merges_routes_and_identifies},
