@@ -248,6 +248,17 @@ class Launcher:
             self.build, config=self.nav_configs[v.id], vehicle=v.id, lcm_url=self.child_url, rate_hz=v.nav.rate_hz
         )
 
+    def front_cmd(self, v) -> list[str]:
+        f = v.front_estimate
+        return programs.auv_front_estimate(
+            self.build,
+            vehicle=v.id,
+            lcm_url=self.child_url,
+            rate_hz=f.rate_hz,
+            max_age_s=f.max_age_s,
+            max_depth_m=f.max_depth_m,
+        )
+
     def frontseat_cmd(self, v) -> list[str]:
         return frontseat_cmd(self.build, self.child_url, v.id, self.frontseats[v.id], v.backseat)
 
@@ -263,6 +274,9 @@ class Launcher:
             if v.id in self.frontseats:
                 out = self.out / f"{v.id}.frontseat.out"
                 self._start(Child(f"{v.id}.FRONTSEAT", self.frontseat_cmd(v), out, tier=TIER_FILTER))
+            if v.front_estimate is not None:  # after the filter whose NAV it reads
+                out = self.out / f"{v.id}.front.out"
+                self._start(Child(f"{v.id}.FRONT", self.front_cmd(v), out, tier=TIER_FILTER))
         for v in self.mine:
             for m in v.managers:
                 out = self.out / f"{v.id}.{m.name}.out"

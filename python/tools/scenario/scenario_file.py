@@ -75,6 +75,16 @@ class BackseatLimits:
 
 
 @dataclass
+class FrontEstimator:
+    """auv-front-estimate beside the vehicle's managers (docs/sampling.md, "The on-board
+    front estimator"): `front_estimate: {rate: 0.2, max_age: 1800, max_depth: 15}`."""
+
+    rate_hz: float = setting(0.2, gt=0.0, le=10.0, key="rate")  # estimates per second of mission time
+    max_age_s: float = setting(1800.0, gt=0.0, le=86400.0, key="max_age")  # readings older are not fitted
+    max_depth_m: float = setting(15.0, gt=0.0, le=11000.0, key="max_depth")  # deeper readings are not fitted
+
+
+@dataclass
 class Vehicle:
     id: str
     host: str
@@ -87,6 +97,7 @@ class Vehicle:
     sim_node: Any = None  # the `sim:` mapping node, for error positions
     backseat: BackseatLimits | None = None  # `backseat:` given (the mode itself is the sim's `frontseat:`)
     backseat_where: str = ""  # file:line:col of `backseat:`
+    front_estimate: FrontEstimator | None = None  # `front_estimate:` given: run auv-front-estimate
 
 
 @dataclass
@@ -267,12 +278,18 @@ class _Scenario:
             )
         return lim
 
+    def front_estimate(self, items: dict, key: str) -> FrontEstimator | None:
+        """`front_estimate: {}` (auv-front-estimate's defaults) or with rate, max_age, max_depth."""
+        if "front_estimate" not in items:
+            return None
+        return self.c.fill(items["front_estimate"][1], join(key, "front_estimate"), FrontEstimator())
+
     def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
         c = self.c
         items = self.section(
             node,
             key,
-            ("id", "host", "sim", "managers", "end_manager", "nav", "backseat"),
+            ("id", "host", "sim", "managers", "end_manager", "nav", "backseat", "front_estimate"),
             ("id", "sim", "managers"),
         )
         if items is None:
@@ -311,11 +328,13 @@ class _Scenario:
             )
         nav = self.nav(items, key)
         backseat = self.backseat(items, key)
+        front = self.front_estimate(items, key)
         if not vid or cfg is None or not managers:
             return None
         veh = Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node, backseat)
         if backseat is not None:
             veh.backseat_where = c.where(items["backseat"][1])
+        veh.front_estimate = front
         return veh
 
     def host(self, items: dict, k: str, key: str, hosts: list[str]) -> str:
