@@ -319,6 +319,10 @@ def main(argv: list[str] | None = None) -> int:
             from tools.report.team_plots import team_plots
 
             plots += team_plots(run, rep["team"], out)
+        if rep.get("sampling"):
+            from tools.report.sampling_plots import sampling_plots
+
+            plots += sampling_plots(run, rep["sampling"], out)
         rep["plots"] = [str(p) for p in plots]
     (out / "report.json").write_text(json.dumps(rep, indent=2))
     text = report_text(rep)
