@@ -15,6 +15,7 @@
 
 #include "chasm/chasm_plugin.h"
 #include "tm_contacts.h"
+#include "tm_front_rule.h"
 #include "tm_keepclear.h"
 #include "tm_lines.h"
 #include "tm_outbox.h"
@@ -84,6 +85,7 @@ typedef struct {
     team_msg_front own_front;
     int has_own_front;
     long fronts_made, fronts_not_sendable, fronts_sent, fronts_heard;
+    tm_fr_looks looks;    /* front_rule's record of where the team looked */
     /* takeover: every vehicle's work list, kept by the rule (tm_lines.h) */
     tm_work work;
     int work_ready;

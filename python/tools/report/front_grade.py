@@ -48,10 +48,19 @@ def world_ocean(run: RunData):
     return Environment(cfg.env, Path.cwd()).ocean
 
 
-def grading_area(run: RunData, depth_m: float, margin_m: float = 50.0, cell_m: float = 5.0) -> Area:
-    n = np.concatenate([run.truth(v)["eta[0]"] for v in run.vehicles])
-    e = np.concatenate([run.truth(v)["eta[1]"] for v in run.vehicles])
-    box = (float(n.min()) - margin_m, float(n.max()) + margin_m, float(e.min()) - margin_m, float(e.max()) + margin_m)
+def grading_area(
+    run: RunData, depth_m: float, margin_m: float = 50.0, cell_m: float = 5.0, box: tuple | None = None
+) -> Area:
+    """The given box (north min, max, east min, max), or the tracks' box `margin_m` wider."""
+    if box is None:
+        n = np.concatenate([run.truth(v)["eta[0]"] for v in run.vehicles])
+        e = np.concatenate([run.truth(v)["eta[1]"] for v in run.vehicles])
+        box = (
+            float(n.min()) - margin_m,
+            float(n.max()) + margin_m,
+            float(e.min()) - margin_m,
+            float(e.max()) + margin_m,
+        )
     gn, ge = np.meshgrid(np.arange(box[0], box[1] + cell_m / 2, cell_m), np.arange(box[2], box[3] + cell_m / 2, cell_m))
     return Area(gn.ravel(), ge.ravel(), depth_m, box)
 
@@ -130,14 +139,15 @@ def first_time_under(times: list[float], curve: list[float], level: float) -> fl
     return next((t for t, c in zip(times, curve) if c <= level), None)
 
 
-def sampling_section(run: RunData, depth_m: float = 5.0) -> dict | None:
-    """The grade, or None when the run has no front estimates or no ocean."""
+def sampling_section(run: RunData, depth_m: float = 5.0, box: tuple | None = None) -> dict | None:
+    """The grade, or None when the run has no front estimates or no ocean. `box`: the
+    grading area (north min, max, east min, max; default: round the tracks)."""
     if not run.log.matching(r"[A-Z][A-Z0-9]*\.FRONT_TEAM"):
         return None
     ocean = world_ocean(run)
     if ocean is None or ocean.grid is not None:
         return None  # a gridded ocean has no front to grade against (its map error would do: not yet)
-    area = grading_area(run, depth_m)
+    area = grading_area(run, depth_m, box=box)
     t0 = float(run.log["SIM.CLOCK"].t[0]) if "SIM.CLOCK" in run.log and len(run.log["SIM.CLOCK"].t) else 0.0
     true_t = ocean.fields(t0, area.north, area.east, area.depth_m)[0]
     spread = float(np.sqrt(np.mean((true_t - true_t.mean()) ** 2)))  # the error of knowing nothing

@@ -14,6 +14,7 @@ const unit_test plugin_tests[] = {
     {"outbox_priorities", outbox_priorities},
     {"reports_survive_30_percent_loss", reports_survive_30_percent_loss},
     {"keep_clear_cpa", keep_clear_cpa},
+    {"front_rule_picks_the_least_certain_place", front_rule_picks_the_least_certain_place},
     {"frames_carry_contacts_acks_and_status", frames_carry_contacts_acks_and_status},
     {"repeats_are_acked_again_and_merged_once", repeats_are_acked_again_and_merged_once},
     {"hostile_frames_are_counted", hostile_frames_are_counted},
