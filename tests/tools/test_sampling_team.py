@@ -11,6 +11,9 @@ grade is read from its log.
 - The grade: the team's map error at the end is a small part of the water's spread, no
   worse than the vehicles' own-samples estimates, and the straight-front parameters are
   near the world's (the offset within the meander's amplitude and a few metres).
+- A teammate lost degrades the estimate, never the mission: AUV3 is lost at 150 s (a
+  planned fault, every process killed); AUV1 and AUV2 find it lost, fly on and end done,
+  and their estimates still grade as above.
 
 The grader itself, on fields made by hand: an estimate equal to the world's straight front
 in a world without a meander has no map error; the other form of the same front (angle +
@@ -24,10 +27,13 @@ import re
 import subprocess
 import sys
 
+from pathlib import Path
+
 import numpy as np
+import yaml
 from conftest import ROOT
 
-from auv import front_estimate_t
+from auv import front_estimate_t, team_event_t
 from auvlcm import team_codec
 from tools.report import front_grade as fg
 from tools.report.run_data import load_run
@@ -37,10 +43,27 @@ LAUNCH = [sys.executable, "-m", "tools.launch"]
 CODEC = team_codec.TeamCodec()
 
 
+LOST_AT_S = 150.0
+
+
+def with_a_loss(tmp_path: Path) -> Path:
+    """sampling_team.yaml with its paths absolute and AUV3 lost at LOST_AT_S."""
+    doc = yaml.safe_load(SCENARIO.read_text())
+    base = SCENARIO.parent
+    for v in doc["vehicles"]:
+        v["sim"]["config"] = str((base / v["sim"]["config"]).resolve())
+        for m in v["managers"]:
+            m["plan"], m["bind"] = str((base / m["plan"]).resolve()), str((base / m["bind"]).resolve())
+    doc["faults"] = [{"at": LOST_AT_S, "vehicle": "AUV3", "do": "lose"}]
+    path = tmp_path / "sampling_team.yaml"
+    path.write_text(yaml.safe_dump(doc, sort_keys=False))
+    return path
+
+
 def test_the_team_maps_the_front_and_shares_it(tmp_path, lcm_url, child_env):
     out = tmp_path / "run"
     run = subprocess.run(
-        LAUNCH + [str(SCENARIO), "--out", str(out), "--lcm-url", lcm_url, "--progress", "0"],
+        LAUNCH + [str(with_a_loss(tmp_path)), "--out", str(out), "--lcm-url", lcm_url, "--progress", "0"],
         env=child_env,
         capture_output=True,
         text=True,
@@ -49,6 +72,11 @@ def test_the_team_maps_the_front_and_shares_it(tmp_path, lcm_url, child_env):
     assert run.returncode == 0, run.stdout[-3000:] + run.stderr[-3000:]
     data = load_run(out / "run.lcmlog")
     assert data.vehicles == ["AUV1", "AUV2", "AUV3"]
+    assert data.outcome["vehicles"]["AUV3"]["outcome"] == "lost", data.outcome
+    for v in ("AUV1", "AUV2"):
+        assert data.outcome["vehicles"][v]["outcome"] == "done", data.outcome
+        lost = [e for e in data.log.messages.get(f"{v}.TEAM_EVENT", []) if e.kind == team_event_t.PEER_LOST]
+        assert [e.origin for e in lost] == ["AUV3"], v
     for v in data.vehicles:
         # the link carried this vehicle's summaries
         fronts = 0
