@@ -26,7 +26,6 @@ import math
 import re
 import subprocess
 import sys
-
 from pathlib import Path
 
 import numpy as np
