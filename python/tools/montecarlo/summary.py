@@ -31,7 +31,7 @@ METRICS = [
     # a sampling mission's grade (auv-report's sampling section, docs/sampling.md)
     ("team_map_rms_c", "sampling: map error, team", "degC", 1.0, (0.0, INF)),
     ("own_map_rms_c", "sampling: map error, own samples", "degC", 1.0, (0.0, INF)),
-    ("half_spread_s", "sampling: to half the water's spread", "min", 1 / 60, (0.0, INF)),
+    ("half_spread_s", "sampling: to half the spread", "min", 1 / 60, (0.0, INF)),
 ]
 
 # two-sided 95 % Student t quantiles for 1..30 degrees of freedom; 1.96 beyond
@@ -149,6 +149,9 @@ def summary_text(s: dict) -> str:
     for key, label, unit, scale, _bounds in METRICS:
         m = s["metrics"].get(key)
         if m is None:
+            # a figure of another kind of mission is left out (a sampling run has no survey to cover)
+            if s.get("sampling") and key not in SAMPLING_KEYS:
+                continue
             if (key not in TEAM_KEYS or s.get("team")) and (key not in SAMPLING_KEYS or s.get("sampling")):
                 lines.append(f"  {label:34s} -")
             continue
