@@ -48,6 +48,8 @@ def main(argv: list[str] | None = None) -> int:
     a = p.parse_args(argv)
     kid = a.id or dt.datetime.now(dt.timezone.utc).strftime("team-%Y%m%d-%H%M%S")
     try:
+        if len(kid) > auth.MAX_KEY_ID or not kid or not set(kid) <= auth._ID_CHARS:
+            raise auth.KeyFileError(f"key id '{kid}': 1 to 32 letters, digits, '_', '-' or '.'")
         if a.rotate or a.retire:
             old = list(auth.load_keys(a.file).keys)
             if a.retire:
@@ -60,8 +62,6 @@ def main(argv: list[str] | None = None) -> int:
         else:
             if a.file.exists():
                 raise auth.KeyFileError(f"{a.file}: exists (use --rotate to add a key to it)")
-            if len(kid) > auth.MAX_KEY_ID or not set(kid) <= auth._ID_CHARS:
-                raise auth.KeyFileError(f"key id '{kid}': 1 to 32 letters, digits, '_', '-' or '.'")
             keys = [auth.Key(kid, secrets.token_bytes(32))]
             _write(a.file, keys, new=True)
     except (auth.KeyFileError, OSError) as e:
