@@ -15,11 +15,16 @@
  *   auv-auth-probe acoustic KEYHEX COUNTER:PAYLOADHEX:TAGHEX...
  *       Offer each frame to one acoustic window: 0 ok, 1 bad tag, 2 replay,
  *       3 too old, one a line.
+ *   auv-auth-probe bench KEYFILE MSGFILE N
+ *       Decode the encoded signed mission_command_t N times, then decode and
+ *       verify it N times (each with a new verifier: no replay): the cost per
+ *       message of each, in ns (bench/auth_bench.py).
  */
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "common/auth_acoustic.h"
 #include "common/auth_commands.h"
@@ -203,8 +208,50 @@ static int cmd_acoustic(int argc, char **argv)
     return 0;
 }
 
+static double now_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec * 1e9 + (double)ts.tv_nsec;
+}
+
+static int cmd_bench(const char *keyfile, const char *path, long n)
+{
+    static auth_verifier v;
+    char err[600];
+    size_t len;
+    unsigned char *buf = read_all(path, &len);
+    if (!buf || n <= 0 || auth_keys_load(keyfile, &v.ring, err, sizeof err)) {
+        fprintf(stderr, "auv-auth-probe: bench: %s\n", buf ? err : path);
+        free(buf);
+        return 2;
+    }
+    auv_mission_command_t c;
+    int bad = 0;
+    double t0 = now_ns();
+    for (long i = 0; i < n; i++) {
+        bad |= auv_mission_command_t_decode(buf, 0, (int)len, &c) != (int)len;
+        auv_mission_command_t_decode_cleanup(&c);
+    }
+    double t1 = now_ns();
+    for (long i = 0; i < n; i++) {
+        v.n_peers = 0; /* the same message each time: not a replay for this measure */
+        bad |= auv_mission_command_t_decode(buf, 0, (int)len, &c) != (int)len;
+        bad |= auth_verify_mission_command(&v, &c, c.auth.counter) != AUTH_OK;
+        auv_mission_command_t_decode_cleanup(&c);
+    }
+    double t2 = now_ns();
+    printf("bytes %zu decode_ns %.0f decode_verify_ns %.0f%s\n", len, (t1 - t0) / (double)n, (t2 - t1) / (double)n,
+           bad ? " FAILED" : "");
+    free(buf);
+    auth_keys_clear(&v.ring);
+    return bad;
+}
+
 int main(int argc, char **argv)
 {
+    if (argc == 5 && !strcmp(argv[1], "bench"))
+        return cmd_bench(argv[2], argv[3], atol(argv[4]));
     if (argc == 3 && !strcmp(argv[1], "keys"))
         return cmd_keys(argv[2]);
     if (argc == 3 && !strcmp(argv[1], "vectors"))
@@ -215,6 +262,6 @@ int main(int argc, char **argv)
         return cmd_acoustic(argc, argv);
     fprintf(argc > 1 && !strcmp(argv[1], "--help") ? stdout : stderr,
             "usage: auv-auth-probe keys FILE | vectors FILE | verify KEYFILE NOW_US MSGFILE... |\n"
-            "       acoustic KEYHEX COUNTER:PAYLOADHEX:TAGHEX...\n");
+            "       acoustic KEYHEX COUNTER:PAYLOADHEX:TAGHEX... | bench KEYFILE MSGFILE N\n");
     return argc > 1 && !strcmp(argv[1], "--help") ? 0 : 2;
 }
