@@ -28,6 +28,8 @@
 
 #include "common/auth_acoustic.h"
 #include "common/auth_commands.h"
+#include "common/auv_types.h"
+#include "common/lcm_rx.h"
 
 static size_t unhex(const char *s, uint8_t *out, size_t cap)
 {
@@ -141,21 +143,22 @@ static int cmd_vectors(const char *path)
     return bad ? 1 : 0;
 }
 
+/* Decoded as the managers do (rx_decode: validated first, nothing leaked on
+ * a message cut short), then verified. */
 static auth_result offer(auth_verifier *v, const unsigned char *buf, size_t len, int64_t now_us, int *undecodable)
 {
     auv_mission_command_t c;
     auv_plugin_upload_t u;
-    auth_result r;
+    auth_result r = AUTH_BAD_MAC;
     *undecodable = 0;
-    if (auv_mission_command_t_decode(buf, 0, (int)len, &c) == (int)len) {
+    if (rx_decode(auv_type_find("mission_command_t"), buf, (int)len, &c) == 0) {
         r = auth_verify_mission_command(v, &c, now_us);
         auv_mission_command_t_decode_cleanup(&c);
-    } else if (auv_plugin_upload_t_decode(buf, 0, (int)len, &u) == (int)len) {
+    } else if (rx_decode(auv_type_find("plugin_upload_t"), buf, (int)len, &u) == 0) {
         r = auth_verify_plugin_upload(v, &u, now_us);
         auv_plugin_upload_t_decode_cleanup(&u);
     } else {
         *undecodable = 1;
-        r = AUTH_BAD_MAC;
     }
     return r;
 }
