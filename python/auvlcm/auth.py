@@ -24,6 +24,7 @@ import os
 import socket
 import stat
 import sys
+import threading
 import time
 from collections import OrderedDict
 from dataclasses import dataclass
@@ -168,13 +169,15 @@ def _unsigned_encoding(msg: Any) -> bytes:
 
 
 _last_counter = 0
+_counter_lock = threading.Lock()  # a launcher signs on two threads (commands, keepalives)
 
 
 def next_counter() -> int:
     """Microseconds since the epoch, strictly increasing within this process."""
     global _last_counter
-    _last_counter = max(time.time_ns() // 1000, _last_counter + 1)
-    return _last_counter
+    with _counter_lock:
+        _last_counter = max(time.time_ns() // 1000, _last_counter + 1)
+        return _last_counter
 
 
 def default_sender(tool: str) -> str:
