@@ -12,6 +12,8 @@ from agents import AgentProc, Tables, ctl, wait_until
 
 from auv import agent_ack_t, agent_command_t
 from auvlcm import auth
+from tools.hosts.agent_launch import Keepalive
+from tools.hosts.agentctl import Control
 
 KEY = auth.Key("team-a", bytes(range(7, 39)))
 
@@ -57,6 +59,17 @@ def test_only_signed_agent_commands_are_obeyed(tmp_path, lcm_url, child_env):
         assert answer(auth.sign(_command(12), other, "test")).message == "refused: unknown key id"
         t = wait_until(lambda: (x := tables.latest("alpha")) and x.auth_bad_mac == 1 and x, 30, "counts in the table")
         assert (t.auth_unsigned, t.auth_unknown_key, t.auth_replay, t.auth_stale) == (1, 1, 1, 0)
+        # auv-launch --agents' keepalives, signed on their own thread as the launcher sends them
+        ctl_ = Control(lcm_url, ring)
+        keep = Keepalive(lcm_url, ctl_, ["alpha"], "")
+        keep.start()
+        try:
+            alive = lambda: [a for a in list(tables.acks) if a.sender == ctl_.sender and a.message == "alive"]  # noqa: E731
+            wait_until(lambda: len(alive()) >= 2, 30, "two keepalives answered")
+        finally:
+            keep.done = True
+            keep.join()
+        assert not [a for a in list(tables.acks) if a.sender == ctl_.sender and a.message != "alive"]
     finally:
         tables.close()
         agent.stop()
