@@ -22,6 +22,7 @@ from test_manager import HERE, World, start_manager
 from auv import chasm_status_t, mission_ack_t, mission_command_t, plugin_upload_t
 from auvlcm import auth
 from auvlcm.rx import Receiver
+from tools.console.model import Model
 
 BOTH = pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
 OLD, NEW = auth.Key("team-old", bytes(range(32))), auth.Key("team-new", bytes(range(100, 132)))
@@ -101,6 +102,10 @@ def test_only_signed_commands_are_acted_on(lcm_url, child_env, tmp_path, sanitiz
             1,
         )
         assert st.commands_refused == 9 and st.run_state == chasm_status_t.RUN_RUNNING
+        model = Model()  # what the console and `auvctl status` show of it
+        model.apply("AUV1.CHASM.NAVIGATOR", st)
+        shown = model.vehicles["AUV1"]["managers"]["NAVIGATOR"]["auth_refused"]
+        assert shown == {"unsigned": 2, "unknown_key": 1, "bad_mac": 3, "replay": 2, "stale": 1}
     finally:
         rc = stop(mgr, signal.SIGTERM)
     assert rc == 0, mgr.stderr.read()

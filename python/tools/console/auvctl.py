@@ -175,6 +175,9 @@ def _status(lc: lcm.LCM, model: Model, vid: str, args: argparse.Namespace) -> in
                 + (f" when {last['condition']}" if last["condition"] else "")
                 + (f" [{tests}]" if tests else "")
             )
+        if m.get("auth_refused"):
+            reasons = ", ".join(f"{k} {n}" for k, n in m["auth_refused"].items())
+            print(f"    commands refused by authentication: {reasons}")
     pos = v["nav"]
     if pos:
         print(
