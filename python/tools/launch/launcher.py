@@ -105,8 +105,9 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
     return errors
 
 
-def manager_cmd(build: Path, url: str, vid: str, m) -> list[str]:
-    """The command line of a scenario's manager m (tools.scenario) of vehicle vid."""
+def manager_cmd(build: Path, url: str, vid: str, m, key_file: Path | None = None) -> list[str]:
+    """The command line of a scenario's manager m (tools.scenario) of vehicle vid;
+    key_file: the scenario's team keys, which the manager then requires."""
     return programs.chasm_manager(
         build,
         plan=m.plan,
@@ -118,6 +119,7 @@ def manager_cmd(build: Path, url: str, vid: str, m) -> list[str]:
         status_rate_hz=m.status_rate_hz,
         plugin_path=m.plugin_path or [build / "plugins"],
         params=m.params,
+        key_file=key_file,
     )
 
 
@@ -241,7 +243,7 @@ class Launcher:
         return programs.simulator(self.sim_configs[vid], lcm_url=self.child_url, clock=clock)
 
     def manager_cmd(self, vid: str, m) -> list[str]:
-        return manager_cmd(self.build, self.child_url, vid, m)
+        return manager_cmd(self.build, self.child_url, vid, m, self.sc.key_file)
 
     def nav_cmd(self, v) -> list[str]:
         return programs.auv_nav(

@@ -18,6 +18,7 @@ from typing import Any
 
 import yaml
 
+from auvlcm import auth
 from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from sim import clock_modes
@@ -129,6 +130,7 @@ class Scenario:
     survey: Path | None = None  # the planner's survey.json, for reports and plots
     world_node: Any = None  # the `world:` mapping node, for error positions
     faults: list[PlannedFault] = field(default_factory=list)  # tools/scenario/faults.py
+    key_file: Path | None = None  # team keys (docs/security.md): managers verify, the launcher signs
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -169,6 +171,16 @@ class _Scenario:
         p = (self.base / v).resolve()
         if not p.is_file():
             self.c.err(items[k][1], join(key, k), f"no such file: {p}")
+        return p
+
+    def key_file(self, items: dict) -> Path | None:
+        """key_file: a team key file (auv-keygen) that loads: mode 0600, well formed."""
+        p = self.file(items, "key_file", "")
+        if p is not None and p.is_file():
+            try:
+                auth.load_keys(p)
+            except auth.KeyFileError as exc:
+                self.c.err(items["key_file"][1], "key_file", str(exc))
         return p
 
     def params(self, node, key: str, plan: Path | None) -> dict[str, str]:
@@ -358,7 +370,7 @@ class _Scenario:
         return got
 
 
-TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults")
+TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults", "key_file")
 
 
 def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
@@ -429,6 +441,7 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
         survey=s.file(top, "survey", ""),
         world_node=world_node,
         faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s),
+        key_file=s.key_file(top),
     )
     c.raise_errors()
     return sc
