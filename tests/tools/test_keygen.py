@@ -59,3 +59,23 @@ def test_scenario_key_file_is_checked_and_given_to_managers(tmp_path):
     with pytest.raises(ConfigError) as e:
         load_scenario(_scenario(tmp_path, tmp_path / "nothere.key"), base=SCEN)
     assert any("no such file" in x for x in e.value.errors)
+
+
+def test_an_agent_with_its_own_keys_ignores_the_senders_key_path(tmp_path):
+    """A host agent started with --key-file verifies with its own keys: the scenario's
+    key_file is a path on the sender's host, which need not exist on the agent's."""
+    from conftest import ROOT
+
+    from tools.hosts.agent_part import PartError, host_part
+
+    scenario = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
+    text = scenario.read_text() + "key_file: /nowhere/on/this/host/team.key\n"
+    own = tmp_path / "own.key"
+    assert keygen([str(own)]) == 0
+    url = "udpm://239.255.76.67:7667?ttl=0"
+    build = ROOT / "build"
+    sc, specs = host_part(text, str(scenario), "local", tmp_path / "run", url, build, False, key_file=own)
+    assert sc.key_file == own and specs
+    assert all(str(own) in " ".join(map(str, s.cmd)) for s in specs if "chasm-manager" in str(s.cmd[0]))
+    with pytest.raises(PartError, match="no such file: /nowhere"):  # without keys of its own it needs the sender's
+        host_part(text, str(scenario), "localhost", tmp_path / "run2", url, build, False)

@@ -73,7 +73,7 @@ def host_part(
             ]
         )
     try:
-        sc = load_scenario(local, base)
+        sc = load_scenario(local, base, own_keys=key_file is not None)
     except ConfigError as exc:  # point at the sender's file: same text, same lines
         raise PartError([e.replace(str(local), str(sent)) for e in exc.errors]) from None
     if base is not None:

@@ -373,8 +373,10 @@ class _Scenario:
 TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults", "key_file")
 
 
-def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
-    """Read and check a scenario; ConfigError lists every problem."""
+def load_scenario(path: str | Path, base: Path | None = None, own_keys: bool = False) -> Scenario:
+    """Read and check a scenario; ConfigError lists every problem. own_keys: the reader
+    has team keys of its own (a host agent's --key-file), so the scenario's key_file,
+    a path on the sender's host, is neither read nor checked here."""
     path = Path(path).resolve()
     c = Checker.from_file(path)
     s = _Scenario(c, base)
@@ -441,7 +443,7 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
         survey=s.file(top, "survey", ""),
         world_node=world_node,
         faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s),
-        key_file=s.key_file(top),
+        key_file=None if own_keys else s.key_file(top),
     )
     c.raise_errors()
     return sc
