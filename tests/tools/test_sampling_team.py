@@ -11,7 +11,7 @@ grade is read from its log.
 - The grade: the team's map error at the end is a small part of the water's spread, no
   worse than the vehicles' own-samples estimates, and the straight-front parameters are
   near the world's (the offset within the meander's amplitude and a few metres).
-- A teammate lost degrades the estimate, never the mission: AUV3 is lost at 150 s (a
+- A teammate lost degrades the estimate, never the mission: AUV3 is lost at 100 s (a
   planned fault, every process killed); AUV1 and AUV2 find it lost, fly on and end done,
   and their estimates still grade as above.
 
@@ -42,17 +42,26 @@ LAUNCH = [sys.executable, "-m", "tools.launch"]
 CODEC = team_codec.TeamCodec()
 
 
-LOST_AT_S = 150.0
+LOST_AT_S = 100.0
+SURVEY_MIN = 3
 
 
 def with_a_loss(tmp_path: Path) -> Path:
-    """sampling_team.yaml with its paths absolute and AUV3 lost at LOST_AT_S."""
+    """sampling_team.yaml with its paths absolute, AUV3 lost at LOST_AT_S, and each plan's
+    survey SURVEY_MIN minutes (the suite's time: the shipped 6 min is the demo's)."""
     doc = yaml.safe_load(SCENARIO.read_text())
     base = SCENARIO.parent
     for v in doc["vehicles"]:
         v["sim"]["config"] = str((base / v["sim"]["config"]).resolve())
         for m in v["managers"]:
             m["plan"], m["bind"] = str((base / m["plan"]).resolve()), str((base / m["bind"]).resolve())
+            if m["name"] == "NAVIGATOR":
+                plan = Path(m["plan"]).read_text()
+                assert "param survey_time = 6 min" in plan
+                plan = plan.replace("param survey_time = 6 min", f"param survey_time = {SURVEY_MIN} min")
+                plan = plan.replace('include "../../common/', f'include "{ROOT}/missions/common/')
+                m["plan"] = str(tmp_path / f"{v['id']}.chasm")
+                Path(m["plan"]).write_text(plan)
     doc["faults"] = [{"at": LOST_AT_S, "vehicle": "AUV3", "do": "lose"}]
     path = tmp_path / "sampling_team.yaml"
     path.write_text(yaml.safe_dump(doc, sort_keys=False))
@@ -83,7 +92,7 @@ def test_the_team_maps_the_front_and_shares_it(tmp_path, lcm_url, child_env):
             frame = CODEC.decode_frame(bytes(f.payload[: f.n_bytes]))
             assert frame.ok, (v, frame.error)
             fronts += sum(1 for m in frame.messages if m.name == "front")
-        assert fronts >= 5, (v, fronts)
+        assert fronts >= 3, (v, fronts)  # AUV3 from its first estimate (about 45 s) until its loss
         team = data.log[f"{v}.FRONT_TEAM"]
         ok = team["status"] == front_estimate_t.STATUS_OK
         assert ok.any() and team["peers_used"][ok].max() >= 1, v
