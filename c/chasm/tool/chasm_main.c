@@ -14,6 +14,7 @@
 
 #include "chasm/chasm.h"
 #include "chasm_describe.h"
+#include "chasm_findings.h"
 #include "chasm_inputs.h"
 
 #define MAXN 64
@@ -331,6 +332,8 @@ int main(int argc, char **argv)
                 sep = ", ";
             }
             printf(")\n");
+            int found = chasm_check_deeper(m);
+            if (found) printf("%s: %d finding%s\n", a.plans[i], found, found == 1 ? "" : "s");
             chasm_free(m);
         }
     } else if (!strcmp(argv[1], "dot")) {

@@ -172,7 +172,8 @@ class Handler(BaseHTTPRequestHandler):
         self.close_connection = True
         srv, model = self.server, self.server.model
         cursors: dict[str, int] = {}
-        epoch = version = world_version = -1
+        epoch = version = world_version = structures_version = -1
+        sent_plans: dict[str, str] = {}  # the structures this page has: key -> plan_id
         srv.pages += 1
         try:
             while not srv.closing.is_set():
@@ -183,12 +184,20 @@ class Handler(BaseHTTPRequestHandler):
                         chunk = b": keepalive\n\n"
                     else:
                         fresh = model.epoch != epoch
+                        if fresh:
+                            sent_plans.clear()
+                            structures_version = -1
                         epoch = model.epoch
                         series = model.series_since(cursors, fresh)
                         parts = ['{"now":', model.now_json(), ',"series":', json.dumps(series, separators=(",", ":"))]
                         if model.world_version != world_version:
                             parts += [',"world":', json.dumps(model.world, separators=(",", ":"))]
                             world_version = model.world_version
+                        if model.structures_version != structures_version:
+                            plans = model.structures_since(sent_plans)
+                            if plans:
+                                parts += [',"structures":', json.dumps(plans, separators=(",", ":"))]
+                            structures_version = model.structures_version
                         parts.append("}")
                         version = model.version
                         chunk = ("data: " + "".join(parts) + "\n\n").encode()

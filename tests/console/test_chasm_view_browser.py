@@ -1,0 +1,98 @@
+"""The console's state view in a real headless browser (issue 35): a running
+scenario's active path appears on its plan's tree and moves when the plan
+transitions, the test a transition waits on is named, and the finished log
+opened at a time t shows the state at t. Screenshots go to
+build/test-artifacts/console/ (chasm_view_*.png)."""
+
+from __future__ import annotations
+
+import subprocess
+
+from browser import Browser
+from console_fixtures import (  # noqa: F401
+    ARTIFACTS,
+    LAUNCH,
+    Console,
+    chromium,
+    read_until,
+    stop_launcher,
+    vehicle,
+    write_scenario,
+)
+from conftest import ROOT
+
+PLAN = ROOT / "tests" / "console" / "plans" / "view.chasm"
+COL = "document.querySelector('.cv-col[data-key=\"AUV1/{}\"]')"
+
+
+def _active(manager: str) -> str:
+    """The names of the states drawn active, root first, joined with '/'."""
+    return f"[...({COL.format(manager)} || document).querySelectorAll('.cv-col li.active > .nm')].map(e => e.textContent).join('/')"
+
+
+def _text(manager: str, part: str) -> str:
+    return f"(({COL.format(manager)} || document).querySelector('.{part}') || {{}}).textContent || ''"
+
+
+def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
+    auv1 = vehicle("AUV1")
+    auv1["managers"][0]["plan"] = str(PLAN)
+    del auv1["managers"][0]["params"]
+    path = write_scenario(tmp_path, [auv1], {"mode": "scaled", "warp": 2, "limit": 600, "wall_limit": 120})
+    out = tmp_path / "run"
+    launcher = subprocess.Popen(
+        LAUNCH + [str(path), "--out", str(out), "--lcm-url", lcm_url, "--progress", "1"],
+        env=child_env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
+    console = browser = None
+    try:
+        console = Console(["--lcm-url", lcm_url], child_env)
+        read_until(launcher, "launch: t=")
+        browser = Browser(chromium)
+        browser.open(console.url)
+        browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg1'", what="leg1 active on the tree")
+        why = browser.wait_for(f"(t => t.includes('counted=false') && t)({_text('NAVIGATOR', 'cv-why')})", what="leg1's test")
+        assert "waiting on counted" in why and "nav_stale=false" in why, why
+        browser.screenshot(ARTIFACTS / "chasm_view_leg1.png")
+        # 60 cycles at 10 Hz later the plan moves on; the tree and the history follow
+        browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg2'", what="leg2 active on the tree")
+        hist = browser.wait_for(f"(t => t.includes('leg2') && t)({_text('NAVIGATOR', 'cv-hist')})", what="the history")
+        assert "mission/leg1 → mission/leg2 when counted" in hist, hist
+        why = browser.wait_for(f"(t => t.includes('waiting on deep') && t)({_text('NAVIGATOR', 'cv-why')})", what="deep")
+        assert "leg2 → surface when deep" in why, why
+        assert "report" in browser.eval(_text("NAVIGATOR", "cv-status"))
+        # the second manager, side by side: waits on its own test
+        browser.wait_for(f"{_text('WATCHER', 'cv-why')}.includes('waiting on deep')", what="the watcher's test")
+        # search keeps the matches and their ancestors
+        browser.eval("(() => { const s = document.querySelector('#cv-search'); s.value = 'leg2';"
+                     " s.dispatchEvent(new Event('input')); })()")
+        shown = browser.eval(f"[...{COL.format('NAVIGATOR')}.querySelectorAll('li')].filter(li => !li.hidden)"
+                             ".map(li => li.querySelector('.nm').textContent)")
+        assert shown == ["mission", "leg2"], shown
+        browser.screenshot(ARTIFACTS / "chasm_view_leg2.png")
+    finally:
+        if browser:
+            browser.close()
+        if console:
+            assert console.stop() == 0
+        stop_launcher(launcher)
+
+    # The log, opened at a time: the view is the machine's state at that time.
+    log = out / "run.lcmlog"
+    console = Console(["--log", str(log)], child_env)
+    browser = Browser(chromium)
+    try:
+        browser.open(console.url)
+        browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg2'", what="leg2 at the log's end")
+        browser.eval("(() => { const s = document.querySelector('#slider'); s.value = Number(s.min) + 1.5;"
+                     " s.dispatchEvent(new Event('input')); })()")
+        browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg1'", what="leg1 at 1.5 s")
+        assert "leg2" not in browser.eval(_text("NAVIGATOR", "cv-hist"))
+        browser.screenshot(ARTIFACTS / "chasm_view_log.png")
+    finally:
+        browser.close()
+        assert console.stop() == 0
