@@ -236,6 +236,7 @@ int mgr_structure_build(mgr_structure *s, const chasm_machine *cm, int64_t now_u
     const char *name = chasm_plan_name(cm), *slash = strrchr(name, '/');
     m->plan = (char *)(slash ? slash + 1 : name);
     m->note = "";
+    m->plan_id = "";
     m->loaded_utime = now_us;
     int n_actions = 0, n_trans = 0;
     if (states(s, cm, &n_actions, &n_trans) || actions(s, cm, n_actions) || transitions(s, cm, n_trans) ||

@@ -102,7 +102,7 @@ function cvWhyHtml(st, active, live) {
     const waiting = t.tests.filter((_, j) => !live[at - t.tests.length + j]);
     return `<div class="cv-trans" data-from="${esc(from)}"><b>${esc(from)}</b> → ${esc(st.states[t.to].name)}` +
       ` when <i>${esc(t.cond)}</i> ${tests.join(' ')}` +
-      (waiting.length ? ` <span class="cv-waiting">waiting on ${waiting.map(esc).join(', ')}</span>` : '') + '</div>';
+      (waiting.length && t.from >= 0 ? ` <span class="cv-waiting">waiting on ${waiting.map(esc).join(', ')}</span>` : '') + '</div>';
   });
   return rows.join('') || '<div>no transition out of the active states</div>';
 }
