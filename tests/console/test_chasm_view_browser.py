@@ -9,6 +9,7 @@ from __future__ import annotations
 import subprocess
 
 from browser import Browser
+from conftest import ROOT
 from console_fixtures import (  # noqa: F401
     ARTIFACTS,
     LAUNCH,
@@ -19,7 +20,6 @@ from console_fixtures import (  # noqa: F401
     vehicle,
     write_scenario,
 )
-from conftest import ROOT
 
 PLAN = ROOT / "tests" / "console" / "plans" / "view.chasm"
 COL = "document.querySelector('.cv-col[data-key=\"AUV1/{}\"]')"
@@ -55,23 +55,31 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
         browser = Browser(chromium)
         browser.open(console.url)
         browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg1'", what="leg1 active on the tree")
-        why = browser.wait_for(f"(t => t.includes('counted=false') && t)({_text('NAVIGATOR', 'cv-why')})", what="leg1's test")
+        why = browser.wait_for(
+            f"(t => t.includes('counted=false') && t)({_text('NAVIGATOR', 'cv-why')})", what="leg1's test"
+        )
         assert "waiting on counted" in why and "nav_stale=false" in why, why
         browser.screenshot(ARTIFACTS / "chasm_view_leg1.png")
         # 160 cycles at 10 Hz (8 s of wall time at x2) later the plan moves on; the tree and the history follow
         browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg2'", what="leg2 active on the tree")
         hist = browser.wait_for(f"(t => t.includes('leg2') && t)({_text('NAVIGATOR', 'cv-hist')})", what="the history")
         assert "mission/leg1 → mission/leg2 when counted" in hist, hist
-        why = browser.wait_for(f"(t => t.includes('waiting on deep') && t)({_text('NAVIGATOR', 'cv-why')})", what="deep")
+        why = browser.wait_for(
+            f"(t => t.includes('waiting on deep') && t)({_text('NAVIGATOR', 'cv-why')})", what="deep"
+        )
         assert "leg2 → surface when deep" in why, why
         assert "report" in browser.eval(_text("NAVIGATOR", "cv-status"))
         # the second manager, side by side: waits on its own test
         browser.wait_for(f"{_text('WATCHER', 'cv-why')}.includes('waiting on deep')", what="the watcher's test")
         # search keeps the matches and their ancestors
-        browser.eval("(() => { const s = document.querySelector('#cv-search'); s.value = 'leg2';"
-                     " s.dispatchEvent(new Event('input')); })()")
-        shown = browser.eval(f"[...{COL.format('NAVIGATOR')}.querySelectorAll('.cv-tree li')]"
-                             ".filter(li => !li.hidden).map(li => li.querySelector('.nm').textContent)")
+        browser.eval(
+            "(() => { const s = document.querySelector('#cv-search'); s.value = 'leg2';"
+            " s.dispatchEvent(new Event('input')); })()"
+        )
+        shown = browser.eval(
+            f"[...{COL.format('NAVIGATOR')}.querySelectorAll('.cv-tree li')]"
+            ".filter(li => !li.hidden).map(li => li.querySelector('.nm').textContent)"
+        )
         assert shown == ["mission", "leg2"], shown
         browser.screenshot(ARTIFACTS / "chasm_view_leg2.png")
     finally:
@@ -88,8 +96,10 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
     try:
         browser.open(console.url)
         browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg2'", what="leg2 at the log's end")
-        browser.eval("(() => { const s = document.querySelector('#slider'); s.value = Number(s.min) + 1.5;"
-                     " s.dispatchEvent(new Event('input')); })()")
+        browser.eval(
+            "(() => { const s = document.querySelector('#slider'); s.value = Number(s.min) + 1.5;"
+            " s.dispatchEvent(new Event('input')); })()"
+        )
         browser.wait_for(f"{_active('NAVIGATOR')} === 'mission/leg1'", what="leg1 at 1.5 s")
         assert "leg2" not in browser.eval(_text("NAVIGATOR", "cv-hist"))
         browser.screenshot(ARTIFACTS / "chasm_view_log.png")

@@ -96,8 +96,12 @@ def check_structure(msg: Any) -> dict[str, Any]:
         ],
         "transitions": trans,
         "vars": [
-            {"name": msg.var_name[i], "kind": ("input", "output", "local")[msg.var_kind[i]]
-             if 0 <= msg.var_kind[i] <= 2 else "?", "type": msg.var_type[i], "unit": msg.var_unit[i]}
+            {
+                "name": msg.var_name[i],
+                "kind": ("input", "output", "local")[msg.var_kind[i]] if 0 <= msg.var_kind[i] <= 2 else "?",
+                "type": msg.var_type[i],
+                "unit": msg.var_unit[i],
+            }
             for i in range(msg.n_vars)
         ],
         "params": [[msg.param_name[i], msg.param_value[i]] for i in range(msg.n_params)],
