@@ -78,6 +78,12 @@ double chasm_var_number(const chasm_machine *m, int id);
 typedef void (*chasm_finding_fn)(void *user, chasm_where where, const char *kind, const char *message);
 int chasm_lint(const chasm_machine *m, chasm_finding_fn fn, void *user);
 
+/* The states of a plan file as parsed, whether or not it loads (a plan
+ * author's view: `chasm outline`): fn gets each state, parents first, with
+ * its number, its parent's (-1 for a root), its path and place. The count. */
+typedef void (*chasm_outline_fn)(void *user, int index, int parent, const char *path, chasm_where where);
+int chasm_outline_file(const char *path, chasm_outline_fn fn, void *user);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,7 +1,8 @@
 """The console's state view in a real headless browser (issue 35): a running
 scenario's active path appears on its plan's tree and moves when the plan
-transitions, the test a transition waits on is named, and the finished log
-opened at a time t shows the state at t. Screenshots go to
+transitions, the test a transition waits on is named, the finished log
+opened at a time t shows the state at t, and a plan file given with --plan
+shows its load error beside its state. Screenshots go to
 build/test-artifacts/console/ (chasm_view_*.png)."""
 
 from __future__ import annotations
@@ -34,6 +35,27 @@ def _text(manager: str, part: str) -> str:
     return f"(({COL.format(manager)} || document).querySelector('.{part}') || {{}}).textContent || ''"
 
 
+BAD, GOOD = ROOT / "tests/console/plans/bad_view.chasm", ROOT / "tests/chasm/findings/never_fires.chasm"
+
+
+def _check_plan_files(browser: Browser) -> None:
+    """auv-console --plan: the tree as parsed, the load error beside leg2 at its
+    file:line:col, and a good plan's `chasm check` summary and findings; nothing runs."""
+    col = "document.querySelector('.cv-planfile[data-file=\"{}\"]')"
+    browser.wait_for(f"!!{col.format(BAD)}", what="the bad plan's column")
+    at = browser.eval(
+        f"[...{col.format(BAD)}.querySelectorAll('li')].filter(li => li.querySelector(':scope > .cv-error'))"
+        ".map(li => li.querySelector('.nm').textContent + ' ' + li.querySelector(':scope > .cv-error').textContent)"
+    )
+    assert at == ["leg2 bad_view.chasm:14:22 unknown target state 'nowhere'"], at
+    full = f"{col.format(BAD)}.querySelector('.cv-error .cv-loc').title"
+    assert browser.eval(full) == f"{BAD}:14:22"
+    summary = browser.eval(f"{col.format(GOOD)}.querySelector('.cv-summary').textContent")
+    assert "never_fires.chasm: ok (3 states" in summary and "3 findings" in summary, summary
+    assert browser.eval(f"{col.format(GOOD)}.querySelectorAll('.cv-finding').length") == 3
+    browser.screenshot(ARTIFACTS / "chasm_view_plan_files.png")
+
+
 def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
     auv1 = vehicle("AUV1")
     auv1["managers"][0]["plan"] = str(PLAN)
@@ -50,7 +72,7 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
     )
     console = browser = None
     try:
-        console = Console(["--lcm-url", lcm_url], child_env)
+        console = Console(["--lcm-url", lcm_url, "--plan", str(BAD), "--plan", str(GOOD)], child_env)
         read_until(launcher, "launch: t=")
         browser = Browser(chromium)
         browser.open(console.url)
@@ -82,6 +104,7 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
         )
         assert shown == ["mission", "leg2"], shown
         browser.screenshot(ARTIFACTS / "chasm_view_leg2.png")
+        _check_plan_files(browser)
     finally:
         if browser:
             browser.close()

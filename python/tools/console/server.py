@@ -19,6 +19,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlparse
 
+from tools.console import plan_file
 from tools.console.mission_commands import COMMANDS
 from tools.console.model import Model
 
@@ -37,8 +38,11 @@ class ConsoleServer(ThreadingHTTPServer):
     daemon_threads = True
     allow_reuse_address = True
 
-    def __init__(self, address: tuple[str, int], model: Model, source: Any, rate_hz: float) -> None:
+    def __init__(
+        self, address: tuple[str, int], model: Model, source: Any, rate_hz: float, plans: list[Path] | None = None
+    ) -> None:
         super().__init__(address, Handler)
+        self.plans = list(plans or [])  # plan files shown to their author (plan_file.py)
         self.model, self.source = model, source
         self.min_interval = 1.0 / max(rate_hz, 0.1)
         self.closing = threading.Event()
@@ -101,6 +105,8 @@ class Handler(BaseHTTPRequestHandler):
             self._send(HTTPStatus.OK, file.read_bytes(), TYPES[file.suffix])
         elif path == "/api/info":
             self._json(HTTPStatus.OK, self.server.info())
+        elif path == "/api/plans":
+            self._json(HTTPStatus.OK, [plan_file.describe(p) for p in self.server.plans])
         elif path == "/api/events":
             self._events()
         else:

@@ -39,6 +39,7 @@ function cvColumn(key) {
     '<details class="cv-vars"><summary>variables</summary><table></table></details>' +
     '<details class="cv-hist" open><summary>transitions</summary><ol></ol></details>';
   el.querySelector('.cv-tree').addEventListener('click', e => {
+    e.stopPropagation();
     if (!e.target.classList.contains('tog')) return;
     e.target.parentElement.classList.toggle('collapsed');
     e.target.textContent = e.target.parentElement.classList.contains('collapsed') ? '▸' : '▾';
@@ -113,7 +114,7 @@ function cvUpdate(now) {
   for (const [vid, v] of Object.entries(now.vehicles)) for (const mgr of Object.keys(v.managers)) keys.push(`${vid}/${mgr}`);
   for (const key of Object.keys(now.plans || {})) if (!keys.includes(key)) keys.push(key);
   keys.sort();
-  box.hidden = !keys.length;
+  box.hidden = !keys.length && !CV.planFiles;
   for (const key of keys) cvUpdateColumn(key, now);
   for (const [key, col] of Object.entries(CV.cols)) if (!keys.includes(key)) { col.el.remove(); delete CV.cols[key]; }
 }
@@ -162,3 +163,41 @@ $('cv-search').addEventListener('input', e => {
 });
 $('cv-active').addEventListener('click', cvShowActive);
 $('cv-hide').addEventListener('click', () => { $('cv-cols').hidden = !$('cv-cols').hidden; });
+
+// ------------------------------------------------------------------ plan files (auv-console --plan)
+// A plan file for its author, not run: the tree as parsed, each load error and
+// check finding beside the state it concerns, and `chasm check`'s summary.
+function cvPlanFileHtml(p) {
+  const kids = p.states.map(() => []), roots = [];
+  p.states.forEach((s, i) => (s.parent >= 0 && s.parent < p.states.length ? kids[s.parent] : roots).push(i));
+  const notes = p.states.map(() => []), loose = [];
+  for (const [cls, list] of [['cv-error', p.errors], ['cv-finding', p.findings]])
+    for (const e of list) (e.state >= 0 && e.state < p.states.length ? notes[e.state] : loose).push(
+      `<div class="${cls}"><span class="cv-loc" title="${esc(e.loc)}">${esc(e.loc.split('/').pop())}</span> ${esc(e.text)}</div>`);
+  const li = i => `<li data-i="${i}"><span class="tog${kids[i].length ? '' : ' leaf'}">${kids[i].length ? '▾' : '·'}</span>` +
+    `<span class="nm" title="${esc(p.states[i].loc)}">${esc(p.states[i].path.split('/').pop())}</span>${notes[i].join('')}` +
+    (kids[i].length ? `<ul>${kids[i].map(li).join('')}</ul>` : '') + '</li>';
+  const base = p.file.split('/').pop();
+  return `<h4 title="${esc(p.file)}">plan ${esc(base)} <span class="cv-plan">not running</span></h4>` +
+    `<pre class="cv-summary">${esc((p.summary || '').split(p.file).join(base))}</pre>${loose.join('')}<ul class="cv-tree">${roots.map(li).join('')}</ul>`;
+}
+
+function cvLoadPlanFiles() {
+  fetch('/api/plans').then(r => r.json()).then(plans => {
+    for (const el of document.querySelectorAll('.cv-planfile')) el.remove();
+    for (const p of plans) {
+      const el = document.createElement('div');
+      el.className = 'cv-col cv-planfile'; el.dataset.file = p.file;
+      el.innerHTML = cvPlanFileHtml(p);
+      $('cv-cols').prepend(el);
+    }
+    if (plans.length) $('chasmview').hidden = false;
+    CV.planFiles = plans.length;
+  });
+}
+$('cv-cols').addEventListener('click', e => {
+  if (!e.target.classList.contains('tog') || !e.target.closest('.cv-planfile')) return;
+  e.target.parentElement.classList.toggle('collapsed');
+});
+$('cv-reload').addEventListener('click', cvLoadPlanFiles);
+cvLoadPlanFiles();
