@@ -93,6 +93,15 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
         assert "report" in browser.eval(_text("NAVIGATOR", "cv-status"))
         # the second manager, side by side: waits on its own test
         browser.wait_for(f"{_text('WATCHER', 'cv-why')}.includes('waiting on deep')", what="the watcher's test")
+        # fold the tree, then "show active" opens it down to the active leaf
+        browser.eval(f"{COL.format('NAVIGATOR')}.querySelector('li[data-i=\"0\"] > .tog').click()")
+        assert browser.eval(
+            f"{COL.format('NAVIGATOR')}.querySelector('li[data-i=\"0\"]').classList.contains('collapsed')"
+        )
+        browser.eval("document.querySelector('#cv-active').click()")
+        assert not browser.eval(
+            f"{COL.format('NAVIGATOR')}.querySelector('li[data-i=\"0\"]').classList.contains('collapsed')"
+        )
         # search keeps the matches and their ancestors
         browser.eval(
             "(() => { const s = document.querySelector('#cv-search'); s.value = 'leg2';"

@@ -94,6 +94,8 @@ def test_bad_structures_are_counted_and_not_drawn_with_the_reason():
         info = m.plans["AUV1/NAVIGATOR"]
         assert info["refused"] == i and reason in info["reason"], info
     assert "AUV1/NAVIGATOR" not in m.structures
+    m.refuse_structure("AUV1.PLAN.NAVIGATOR", "a message that is no chasm_structure_t")  # did not decode
+    assert m.plans["AUV1/NAVIGATOR"]["refused"] == len(cases) + 1
 
 
 def test_a_status_of_another_plan_is_counted_and_history_kept():

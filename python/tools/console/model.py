@@ -151,6 +151,17 @@ class Model:
             self.lock.notify_all()
             return True
 
+    def refuse_structure(self, channel: str, reason: str) -> None:
+        """A message on a structure channel that does not decode: counted, with the reason, on its manager."""
+        if ".PLAN." not in channel:
+            return
+        with self.lock:
+            info = _plan_info(self, f"{_vehicle_id(channel)}/{channel.rsplit('.', 1)[-1]}")
+            info["refused"] += 1
+            info["reason"] = reason
+            self.version += 1
+            self.lock.notify_all()
+
     # ------------------------------------------------------------- reading
     def now_json(self) -> str:
         """Everything but the series, serialised once per version (call under lock)."""

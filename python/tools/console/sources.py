@@ -69,6 +69,7 @@ class LiveSource:
         msg = decode(data)
         if msg is None:
             self.decode_errors += 1
+            self.model.refuse_structure(channel, "a message that is no chasm_structure_t (unknown type or bad length)")
             return
         if type(msg).__name__ in WORLD_TYPES:
             self.world.observe(channel, msg)
@@ -121,7 +122,7 @@ class LogSource:
                 msg = decode(ev.data)
                 if msg is None:
                     self.decode_errors += 1
-                    continue
+                    continue  # (a bad structure in a log shows as no structure: the view says so)
                 if type(msg).__name__ in WORLD_TYPES:
                     world.observe(ev.channel, msg)  # the layers do not change with time
                     continue
