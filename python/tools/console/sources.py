@@ -21,6 +21,7 @@ import lcm
 
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import type_of
+from auvlcm.url import with_receive_buffer
 from tools.console import mission_commands
 from tools.console.model import CHANNELS, WALL_STAMPED, Model
 from tools.console.world import WorldBuilder
@@ -45,7 +46,8 @@ class LiveSource:
 
     def __init__(self, model: Model, world: WorldBuilder, url: str) -> None:
         self.model, self.world = model, world
-        self.lc = lcm.LCM(url)
+        # a large receive buffer: a fleet's managers send their plan structures (tens of kB each) at once
+        self.lc = lcm.LCM(with_receive_buffer(url))
         self.decode_errors = 0
         self._seq = mission_commands.first_seq()
         self._seq_lock = threading.Lock()

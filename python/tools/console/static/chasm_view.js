@@ -147,14 +147,26 @@ function cvUpdateColumn(key, now) {
   for (const i of col.active) if (col.nodes[i]) { col.nodes[i].classList.remove('active'); col.nodes[i].querySelector('.tis').textContent = ''; }
   active.forEach((i, d) => { col.nodes[i].classList.add('active'); col.nodes[i].querySelector('.tis').textContent = ` ${fmt(view.times[d])} s`; });
   col.active = active;
-  col.el.querySelector('.cv-why').innerHTML = matches ? cvWhyHtml(st, active, view.live) +
-    (view.live_cut ? '<div class="bad">more tests than a status carries: the rest not shown</div>' : '') : '';
-  if (matches) {
-    col.el.querySelector('.cv-vars table').innerHTML = st.vars.map((v, i) => v.kind === 'local' && !v.name.includes('.') ? '' :
+  // the rest changes less often than the times: rewrite each part only when what it shows changed
+  // (a rewrite costs the page a layout of the column)
+  const whySig = matches ? `${col.builtFor}|${active.join()}|${view.live.join()}|${view.live_cut}` : '';
+  if (col.whySig !== whySig) {
+    col.whySig = whySig;
+    col.el.querySelector('.cv-why').innerHTML = matches ? cvWhyHtml(st, active, view.live) +
+      (view.live_cut ? '<div class="bad">more tests than a status carries: the rest not shown</div>' : '') : '';
+  }
+  const vars = col.el.querySelector('.cv-vars');
+  if (matches && vars.open) {
+    vars.querySelector('table').innerHTML = st.vars.map((v, i) => v.kind === 'local' && !v.name.includes('.') ? '' :
       `<tr><td>${esc(v.kind)}</td><td>${esc(v.name)}</td><td>${i < view.values.length && view.values[i] !== null ? view.values[i] : '–'} ${esc(v.unit)}</td></tr>`).join('');
   }
-  col.el.querySelector('.cv-hist ol').innerHTML = view.history.slice().reverse().map(h =>
-    `<li>${fmt(h.t)} s: ${esc(h.from || '–')} → ${esc(h.to)}${h.cond ? ` when <i>${esc(h.cond)}</i>` : ''}</li>`).join('');
+  const last = view.history[view.history.length - 1];
+  const histSig = `${view.history.length}|${last ? last.t + last.to : ''}`;
+  if (col.histSig !== histSig) {
+    col.histSig = histSig;
+    col.el.querySelector('.cv-hist ol').innerHTML = view.history.slice().reverse().map(h =>
+      `<li>${fmt(h.t)} s: ${esc(h.from || '–')} → ${esc(h.to)}${h.cond ? ` when <i>${esc(h.cond)}</i>` : ''}</li>`).join('');
+  }
 }
 
 $('cv-search').addEventListener('input', e => {
