@@ -184,14 +184,15 @@ def test_mission_commands_are_acknowledged(lcm_url, child_env):
         stop(mgr)
 
 
-def test_the_plan_structure_travels_with_the_status(lcm_url, child_env):
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_the_plan_structure_travels_with_the_status(lcm_url, child_env, sanitized):
     """<VEHICLE>.PLAN.<NAME>: the plan's structure with the first status, again
     every 10 s of mission time, and a new one (a new plan_id) on LOAD_PLAN; every
     status names it and carries the live values of the active transitions' tests."""
     w = World(lcm_url)
     plans: list = []
     w.rx.subscribe("AUV1.PLAN.NAVIGATOR", chasm_structure_t, lambda c, m: plans.append(m), 100)
-    mgr = start_manager(lcm_url, child_env)
+    mgr = start_manager(lcm_url, child_env, sanitized)
     try:
         w.wait_for_first_cycle()
         assert len(plans) == 1
