@@ -235,6 +235,32 @@ def test_the_plan_structure_travels_with_the_status(lcm_url, child_env, sanitize
         stop(mgr)
 
 
+def test_a_structure_too_big_to_send_says_so(lcm_url, child_env, tmp_path):
+    """A plan whose structure would encode to over 1 MiB: the header alone, truncated,
+    with the reason; the plan runs and its statuses still name the structure."""
+    head = (HERE / "dive.chasm").read_text().split("state dive")[0]
+    states = "".join(f"state s{i:05d}_a_name_long_enough_to_fill_the_table {{\n}}\n" for i in range(12000))
+    (tmp_path / "big.chasm").write_text(head + "state dive {\n}\nstate surface {\n}\n" + states)
+    w = World(lcm_url)
+    plans: list = []
+    w.rx.subscribe("AUV1.PLAN.NAVIGATOR", chasm_structure_t, lambda c, m: plans.append(m), 100)
+    mgr = subprocess.Popen(
+        manager_cmd(tmp_path / "big.chasm", HERE / "vehicle.bind", lcm_url),
+        env=child_env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        w.wait_for_first_cycle()
+        assert pump(w.lc, lambda: bool(plans), timeout=10)
+        p = plans[0]
+        assert p.truncated and p.n_states == 0 and p.n_transitions == 0
+        assert "12002 states encode to" in p.note and "over the 1048576" in p.note, p.note
+        assert w.status[-1].plan_id == p.plan_id and w.leaf() == "dive"
+    finally:
+        stop(mgr)
+
+
 def test_plugin_uploads_are_checked_before_anything_is_written(lcm_url, child_env, tmp_path):
     plugin_dir = tmp_path / "plugins"
     plugin_dir.mkdir()

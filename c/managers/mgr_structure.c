@@ -147,10 +147,18 @@ static int transitions(mgr_structure *s, const chasm_machine *cm, int n)
     if (!ALLOC(trans_from, n) || !ALLOC(trans_to, n) || !ALLOC(trans_history, n) || !ALLOC(trans_condition, n) ||
         !ALLOC(trans_first_test, n) || !ALLOC(trans_n_tests, n) || !ALLOC(trans_loc, n))
         return -1;
-    /* tests named per condition: at most CHASM_TRANS_MAX_TESTS each */
-    int cap_refs = n * CHASM_TRANS_MAX_TESTS, n_refs = 0, k = 0;
-    if (!ALLOC(trans_test_name, cap_refs)) return -1;
+    /* the tests named in all conditions, counted first */
     chasm_trans_info t;
+    int cap_refs = 0, n_refs = 0, k = 0;
+    for (int j = 0; j < chasm_abort_count(cm); j++)
+        cap_refs += chasm_trans_info_get(cm, -1, j, &t) ? 0 : t.n_tests;
+    for (int i = 0; i < m->n_states; i++) {
+        chasm_state_info st;
+        chasm_state_info_get(cm, i, &st);
+        for (int j = 0; j < st.n_transitions; j++)
+            cap_refs += chasm_trans_info_get(cm, i, j, &t) ? 0 : t.n_tests;
+    }
+    if (!ALLOC(trans_test_name, cap_refs)) return -1;
     for (int j = 0; j < chasm_abort_count(cm); j++, k++)
         if (chasm_trans_info_get(cm, -1, j, &t) || add_trans(s, &t, k, &n_refs, cap_refs)) return -1;
     for (int i = 0; i < m->n_states; i++) {
