@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import subprocess
 
+import lcm
 from browser import Browser
 from conftest import ROOT
 from console_fixtures import (  # noqa: F401
@@ -21,6 +22,7 @@ from console_fixtures import (  # noqa: F401
     vehicle,
     write_scenario,
 )
+from test_chasm_view_model import status, structure
 
 PLAN = ROOT / "tests" / "console" / "plans" / "view.chasm"
 COL = "document.querySelector('.cv-col[data-key=\"AUV1/{}\"]')"
@@ -36,6 +38,19 @@ def _text(manager: str, part: str) -> str:
 
 
 BAD, GOOD = ROOT / "tests/console/plans/bad_view.chasm", ROOT / "tests/chasm/findings/never_fires.chasm"
+
+
+def _publish_bad_input(url: str) -> None:
+    lc = lcm.LCM(url)
+    cyc = structure()
+    cyc.manager, cyc.vehicle, cyc.state_parent = "PILOT", "AUV9", [2, 0, 1]
+    lc.publish("AUV9.PLAN.PILOT", cyc.encode())
+    good = structure()
+    good.vehicle = "AUV9"
+    lc.publish("AUV9.PLAN.NAVIGATOR", good.encode())
+    st = status(plan_id="fedcba9876543210")
+    st.vehicle = "AUV9"
+    lc.publish("AUV9.CHASM.NAVIGATOR", st.encode())
 
 
 def _check_plan_files(browser: Browser) -> None:
@@ -91,6 +106,13 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
         )
         assert "leg2 → surface when deep" in why, why
         assert "report" in browser.eval(_text("NAVIGATOR", "cv-status"))
+        # the plan's variables with their live values, once opened
+        browser.eval(f"{COL.format('NAVIGATOR')}.querySelector('.cv-vars').open = true")
+        rows = browser.wait_for(
+            f"(t => /input *nav\\.depth_m *-?[0-9.]+ m/.test(t) && t)({_text('NAVIGATOR', 'cv-vars table')})",
+            what="nav.depth_m's value",
+        )
+        assert "output" in rows and "actuators.prop_rpm" in rows and "1500" in rows, rows
         # the second manager, side by side: waits on its own test
         browser.wait_for(f"{_text('WATCHER', 'cv-why')}.includes('waiting on deep')", what="the watcher's test")
         # fold the tree, then "show active" opens it down to the active leaf
@@ -102,6 +124,22 @@ def test_state_view_live_and_in_the_log(tmp_path, lcm_url, child_env, chromium):
         assert not browser.eval(
             f"{COL.format('NAVIGATOR')}.querySelector('li[data-i=\"0\"]').classList.contains('collapsed')"
         )
+        # bad input from another vehicle: a structure that contradicts itself, and a
+        # status of another plan than its structure: counted, not drawn, the reason shown
+        _publish_bad_input(lcm_url)
+        bad = browser.wait_for(
+            "(t => t.includes('refused') && t)((document.querySelector('.cv-col[data-key=\"AUV9/PILOT\"]"
+            " .cv-problem') || {}).textContent || '')",
+            what="the refused structure",
+        )
+        assert "1 structure message(s) refused: state 'mission' is its own ancestor" in bad, bad
+        other = browser.wait_for(
+            "(t => t.includes('not drawn') && t)((document.querySelector('.cv-col[data-key=\"AUV9/NAVIGATOR\"]"
+            " .cv-problem') || {}).textContent || '')",
+            what="the status of another plan",
+        )
+        assert "the status is of plan fedcba9876543210, the structure of 0123456789abcdef" in other, other
+        assert browser.eval("document.querySelectorAll('.cv-col[data-key=\"AUV9/NAVIGATOR\"] li.active').length") == 0
         # search keeps the matches and their ancestors
         browser.eval(
             "(() => { const s = document.querySelector('#cv-search'); s.value = 'leg2';"
