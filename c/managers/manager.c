@@ -95,6 +95,8 @@ int manager_create(manager_t *mg, const manager_options *opt)
     mg->opt = *opt;
     mg->waiting_for_start = opt->wait_start;
     set_chasm_options(mg);
+    if (mgr_auth_init(&mg->auth, mg->opt.key_file, mg->opt.name))
+        return 2;
     mg->lcm = mgr_lcm_open(mg->opt.url, mg->opt.name, &mg->max_plan_bytes);
     if (!mg->lcm)
         return 2;
@@ -125,6 +127,7 @@ void manager_destroy(manager_t *mg)
     plan_free(mg, &mg->plan);
     mgr_structure_free(&mg->structure);
     rx_lcm_destroy(mg->lcm);
+    mgr_auth_clear(&mg->auth);
     mg->clock_sub = NULL;
     mg->lcm = NULL;
 }

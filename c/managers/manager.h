@@ -20,6 +20,7 @@
 #include "chasm/chasm.h"
 #include "common/lcm_rx.h"
 #include "common/time_policy.h"
+#include "managers/mgr_auth.h"
 #include "managers/mgr_bindings.h"
 #include "managers/mgr_errors.h"
 #include "managers/mgr_limits.h"
@@ -47,6 +48,8 @@ typedef struct {
     tp_counts clock_drops;      /* clock readings refused, per reason */
     tp_term clock_term;         /* newest election term of an accepted SIM.CLOCK */
     uint64_t commands_refused;
+    mgr_auth auth;              /* --key-file: commands verified before anything else */
+    uint64_t auth_refusals_logged; /* refusals by authentication so far, for the log's rate */
     size_t max_plan_bytes;      /* MGR_MAX_PLAN_BYTES, or less if the receive buffer cannot hold it */
     int waiting_for_start;      /* --wait-start until a CMD_START */
     int started;                /* the running plan has been started */

@@ -55,6 +55,11 @@ static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m,
     msg.clock_jumps = clamp32(drops->clock_jumps);
     msg.clock_old_term = clamp32(drops->clock_old_term);
     msg.commands_refused = clamp32(drops->commands_refused);
+    msg.auth_unsigned = clamp32(drops->auth_unsigned);
+    msg.auth_unknown_key = clamp32(drops->auth_unknown_key);
+    msg.auth_bad_mac = clamp32(drops->auth_bad_mac);
+    msg.auth_replay = clamp32(drops->auth_replay);
+    msg.auth_stale = clamp32(drops->auth_stale);
     msg.messages_in = clamp32(drops->messages_in);
     msg.messages_out = clamp32(drops->messages_out);
     msg.messages_missed = clamp32(drops->messages_missed);

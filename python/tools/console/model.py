@@ -307,6 +307,19 @@ def _chasm(m: Model, ch: str, msg: Any) -> bool:
             "tests": {n: bool(x) for n, x in zip(msg.test_name, msg.test_value)},
         },
         "decode_errors": msg.decode_errors,
+        "commands_refused": msg.commands_refused,
+        # refused by authentication, by reason (docs/security.md); only reasons that happened
+        "auth_refused": {
+            k: n
+            for k, n in (
+                ("unsigned", msg.auth_unsigned),
+                ("unknown_key", msg.auth_unknown_key),
+                ("bad_mac", msg.auth_bad_mac),
+                ("replay", msg.auth_replay),
+                ("stale", msg.auth_stale),
+            )
+            if n
+        },
     }
     return True
 

@@ -19,6 +19,7 @@ from typing import Any
 
 import lcm
 
+from auvlcm import auth
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import type_of
 from auvlcm.url import with_receive_buffer
@@ -44,8 +45,10 @@ def decode(data: bytes) -> Any | None:
 class LiveSource:
     mode = "live"
 
-    def __init__(self, model: Model, world: WorldBuilder, url: str) -> None:
+    def __init__(self, model: Model, world: WorldBuilder, url: str, ring: auth.KeyRing | None = None) -> None:
         self.model, self.world = model, world
+        self.ring = ring  # commands are signed with it (docs/security.md); None: not authenticated
+        self.sender = auth.default_sender("console")
         # a large receive buffer: a fleet's managers send their plan structures (tens of kB each) at once
         self.lc = lcm.LCM(with_receive_buffer(url))
         self.decode_errors = 0
@@ -90,6 +93,8 @@ class LiveSource:
         msg = mission_commands.command(
             vehicle, manager, name, seq, utime, plan_name, plan_text, reason=f"console ({mission_commands.who()})"
         )
+        if self.ring:
+            auth.sign(msg, self.ring, self.sender)
         self.lc.publish(f"{vehicle}.MISSION_CMD", msg.encode())
         return seq
 
