@@ -3,8 +3,9 @@
  *
  * States are numbered 0 .. chasm_state_count()-1, parents before children.
  * Transitions are numbered the same way every time: the plan's root-level
- * aborts first, then each state's own in declaration order. Nothing here
- * allocates; strings live as long as the machine. */
+ * aborts first, then each state's own in declaration order. The getters do
+ * not allocate (chasm_lint and chasm_outline_file do, for their own use);
+ * strings live as long as the machine. */
 #ifndef CHASM_STRUCTURE_H
 #define CHASM_STRUCTURE_H
 
