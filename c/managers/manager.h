@@ -27,6 +27,7 @@
 #include "managers/mgr_lockstep.h"
 #include "managers/mgr_options.h"
 #include "managers/mgr_status.h"
+#include "managers/mgr_structure.h"
 
 /* A plan with its bindings: loaded whole, then adopted or freed whole. */
 typedef struct {
@@ -40,6 +41,7 @@ typedef struct {
     lcm_t *lcm;
     manager_plan plan;          /* the running plan */
     mgr_status_ctx status;
+    mgr_structure structure;    /* the running plan's, on <VEHICLE>.PLAN.<NAME> */
     int64_t now_us;             /* mission time of the latest clock reading */
     int have_time;
     tp_clock clock;             /* SIM.CLOCK or the system clock, under the time rule */

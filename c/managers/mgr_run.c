@@ -44,8 +44,14 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
     return d;
 }
 
+/* The structure goes out before the first status that names its plan_id:
+ * rebuilt when the plan was loaded or replaced, then resent now and then. */
 static void publish_status(manager_t *mg, double cost)
 {
+    if (mg->structure.built_for != mg->plan.machine)
+        mgr_structure_build(&mg->structure, mg->plan.machine, mg->now_us);
+    mgr_structure_update(&mg->structure, mg->lcm, mg->now_us);
+    mg->status.plan_id = mg->structure.plan_id;
     mgr_drop_counts d = drop_counts(mg);
     mgr_status_update(&mg->status, mg->lcm, mg->plan.machine, mg->now_us, &d, cost);
 }

@@ -34,6 +34,7 @@ typedef struct {
     int path_len;
     char leaf[256];         /* leaf path, cut to fit: the transition time tells changes apart too */
     mgr_drop_counts drops;
+    const char *plan_id;    /* the structure's (mgr_structure.h), "" before it is built */
 } mgr_status_ctx;
 
 /* rate_hz 0: a status every cycle (the default). */

@@ -3,6 +3,7 @@
 
     auv-console [--lcm-url URL] [--bind ADDR] [--port N] [--scenario FILE]   live LCM (or lcm-logplayer)
     auv-console --log RUN.lcmlog [--bind ADDR] [--port N]                 a finished log, with a time slider
+    auv-console ... --plan FILE.chasm                                       a plan file for its author, not run
 
 Serves a page with the vehicles (heading, true and navigation trails), the
 survey area, lines and operating area, the seabed, contacts, targets and modem
@@ -39,6 +40,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--port", type=int, default=8770, help="port (default 8770; 0 picks a free one)")
     ap.add_argument("--scenario", type=Path, help="scenario YAML: survey, seabed and LBL net from the start")
     ap.add_argument("--log", type=Path, help="open a finished log instead of live LCM")
+    ap.add_argument(
+        "--plan", type=Path, action="append", default=[], help="a plan file to show its author (tree, errors, checks)"
+    )
     ap.add_argument("--rate", type=float, default=5.0, help="page updates per second at most (default 5)")
     auth.add_key_file_argument(ap)
     ap.add_argument(
@@ -75,7 +79,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"console: {exc}", file=sys.stderr)
         return 2
     try:
-        server = ConsoleServer((args.bind, args.port), model, source, args.rate, access, tls)
+        server = ConsoleServer((args.bind, args.port), model, source, args.rate, access, tls, plans=args.plan)
     except OSError as exc:
         print(f"console: cannot serve on {args.bind}:{args.port}: {exc.strerror or exc}", file=sys.stderr)
         return 2

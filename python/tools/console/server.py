@@ -22,6 +22,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlparse
 
+from tools.console import plan_file
 from tools.console.access import Access
 from tools.console.mission_commands import COMMANDS
 from tools.console.model import Model
@@ -50,8 +51,10 @@ class ConsoleServer(ThreadingHTTPServer):
         rate_hz: float,
         access: Access | None = None,
         tls: ssl.SSLContext | None = None,
+        plans: list[Path] | None = None,
     ) -> None:
         super().__init__(address, Handler)
+        self.plans = list(plans or [])  # plan files shown to their author (plan_file.py)
         self.access = access or Access(address[0])
         self.tls = tls is not None
         if tls is not None:  # the handshake runs on the request's thread, not in accept()
@@ -140,6 +143,8 @@ class Handler(BaseHTTPRequestHandler):
             self._send(HTTPStatus.OK, file.read_bytes(), TYPES[file.suffix], cookie)
         elif path == "/api/info":
             self._json(HTTPStatus.OK, self.server.info())
+        elif path == "/api/plans":
+            self._json(HTTPStatus.OK, [plan_file.describe(p) for p in self.server.plans])
         elif path == "/api/events":
             self._events()
         else:
@@ -211,7 +216,8 @@ class Handler(BaseHTTPRequestHandler):
         self.close_connection = True
         srv, model = self.server, self.server.model
         cursors: dict[str, int] = {}
-        epoch = version = world_version = -1
+        epoch = version = world_version = structures_version = -1
+        sent_plans: dict[str, str] = {}  # the structures this page has: key -> plan_id
         srv.pages += 1
         try:
             while not srv.closing.is_set():
@@ -222,12 +228,20 @@ class Handler(BaseHTTPRequestHandler):
                         chunk = b": keepalive\n\n"
                     else:
                         fresh = model.epoch != epoch
+                        if fresh:
+                            sent_plans.clear()
+                            structures_version = -1
                         epoch = model.epoch
                         series = model.series_since(cursors, fresh)
                         parts = ['{"now":', model.now_json(), ',"series":', json.dumps(series, separators=(",", ":"))]
                         if model.world_version != world_version:
                             parts += [',"world":', json.dumps(model.world, separators=(",", ":"))]
                             world_version = model.world_version
+                        if model.structures_version != structures_version:
+                            plans = model.structures_since(sent_plans)
+                            if plans:
+                                parts += [',"structures":', json.dumps(plans, separators=(",", ":"))]
+                            structures_version = model.structures_version
                         parts.append("}")
                         version = model.version
                         chunk = ("data: " + "".join(parts) + "\n\n").encode()

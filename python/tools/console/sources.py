@@ -22,6 +22,7 @@ import lcm
 from auvlcm import auth
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import type_of
+from auvlcm.url import with_receive_buffer
 from tools.console import mission_commands
 from tools.console.model import CHANNELS, WALL_STAMPED, Model
 from tools.console.world import WorldBuilder
@@ -48,7 +49,8 @@ class LiveSource:
         self.model, self.world = model, world
         self.ring = ring  # commands are signed with it (docs/security.md); None: not authenticated
         self.sender = auth.default_sender("console")
-        self.lc = lcm.LCM(url)
+        # a large receive buffer: a fleet's managers send their plan structures (tens of kB each) at once
+        self.lc = lcm.LCM(with_receive_buffer(url))
         self.decode_errors = 0
         self._seq = mission_commands.first_seq()
         self._seq_lock = threading.Lock()
@@ -72,6 +74,7 @@ class LiveSource:
         msg = decode(data)
         if msg is None:
             self.decode_errors += 1
+            self.model.refuse_structure(channel, "a message that is no chasm_structure_t (unknown type or bad length)")
             return
         if type(msg).__name__ in WORLD_TYPES:
             self.world.observe(channel, msg)
@@ -126,7 +129,7 @@ class LogSource:
                 msg = decode(ev.data)
                 if msg is None:
                     self.decode_errors += 1
-                    continue
+                    continue  # (a bad structure in a log shows as no structure: the view says so)
                 if type(msg).__name__ in WORLD_TYPES:
                     world.observe(ev.channel, msg)  # the layers do not change with time
                     continue

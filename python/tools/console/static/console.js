@@ -32,6 +32,8 @@ const stream = new EventSource('/api/events');
 stream.onmessage = ev => {
   const d = JSON.parse(ev.data);
   if (d.world) S.world = d.world;
+  if (d.now.epoch !== S.epoch && typeof CV !== 'undefined') { CV.structs = {}; }
+  if (d.structures && typeof cvStructures === 'function') cvStructures(d.structures);
   if (d.now.epoch !== S.epoch) { S.series = {}; S.epoch = d.now.epoch; }
   for (const [name, part] of Object.entries(d.series)) {
     if (part.reset || !S.series[name]) S.series[name] = [];
@@ -126,6 +128,7 @@ function updatePanel() {
     }
     showAck(vid);
   }
+  if (typeof cvUpdate === 'function') cvUpdate(now);
   $('agents').innerHTML = agentsHtml(now.agents || {});
   const w = S.world;
   $('world-info').textContent = w ? `${w.name || ''} ${w.bathymetry_ref ? '· seabed ' + w.bathymetry_ref : ''}` +
