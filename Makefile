@@ -58,7 +58,23 @@ GEN_C_STAMP := $(GEN)/c.stamp
 GEN_PY_STAMP := $(GEN)/python.stamp
 GEN_C_SRCS := $(patsubst %,$(GEN)/c/auv_%.c,$(LCM_TYPES)) $(GEN)/c/auv_type_table.c
 
-$(GEN_C_STAMP): $(LCM_FILES) $(BUILD)/config.mk python/tools/codegen/gen_type_table.py
+# The C links OpenSSL's libcrypto (command authentication, docs/security.md):
+# its headers come with Debian's libssl-dev, installed here when this is root
+# with apt-get (as apt_test_tool does for the test tools), else a clear error.
+OPENSSL_STAMP := $(BUILD)/.openssl.stamp
+have_openssl = echo '\#include <openssl/hmac.h>' | $(CC) -E -x c - >/dev/null 2>&1
+$(OPENSSL_STAMP):
+	@mkdir -p $(@D)
+	@$(have_openssl) || { [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null && \
+	  { echo "installing libssl-dev (apt-get) for libcrypto's headers"; \
+	    DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libssl-dev >/dev/null 2>&1 || \
+	    { apt-get update >/dev/null 2>&1 && \
+	      DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends libssl-dev >/dev/null 2>&1; }; }; } ; \
+	  $(have_openssl) || { echo "error: OpenSSL's headers (openssl/hmac.h) not found: install libssl-dev" \
+	    "(Debian/Ubuntu: sudo apt install libssl-dev; Fedora: openssl-devel)" >&2; exit 1; }
+	@touch $@
+
+$(GEN_C_STAMP): $(LCM_FILES) $(BUILD)/config.mk python/tools/codegen/gen_type_table.py $(OPENSSL_STAMP)
 	@rm -rf $(GEN)/c && mkdir -p $(GEN)/c/auv
 	@echo "lcm-gen C    -> $(GEN)/c"
 	@$(LCM_GEN) -c --c-typeinfo --c-cpath $(GEN)/c --c-hpath $(GEN)/c/auv --cinclude auv $(LCM_FILES)
@@ -103,7 +119,7 @@ GEN_CFLAGS := -Wno-cast-function-type -fno-sanitize=nonnull-attribute
 # files most of all), and it comes after OPT on the line, so it wins.
 SAN_FLAGS := -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer -O1 -g1
 LCM_LDLIBS := -L$(LCM_LIB) -Wl,-rpath,$(LCM_LIB) -llcm
-LDLIBS_ALL := -lm -ldl -lpthread
+LDLIBS_ALL := -lm -ldl -lpthread -lcrypto
 
 # Two build variants share one set of rules: build/ (normal) and build/san/
 # (AddressSanitizer + UndefinedBehaviorSanitizer), so tests can run both.
@@ -131,6 +147,9 @@ $(1)/lib/libauvcommon.a: $(patsubst %.c,$(1)/obj/%.o,$(wildcard c/common/*.c))
 $(1)/bin/auv-lcm-probe: $(1)/obj/c/tools/auv_lcm_probe.o $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
 	@mkdir -p $$(@D)
 	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
+$(1)/bin/auv-auth-probe: $(1)/obj/c/tools/auv_auth_probe.o $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
+	@mkdir -p $$(@D)
+	$$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 endef
 $(foreach v,$(VARIANTS),$(eval $(call variant_rules,$(v))))
 
@@ -144,7 +163,7 @@ UNIT_ALLOC_SRCS := tests/harness/unit_alloc.c
 PLAN_TEST_SRCS := tests/harness/plan_test.c
 
 # Programs every variant builds; component makefiles append to these.
-C_PROGRAMS := bin/auv-lcm-probe
+C_PROGRAMS := bin/auv-lcm-probe bin/auv-auth-probe
 C_LIBS := lib/libauvtypes.a lib/libauvcommon.a
 
 # Components add their rules and append to C_PROGRAMS / C_LIBS here.

@@ -17,6 +17,7 @@ from lcm_proc import pump, stop
 
 from auv import (
     chasm_status_t,
+    chasm_structure_t,
     gps_fix_t,
     mission_ack_t,
     mission_command_t,
@@ -179,6 +180,83 @@ def test_mission_commands_are_acknowledged(lcm_url, child_env):
         assert w.leaf() == "dive"
         assert w.command(mission_command_t.CMD_STOP, 6).message == "stopping"
         assert mgr.wait(10) == 0
+    finally:
+        stop(mgr)
+
+
+@pytest.mark.parametrize("sanitized", [False, True], ids=["normal", "sanitized"])
+def test_the_plan_structure_travels_with_the_status(lcm_url, child_env, sanitized):
+    """<VEHICLE>.PLAN.<NAME>: the plan's structure with the first status, again
+    every 10 s of mission time, and a new one (a new plan_id) on LOAD_PLAN; every
+    status names it and carries the live values of the active transitions' tests."""
+    w = World(lcm_url)
+    plans: list = []
+    w.rx.subscribe("AUV1.PLAN.NAVIGATOR", chasm_structure_t, lambda c, m: plans.append(m), 100)
+    mgr = start_manager(lcm_url, child_env, sanitized)
+    try:
+        w.wait_for_first_cycle()
+        assert len(plans) == 1
+        p = plans[0]
+        assert p.plan == "dive.chasm" and len(p.plan_id) == 16 and not p.truncated
+        assert list(p.state_path) == ["dive", "hold", "finish", "surface"] and list(p.state_parent) == [-1] * 4
+        assert p.state_loc[0].endswith("dive.chasm:14:7")
+        # the abort first (from -1), then each state's
+        assert list(zip(p.trans_from, p.trans_to, p.trans_condition)) == [
+            (-1, 3, "stale"),
+            (0, 1, "deep"),
+            (1, 2, "elapsed > 2 s"),
+        ]
+        assert list(p.trans_test_name) == ["stale", "deep"] and list(p.trans_n_tests) == [1, 1, 0]
+        assert "setpoint.depth_m" in p.var_name and p.action_time_model[0] == "entry"
+        st = w.status[-1]
+        assert st.plan_id == p.plan_id
+        assert list(st.live_test_value) == [False, False]  # stale, then dive's deep
+        w.tick(0.1, depth=6.0)
+        w.tick(0.1, depth=6.0)
+        assert w.leaf() == "hold" and w.status[-1].n_live_tests == 1  # stale; hold's elapsed names no test
+        for _ in range(21):
+            w.tick(0.5, depth=6.0)
+        assert len(plans) == 2 and plans[1].plan_id == p.plan_id  # sent again for late listeners
+        text = (
+            (HERE / "dive.chasm")
+            .read_text()
+            .replace("state finish", "state done_here")
+            .replace("-> finish", "-> done_here")
+        )
+        ack = w.command(mission_command_t.CMD_LOAD_PLAN, 7, plan_name="new.chasm", plan_text=text)
+        assert ack.result == mission_ack_t.RESULT_OK
+        w.tick(0.1, depth=0.0)
+        w.tick(0.1, depth=0.0)
+        assert pump(w.lc, lambda: len(plans) == 3, timeout=10)
+        assert plans[2].plan == "new.chasm" and plans[2].plan_id != p.plan_id
+        assert "done_here" in plans[2].state_path
+        assert w.status[-1].plan_id == plans[2].plan_id
+    finally:
+        stop(mgr)
+
+
+def test_a_structure_too_big_to_send_says_so(lcm_url, child_env, tmp_path):
+    """A plan whose structure would encode to over 1 MiB: the header alone, truncated,
+    with the reason; the plan runs and its statuses still name the structure."""
+    head = (HERE / "dive.chasm").read_text().split("state dive")[0]
+    states = "".join(f"state s{i:05d}_a_name_long_enough_to_fill_the_table {{\n}}\n" for i in range(12000))
+    (tmp_path / "big.chasm").write_text(head + "state dive {\n}\nstate surface {\n}\n" + states)
+    w = World(lcm_url)
+    plans: list = []
+    w.rx.subscribe("AUV1.PLAN.NAVIGATOR", chasm_structure_t, lambda c, m: plans.append(m), 100)
+    mgr = subprocess.Popen(
+        manager_cmd(tmp_path / "big.chasm", HERE / "vehicle.bind", lcm_url),
+        env=child_env,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        w.wait_for_first_cycle()
+        assert pump(w.lc, lambda: bool(plans), timeout=10)
+        p = plans[0]
+        assert p.truncated and p.n_states == 0 and p.n_transitions == 0
+        assert "12002 states encode to" in p.note and "over the 1048576" in p.note, p.note
+        assert w.status[-1].plan_id == p.plan_id and w.leaf() == "dive"
     finally:
         stop(mgr)
 

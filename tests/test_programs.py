@@ -43,8 +43,10 @@ def test_manager_nav_recorder_and_simulator_builders_use_documented_flags(tmp_pa
         status_rate_hz=2,
         plugin_path=[BUILD / "plugins"],
         params={"depth_kp": 0.5},
+        key_file="team.key",
     )
     assert manager[0] == str(c_program("bin/chasm-manager"))
+    assert manager[manager.index("--key-file") + 1] == "team.key"
     assert manager[manager.index("--lcm-url") + 1] == "udpm://239.255.76.67:7667?ttl=0"
     assert manager[manager.index("-D") + 1] == "depth_kp=0.5" and manager[manager.index("--rate") + 1] == "20"
     _every_flag_documented(manager, [manager[0]])

@@ -11,7 +11,7 @@ FRONTEST_UNIT_SRCS := $(sort $(wildcard tests/frontest/unit/*.cpp))
 # The generated codec header is C, under $(GEN); the objects that include it wait for it
 # (the stamp by its path: c/teamlink/component.mk is read after this file).
 CXXFLAGS_ALL += -I$(GEN)
-FRONTEST_CODEC = $(1)/obj/gen/team/team_codec.o $(1)/obj/c/teamlink/team_bits.o
+FRONTEST_CODEC = $(1)/obj/gen/team/team_codec.o $(1)/obj/c/teamlink/team_bits.o $(1)/obj/c/teamlink/team_front.o
 
 define frontest_rules
 $(patsubst %.cpp,$(1)/obj/%.o,$(FRONTEST_LIB_SRCS) $(FRONTEST_MAIN_SRCS) $(FRONTEST_UNIT_SRCS)): | $(GEN)/team/codec.stamp

@@ -19,6 +19,7 @@
 
 extern "C" {
 #include "team/team_codec.h"
+#include "teamlink/team_front.h"
 }
 
 #include "frontest/front_fit.hpp"

@@ -25,7 +25,7 @@ fuzz: fuzz-bindings
 ifneq ($(CLANG),)
 $(BUILD)/fuzz/bind_libfuzzer: c/managers/fuzz/fuzz_bindings.c c/managers/mgr_bindings.c c/managers/mgr_bind_parse.c c/managers/mgr_bind_files.c c/managers/mgr_errors.c c/managers/mgr_held.c c/managers/mgr_inputs.c $(wildcard c/common/*.c) $(GEN_C_SRCS) $(CHASM_LIB_SRCS)
 	@mkdir -p $(@D)
-	$(CLANG) -std=c11 -D_DEFAULT_SOURCE -g -O1 -Ic -I$(GEN)/c -I$(LCM_INC) -Wno-cast-function-type -fsanitize=fuzzer,address,undefined -fno-sanitize=nonnull-attribute $^ -o $@ $(LCM_LDLIBS) -lm -ldl -lpthread
+	$(CLANG) -std=c11 -D_DEFAULT_SOURCE -g -O1 -Ic -I$(GEN)/c -I$(LCM_INC) -Wno-cast-function-type -fsanitize=fuzzer,address,undefined -fno-sanitize=nonnull-attribute $^ -o $@ $(LCM_LDLIBS) -lm -ldl -lpthread -lcrypto
 fuzz-bindings: $(BUILD)/fuzz/bind_libfuzzer
 	@mkdir -p $(BUILD)/fuzz/bind_corpus && cp tests/managers/bind_corpus/* $(BUILD)/fuzz/bind_corpus/
 	$< -max_total_time=$(FUZZ_SECONDS) $(BUILD)/fuzz/bind_corpus

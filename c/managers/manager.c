@@ -95,6 +95,8 @@ int manager_create(manager_t *mg, const manager_options *opt)
     mg->opt = *opt;
     mg->waiting_for_start = opt->wait_start;
     set_chasm_options(mg);
+    if (mgr_auth_init(&mg->auth, mg->opt.key_file, mg->opt.name))
+        return 2;
     mg->lcm = mgr_lcm_open(mg->opt.url, mg->opt.name, &mg->max_plan_bytes);
     if (!mg->lcm)
         return 2;
@@ -108,6 +110,7 @@ int manager_create(manager_t *mg, const manager_options *opt)
     }
     mgr_errors_free(&errs);
     mgr_status_init(&mg->status, mg->opt.vehicle, mg->opt.name, mg->opt.plan_path, mg->opt.status_rate_hz);
+    mgr_structure_init(&mg->structure, mg->opt.vehicle, mg->opt.name);
     mgr_lockstep_init(&mg->lockstep, mg->opt.vehicle, mg->opt.name);
     if (mgr_bindings_subscribe(&mg->plan.bindings, mg->lcm) != 0 || mgr_commands_subscribe(mg) != 0 ||
         (mg->opt.sim_clock && mgr_clock_subscribe(mg) != 0)) {
@@ -122,7 +125,9 @@ void manager_destroy(manager_t *mg)
     rx_unsubscribe(mg->lcm, mg->clock_sub);
     mgr_commands_unsubscribe(mg);
     plan_free(mg, &mg->plan);
+    mgr_structure_free(&mg->structure);
     rx_lcm_destroy(mg->lcm);
+    mgr_auth_clear(&mg->auth);
     mg->clock_sub = NULL;
     mg->lcm = NULL;
 }

@@ -20,12 +20,14 @@
 #include "chasm/chasm.h"
 #include "common/lcm_rx.h"
 #include "common/time_policy.h"
+#include "managers/mgr_auth.h"
 #include "managers/mgr_bindings.h"
 #include "managers/mgr_errors.h"
 #include "managers/mgr_limits.h"
 #include "managers/mgr_lockstep.h"
 #include "managers/mgr_options.h"
 #include "managers/mgr_status.h"
+#include "managers/mgr_structure.h"
 
 /* A plan with its bindings: loaded whole, then adopted or freed whole. */
 typedef struct {
@@ -39,12 +41,15 @@ typedef struct {
     lcm_t *lcm;
     manager_plan plan;          /* the running plan */
     mgr_status_ctx status;
+    mgr_structure structure;    /* the running plan's, on <VEHICLE>.PLAN.<NAME> */
     int64_t now_us;             /* mission time of the latest clock reading */
     int have_time;
     tp_clock clock;             /* SIM.CLOCK or the system clock, under the time rule */
     tp_counts clock_drops;      /* clock readings refused, per reason */
     tp_term clock_term;         /* newest election term of an accepted SIM.CLOCK */
     uint64_t commands_refused;
+    mgr_auth auth;              /* --key-file: commands verified before anything else */
+    uint64_t auth_refusals_logged; /* refusals by authentication so far, for the log's rate */
     size_t max_plan_bytes;      /* MGR_MAX_PLAN_BYTES, or less if the receive buffer cannot hold it */
     int waiting_for_start;      /* --wait-start until a CMD_START */
     int started;                /* the running plan has been started */

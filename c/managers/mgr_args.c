@@ -15,7 +15,7 @@ static void usage(FILE *out)
     fprintf(out, "usage: chasm-manager --plan FILE --bind FILE --vehicle ID --name NAME [--rate HZ] [--status-rate HZ]\n"
                  "       [--clock sim|system] [--lcm-url URL] [--exit-on-end] [--wait-start]\n"
                  "       [--plugin-path DIR]... [--plugin-dir DIR --allowlist FILE] [-D name=value]...\n"
-                 "       [--future-tolerance S] [--max-clock-jump S]\n"
+                 "       [--future-tolerance S] [--max-clock-jump S] [--key-file FILE]\n"
                  "  --lcm-url URL          LCM URL (default: $LCM_DEFAULT_URL, else liblcm's default);\n"
                  "                         --url is the old spelling of it\n"
                  "  --rate HZ              cycles per second of mission time, 0 < HZ <= %d (default 10)\n"
@@ -26,7 +26,10 @@ static void usage(FILE *out)
                  "  -D name=value          override a plan parameter: one value of its type and unit\n"
                  "                         (at most %d overrides)\n"
                  "  --future-tolerance S   drop input messages stamped more than S ahead of the clock (default 1)\n"
-                 "  --max-clock-jump S     a clock jump over S needs a second message to confirm it (default 60)\n",
+                 "  --max-clock-jump S     a clock jump over S needs a second message to confirm it (default 60)\n"
+                 "  --key-file FILE        team key file (auv-keygen, mode 0600): mission commands and uploads\n"
+                 "                         must be signed with one of its keys (docs/security.md); without it\n"
+                 "                         commands are not authenticated\n",
             MGR_MAX_RATE_HZ, MGR_MAX_PARAMS);
 }
 
@@ -119,6 +122,7 @@ static int value_option(manager_options *o, const char *a, char *v)
     else if (!strcmp(a, "--clock") && (!strcmp(v, "sim") || !strcmp(v, "system"))) o->sim_clock = !strcmp(v, "sim");
     else if (!strcmp(a, "--plugin-dir")) o->plugin_dir = v;
     else if (!strcmp(a, "--allowlist")) o->allowlist = v;
+    else if (!strcmp(a, "--key-file")) o->key_file = v;
     else if (!strcmp(a, "--plugin-path")) return plugin_path_option(o, v);
     else if (!strcmp(a, "-D")) return define_option(o, v);
     else return number_option(o, a, v);

@@ -12,10 +12,11 @@
 #include "auv/auv_mission_ack_t.h"
 #include "auv/auv_mission_command_t.h"
 #include "auv/auv_plugin_upload_t.h"
+#include "managers/mgr_auth.h"
 #include "managers/mgr_commands.h"
 #include "managers/mgr_upload.h"
 
-static void ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
+static void publish_ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
 {
     char channel[MGR_MAX_CHANNEL + 1];
     snprintf(channel, sizeof channel, "%s.MISSION_ACK", mg->opt.vehicle);
@@ -23,6 +24,11 @@ static void ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
                            .manager = (char *)mg->opt.name, .seq = seq, .result = result,
                            .message = (char *)message};
     auv_mission_ack_t_publish(mg->lcm, channel, &a);
+}
+
+static void ack(manager_t *mg, int32_t seq, int8_t result, const char *message)
+{
+    publish_ack(mg, seq, result, message);
     fprintf(stderr, "%s: ack %d: %s\n", mg->opt.name, seq, message);
 }
 
@@ -84,6 +90,25 @@ static int header_ok(manager_t *mg, int64_t utime, const char *vehicle, int32_t 
     return 1;
 }
 
+/* Authentication comes first: nothing of an unauthenticated message is
+ * acted on or echoed but its seq. Returns 1 when the message may proceed. */
+static int authentic(manager_t *mg, auth_result r, int32_t seq)
+{
+    if (r == AUTH_OK)
+        return 1;
+    char text[160];
+    snprintf(text, sizeof text, "refused: %s", auth_result_text(r));
+    mg->commands_refused++;
+    publish_ack(mg, seq, AUV_MISSION_ACK_T_RESULT_REJECTED, text);
+    /* Logged as they come only at first: a flood must not fill the log (or
+     * block on it); the status counts every one. */
+    uint64_t n = ++mg->auth_refusals_logged;
+    if (n <= 10 || n % 1000 == 0)
+        fprintf(stderr, "%s: ack %d: %s (%llu unauthenticated command(s) refused so far%s)\n", mg->opt.name, seq,
+                text, (unsigned long long)n, n == 10 ? "; from now on one line per 1000" : "");
+    return 0;
+}
+
 /* Field checks of a mission command; NULL when valid, else the reason. */
 static const char *command_fields_bad(const manager_t *mg, const auv_mission_command_t *c, char *why, size_t cap)
 {
@@ -134,6 +159,8 @@ static void on_command(const char *channel, const void *msg, int64_t recv_utime,
     const auv_mission_command_t *c = msg;
     if (!for_me(mg, c->manager))
         return;
+    if (!authentic(mg, mgr_auth_command(&mg->auth, c), c->seq))
+        return;
     if (!header_ok(mg, c->utime, c->vehicle, c->seq))
         return;
     char why[200];
@@ -173,6 +200,8 @@ static void on_upload(const char *channel, const void *msg, int64_t recv_utime, 
     manager_t *mg = user;
     const auv_plugin_upload_t *u = msg;
     if (!for_me(mg, u->manager))
+        return;
+    if (!authentic(mg, mgr_auth_upload(&mg->auth, u), u->seq))
         return;
     if (!header_ok(mg, u->utime, u->vehicle, u->seq))
         return;

@@ -30,6 +30,15 @@
 #define MGR_ACK_MAX_CHARS 2000              /* an ack's message, characters */
 #define MGR_ACK_FIELD_CHARS 40              /* a bad field quoted in an ack, characters */
 
+/* The plan's structure (<VEHICLE>.PLAN.<NAME>, mgr_structure.h): sent again
+ * this often in mission time, for a view or recorder that started late; one
+ * that would encode to more than MGR_MAX_STRUCTURE_BYTES goes out with its
+ * tables empty and `truncated` set (a view says why it cannot draw it). */
+#define MGR_STRUCTURE_PERIOD_US 10000000
+#define MGR_MAX_STRUCTURE_BYTES (1024 * 1024)
+#define MGR_STATUS_MAX_LIVE_TESTS 128       /* chasm_status_t.live_test_value */
+#define MGR_STATUS_MAX_VAR_VALUES 128       /* chasm_status_t.var_value */
+
 /* Plugin uploads: the Loader's own limit (CM_PLUGIN_MAX_BYTES in
  * c/chasm/cm_elf_check.h), since a bigger upload could never load. */
 #define MGR_MAX_UPLOAD_BYTES (64 * 1024 * 1024)

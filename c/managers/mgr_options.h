@@ -18,6 +18,7 @@ typedef struct {
     int wait_start;             /* start only on a CMD_START */
     const char *plugin_dir;     /* where uploads are written; also searched first */
     const char *allowlist;      /* file of "sha256hex [name]" lines; NULL: refuse uploads */
+    const char *key_file;       /* --key-file: team keys; NULL: commands are not authenticated */
     const char *plugin_path[MGR_MAX_PLUGIN_PATH];
     size_t n_plugin_path;
     const char *param_names[MGR_MAX_PARAMS], *param_values[MGR_MAX_PARAMS];

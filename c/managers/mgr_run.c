@@ -30,6 +30,11 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
         .clock_jumps = (int64_t)ck->n[TP_JUMP],
         .clock_old_term = (int64_t)ck->n[TP_OLD_TERM],
         .commands_refused = (int64_t)mg->commands_refused,
+        .auth_unsigned = (int64_t)mg->auth.v.refused[AUTH_UNSIGNED],
+        .auth_unknown_key = (int64_t)mg->auth.v.refused[AUTH_UNKNOWN_KEY],
+        .auth_bad_mac = (int64_t)mg->auth.v.refused[AUTH_BAD_MAC],
+        .auth_replay = (int64_t)mg->auth.v.refused[AUTH_REPLAY],
+        .auth_stale = (int64_t)mg->auth.v.refused[AUTH_STALE],
     };
     mgr_stream_counts sc = mgr_bindings_stream_counts(&mg->plan.bindings);
     d.messages_in = (int64_t)sc.in;
@@ -39,8 +44,14 @@ static mgr_drop_counts drop_counts(const manager_t *mg)
     return d;
 }
 
+/* The structure goes out before the first status that names its plan_id:
+ * rebuilt when the plan was loaded or replaced, then resent now and then. */
 static void publish_status(manager_t *mg, double cost)
 {
+    if (mg->structure.built_for != mg->plan.machine)
+        mgr_structure_build(&mg->structure, mg->plan.machine, mg->now_us);
+    mgr_structure_update(&mg->structure, mg->lcm, mg->now_us);
+    mg->status.plan_id = mg->structure.plan_id;
     mgr_drop_counts d = drop_counts(mg);
     mgr_status_update(&mg->status, mg->lcm, mg->plan.machine, mg->now_us, &d, cost);
 }

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "auv/auv_chasm_status_t.h"
+#include "chasm/chasm_structure.h"
 
 /* Counters are 64-bit here and 32-bit on the wire: saturate, never wrap. */
 static int32_t clamp32(int64_t v) { return v > INT32_MAX ? INT32_MAX : v < 0 ? 0 : (int32_t)v; }
@@ -20,7 +21,7 @@ void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager
     snprintf(s->channel, sizeof s->channel, "%s.CHASM.%s", vehicle, manager);
 }
 
-static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_status *st, int64_t now_us,
+static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, const chasm_status *st, int64_t now_us,
                     const mgr_drop_counts *drops, double cycle_cost_us)
 {
     auv_chasm_status_t msg;
@@ -54,11 +55,31 @@ static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_status *st,
     msg.clock_jumps = clamp32(drops->clock_jumps);
     msg.clock_old_term = clamp32(drops->clock_old_term);
     msg.commands_refused = clamp32(drops->commands_refused);
+    msg.auth_unsigned = clamp32(drops->auth_unsigned);
+    msg.auth_unknown_key = clamp32(drops->auth_unknown_key);
+    msg.auth_bad_mac = clamp32(drops->auth_bad_mac);
+    msg.auth_replay = clamp32(drops->auth_replay);
+    msg.auth_stale = clamp32(drops->auth_stale);
     msg.messages_in = clamp32(drops->messages_in);
     msg.messages_out = clamp32(drops->messages_out);
     msg.messages_missed = clamp32(drops->messages_missed);
     msg.posts_refused = clamp32(drops->posts_refused);
     msg.cycle_cost_us = cycle_cost_us;
+    msg.plan_id = (char *)(s->plan_id ? s->plan_id : "");
+    int8_t live[MGR_STATUS_MAX_LIVE_TESTS];
+    bool live_b[MGR_STATUS_MAX_LIVE_TESTS];
+    int n_live = chasm_live_tests(m, live_b, MGR_STATUS_MAX_LIVE_TESTS);
+    msg.live_tests_cut = n_live > MGR_STATUS_MAX_LIVE_TESTS;
+    msg.n_live_tests = (int16_t)(msg.live_tests_cut ? MGR_STATUS_MAX_LIVE_TESTS : n_live);
+    for (int i = 0; i < msg.n_live_tests; i++)
+        live[i] = live_b[i];
+    msg.live_test_value = live;
+    double var_values[MGR_STATUS_MAX_VAR_VALUES];
+    int n_vars = (int)chasm_var_count(m);
+    msg.n_var_values = (int16_t)(n_vars < MGR_STATUS_MAX_VAR_VALUES ? n_vars : MGR_STATUS_MAX_VAR_VALUES);
+    for (int i = 0; i < msg.n_var_values; i++)
+        var_values[i] = chasm_var_number(m, i);
+    msg.var_value = var_values;
     auv_chasm_status_t_publish(lcm, s->channel, &msg);
 }
 
@@ -98,7 +119,7 @@ int mgr_status_update(mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, int
               now_us < s->last_us; /* a clock that went back (a new world): start over */
     if (!due)
         return 0;
-    publish(s, lcm, &st, now_us, drops, s->max_cost_us);
+    publish(s, lcm, m, &st, now_us, drops, s->max_cost_us);
     s->published = 1;
     s->last_us = now_us;
     s->max_cost_us = 0;

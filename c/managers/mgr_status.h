@@ -13,6 +13,7 @@ typedef struct {
     int64_t dropped_invalid_time, dropped_future, dropped_out_of_order, dropped_out_of_range;
     int64_t clock_invalid, clock_backwards, clock_jumps, clock_old_term;
     int64_t commands_refused;
+    int64_t auth_unsigned, auth_unknown_key, auth_bad_mac, auth_replay, auth_stale;
     int64_t messages_in, messages_out, messages_missed, posts_refused;
 } mgr_drop_counts;
 
@@ -33,6 +34,7 @@ typedef struct {
     int path_len;
     char leaf[256];         /* leaf path, cut to fit: the transition time tells changes apart too */
     mgr_drop_counts drops;
+    const char *plan_id;    /* the structure's (mgr_structure.h), "" before it is built */
 } mgr_status_ctx;
 
 /* rate_hz 0: a status every cycle (the default). */

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "auv/auv_mission_ack_t.h"
-#include "common/sha256.h"
+#include "common/auth_mac.h"
 
 #define REJECTED AUV_MISSION_ACK_T_RESULT_REJECTED
 #define FAILED AUV_MISSION_ACK_T_RESULT_FAILED
@@ -132,7 +132,7 @@ int8_t mgr_upload_plugin(manager_t *mg, const auv_plugin_upload_t *u, char *text
         return REJECTED;
     }
     char hex[65];
-    sha256_hex(u->data, (size_t)u->n_bytes, hex);
+    auth_sha256_hex(u->data, (size_t)u->n_bytes, hex);
     if (!u->sha256_hex || strcasecmp(hex, u->sha256_hex)) {
         snprintf(text, tl, "plugin rejected: data does not match its SHA-256");
         return REJECTED;

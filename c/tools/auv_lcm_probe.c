@@ -32,7 +32,7 @@
 #include "common/field_path.h"
 #include "common/lcm_rx.h"
 #include "common/msg_print.h"
-#include "common/sha256.h"
+#include "common/auth_mac.h"
 #include "common/time_policy.h"
 
 static const char *opt(int argc, char **argv, const char *name, const char *fallback)
@@ -287,7 +287,7 @@ static int cmd_sha256(const char *path)
         return 2;
     }
     char hex[65];
-    sha256_hex(buf, len, hex);
+    auth_sha256_hex(buf, len, hex);
     printf("%s\n", hex);
     free(buf);
     return 0;

@@ -13,6 +13,7 @@ Events that do not decode are counted per channel and dropped, never fatal.
 
 from __future__ import annotations
 
+import operator
 import re
 from collections import Counter
 from dataclasses import dataclass, field
@@ -48,7 +49,7 @@ class Layout:
     """How one message type flattens: fixed columns and variable-length fields."""
 
     columns: list[Column]
-    ragged: list[str]  # top-level fields with a variable length
+    ragged: list[str]  # fields with a variable length (dotted inside a nested struct)
     row: Callable[[Any], tuple]  # message -> values of `columns`, in order
 
 
@@ -145,13 +146,15 @@ class _Builder:
         self.channel, self.cls, self.layout = channel, cls, layout(cls)
         self.rows: list[tuple] = []
         self.ragged: dict[str, list] = {r: [] for r in self.layout.ragged}
+        # a nested struct's variable field too ("auth.mac": command_auth_t's MAC)
+        self.ragged_get = {r: operator.attrgetter(r) for r in self.layout.ragged}
         self.log_time: list[int] = []
 
     def add(self, timestamp: int, msg: Any) -> None:
         self.log_time.append(timestamp)
         self.rows.append(self.layout.row(msg))
         for r in self.ragged:
-            self.ragged[r].append(list(getattr(msg, r)))
+            self.ragged[r].append(list(self.ragged_get[r](msg)))
 
     def build(self) -> ChannelArrays:
         cols: dict[str, np.ndarray] = {}

@@ -35,10 +35,12 @@ def chasm_manager(
     clock: str = "sim",
     plugin_path: Iterable[PathLike] = (),
     params: Mapping[str, object] | None = None,
+    key_file: PathLike | None = None,
     extra: Iterable[PathLike] = (),
 ) -> list[str]:
     """A manager running `plan` with `bind` as `<vehicle>`'s `<name>` on the given
-    clock (`sim`: SIM.CLOCK; `system`: this machine's)."""
+    clock (`sim`: SIM.CLOCK; `system`: this machine's); with `key_file` it takes
+    only signed commands (docs/security.md)."""
     cmd = [str(build / "bin" / "chasm-manager"), "--plan", str(plan), "--bind", str(bind)]
     cmd += ["--vehicle", vehicle, "--name", name, "--rate", f"{rate_hz:g}"]
     if status_rate_hz is not None:
@@ -48,6 +50,8 @@ def chasm_manager(
         cmd += ["--plugin-path", str(d)]
     for k, v in (params or {}).items():
         cmd += ["-D", f"{k}={v}"]
+    if key_file:
+        cmd += ["--key-file", str(key_file)]
     return cmd + [str(x) for x in extra]
 
 

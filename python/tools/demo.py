@@ -15,6 +15,11 @@ one global clock); the report tool then reads the log: outcome, coverage,
 detections against the truth, the team's hand-offs and link, navigation error,
 and the plots. This prints a short summary and where the files are. Exit
 status: the launcher's when the mission did not end done, else the report's.
+
+`--mission sampling` runs the front-sampling team instead
+(missions/scenarios/sampling_team, docs/sampling.md): three vehicles with CTDs
+map an ocean front on board and share their fits over the acoustic modem; the
+summary prints the grade of their estimates against the world's front.
 """
 
 from __future__ import annotations
@@ -32,6 +37,7 @@ from sim import clock_modes
 
 PY = sys.executable
 SCENARIO = ROOT / "missions" / "scenarios" / "mcm_team" / "mcm_team.yaml"
+SAMPLING_SCENARIO = ROOT / "missions" / "scenarios" / "sampling_team" / "sampling_team.yaml"
 # What missions/scenarios/mcm_demo was planned with (its header); --polygon plans with these.
 PLAN_ARGS = [
     "--heading",
@@ -108,7 +114,7 @@ def summary(rep: dict) -> str:
             f"{det['false_alarms']} false alarms"
         )
     team = rep.get("team")
-    if team:
+    if team and team.get("mine_like_targets"):
         lat = team.get("detect_to_identify_s") or {}
         lines.append(
             f"team      {team['mine_like_identified']} of {team['mine_like_targets']} mine-like targets "
@@ -121,6 +127,7 @@ def summary(rep: dict) -> str:
                 else ""
             )
         )
+    if team:
         link = (team.get("link") or {}).get("per_vehicle", {})
         lines.append(
             "link      "
@@ -131,6 +138,11 @@ def summary(rep: dict) -> str:
             or "-"
         )
         lines.append(f"takeovers {len(team.get('takeovers') or [])}")
+    sampling = rep.get("sampling")
+    if sampling:
+        from tools.report.front_grade import sampling_text
+
+        lines += sampling_text(sampling)
     lines += [
         "nav error "
         + (
@@ -178,6 +190,12 @@ def main(argv: list[str] | None = None) -> int:
 def _main(argv: list[str] | None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--out", type=Path, default=ROOT / "build" / "demo")
+    ap.add_argument(
+        "--mission",
+        choices=("mcm", "sampling"),
+        default="mcm",
+        help="mcm: the mine-countermeasures team (default); sampling: the front-sampling team",
+    )
     ap.add_argument("--polygon", help='plan this survey area instead ("n,e; n,e; ..." metres)')
     ap.add_argument("--vehicles", type=int, help="with --polygon: a plain survey by this many vehicles (default 3)")
     ap.add_argument("--team", type=int, help="with --polygon: a team of this many search vehicles and one RI vehicle")
@@ -198,6 +216,8 @@ def _main(argv: list[str] | None) -> int:
         help="with --polygon: plan the survey and check its plans with the plugins, then stop",
     )
     args = ap.parse_args(argv)
+    if args.mission == "sampling" and args.polygon:
+        ap.error("--polygon plans an MCM survey: not with --mission sampling")
     if args.plan_only and not args.polygon:
         ap.error("--plan-only needs --polygon")
     if args.vehicles is not None and not args.polygon:
@@ -218,7 +238,7 @@ def _main(argv: list[str] | None) -> int:
         print(f"demo: --out {args.out}: {exc.strerror or exc}", file=sys.stderr)
         return 2
     wall0 = time.monotonic()
-    scenario = SCENARIO
+    scenario = SAMPLING_SCENARIO if args.mission == "sampling" else SCENARIO
     if args.polygon:
         plan_dir = args.out / "plan"
         name = "mcm_team" if args.team else "mcm_demo"

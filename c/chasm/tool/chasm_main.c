@@ -2,6 +2,7 @@
  *
  *   chasm check [-P DIR] [-D name=value] PLAN...
  *   chasm dot   [-P DIR] [-D name=value] PLAN
+ *   chasm outline PLAN
  *   chasm describe [-P DIR] PLUGIN...
  *   chasm run   [-P DIR] [-D name=value] PLAN --inputs FILE [--dt T] [--until T]
  *               [--watch VAR]... [--hotplug T:FILE]... [--expect PATH] [--trace]
@@ -13,7 +14,9 @@
 #include <string.h>
 
 #include "chasm/chasm.h"
+#include "chasm/chasm_structure.h"
 #include "chasm_describe.h"
+#include "chasm_findings.h"
 #include "chasm_inputs.h"
 
 #define MAXN 64
@@ -52,6 +55,7 @@ static int usage_to(FILE *out, int rc)
 {
     fputs("usage: chasm check [options] PLAN...\n"
           "       chasm dot [options] PLAN\n"
+          "       chasm outline PLAN   (its states as parsed, even if it does not load: N PARENT FILE:LINE:COL PATH)\n"
           "       chasm describe [options] PLUGIN...   (behaviors and parameters of a plugin)\n"
           "       chasm run [options] PLAN --inputs FILE [--dt SECONDS] [--until SECONDS]\n"
           "                 [--watch VAR]... [--hotplug SECONDS:PLUGIN.so]... [--expect STATE/PATH] [--trace]\n"
@@ -184,6 +188,13 @@ static chasm_machine *load(const args_t *a, const char *plan)
     if (e && chasm_errors_count(e) > 1) fprintf(stderr, "%s: %zu errors\n", plan, chasm_errors_count(e));
     chasm_errors_free(e);
     return m;
+}
+
+/* `chasm outline`: one line per parsed state, tab-separated, for views. */
+static void print_outline(void *user, int index, int parent, const char *path, chasm_where w)
+{
+    (void)user;
+    printf("%d\t%d\t%s:%d:%d\t%s\n", index, parent, w.file, w.line, w.col, path);
 }
 
 static void print_var(const chasm_machine *m, int id)
@@ -331,6 +342,8 @@ int main(int argc, char **argv)
                 sep = ", ";
             }
             printf(")\n");
+            int found = chasm_check_deeper(m);
+            if (found) printf("%s: %d finding%s\n", a.plans[i], found, found == 1 ? "" : "s");
             chasm_free(m);
         }
     } else if (!strcmp(argv[1], "dot")) {
@@ -343,6 +356,9 @@ int main(int argc, char **argv)
                 chasm_free(m);
             }
         }
+    } else if (!strcmp(argv[1], "outline")) {
+        if (a.n_plans != 1) rc = usage();
+        else chasm_outline_file(a.plans[0], print_outline, NULL);
     } else if (!strcmp(argv[1], "describe")) {
         if (!a.n_plans) rc = usage();
         for (size_t i = 0; i < a.n_plans; i++) rc |= chasm_describe(a.dirs, a.n_dirs, a.plans[i]);

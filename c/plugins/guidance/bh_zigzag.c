@@ -25,7 +25,12 @@
  * fallback: a front weaker than fraction * delta, or no CTD). Readings that
  * are stale (over 1 s old), marked not valid, not a number or outside the
  * range of sea water (-3 to 45 degC) are skipped. Done after `crossings`
- * crossings (0: never). */
+ * crossings (0: never).
+ *
+ * in_course, when bound and written (a sampling team's front_rule), replaces
+ * `course` from the next leg on. A course reversed (more than 90 degrees from
+ * the last leg's) keeps the leg heading back across the front: the side
+ * flips with it, since the front's near side is then to the other hand. */
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -72,6 +77,8 @@ const chasm_param_spec gd_front_zigzag_params[ZZ_NPARAMS] = {
     [ZZ_OUT_CROSSING_EAST] = CHASM_WRITE("out_crossing_east", CHASM_DOUBLE, "m", NULL, "... east"),
     [ZZ_OUT_CROSSING_TIME] = CHASM_WRITE("out_crossing_time", CHASM_DOUBLE, "s", NULL,
                                          "... and when (mission time)"),
+    [ZZ_IN_COURSE] = CHASM_READ("in_course", CHASM_DOUBLE, "rad", NULL,
+                                "optional: the course from the next leg on, when written (front_rule)"),
     [ZZ_OUT_LEG] = CHASM_WRITE("out_leg", CHASM_INT, "", NULL, "the leg being flown, from 1"),
     GD_HORIZONTAL_SLOTS(ZZ),
 };
@@ -85,7 +92,13 @@ static double now_s(const chasm_ctx *c) { return (double)c->now_us * 1e-6; }
 static void begin_leg(chasm_ctx *c, gd_zz_state *s)
 {
     gd_point p = gd_position(c, &zz_slots);
-    double chi = chasm_param_double(c, ZZ_COURSE) + s->side * chasm_param_double(c, ZZ_ANGLE);
+    double course = chasm_param_double(c, ZZ_COURSE), given = chasm_read_double(c, ZZ_IN_COURSE);
+    if (chasm_age_s(c, ZZ_IN_COURSE) < 1e299 && isfinite(given))
+        course = given;
+    if (s->leg > 0 && fabs(remainder(course - s->course, 2 * M_PI)) > M_PI / 2)
+        s->side = -s->side;   /* reversed along the front: back across it is the other hand now */
+    s->course = course;
+    double chi = course + s->side * chasm_param_double(c, ZZ_ANGLE);
     /* the line runs on past max_leg: the leg ends by the rule or by max_leg, never at the line's end */
     double len = chasm_param_double(c, ZZ_MAX_LEG) + 10 * chasm_param_double(c, ZZ_LOOKAHEAD);
     gd_line_make(&s->line, p, (gd_point){p.n + len * cos(chi), p.e + len * sin(chi)});

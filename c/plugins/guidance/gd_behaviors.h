@@ -84,7 +84,7 @@ GD_DECLARE(yoyo, YOYO_NPARAMS);
 enum { ZZ_COURSE, ZZ_ANGLE, ZZ_DELTA, ZZ_FRACTION, ZZ_STEADY, ZZ_WINDOW, ZZ_SETTLE, ZZ_MAX_LEG, ZZ_CROSSINGS,
        ZZ_FIRST_RIGHT, ZZ_SPEED, ZZ_LOOKAHEAD, ZZ_INTEGRAL, ZZ_IN_NORTH, ZZ_IN_EAST, ZZ_IN_TEMPERATURE, ZZ_IN_VALID,
        ZZ_OUT_HEADING, ZZ_OUT_SPEED, ZZ_OUT_SPEED_MODE, ZZ_OUT_CROSSINGS, ZZ_OUT_CROSSING_NORTH,
-       ZZ_OUT_CROSSING_EAST, ZZ_OUT_CROSSING_TIME, ZZ_OUT_LEG, ZZ_NPARAMS };
+       ZZ_OUT_CROSSING_EAST, ZZ_OUT_CROSSING_TIME, ZZ_OUT_LEG, ZZ_IN_COURSE, ZZ_NPARAMS };
 #define GD_ZZ_CAP 64 /* samples of the along-track window (it holds about 21) */
 typedef struct {
     double s;          /* along the leg [m] */
@@ -112,6 +112,7 @@ typedef struct {
     int have_ref;      /* the leg's reference temperature is taken */
     double t_ref, g_peak;
     gd_zz_sample at_peak;
+    double course;     /* the course of the leg flown (in_course's, or the param) */
 } gd_zz_state;
 GD_DECLARE(front_zigzag, ZZ_NPARAMS);
 /* Least-squares line of temperature against along-track over the last

@@ -9,12 +9,17 @@
  * (PEER_LOST); one whose last status said done is finished, and its silence
  * is no loss. In its TDMA slot (tm_tdma.h) it sends one frame of at most
  * frame_bytes, filled by priority (tm_outbox.h), as a modem_tx_t KIND_TEAM.
+ * With `front` bound (a sampling plan: <V>.FRONT_ESTIMATE, the vehicle's own
+ * fit) it also sends the newest OK estimate as the link's front summary,
+ * once, after the status (teamlink/team_front.h): what teammates' estimators
+ * fit as a prior (docs/sampling.md).
  * It is also the one writer of the events output: it posts the events every
  * team behavior queued (team_event_t). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "auv/auv_front_estimate_t.h"
 #include "auv/auv_modem_rx_t.h"
 #include "auv/auv_modem_tx_t.h"
 #include "auv/auv_team_event_t.h"
@@ -22,6 +27,7 @@
 #include "tm_frame.h"
 #include "tm_store.h"
 #include "tm_tdma.h"
+#include "teamlink/team_front.h"
 
 const chasm_param_spec tm_link_params[LINK_NPARAMS] = {
     [LINK_TEAM] = CHASM_PARAM_REQUIRED_STRING(
@@ -44,12 +50,16 @@ const chasm_param_spec tm_link_params[LINK_NPARAMS] = {
                             "frames to send (messages bound to <V>.MODEM_TX modem_tx_t)"),
     [LINK_EVENTS] = CHASM_WRITE("events", CHASM_MESSAGES, "", "team_events",
                                 "team events (messages bound to <V>.TEAM_EVENT team_event_t)"),
+    [LINK_FRONT] = CHASM_READ("front", CHASM_MESSAGES, "", "",
+                              "optional: the vehicle's own front estimates (messages bound to <V>.FRONT_ESTIMATE "
+                              "front_estimate_t), sent to the team as the link's front summary"),
 };
 _Static_assert(CHASM_COUNT(tm_link_params) == LINK_NPARAMS, "team_link schema and slots disagree");
 
 typedef struct {
     tm_tdma tdma;
     long refused_logged, bad_logged;   /* counts already reported in the log */
+    long unsendable_logged;
 } link_state;
 _Static_assert(sizeof(link_state) <= 64, "team_link state size in the descriptor");
 
@@ -96,6 +106,45 @@ static void receive(chasm_ctx *c, tm_store *s)
             tm_frame_receive(s, src, f.payload, (size_t)f.n_bytes, c->now_us);
         }
         auv_modem_rx_t_decode_cleanup(&f);
+    }
+}
+
+/* The newest of this cycle's own front estimates, as the summary to send. */
+static void take_front(chasm_ctx *c, tm_store *s, link_state *ls)
+{
+    const void *msg;
+    size_t len;
+    while ((msg = chasm_next_message(c, LINK_FRONT, &len))) {
+        auv_front_estimate_t f;
+        if (len > 1u << 16 || auv_front_estimate_t_decode(msg, 0, (int)len, &f) < 0) {
+            s->undecodable++;
+            continue;
+        }
+        if (f.status == AUV_FRONT_ESTIMATE_T_STATUS_OK && f.vehicle && !strcmp(f.vehicle, s->roster.name[s->me])) {
+            team_front_estimate e = {s->me,          (double)f.utime * 1e-6, f.offset_m,
+                                     f.angle_rad,    f.temperature_a_c,      f.temperature_b_c,
+                                     f.width_m,      f.offset_sigma_m,       f.angle_sigma_rad,
+                                     f.temperature_a_sigma_c, f.temperature_b_sigma_c, f.width_sigma_m,
+                                     f.samples_used};
+            team_msg_front m;
+            if (team_front_summary(&e, &m)) {
+                s->own_front = m;
+                s->has_own_front = 1;
+                s->fronts_made++;
+                tm_outbox_front(&s->out);
+            } else {
+                s->fronts_not_sendable++;
+            }
+        }
+        auv_front_estimate_t_decode_cleanup(&f);
+    }
+    if (s->fronts_not_sendable != ls->unsendable_logged) {
+        char text[200];
+        snprintf(text, sizeof text,
+                 "team_link: %ld front estimates not sent so far: outside the summary's ranges (a sigma over "
+                 "25.5 m or 0.255 rad, a width over 409.5 m)", s->fronts_not_sendable);
+        chasm_log(c, text);
+        ls->unsendable_logged = s->fronts_not_sendable;
     }
 }
 
@@ -153,6 +202,9 @@ static void send(chasm_ctx *c, tm_store *s, link_state *ls)
         return;
     s->frames_sent++;
     for (int i = 0; i < n; i++)
+        if (items[i].kind == TM_ITEM_FRONT)
+            s->fronts_sent++;
+    for (int i = 0; i < n; i++)
         if (items[i].kind == TM_ITEM_CONTACT) {
             const tm_contact *k = &s->contacts.c[items[i].a];
             int sends = 0;
@@ -201,6 +253,7 @@ chasm_status_code tm_link_step(chasm_ctx *c, void *state)
         ls->bad_logged = s->frames_bad + s->undecodable;
     }
     watch_peers(c, s);
+    take_front(c, s, ls);
     send(c, s, ls);
     post_events(c, s);
     return CHASM_RUNNING;

@@ -25,7 +25,7 @@
 
 /* ---- team_link (bh_team_link.c) */
 enum { LINK_TEAM, LINK_ME, LINK_SLOT, LINK_SLOTS, LINK_MY_SLOT, LINK_WINDOW, LINK_FRAME_BYTES, LINK_SILENT,
-       LINK_REPEAT, LINK_RX, LINK_TX, LINK_EVENTS, LINK_NPARAMS };
+       LINK_REPEAT, LINK_RX, LINK_TX, LINK_EVENTS, LINK_FRONT, LINK_NPARAMS };
 TM_DECLARE(link, LINK_NPARAMS);
 
 /* ---- team_status (bh_team_status.c) */
@@ -48,6 +48,22 @@ typedef struct {
     gd_los los;
 } tm_survey_state;
 TM_DECLARE(survey, SV_NPARAMS);
+
+/* ---- front_rule (bh_front_rule.c, tm_front_rule.h) */
+enum { FR_FROM, FR_TO, FR_CELL, FR_NEAR, FR_RECORD, FR_REPLAN, FR_COURSE, FR_MAX_AGE, FR_FRONT, FR_IN_NORTH, FR_IN_EAST,
+       FR_OUT_COURSE, FR_OUT_TARGET, FR_OUT_ADAPTIVE, FR_NPARAMS };
+typedef struct {
+    double angle, offset, t_est;   /* the newest OK team estimate */
+    int have_est;
+    double target;                 /* along the front [m] */
+    int have_target;
+    double t_pick;                 /* when the target was given [s] */
+    int adaptive;                  /* 1: steering by the estimate; 0: the planned course */
+    int said_fallback;             /* the fallback is in the log */
+    double t_record;               /* own position last recorded [s] */
+    double t_status[16];           /* each teammate's status last recorded (its time) */
+} tm_front_rule_state;
+TM_DECLARE(front_rule, FR_NPARAMS);
 
 /* ---- ri_reacquire (bh_ri_reacquire.c) */
 enum { RI_LOOKS, RI_MERGE, RI_LOOK_GATE, RI_IDENT_RANGE, RI_LOOK_TIMEOUT, RI_IDENT_ERROR, RI_RUNOUT, RI_SPEED, RI_DEPTH, RI_ALTITUDE,

@@ -67,6 +67,10 @@ static void fill_msg(const writer *f, const tm_item *it, team_msg *m)
                                         s->status_state};
         break;
     }
+    case TM_ITEM_FRONT:
+        m->id = TEAM_MSG_FRONT;
+        m->u.front = s->own_front;
+        break;
     }
 }
 
@@ -167,6 +171,9 @@ int tm_frame_receive(tm_store *s, int src, const uint8_t *buf, size_t len, int64
             break;
         case TEAM_MSG_IDENT:
             on_ident(s, &m.u.ident, now_us);
+            break;
+        case TEAM_MSG_FRONT:   /* auv-front-estimate fits them (its own reader of MODEM_RX) */
+            s->fronts_heard++;
             break;
         }
     }

@@ -50,6 +50,8 @@ int tm_outbox_acked(tm_outbox *o, int number)
 
 void tm_outbox_status(tm_outbox *o) { o->status_pending = 1; }
 
+void tm_outbox_front(tm_outbox *o) { o->front_pending = 1; }
+
 int tm_outbox_unacked(const tm_outbox *o)
 {
     int k = 0;
@@ -127,6 +129,10 @@ int tm_outbox_fill(tm_outbox *o, const tm_frame_writer *w, tm_item *put, int max
     if (o->status_pending && offer(&f, (tm_item){TM_ITEM_STATUS, 0, 0}) != 0)
         o->status_pending = 0;
     offer_contacts(o, &f, 1, done);
+    /* 6. the own front summary (sampling): the newest only, once; a frame
+     * without room for it leaves it for the next, unless a newer one came */
+    if (o->front_pending && offer(&f, (tm_item){TM_ITEM_FRONT, 0, 0}) != 0)
+        o->front_pending = 0;
     if (f.n > 0)
         o->frames++;
     return f.n;

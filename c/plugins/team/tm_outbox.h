@@ -23,7 +23,7 @@
 #define TM_MAX_IDENTS 256
 #define TM_MAX_OUT_CONTACTS 256
 
-typedef enum { TM_ITEM_ACK = 1, TM_ITEM_IDENT = 2, TM_ITEM_CONTACT = 3, TM_ITEM_STATUS = 4 } tm_item_kind;
+typedef enum { TM_ITEM_ACK = 1, TM_ITEM_IDENT = 2, TM_ITEM_CONTACT = 3, TM_ITEM_STATUS = 4, TM_ITEM_FRONT = 5 } tm_item_kind;
 
 typedef struct {
     tm_item_kind kind;
@@ -56,6 +56,7 @@ typedef struct {
     tm_out_contact contacts[TM_MAX_OUT_CONTACTS];
     int n_contacts;
     int status_pending;
+    int front_pending;    /* a new own front summary waits (the store holds it) */
     int repeat;
     /* counters */
     long acks_dropped;    /* ack queue full */
@@ -71,6 +72,8 @@ PU_HIDDEN void tm_outbox_contact(tm_outbox *o, int number);
 /* An ack for own contact `number` arrived: 1 if it was not acked before. */
 PU_HIDDEN int tm_outbox_acked(tm_outbox *o, int number);
 PU_HIDDEN void tm_outbox_status(tm_outbox *o);
+/* A new own front summary is in the store: send it once, after the status. */
+PU_HIDDEN void tm_outbox_front(tm_outbox *o);
 /* Fills one frame; put[] receives the items appended, in order (up to max).
  * Returns their count. */
 PU_HIDDEN int tm_outbox_fill(tm_outbox *o, const tm_frame_writer *w, tm_item *put, int max);

@@ -15,10 +15,12 @@
 
 #include "chasm/chasm_plugin.h"
 #include "tm_contacts.h"
+#include "tm_front_rule.h"
 #include "tm_keepclear.h"
 #include "tm_lines.h"
 #include "tm_outbox.h"
 #include "tm_targets.h"
+#include "team/team_codec.h"
 
 /* status.state codes (the link schema's `state` field) */
 enum { TM_ST_TRANSIT = 0, TM_ST_SURVEY = 1, TM_ST_TAKEOVER = 2, TM_ST_REACQUIRE = 3, TM_ST_DONE = 4, TM_ST_ABORT = 5 };
@@ -79,6 +81,11 @@ typedef struct {
     double own_depth;
     double t_own;         /* when [s] */
     int status_state;     /* the state code sent (team_status's `state`, or `state` above) */
+    /* own front summary (team_link's `front` input, sampling) */
+    team_msg_front own_front;
+    int has_own_front;
+    long fronts_made, fronts_not_sendable, fronts_sent, fronts_heard;
+    tm_fr_looks looks;    /* front_rule's record of where the team looked */
     /* takeover: every vehicle's work list, kept by the rule (tm_lines.h) */
     tm_work work;
     int work_ready;

@@ -19,6 +19,7 @@ from sim.devices.lcmframe import IdentifyFrame, SonarFrame
 from sim.devices.maestro_wire import MaestroWire
 from sim.devices.micromodem import MicroModemWire
 from sim.devices.nmea_gps import NmeaGps
+from sim.devices.sbe49 import Sbe49
 from sim.devices.time_link import TimeLink
 
 # (the modem, the fins, the sonar, the identify sensor, the time link and the frontseat are no `sensors:`
@@ -28,6 +29,7 @@ EMULATORS: tuple[type[Emulator], ...] = (
     AhrsNmea,
     Digiquartz,
     DvlPd0,
+    Sbe49,
     MicroModemWire,
     MaestroWire,
     SonarFrame,

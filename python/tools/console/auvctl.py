@@ -34,7 +34,7 @@ from pathlib import Path
 
 import lcm
 
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.url import check_local, default_url
 from tools.console import mission_commands as mc
 from tools.console.model import Model
@@ -49,6 +49,7 @@ def _parser() -> argparse.ArgumentParser:
     programs.add_lcm_url_argument(ap, "LCM URL (default $LCM_DEFAULT_URL or the project's)", default=None)
     ap.add_argument("--timeout", type=float, default=5.0, help="seconds to wait for answers (default 5)")
     ap.add_argument("--shore", action="store_true", help="send through the radio's shore gateway (docs/radio.md)")
+    auth.add_key_file_argument(ap)
     sub = ap.add_subparsers(dest="cmd", required=True, metavar="COMMAND")
     for name in ("pause", "resume", "abort", "stop"):
         p = sub.add_parser(name, help=f"{name} the mission")
@@ -74,6 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     try:
         url = check_local(args.url or default_url())
+        ring = auth.ring_for(args.key_file, "auvctl") if args.cmd != "status" else None
         if args.cmd == "load":
             plan_text = args.plan.read_text()
             if len(plan_text.encode()) > mc.MAX_PLAN_BYTES:
@@ -83,7 +85,7 @@ def main(argv: list[str] | None = None) -> int:
                 )
         if args.cmd == "upload" and not args.plugin.is_file():
             raise OSError(f"{args.plugin}: no such file")
-    except (OSError, ValueError, UnicodeDecodeError) as exc:
+    except (OSError, ValueError, UnicodeDecodeError) as exc:  # KeyFileError is a ValueError
         print(f"auvctl: {exc}", file=sys.stderr)
         return 2
     lc = lcm.LCM(url)
@@ -104,6 +106,8 @@ def main(argv: list[str] | None = None) -> int:
     radio = RadioProgress(lc, vid, seq) if args.shore else None
     if args.cmd == "upload":
         msg = mc.upload(vid, args.manager, args.plugin, seq, args.version, args.name)
+        if ring:
+            auth.sign(msg, ring, auth.default_sender("auvctl"))
         lc.publish(f"{prefix}{vid}.PLUGIN_UPLOAD", msg.encode())
     else:
         msg = mc.command(
@@ -115,6 +119,8 @@ def main(argv: list[str] | None = None) -> int:
             plan_text=plan_text if args.cmd == "load" else "",
             reason=getattr(args, "reason", "") or f"auvctl ({mc.who()})",
         )
+        if ring:
+            auth.sign(msg, ring, auth.default_sender("auvctl"))
         lc.publish(f"{prefix}{vid}.MISSION_CMD", msg.encode())
     if radio is not None:
         return radio.wait(lc, args.timeout)
@@ -222,6 +228,9 @@ def _status(lc: lcm.LCM, model: Model, vid: str, args: argparse.Namespace) -> in
                 + (f" when {last['condition']}" if last["condition"] else "")
                 + (f" [{tests}]" if tests else "")
             )
+        if m.get("auth_refused"):
+            reasons = ", ".join(f"{k} {n}" for k, n in m["auth_refused"].items())
+            print(f"    commands refused by authentication: {reasons}")
     pos = v["nav"]
     if pos:
         print(

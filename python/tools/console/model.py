@@ -16,7 +16,7 @@ from collections import deque
 from typing import Any
 
 from sim import clock_modes
-from tools.console import radio_view
+from tools.console import chasm_view, radio_view
 
 RUN_NAMES = ("loading", "running", "paused", "done", "aborted", "failed")
 NAV_BITS = (
@@ -106,6 +106,10 @@ class Model:
             self.clock: dict[str, Any] = {}
             self.agents: dict[str, dict[str, Any]] = {}  # host -> its agent's process table
             self.counts = {"messages": 0, "ignored": 0}
+            # the state view (chasm_view.py): "VEHICLE/MANAGER" -> the structure drawn, and what was refused
+            self.structures: dict[str, dict[str, Any]] = {}
+            self.structures_version = 0
+            self.plans: dict[str, dict[str, Any]] = {}
             self._cache: tuple[int, str] | None = None
 
     def set_world(self, world: dict[str, Any]) -> None:
@@ -148,6 +152,17 @@ class Model:
             self.lock.notify_all()
             return True
 
+    def refuse_structure(self, channel: str, reason: str) -> None:
+        """A message on a structure channel that does not decode: counted, with the reason, on its manager."""
+        if ".PLAN." not in channel:
+            return
+        with self.lock:
+            info = _plan_info(self, f"{_vehicle_id(channel)}/{channel.rsplit('.', 1)[-1]}")
+            info["refused"] += 1
+            info["reason"] = reason
+            self.version += 1
+            self.lock.notify_all()
+
     # ------------------------------------------------------------- reading
     def now_json(self) -> str:
         """Everything but the series, serialised once per version (call under lock)."""
@@ -163,9 +178,17 @@ class Model:
                 "clock": self.clock,
                 "agents": self.agents,
                 "counts": self.counts,
+                "plans": self.plans,
             }
             self._cache = (self.version, json.dumps(now, separators=(",", ":")))
         return self._cache[1]
+
+    def structures_since(self, sent: dict[str, str]) -> dict[str, Any]:
+        """The structures a page has not got yet (sent: key -> plan_id, updated in place)."""
+        out = {k: st for k, st in self.structures.items() if sent.get(k) != st["id"]}
+        for k, st in out.items():
+            sent[k] = st["id"]
+        return out
 
     def series_since(self, cursors: dict[str, int], fresh: bool = False) -> dict[str, Any]:
         """New trail points and contacts for one page; cursors are updated in place.
@@ -232,11 +255,46 @@ def _nav_status(m: Model, ch: str, msg: Any) -> bool:
     return True
 
 
+def _plan_info(m: Model, key: str) -> dict[str, Any]:
+    info = m.plans.get(key)
+    if info is None:
+        info = m.plans[key] = {"id": "", "refused": 0, "reason": "", "mismatched": 0}
+    return info
+
+
+def _structure(m: Model, ch: str, msg: Any) -> bool:
+    """A manager's plan structure (<VEHICLE>.PLAN.<MANAGER>): drawn only if it holds together."""
+    if ".PLAN." not in ch:
+        return False
+    vid = _vehicle_id(ch)
+    m._vehicle(vid)
+    key = f"{vid}/{msg.manager or ch.rsplit('.', 1)[-1]}"
+    info = _plan_info(m, key)
+    if key in m.structures and m.structures[key]["id"] == msg.plan_id and not msg.truncated:
+        return True  # sent again: the same plan
+    try:
+        m.structures[key] = chasm_view.check_structure(msg)
+    except (chasm_view.BadStructure, IndexError) as exc:
+        info["refused"] += 1
+        info["reason"] = str(exc)
+        return True
+    info["id"] = msg.plan_id
+    m.structures_version += 1
+    return True
+
+
 def _chasm(m: Model, ch: str, msg: Any) -> bool:
     if ".CHASM." not in ch:
         return False
     v = m._vehicle(_vehicle_id(ch))
-    v["managers"][msg.manager or ch.rsplit(".", 1)[-1]] = {
+    name = msg.manager or ch.rsplit(".", 1)[-1]
+    old = v["managers"].get(name)
+    key = f"{_vehicle_id(ch)}/{name}"
+    drawn = m.structures.get(key)
+    if drawn is not None and msg.plan_id != drawn["id"]:
+        _plan_info(m, key)["mismatched"] += 1
+    v["managers"][name] = {
+        "view": chasm_view.status_view(msg, old.get("view") if old else None),
         "run": run_name(msg.run_state),
         "path": "/".join(msg.active_path),
         "time_in_state": round(msg.time_in_state_s[-1], 1) if msg.path_len else 0.0,
@@ -250,6 +308,19 @@ def _chasm(m: Model, ch: str, msg: Any) -> bool:
             "tests": {n: bool(x) for n, x in zip(msg.test_name, msg.test_value)},
         },
         "decode_errors": msg.decode_errors,
+        "commands_refused": msg.commands_refused,
+        # refused by authentication, by reason (docs/security.md); only reasons that happened
+        "auth_refused": {
+            k: n
+            for k, n in (
+                ("unsigned", msg.auth_unsigned),
+                ("unknown_key", msg.auth_unknown_key),
+                ("bad_mac", msg.auth_bad_mac),
+                ("replay", msg.auth_replay),
+                ("stale", msg.auth_stale),
+            )
+            if n
+        },
     }
     return True
 
@@ -396,6 +467,7 @@ _HANDLERS = {
     "nav_solution_t": _nav,
     "nav_filter_status_t": _nav_status,
     "chasm_status_t": _chasm,
+    "chasm_structure_t": _structure,
     "sidescan_contact_t": _contact,
     "target_field_t": _targets,
     "modem_rx_t": _modem_rx,
@@ -410,6 +482,6 @@ _HANDLERS = {
 # Only these channels are decoded at all (liblcm filters by this regex in C).
 CHANNELS = (
     r"[A-Za-z0-9_]+\.(TRUTH|NAV|NAV_STATUS|CONTACTS|MODEM_RX|MODEM_STATUS|MISSION_ACK|FRONTSEAT)"
-    r"|[A-Za-z0-9_]+\.CHASM\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
+    r"|[A-Za-z0-9_]+\.(CHASM|PLAN)\.[A-Za-z0-9_]+|SIM\.(CLOCK|TARGETS|ANNOTATION|ENV)"
     r"|AGENT\.[A-Za-z0-9_.-]+\.PROCS" + radio_view.CHANNELS
 )

@@ -5,12 +5,15 @@ page gets the model's "now" (serialised once per change for every page) plus
 its own new trail points and contacts, at most `rate` times a second, and a
 comment line every few seconds when nothing changes (so proxies keep it open).
 POST /api/command publishes a mission command (live only); POST /api/seek
-moves a log to a time (log only).
+moves a log to a time (log only). Every request must name this console in
+its Host header, and off loopback the stream and the commands need the login
+token (tools/console/access.py); with a certificate it serves HTTPS.
 """
 
 from __future__ import annotations
 
 import json
+import ssl
 import threading
 import time
 from http import HTTPStatus
@@ -19,6 +22,8 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import urlparse
 
+from tools.console import plan_file
+from tools.console.access import Access
 from tools.console.mission_commands import COMMANDS
 from tools.console.model import Model
 
@@ -31,14 +36,29 @@ TYPES = {
 }
 KEEPALIVE_S = 5.0
 MAX_BODY = 1 << 20  # a plan's text is a few kB; refuse anything silly
+NEEDS_TOKEN = ("/api/events", "/api/command", "/api/seek")
 
 
 class ConsoleServer(ThreadingHTTPServer):
     daemon_threads = True
     allow_reuse_address = True
 
-    def __init__(self, address: tuple[str, int], model: Model, source: Any, rate_hz: float) -> None:
+    def __init__(
+        self,
+        address: tuple[str, int],
+        model: Model,
+        source: Any,
+        rate_hz: float,
+        access: Access | None = None,
+        tls: ssl.SSLContext | None = None,
+        plans: list[Path] | None = None,
+    ) -> None:
         super().__init__(address, Handler)
+        self.plans = list(plans or [])  # plan files shown to their author (plan_file.py)
+        self.access = access or Access(address[0])
+        self.tls = tls is not None
+        if tls is not None:  # the handshake runs on the request's thread, not in accept()
+            self.socket = tls.wrap_socket(self.socket, server_side=True, do_handshake_on_connect=False)
         self.model, self.source = model, source
         self.min_interval = 1.0 / max(rate_hz, 0.1)
         self.closing = threading.Event()
@@ -59,8 +79,10 @@ class Handler(BaseHTTPRequestHandler):
         pass
 
     # ------------------------------------------------------------- plumbing
-    def _send(self, status: int, body: bytes, ctype: str = "application/json") -> None:
+    def _send(self, status: int, body: bytes, ctype: str = "application/json", cookie: str = "") -> None:
         self.send_response(status)
+        if cookie:
+            self.send_header("Set-Cookie", cookie)
         self.send_header("Content-Type", ctype)
         self.send_header("Content-Length", str(len(body)))
         self.send_header("Cache-Control", "no-store")
@@ -87,9 +109,28 @@ class Handler(BaseHTTPRequestHandler):
             return None
         return body
 
+    def _allowed(self) -> bool:
+        """The Host header names this console (else 421), and a request that
+        needs the login token carries it (else 401)."""
+        acc = self.server.access
+        if not acc.host_ok(self.headers.get("Host")):
+            self._json(HTTPStatus.MISDIRECTED_REQUEST, {"error": "this console is not served under that host name"})
+            return False
+        path, _, query = self.path.partition("?")
+        if path in NEEDS_TOKEN and not acc.token_ok(self.headers, query):
+            self._json(HTTPStatus.UNAUTHORIZED, {"error": "login token needed: open the address the console printed"})
+            return False
+        return True
+
     # ------------------------------------------------------------- routes
     def do_GET(self) -> None:  # noqa: N802 (http.server's naming)
-        path = self.path.split("?", 1)[0]
+        if not self._allowed():
+            return
+        path, _, query = self.path.partition("?")
+        login = path == "/" and self.server.access.token is not None and "token=" in query
+        if login and not self.server.access.token_ok({}, query):
+            self._json(HTTPStatus.UNAUTHORIZED, {"error": "wrong login token"})
+            return
         if path == "/":
             path = "/static/index.html"
         if path.startswith("/static/"):
@@ -98,9 +139,12 @@ class Handler(BaseHTTPRequestHandler):
             if STATIC not in file.parents or not file.is_file() or file.suffix not in TYPES:
                 self._json(HTTPStatus.NOT_FOUND, {"error": f"no {path}"})
                 return
-            self._send(HTTPStatus.OK, file.read_bytes(), TYPES[file.suffix])
+            cookie = self.server.access.cookie(self.server.tls) if login else ""
+            self._send(HTTPStatus.OK, file.read_bytes(), TYPES[file.suffix], cookie)
         elif path == "/api/info":
             self._json(HTTPStatus.OK, self.server.info())
+        elif path == "/api/plans":
+            self._json(HTTPStatus.OK, [plan_file.describe(p) for p in self.server.plans])
         elif path == "/api/events":
             self._events()
         else:
@@ -121,7 +165,7 @@ class Handler(BaseHTTPRequestHandler):
         return True
 
     def do_POST(self) -> None:  # noqa: N802
-        if not self._same_origin_json():
+        if not self._allowed() or not self._same_origin_json():
             return
         body = self._body()
         if body is None:
@@ -172,7 +216,8 @@ class Handler(BaseHTTPRequestHandler):
         self.close_connection = True
         srv, model = self.server, self.server.model
         cursors: dict[str, int] = {}
-        epoch = version = world_version = -1
+        epoch = version = world_version = structures_version = -1
+        sent_plans: dict[str, str] = {}  # the structures this page has: key -> plan_id
         srv.pages += 1
         try:
             while not srv.closing.is_set():
@@ -183,12 +228,20 @@ class Handler(BaseHTTPRequestHandler):
                         chunk = b": keepalive\n\n"
                     else:
                         fresh = model.epoch != epoch
+                        if fresh:
+                            sent_plans.clear()
+                            structures_version = -1
                         epoch = model.epoch
                         series = model.series_since(cursors, fresh)
                         parts = ['{"now":', model.now_json(), ',"series":', json.dumps(series, separators=(",", ":"))]
                         if model.world_version != world_version:
                             parts += [',"world":', json.dumps(model.world, separators=(",", ":"))]
                             world_version = model.world_version
+                        if model.structures_version != structures_version:
+                            plans = model.structures_since(sent_plans)
+                            if plans:
+                                parts += [',"structures":', json.dumps(plans, separators=(",", ":"))]
+                            structures_version = model.structures_version
                         parts.append("}")
                         version = model.version
                         chunk = ("data: " + "".join(parts) + "\n\n").encode()

@@ -19,8 +19,10 @@ from typing import Any
 
 import lcm
 
+from auvlcm import auth
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.types import type_of
+from auvlcm.url import with_receive_buffer
 from tools.console import mission_commands
 from tools.console.model import CHANNELS, WALL_STAMPED, Model
 from tools.console.world import WorldBuilder
@@ -43,10 +45,15 @@ def decode(data: bytes) -> Any | None:
 class LiveSource:
     mode = "live"
 
-    def __init__(self, model: Model, world: WorldBuilder, url: str, command_prefix: str = "") -> None:
+    def __init__(
+        self, model: Model, world: WorldBuilder, url: str, ring: auth.KeyRing | None = None, command_prefix: str = ""
+    ) -> None:
         self.model, self.world = model, world
         self.command_prefix = command_prefix  # "SHORE.": commands go through the radio's shore gateway
-        self.lc = lcm.LCM(url)
+        self.ring = ring  # commands are signed with it (docs/security.md); None: not authenticated
+        self.sender = auth.default_sender("console")
+        # a large receive buffer: a fleet's managers send their plan structures (tens of kB each) at once
+        self.lc = lcm.LCM(with_receive_buffer(url))
         self.decode_errors = 0
         self._seq = mission_commands.first_seq()
         self._seq_lock = threading.Lock()
@@ -70,6 +77,7 @@ class LiveSource:
         msg = decode(data)
         if msg is None:
             self.decode_errors += 1
+            self.model.refuse_structure(channel, "a message that is no chasm_structure_t (unknown type or bad length)")
             return
         if type(msg).__name__ in WORLD_TYPES:
             self.world.observe(channel, msg)
@@ -88,6 +96,8 @@ class LiveSource:
         msg = mission_commands.command(
             vehicle, manager, name, seq, utime, plan_name, plan_text, reason=f"console ({mission_commands.who()})"
         )
+        if self.ring:
+            auth.sign(msg, self.ring, self.sender)
         self.lc.publish(f"{self.command_prefix}{vehicle}.MISSION_CMD", msg.encode())
         return seq
 
@@ -122,7 +132,7 @@ class LogSource:
                 msg = decode(ev.data)
                 if msg is None:
                     self.decode_errors += 1
-                    continue
+                    continue  # (a bad structure in a log shows as no structure: the view says so)
                 if type(msg).__name__ in WORLD_TYPES:
                     world.observe(ev.channel, msg)  # the layers do not change with time
                     continue

@@ -1,9 +1,16 @@
-"""The map's fixed layers: survey area and lines, operating area, LBL net, seabed.
+"""The map's fixed layers: survey area and lines, operating area, LBL net, seabed,
+and the water's temperature where the world has an ocean.
 
 They come from wherever they are known, the latest source winning: a scenario
 file given on the command line, the log's own annotations (the planner's
 survey.json, each simulator's merged configuration) and SIM.ENV (the seabed
-reference and the transponders the environment server serves).
+reference, the transponders and the ocean the environment server serves).
+
+The water layer is the world's temperature at WATER_DEPTH_M (the upper water a
+sampling team maps, docs/sampling.md) at the world's start, over the area of the
+other layers and the vehicles' starts: a front that moves, or a plume the current
+carries, is drawn where it was at t = 0 (the report's `front_field` plot has it
+at the mission's end).
 """
 
 from __future__ import annotations
@@ -17,6 +24,8 @@ import yaml
 from tools.console.model import Model
 
 GRID = 40  # seabed cells per side sent to the page
+WATER_GRID = 64  # water cells per side: a front is a few cells wide
+WATER_DEPTH_M = 5.0
 
 
 class WorldError(ValueError):
@@ -31,6 +40,8 @@ class WorldBuilder:
         self.base_dir = Path.cwd()
         self.transponders: list[dict[str, float]] = []
         self.name = ""
+        self.ocean: Any = None  # sim.ocean.fields.Ocean of the world, if it has one
+        self.starts: dict[str, tuple[float, float]] = {}  # vehicle -> (north, east) at the start
 
     # ------------------------------------------------------------- sources
     def load_scenario(self, path: Path) -> None:
@@ -74,16 +85,24 @@ class WorldBuilder:
                     self.survey, changed = json.loads(msg.text), True
                 except ValueError:
                     pass
-            elif msg.kind == 1 and msg.vehicle and msg.name.endswith(".sim.yaml") and not self.bathymetry_ref:
-                ref = _bathymetry_of_sim_yaml(msg.text)
-                if ref:
-                    self.bathymetry_ref, changed = ref, True
+            elif msg.kind == 1 and msg.vehicle and msg.name.endswith(".sim.yaml"):
+                cfg = _sim_config(msg.text)
+                if cfg is not None and not self.bathymetry_ref and cfg.env.bathymetry_ref:
+                    self.bathymetry_ref, changed = cfg.env.bathymetry_ref, True
+                if cfg is not None:
+                    self.starts[msg.vehicle] = (cfg.initial.north_m, cfg.initial.east_m)
+                    if self.ocean is None and cfg.env.ocean is not None:
+                        self.ocean = _ocean(cfg.env, self.base_dir)
+                    changed = True
         elif kind == "env_model_t":
             tps = [{"id": t.id, "n": round(t.north_m, 1), "e": round(t.east_m, 1)} for t in msg.transponders]
             if msg.bathymetry_ref != self.bathymetry_ref or tps != self.transponders:
                 self.bathymetry_ref, self.transponders, changed = msg.bathymetry_ref, tps, True
             if msg.world and not self.name:
                 self.name, changed = msg.world, True
+            if self.ocean is None:
+                self.ocean = _ocean_of_env_model(msg, self.base_dir)
+                changed = changed or self.ocean is not None
         if changed:
             self.publish()
 
@@ -104,7 +123,39 @@ class WorldBuilder:
             areas[vid] = plan.get("polygon") or []
         layers["lines"], layers["vehicle_areas"] = lines, areas
         layers["seabed"] = self._seabed(layers)
+        layers["water"] = self._water(layers)
         self.model.set_world(layers)
+
+    def _box(self, layers: dict[str, Any], with_starts: bool) -> tuple[float, float, float, float]:
+        """The area of interest: the areas, the transponders (and the vehicles' starts), padded."""
+        pts = list(layers["operating_area"]) or list(layers["survey_area"])
+        pts += [[t["n"], t["e"]] for t in self.transponders if t["n"] is not None]
+        if with_starts:
+            pts += [list(p) for p in self.starts.values()]
+        if not pts:
+            return -250.0, 250.0, -250.0, 250.0
+        n0, n1 = min(p[0] for p in pts), max(p[0] for p in pts)
+        e0, e1 = min(p[1] for p in pts), max(p[1] for p in pts)
+        # the vehicles go from their starts: half the span more on every side
+        pad = (0.5 if with_starts else 0.15) * max(n1 - n0, e1 - e0, 50.0)
+        return n0 - pad, n1 + pad, e0 - pad, e1 + pad
+
+    def _water(self, layers: dict[str, Any]) -> dict[str, Any] | None:
+        """The water's temperature at WATER_DEPTH_M at t = 0 on a WATER_GRID square lattice, or None."""
+        if self.ocean is None:
+            return None
+        import numpy as np
+
+        n0, n1, e0, e1 = self._box(layers, with_starts=True)
+        k = WATER_GRID
+        dn, de = (n1 - n0) / k, (e1 - e0) / k
+        nn, ee = np.meshgrid(n0 + (np.arange(k) + 0.5) * dn, e0 + (np.arange(k) + 0.5) * de, indexing="ij")
+        try:
+            temp = self.ocean.fields(0.0, nn, ee, WATER_DEPTH_M)[0]
+        except Exception as exc:  # noqa: BLE001 - a map without the water beats no map
+            return {"error": f"ocean: {exc}"}
+        rows = np.round(temp, 3).tolist()
+        return {"north0": n0, "east0": e0, "dn": dn, "de": de, "depth_m": WATER_DEPTH_M, "t": 0.0, "temp": rows}
 
     def _seabed(self, layers: dict[str, Any]) -> dict[str, Any] | None:
         """Depths on a GRID x GRID lattice over the area of interest, or None."""
@@ -116,15 +167,7 @@ class WorldBuilder:
             depth = Bathymetry(self.bathymetry_ref, self.base_dir).depth
         except Exception as exc:  # noqa: BLE001 - a map without a seabed beats no map
             return {"error": f"seabed {self.bathymetry_ref!r}: {exc}"}
-        pts = list(layers["operating_area"]) or list(layers["survey_area"])
-        pts += [[t["n"], t["e"]] for t in self.transponders if t["n"] is not None]
-        if pts:
-            n0, n1 = min(p[0] for p in pts), max(p[0] for p in pts)
-            e0, e1 = min(p[1] for p in pts), max(p[1] for p in pts)
-            pad = 0.15 * max(n1 - n0, e1 - e0, 50.0)
-            n0, n1, e0, e1 = n0 - pad, n1 + pad, e0 - pad, e1 + pad
-        else:
-            n0, n1, e0, e1 = -250.0, 250.0, -250.0, 250.0
+        n0, n1, e0, e1 = self._box(layers, with_starts=False)
         dn, de = (n1 - n0) / GRID, (e1 - e0) / GRID
         rows = [
             [round(float(depth(n0 + (i + 0.5) * dn, e0 + (j + 0.5) * de)), 2) for j in range(GRID)] for i in range(GRID)
@@ -142,10 +185,31 @@ def _bathymetry_ref(node: Any) -> str:
     return str(node or "")
 
 
-def _bathymetry_of_sim_yaml(text: str) -> str:
+def _sim_config(text: str) -> Any:
+    """A simulator's merged configuration (annotated into the log), or None."""
     try:
         from sim.config import loads
 
-        return loads(text).env.bathymetry_ref or ""
-    except Exception:  # noqa: BLE001 - an unreadable config just leaves the seabed out
-        return ""
+        return loads(text)
+    except Exception:  # noqa: BLE001 - an unreadable config just leaves its layers out
+        return None
+
+
+def _ocean(env: Any, base_dir: Path) -> Any:
+    """The world's ocean from its environment parameters, or None (no ocean, or a grid file not here)."""
+    try:
+        from sim.environment import Environment
+
+        return Environment(env, base_dir).ocean
+    except Exception:  # noqa: BLE001 - a map without the water beats no map
+        return None
+
+
+def _ocean_of_env_model(msg: Any, base_dir: Path) -> Any:
+    try:
+        from sim.environment import Environment
+
+        params = Environment.params_from_env_model(msg)
+    except Exception:  # noqa: BLE001
+        return None
+    return _ocean(params, base_dir) if params.ocean is not None else None

@@ -78,7 +78,7 @@ class VehicleComputer:
         nav = programs.auv_nav(build, config=a.nav_config, vehicle=vid, lcm_url=self.url, rate_hz=self.v.nav.rate_hz)
         self.start(f"{vid}.NAV", nav, TIER_FILTER)
         for m in self.v.managers:
-            cmd = manager_cmd(build, self.url, vid, m)
+            cmd = manager_cmd(build, self.url, vid, m, self.sc.key_file)
             self.start(f"{vid}.{m.name}", cmd, TIER_MANAGER)
         for m in self.v.managers:
             self.notes.plan(m.plan, vid)

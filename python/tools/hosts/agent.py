@@ -2,7 +2,7 @@
 """Host agent: one per host, started once; runs that host's part of whatever
 scenario a launcher sends over LCM (docs/hosts.md).
 
-    auv-agent --host NAME [--lcm-url URL] [--out DIR] [--build DIR] [--netns]
+    auv-agent --host NAME [--lcm-url URL] [--out DIR] [--build DIR] [--netns] [--key-file FILE]
 
 Listens on AGENT.<HOST>.CMD (agent_command_t), answers every command on
 AGENT.<HOST>.ACK (agent_ack_t) and publishes its process table, with each
@@ -10,6 +10,10 @@ process's state, CPU and memory, on AGENT.<HOST>.PROCS (agent_table_t) at
 1 Hz and after every change. A command for another host, a second START
 while a run is active, a bad scenario or a bad restart rule is refused with
 the reason in the ack and changes nothing.
+
+With --key-file (default $AUV_KEY_FILE) every command must be signed with one
+of its keys (docs/security.md): an unsigned, forged, replayed or stale one is
+refused with the reason in the ack and counted in the table (auth_*).
 
 A launcher that dies leaves the run going until a STOP, unless the START
 set a dead-man time (deadman_s): then the run is stopped after that long
@@ -31,7 +35,7 @@ from pathlib import Path
 import lcm
 
 from auv import agent_ack_t, agent_command_t, agent_process_t, agent_table_t
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.paths import ROOT, build_dir
 from auvlcm.rx import Receiver
 from auvlcm.url import check_local, default_url
@@ -52,8 +56,12 @@ def channels(host: str) -> tuple[str, str, str]:
 
 
 class Agent:
-    def __init__(self, host: str, url: str, out: Path, build: Path, inside_netns: bool) -> None:
+    def __init__(
+        self, host: str, url: str, out: Path, build: Path, inside_netns: bool, key_file: Path | None = None
+    ) -> None:
         self.host, self.url, self.out, self.build, self.netns = host, url, out, build, inside_netns
+        self.key_file = key_file.resolve() if key_file else None  # its managers get it too
+        self.verifier = auth.Verifier(auth.ring_for(key_file, f"agent {host}"))
         self.cmd_ch, self.ack_ch, self.table_ch = channels(host)
         self.lc = lcm.LCM(url)
         self.rx = Receiver(self.lc)
@@ -71,6 +79,12 @@ class Agent:
 
     # ------------------------------------------------------------ commands
     def on_command(self, _channel: str, cmd) -> None:
+        verdict = self.verifier.verify(cmd)
+        if verdict != auth.OK:  # nothing of it is acted on, nor remembered
+            self.answer(cmd, agent_ack_t.RESULT_REJECTED, f"refused: {auth.RESULT_TEXT[verdict]}")
+            self.log(f"command from {cmd.sender!r} seq {cmd.seq} refused: {auth.RESULT_TEXT[verdict]}")
+            self.publish_table()
+            return
         key = (cmd.sender, cmd.seq)
         if key in self.acks and cmd.command != C.CMD_KEEPALIVE:
             self.lc.publish(self.ack_ch, self.acks[key].encode())
@@ -79,17 +93,21 @@ class Agent:
             result, message = self.execute(cmd)
         except Exception as exc:  # an agent never dies of a command: the sender hears why
             result, message = agent_ack_t.RESULT_FAILED, f"internal error: {type(exc).__name__}: {exc}"
-        ack = agent_ack_t()
-        ack.utime, ack.host, ack.sender, ack.seq = int(time.time() * 1e6), self.host, cmd.sender, cmd.seq
-        ack.result, ack.message = result, message[:MAX_MESSAGE]
+        ack = self.answer(cmd, result, message)
         if cmd.command != C.CMD_KEEPALIVE:
             self.acks[key] = ack
             if len(self.acks) > 1000:
                 self.acks.pop(next(iter(self.acks)))
             kind = {C.CMD_START: "START", C.CMD_STOP: "STOP"}.get(cmd.command, f"command {cmd.command}")
             self.log(f"{kind} from {cmd.sender} seq {cmd.seq}: {RESULT_WORDS[result]}: {message}")
-        self.lc.publish(self.ack_ch, ack.encode())
         self.publish_table()
+
+    def answer(self, cmd, result: int, message: str) -> agent_ack_t:
+        ack = agent_ack_t()
+        ack.utime, ack.host, ack.sender, ack.seq = int(time.time() * 1e6), self.host, cmd.sender, cmd.seq
+        ack.result, ack.message = result, message[:MAX_MESSAGE]
+        self.lc.publish(self.ack_ch, ack.encode())
+        return ack
 
     def execute(self, cmd) -> tuple[int, str]:
         if cmd.host != self.host:
@@ -134,6 +152,7 @@ class Agent:
                 self.url,
                 self.build,
                 self.netns,
+                self.key_file,
             )
         except PartError as exc:
             return agent_ack_t.RESULT_REJECTED, "\n".join(exc.errors)
@@ -189,6 +208,9 @@ class Agent:
             row.cpu_load, row.rss_bytes, row.uptime_s = p.cpu_load, p.rss, p.uptime(now)
             t.procs.append(row)
         t.n_procs = len(t.procs)
+        n = self.verifier.counts
+        t.auth_unsigned, t.auth_unknown_key, t.auth_bad_mac = n["unsigned"], n["unknown_key"], n["bad_mac"]
+        t.auth_replay, t.auth_stale = n["replay"], n["stale"]
         self.lc.publish(self.table_ch, t.encode())
 
     def loop(self, stop) -> None:
@@ -213,6 +235,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument(
         "--netns", action="store_true", help="running in a network namespace made for this run: allows ttl=1 URLs"
     )
+    auth.add_key_file_argument(ap)
     args = ap.parse_args(argv)
     if not re.fullmatch(HOST_NAME, args.host) or len(channels(args.host)[2]) > MAX_CHANNEL:
         print(
@@ -223,7 +246,9 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     try:
         url = check_local(args.url or default_url(), inside_netns=args.netns or None)
-    except ValueError as exc:
+        if args.key_file:
+            auth.load_keys(args.key_file)  # refused here, before anything listens
+    except ValueError as exc:  # KeyFileError too
         print(f"agent: {exc}", file=sys.stderr)
         return 2
     out = (args.out or ROOT / "build" / "agents" / args.host).resolve()
@@ -231,7 +256,7 @@ def main(argv: list[str] | None = None) -> int:
     flag = {"stop": False}
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, lambda *_: flag.update(stop=True))
-    Agent(args.host, url, out, args.build, args.netns or None).loop(lambda: flag["stop"])
+    Agent(args.host, url, out, args.build, args.netns or None, args.key_file).loop(lambda: flag["stop"])
     return 0
 
 

@@ -53,17 +53,19 @@ class Keepalive(threading.Thread):
                 if silent and not self.failed:
                     self.failed = f"the agent of host {silent[0]} is silent for {AGENT_SILENT_S:g} s (dead?)"
                 for h in self.hosts:
-                    self.lc.publish(channels(h)[0], self.ctl.command(h, C.CMD_KEEPALIVE, run=self.run_name).encode())
+                    keepalive = self.ctl.command(h, C.CMD_KEEPALIVE, run=self.run_name)
+                    self.lc.publish(channels(h)[0], self.ctl.signed(keepalive))
             self.lc.handle_timeout(100)
 
 
-def run_on_agents(sc, args, url: str, sim_configs: dict, navs: dict) -> tuple[str, object]:
-    """Start, watch and stop the run; returns (result, launcher) for auv-launch's summary."""
+def run_on_agents(sc, args, url: str, sim_configs: dict, navs: dict, ring=None) -> tuple[str, object]:
+    """Start, watch and stop the run; returns (result, launcher) for auv-launch's summary.
+    ring: the scenario's team keys (docs/security.md): every command is signed with it."""
     from tools.launch.launcher import Launcher
 
     rules = [parse_rule(r) for r in args.restart]
     run_name = sc.name
-    ctl = Control(url)
+    ctl = Control(url, ring)
     starts = [
         ctl.command(
             h, C.CMD_START, run=run_name, path=str(sc.path), text=sc.text, deadman_s=args.deadman, restart=rules

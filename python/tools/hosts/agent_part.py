@@ -47,10 +47,19 @@ class PartError(Exception):
 
 
 def host_part(
-    text: str, sent_path: str, host: str, run_dir: Path, url: str, build: Path, inside_netns: bool
+    text: str,
+    sent_path: str,
+    host: str,
+    run_dir: Path,
+    url: str,
+    build: Path,
+    inside_netns: bool,
+    key_file: Path | None = None,
 ) -> tuple[Scenario, list[ProcSpec]]:
     """Check the scenario as this host sees it and return its processes in
-    start order; PartError lists every problem (`file:line:col: ...`)."""
+    start order; PartError lists every problem (`file:line:col: ...`). key_file:
+    the agent's own team keys, which its managers then require (whatever the
+    scenario names)."""
     run_dir.mkdir(parents=True, exist_ok=True)
     sent = Path(sent_path or "scenario.yaml")
     local = run_dir / (sent.name if sent.suffix in (".yaml", ".yml") else "scenario.yaml")
@@ -64,11 +73,13 @@ def host_part(
             ]
         )
     try:
-        sc = load_scenario(local, base)
+        sc = load_scenario(local, base, own_keys=key_file is not None)
     except ConfigError as exc:  # point at the sender's file: same text, same lines
         raise PartError([e.replace(str(local), str(sent)) for e in exc.errors]) from None
     if base is not None:
         sc.path = sent  # world grids and config comments resolve as on the sender
+    if key_file is not None:
+        sc.key_file = key_file
     if host not in sc.hosts:
         raise PartError([f"{local}: hosts: this agent's host '{host}' is not one of: {', '.join(sc.hosts)}"])
     try:

@@ -6,6 +6,9 @@ process tables (docs/hosts.md). No ssh: everything goes over LCM.
     auv-agentctl stop  (SCENARIO | --host H...) [--run NAME]
     auv-agentctl status --host H... [--json]
 
+Commands are signed with --key-file (default $AUV_KEY_FILE, else the
+scenario's key_file; docs/security.md); without one they are not authenticated.
+
 start sends the whole scenario to the agent of each of its hosts (or the
 --host ones) and waits for every acknowledgement; agents then run their
 parts on their own: this command may end, or die, and the runs go on (until
@@ -33,7 +36,7 @@ from pathlib import Path
 import lcm
 
 from auv import agent_ack_t, agent_command_t, agent_restart_t, agent_table_t
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.rx import Receiver
 from auvlcm.url import check_local, default_url
 from confcheck import ConfigError
@@ -67,9 +70,10 @@ def parse_rule(text: str) -> agent_restart_t:
 class Control:
     """Sends commands to agents and collects their acks and tables."""
 
-    def __init__(self, url: str) -> None:
+    def __init__(self, url: str, ring: auth.KeyRing | None = None) -> None:
         self.lc = lcm.LCM(url)
         self.rx = Receiver(self.lc)
+        self.ring = ring
         self.sender = f"agentctl@{socket.gethostname()}:{os.getpid()}"
         self.seq = int(time.time()) % 100000 * 1000
         self.acks: dict[tuple[str, int], agent_ack_t] = {}
@@ -110,6 +114,13 @@ class Control:
         cmd.n_restart = len(cmd.restart)
         return cmd
 
+    def signed(self, cmd: agent_command_t) -> bytes:
+        """cmd encoded, signed afresh (a resend gets a new counter: the agent
+        answers it from its table of acks instead of refusing a replay)."""
+        if self.ring:
+            auth.sign(cmd, self.ring, self.sender)
+        return cmd.encode()
+
     def send_all(self, cmds: list[agent_command_t], timeout: float) -> dict[str, agent_ack_t | None]:
         """Publish each command, resend every second (agents answer a resend
         without acting twice) until every host has answered or the time is up."""
@@ -120,7 +131,7 @@ class Control:
                 break
             if time.monotonic() >= resend:
                 for c in pending:
-                    self.lc.publish(channels(c.host)[0], c.encode())
+                    self.lc.publish(channels(c.host)[0], self.signed(c))
                 resend = time.monotonic() + 1.0
             self.lc.handle_timeout(50)
         return {c.host: self.acks.get((c.host, c.seq)) for c in cmds}
@@ -201,6 +212,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--netns", action="store_true", help="allow ttl=1 (a network namespace made for this run)")
     ap.add_argument("--timeout", type=float, default=30.0, help="seconds to wait for every answer")
     ap.add_argument("--json", action="store_true", help="status: the tables as JSON")
+    auth.add_key_file_argument(ap)
     args = ap.parse_args(argv)
     try:
         rules = [parse_rule(r) for r in args.restart]
@@ -208,6 +220,8 @@ def main(argv: list[str] | None = None) -> int:
             raise ValueError(f"--deadman {args.deadman}: expected seconds >= 0")
         url = check_local(args.url or default_url(), inside_netns=args.netns or None)
         sc = load_scenario(args.scenario) if args.scenario else None
+        key_file = args.key_file or (sc.key_file if sc else None)
+        ring = auth.ring_for(key_file, "agentctl") if args.action != "status" else None
     except ConfigError as exc:  # a ValueError too: first
         print("\n".join(exc.errors), file=sys.stderr)
         print(f"agentctl: {args.scenario}: {len(exc.errors)} error(s)", file=sys.stderr)
@@ -232,7 +246,7 @@ def main(argv: list[str] | None = None) -> int:
             file=sys.stderr,
         )
         return 2
-    ctl = Control(url)
+    ctl = Control(url, ring)
     if args.action == "status":
         ctl.wait_tables(hosts, args.timeout)
         missing = [h for h in hosts if h not in ctl.tables]

@@ -30,7 +30,7 @@ import signal
 import sys
 from pathlib import Path
 
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.paths import ROOT, build_dir
 from auvlcm.url import check_local, default_url
 from confcheck import ConfigError
@@ -143,6 +143,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"launch: {args.scenario}: {len(errors)} error(s)", file=sys.stderr)
         return 2
 
+    ring = auth.ring_for(sc.key_file, "launch")  # checked with the scenario; None: said once
     flag = {"stop": False}
     for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
         signal.signal(sig, lambda *_: flag.update(stop=True))
@@ -150,7 +151,7 @@ def main(argv: list[str] | None = None) -> int:
         from tools.hosts.agent_launch import run_on_agents
 
         args.stop_flag = flag
-        result, run = run_on_agents(sc, args, url, sim_configs, navs)
+        result, run = run_on_agents(sc, args, url, sim_configs, navs, ring)
         return _finish(run, args, result)
     batch = wants_batch(sc.time.mode, args.sched)
     why_not = batch_available() if batch else None

@@ -106,8 +106,9 @@ def check_plans(sc: Scenario, build: Path) -> list[str]:
     return errors
 
 
-def manager_cmd(build: Path, url: str, vid: str, m) -> list[str]:
-    """The command line of a scenario's manager m (tools.scenario) of vehicle vid."""
+def manager_cmd(build: Path, url: str, vid: str, m, key_file: Path | None = None) -> list[str]:
+    """The command line of a scenario's manager m (tools.scenario) of vehicle vid;
+    key_file: the scenario's team keys, which the manager then requires."""
     return programs.chasm_manager(
         build,
         plan=m.plan,
@@ -119,6 +120,7 @@ def manager_cmd(build: Path, url: str, vid: str, m) -> list[str]:
         status_rate_hz=m.status_rate_hz,
         plugin_path=m.plugin_path or [build / "plugins"],
         params=m.params,
+        key_file=key_file,
     )
 
 
@@ -242,11 +244,22 @@ class Launcher:
         return programs.simulator(self.sim_configs[vid], lcm_url=self.child_url, clock=clock)
 
     def manager_cmd(self, vid: str, m) -> list[str]:
-        return manager_cmd(self.build, self.child_url, vid, m)
+        return manager_cmd(self.build, self.child_url, vid, m, self.sc.key_file)
 
     def nav_cmd(self, v) -> list[str]:
         return programs.auv_nav(
             self.build, config=self.nav_configs[v.id], vehicle=v.id, lcm_url=self.child_url, rate_hz=v.nav.rate_hz
+        )
+
+    def front_cmd(self, v) -> list[str]:
+        f = v.front_estimate
+        return programs.auv_front_estimate(
+            self.build,
+            vehicle=v.id,
+            lcm_url=self.child_url,
+            rate_hz=f.rate_hz,
+            max_age_s=f.max_age_s,
+            max_depth_m=f.max_depth_m,
         )
 
     def frontseat_cmd(self, v) -> list[str]:
@@ -264,6 +277,9 @@ class Launcher:
             if v.id in self.frontseats:
                 out = self.out / f"{v.id}.frontseat.out"
                 self._start(Child(f"{v.id}.FRONTSEAT", self.frontseat_cmd(v), out, tier=TIER_FILTER))
+            if v.front_estimate is not None:  # after the filter whose NAV it reads
+                out = self.out / f"{v.id}.front.out"
+                self._start(Child(f"{v.id}.FRONT", self.front_cmd(v), out, tier=TIER_FILTER))
         for v in self.mine:
             for m in v.managers:
                 out = self.out / f"{v.id}.{m.name}.out"

@@ -103,6 +103,12 @@ def _executor(args) -> tuple[Executor, object]:
     from distributed import Client, LocalCluster
 
     if args.dask_local:
+        import dask
+
+        # a worker waits on its run's processes, which keep the machine's cores busy: one
+        # starved of the CPU for a while is slow, not dead (the default 5 min would drop it
+        # and lose its run on a loaded machine)
+        dask.config.set({"distributed.scheduler.worker-ttl": "30 minutes"})
         cluster = LocalCluster(n_workers=args.dask_local, threads_per_worker=1, processes=True, dashboard_address=None)
         client = Client(cluster)
         return client.get_executor(pure=False), (client, cluster)

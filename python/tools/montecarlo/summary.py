@@ -28,6 +28,10 @@ METRICS = [
     ("identified_fraction", "team: identified / mine-like", "%", 100.0, (0.0, 1.0)),
     ("false_identifications", "team: false identifications", "", 1.0, (0.0, INF)),
     ("detect_to_identify_s", "team: detection to identification", "min", 1 / 60, (0.0, INF)),
+    # a sampling mission's grade (auv-report's sampling section, docs/sampling.md)
+    ("team_map_rms_c", "sampling: map error, team", "degC", 1.0, (0.0, INF)),
+    ("own_map_rms_c", "sampling: map error, own samples", "degC", 1.0, (0.0, INF)),
+    ("half_spread_s", "sampling: to half the spread", "min", 1 / 60, (0.0, INF)),
 ]
 
 # two-sided 95 % Student t quantiles for 1..30 degrees of freedom; 1.96 beyond
@@ -71,7 +75,10 @@ def metrics_of(rep: dict) -> dict:
     nav = [e["rms_m"] for e in rep.get("navigation_error", {}).values()]
     pd = det.get("pd_in_covered_area", det.get("pd"))
     team = rep.get("team") or {}
+    if not team.get("mine_like_targets"):
+        team = {}  # a team that hunted no mines (a sampling team): no MCM figures
     mines = team.get("mine_like_targets")
+    grade = rep.get("sampling") or {}
     lat = team.get("detect_to_identify_s") or {}
     return {
         "coverage": cov.get("fraction_once"),
@@ -83,6 +90,9 @@ def metrics_of(rep: dict) -> dict:
         "identified_fraction": team["mine_like_identified"] / mines if mines else None,
         "false_identifications": len(team["false_identifications"]) if "false_identifications" in team else None,
         "detect_to_identify_s": lat.get("mean"),
+        "team_map_rms_c": grade.get("team_map_rms_c"),
+        "own_map_rms_c": grade.get("own_map_rms_c"),
+        "half_spread_s": grade.get("first_under_half_spread_s"),
         "outcome": rep.get("outcome"),
         "truth_samples_lost": sum(r["missing"] for r in rep.get("record", {}).values()),
     }
@@ -116,6 +126,7 @@ def summarize(runs: list[dict]) -> dict:
         "metrics": {},
         # a team mission's runs: its figures are listed (with "-" where none came)
         "team": any(r["metrics"].get("mine_like_identified") is not None for r in ok),
+        "sampling": any(r["metrics"].get("team_map_rms_c") is not None for r in ok),
     }
     for key, _label, _unit, _scale, bounds in METRICS:
         vals = [r["metrics"][key] for r in ok if r["metrics"].get(key) is not None]
@@ -125,6 +136,7 @@ def summarize(runs: list[dict]) -> dict:
 
 
 TEAM_KEYS = ("mine_like_identified", "identified_fraction", "false_identifications", "detect_to_identify_s")
+SAMPLING_KEYS = ("team_map_rms_c", "own_map_rms_c", "half_spread_s")
 
 
 def summary_text(s: dict) -> str:
@@ -137,7 +149,10 @@ def summary_text(s: dict) -> str:
     for key, label, unit, scale, _bounds in METRICS:
         m = s["metrics"].get(key)
         if m is None:
-            if not key.startswith(TEAM_KEYS) or s.get("team"):
+            # a figure of another kind of mission is left out (a sampling run has no survey to cover)
+            if s.get("sampling") and key not in SAMPLING_KEYS:
+                continue
+            if (key not in TEAM_KEYS or s.get("team")) and (key not in SAMPLING_KEYS or s.get("sampling")):
                 lines.append(f"  {label:34s} -")
             continue
         u = f" {unit}" if unit else ""

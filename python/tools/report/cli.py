@@ -175,6 +175,11 @@ def build_report(run: RunData, radius: float = 5.0, cell: float = 2.0) -> tuple[
     team = team_section(run, radius)
     if team is not None:
         rep["team"] = team
+    from tools.report.front_grade import sampling_section
+
+    sampling = sampling_section(run)
+    if sampling is not None:
+        rep["sampling"] = sampling
     return rep, grid
 
 
@@ -238,6 +243,10 @@ def report_text(rep: dict) -> str:
         from tools.report.team_report import team_text
 
         lines += team_text(rep["team"])
+    if rep.get("sampling"):
+        from tools.report.front_grade import sampling_text
+
+        lines += sampling_text(rep["sampling"])
     return "\n".join(lines) + "\n"
 
 
@@ -310,6 +319,10 @@ def main(argv: list[str] | None = None) -> int:
             from tools.report.team_plots import team_plots
 
             plots += team_plots(run, rep["team"], out)
+        if rep.get("sampling"):
+            from tools.report.sampling_plots import sampling_plots
+
+            plots += sampling_plots(run, rep["sampling"], out)
         rep["plots"] = [str(p) for p in plots]
     (out / "report.json").write_text(json.dumps(rep, indent=2))
     text = report_text(rep)

@@ -83,6 +83,7 @@ KNOWN_STATES = {
     "lines": 42,
     "leg2": 21,  # missions/frontseat/backseat_line.chasm
     "zigzag": 25,  # missions/examples/ctd_zigzag.chasm (sampling)
+    "mow": 29,  # missions/scenarios/sampling_lawnmower (the baseline)
 }
 
 

@@ -84,4 +84,4 @@ def ri_route(run: RunData, out: Path, team: dict, t0: float) -> list[Path]:
 
 def team_plots(run: RunData, team: dict, out: Path) -> list[Path]:
     t0 = float(run.log["SIM.CLOCK"].t[0]) if "SIM.CLOCK" in run.log and len(run.log["SIM.CLOCK"].t) else 0.0
-    return heard(run, out, t0) + ri_route(run, out, team, t0)
+    return heard(run, out, t0) + (ri_route(run, out, team, t0) if team.get("ri_vehicles") else [])

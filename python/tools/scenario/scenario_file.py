@@ -18,6 +18,7 @@ from typing import Any
 
 import yaml
 
+from auvlcm import auth
 from confcheck import Checker, Rule, join, rule_of, setting, vehicle_id_problem
 from confcheck.checker import control_character
 from sim import clock_modes
@@ -76,6 +77,16 @@ class BackseatLimits:
 
 
 @dataclass
+class FrontEstimator:
+    """auv-front-estimate beside the vehicle's managers (docs/sampling.md, "The on-board
+    front estimator"): `front_estimate: {rate: 0.2, max_age: 1800, max_depth: 15}`."""
+
+    rate_hz: float = setting(0.2, gt=0.0, le=10.0, key="rate")  # estimates per second of mission time
+    max_age_s: float = setting(1800.0, gt=0.0, le=86400.0, key="max_age")  # readings older are not fitted
+    max_depth_m: float = setting(15.0, gt=0.0, le=11000.0, key="max_depth")  # deeper readings are not fitted
+
+
+@dataclass
 class Vehicle:
     id: str
     host: str
@@ -88,6 +99,7 @@ class Vehicle:
     sim_node: Any = None  # the `sim:` mapping node, for error positions
     backseat: BackseatLimits | None = None  # `backseat:` given (the mode itself is the sim's `frontseat:`)
     backseat_where: str = ""  # file:line:col of `backseat:`
+    front_estimate: FrontEstimator | None = None  # `front_estimate:` given: run auv-front-estimate
 
 
 @dataclass
@@ -120,6 +132,7 @@ class Scenario:
     world_node: Any = None  # the `world:` mapping node, for error positions
     faults: list[PlannedFault] = field(default_factory=list)  # tools/scenario/faults.py
     radio: Any = None  # tools/scenario/radio_section.RadioSection: the surface radio, docs/radio.md
+    key_file: Path | None = None  # team keys (docs/security.md): managers verify, the launcher signs
 
     def vehicles_on(self, host: str | None) -> list[Vehicle]:
         return [v for v in self.vehicles if host is None or v.host == host]
@@ -160,6 +173,16 @@ class _Scenario:
         p = (self.base / v).resolve()
         if not p.is_file():
             self.c.err(items[k][1], join(key, k), f"no such file: {p}")
+        return p
+
+    def key_file(self, items: dict) -> Path | None:
+        """key_file: a team key file (auv-keygen) that loads: mode 0600, well formed."""
+        p = self.file(items, "key_file", "")
+        if p is not None and p.is_file():
+            try:
+                auth.load_keys(p)
+            except auth.KeyFileError as exc:
+                self.c.err(items["key_file"][1], "key_file", str(exc))
         return p
 
     def params(self, node, key: str, plan: Path | None) -> dict[str, str]:
@@ -269,12 +292,18 @@ class _Scenario:
             )
         return lim
 
+    def front_estimate(self, items: dict, key: str) -> FrontEstimator | None:
+        """`front_estimate: {}` (auv-front-estimate's defaults) or with rate, max_age, max_depth."""
+        if "front_estimate" not in items:
+            return None
+        return self.c.fill(items["front_estimate"][1], join(key, "front_estimate"), FrontEstimator())
+
     def vehicle(self, node, key: str, hosts: list[str]) -> Vehicle | None:
         c = self.c
         items = self.section(
             node,
             key,
-            ("id", "host", "sim", "managers", "end_manager", "nav", "backseat"),
+            ("id", "host", "sim", "managers", "end_manager", "nav", "backseat", "front_estimate"),
             ("id", "sim", "managers"),
         )
         if items is None:
@@ -313,11 +342,13 @@ class _Scenario:
             )
         nav = self.nav(items, key)
         backseat = self.backseat(items, key)
+        front = self.front_estimate(items, key)
         if not vid or cfg is None or not managers:
             return None
         veh = Vehicle(vid, host, cfg, overrides, managers, end, c.where(node), nav, sim_node, backseat)
         if backseat is not None:
             veh.backseat_where = c.where(items["backseat"][1])
+        veh.front_estimate = front
         return veh
 
     def host(self, items: dict, k: str, key: str, hosts: list[str]) -> str:
@@ -341,11 +372,26 @@ class _Scenario:
         return got
 
 
-TOP_KEYS = ("name", "seed", "lcm_url", "world", "time", "logging", "hosts", "vehicles", "survey", "faults", "radio")
+TOP_KEYS = (
+    "name",
+    "seed",
+    "lcm_url",
+    "world",
+    "time",
+    "logging",
+    "hosts",
+    "vehicles",
+    "survey",
+    "faults",
+    "key_file",
+    "radio",
+)
 
 
-def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
-    """Read and check a scenario; ConfigError lists every problem."""
+def load_scenario(path: str | Path, base: Path | None = None, own_keys: bool = False) -> Scenario:
+    """Read and check a scenario; ConfigError lists every problem. own_keys: the reader
+    has team keys of its own (a host agent's --key-file), so the scenario's key_file,
+    a path on the sender's host, is neither read nor checked here."""
     path = Path(path).resolve()
     c = Checker.from_file(path)
     s = _Scenario(c, base)
@@ -412,6 +458,7 @@ def load_scenario(path: str | Path, base: Path | None = None) -> Scenario:
         survey=s.file(top, "survey", ""),
         world_node=world_node,
         faults=check_faults(c, top["faults"][1] if "faults" in top else None, [v.id for v in vehicles], time.limit_s),
+        key_file=None if own_keys else s.key_file(top),
         radio=radio_section.parse(c, top["radio"][1] if "radio" in top else None, [v.id for v in vehicles]),
     )
     c.raise_errors()

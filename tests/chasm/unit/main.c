@@ -5,7 +5,7 @@
  *   chasm_unit_tests --plugins DIR [--list] [NAME] */
 #include "../../harness/plan_test.h"
 
-extern const unit_test semantics_tests[], plugin_tests[], stream_tests[], schema_tests[];
+extern const unit_test semantics_tests[], plugin_tests[], stream_tests[], schema_tests[], structure_tests[];
 
 int main(int argc, char **argv)
 {
@@ -13,5 +13,6 @@ int main(int argc, char **argv)
     unit_register_list(plugin_tests);
     unit_register_list(stream_tests);
     unit_register_list(schema_tests);
+    unit_register_list(structure_tests);
     return unit_main(argc, argv, pt_log_clear);
 }

@@ -27,6 +27,7 @@ const unit_test plugin_tests[] = {
     {"zigzag_falls_back_to_max_leg", zigzag_falls_back_to_max_leg},
     {"zigzag_skips_bad_readings", zigzag_skips_bad_readings},
     {"zigzag_window_fit", zigzag_window_fit},
+    {"zigzag_follows_in_course", zigzag_follows_in_course},
     {"loiter_circles_the_point", loiter_circles_the_point},
     {NULL, NULL},
 };

@@ -182,3 +182,45 @@ void zigzag_window_fit(void)
     s.count = 30;
     CHECK(!gd_zz_fit(&s, 100.0).ok); /* 14.5 m of a 100 m window */
 }
+
+/* in_course (a sampling team's front_rule) turns the zig-zag round along the
+ * front: from the next leg on it advances the other way, still crossing. */
+void zigzag_follows_in_course(void)
+{
+    char plan[2048];
+    snprintf(plan, sizeof plan,
+             "%sinput zz_course : double rad\nstate zz {\n    do front_zigzag(course = 0 deg, in_course = zz_course, "
+             "angle = 60 deg, delta = 4, out_crossings = crossings, out_leg = leg)\n"
+             "    do hold_depth(depth = 5 m)\n}\n",
+             CTD_DECL);
+    chasm_machine *m = gd_load(plan);
+    if (!m)
+        return;
+    kin_vehicle v = {0, 40, 60 * DEG, 5.0, 1.5, 0, 0, 10 * DEG};
+    pt_set(m, "nav.north_m", v.n, 0);
+    pt_set(m, "nav.east_m", v.e, 0);
+    pt_set(m, "nav.depth_m", v.depth, 0);
+    pt_set(m, "nav.u_mps", v.u, 0);
+    pt_set(m, "ctd.temperature_c", water(v.e), 0);
+    pt_set_bool(m, "ctd.valid", 1, 0);
+    chasm_start(m, 0);
+    double north_at_turn = 0, t = DT;
+    int turned_at = -1;
+    for (; t < 1200 && pt_get_int(m, "crossings") < 8; t += DT) {
+        pt_set(m, "ctd.temperature_c", water(v.e), t);
+        pt_set_bool(m, "ctd.valid", 1, t);
+        if (turned_at < 0 && pt_get_int(m, "crossings") >= 3) {
+            pt_set(m, "zz_course", M_PI, t);   /* back south along the front */
+            turned_at = (int)pt_get_int(m, "crossings");
+            north_at_turn = v.n;
+        }
+        fly(m, &v, t, DT);
+    }
+    CHECK(turned_at == 3);
+    CHECK(pt_get_int(m, "crossings") == 8);   /* it kept crossing after the reversal */
+    printf("# reversed at %.0f m north after 3 crossings; after 5 more at %.0f m north, %.0f m from the front\n",
+           north_at_turn, v.n, v.e - FRONT_E);
+    CHECK(v.n < north_at_turn - 60);         /* and went back south */
+    CHECK(fabs(v.e - FRONT_E) < 60);         /* along the front, not away from it */
+    chasm_free(m);
+}

@@ -17,6 +17,8 @@ void frames_carry_contacts_acks_and_status(void);
 void repeats_are_acked_again_and_merged_once(void);
 void hostile_frames_are_counted(void);
 void time_stamps_unwrap(void);
+void front_rule_picks_the_least_certain_place(void);
+void frames_carry_the_front_summary(void);
 void plan_refuses_bad_roster_and_lines(void);
 void search_vehicle_reports_until_acked(void);
 void ri_vehicle_merges_routes_and_identifies(void);

@@ -9,6 +9,7 @@
 #include "../common/plugin_test.h"
 #include "team_tests.h"
 #include "plugins/team/tm_frame.h"
+#include "teamlink/team_front.h"
 
 static tm_store a_store, b_store;
 
@@ -157,3 +158,49 @@ void time_stamps_unwrap(void)
     CHECK_NEAR(tm_time_unwrap(5, 3 * 16384 + 10.0), 3 * 16384 + 5, 1e-9);
 }
 
+
+/* A sampling vehicle's own front estimate rides its frames once, after the
+ * status, with each sigma rounded up to its step (teamlink/team_front.h);
+ * one outside the schema's ranges is not made at all. */
+void frames_carry_the_front_summary(void)
+{
+    two_vehicles(0);
+    team_front_estimate e = {0, 250.7, 301.26, 0.2004, 15.993, 12.004, 20.13, 0.31, 0.0012, 0.0021, 0.0034, 0.44, 400};
+    team_msg_front f;
+    CHECK(team_front_summary(&e, &f) == 1);
+    CHECK(f.time_s == 250 && f.samples == 400);
+    CHECK_NEAR(f.offset_sigma_m, 0.4, 1e-9);   /* 0.31 up to its 0.1 m step */
+    CHECK_NEAR(f.angle_sigma, 0.002, 1e-9);
+    CHECK_NEAR(f.temp_sigma_c, 0.004, 1e-9);   /* the larger water's, up */
+    CHECK_NEAR(f.width_sigma_m, 0.5, 1e-9);
+    a_store.own_front = f;
+    a_store.has_own_front = 1;
+    a_store.status_state = TM_ST_SURVEY;
+    tm_outbox_status(&a_store.out);
+    tm_outbox_front(&a_store.out);
+    uint8_t buf[32];
+    tm_item put[8];
+    int n;
+    size_t len = tm_frame_build(&a_store, 251000000, buf, 32, put, 8, &n);
+    CHECK(n == 2 && put[0].kind == TM_ITEM_STATUS && put[1].kind == TM_ITEM_FRONT);
+    CHECK(len == 26);   /* a status's 10 bytes and the front's 16 (127 + 77 bits -> 26 bytes) */
+    team_bits r;
+    team_bits_reader(&r, buf, len);
+    team_msg m;
+    CHECK(team_decode_next(&r, &m) == TEAM_MSG_STATUS);
+    CHECK(team_decode_next(&r, &m) == TEAM_MSG_FRONT);
+    CHECK_NEAR(m.u.front.offset_m, 301.26, 0.25 + 1e-9);   /* half of its 0.5 m step */
+    CHECK_NEAR(m.u.front.angle, 0.2004, 0.0005 + 1e-9);
+    CHECK_NEAR(m.u.front.offset_sigma_m, 0.4, 1e-9);
+    CHECK(tm_frame_receive(&b_store, 0, buf, len, 251000000) == 2 && b_store.fronts_heard == 1);
+    /* sent once: the next frame has none until a new estimate comes */
+    tm_outbox_status(&a_store.out);
+    len = tm_frame_build(&a_store, 271000000, buf, 32, put, 8, &n);
+    CHECK(n == 1 && put[0].kind == TM_ITEM_STATUS);
+    /* a sigma beyond the field's 25.5 m, a NaN: not sendable */
+    e.offset_sigma_m = 30;
+    CHECK(team_front_summary(&e, &f) == 0);
+    e.offset_sigma_m = 0.3;
+    e.width_m = NAN;
+    CHECK(team_front_summary(&e, &f) == 0);
+}

@@ -9,6 +9,7 @@
 #include "../common/plugin_test.h"
 #include "team_tests.h"
 #include "plugins/team/tm_contacts.h"
+#include "plugins/team/tm_front_rule.h"
 #include "plugins/team/tm_keepclear.h"
 #include "plugins/team/tm_lines.h"
 #include "plugins/team/tm_outbox.h"
@@ -458,3 +459,59 @@ void keep_clear_cpa(void)
     CHECK_NEAR(f.n, 185, 1e-9);
 }
 
+
+/* The sampling rule: the least certain place along the front is the one
+ * farthest from every look at it (tm_front_rule.h), and the team shares the
+ * places out, the least certain to the nearest vehicle first. */
+void front_rule_picks_the_least_certain_place(void)
+{
+    static tm_fr_looks looks;
+    memset(&looks, 0, sizeof looks);
+    tm_fr_front f = {0.0, 0.0};   /* the front runs north along east = 0 */
+    for (double s = 0; s <= 100; s += 10)
+        tm_fr_add(&looks, s, (int)s % 20 ? 15.0 : -15.0);   /* own zig-zag across it */
+    double mate = 400;                                     /* a teammate looking at 400 m now */
+    /* cells of 50 m over [0, 600]: centres 25 .. 575; 575 is 175 m from the teammate, 250 is 150 from either */
+    CHECK_NEAR(tm_fr_pick(&looks, &f, 60, &mate, 1, 0, 600, 50, 100), 575, 1e-9);
+    CHECK_NEAR(tm_fr_uncertainty(&looks, &f, 60, &mate, 1, 575), 175, 1e-9);
+    /* a position far from the front is no look at it */
+    tm_fr_add(&looks, 575, 200);
+    CHECK_NEAR(tm_fr_pick(&looks, &f, 60, &mate, 1, 0, 600, 50, 100), 575, 1e-9);
+    /* one near it is: the gap between the vehicle and its teammate is now the least certain, its
+     * two middle cells (225, 275) 125 m from a look each: the tie goes to the nearer */
+    tm_fr_add(&looks, 575, -10);
+    CHECK_NEAR(tm_fr_pick(&looks, &f, 60, &mate, 1, 0, 600, 50, 100), 225, 1e-9);
+    CHECK_NEAR(tm_fr_pick(&looks, &f, 60, &mate, 1, 0, 600, 50, 390), 275, 1e-9);
+    /* the same world seen along a rotated front gives the same answer (the rule is geometry, not axes) */
+    static tm_fr_looks turned;
+    memset(&turned, 0, sizeof turned);
+    double a = 0.7, off = 40;
+    tm_fr_front g = {a, off};
+    for (int i = 0; i < looks.n; i++) {
+        tm_fr_point p = looks.pts[i];   /* (s, x) in the first front's frame -> north, east */
+        tm_fr_add(&turned, p.n * cos(a) - (p.e + off) * sin(a), p.n * sin(a) + (p.e + off) * cos(a));
+    }
+    CHECK_NEAR(tm_fr_pick(&turned, &g, 60, &mate, 1, 0, 600, 50, 100), 225, 1e-6);
+    /* nobody has looked anywhere: every cell ties, the nearest wins */
+    static tm_fr_looks none;
+    memset(&none, 0, sizeof none);
+    CHECK_NEAR(tm_fr_pick(&none, &f, 60, NULL, 0, 0, 600, 50, 333), 325, 1e-9);
+    /* three vehicles at 0, 250, 500 along an unseen front [0, 800]: the far end (775, 275 m
+     * from the nearest) goes to the vehicle at 500; then the gaps halfway, each to the nearer */
+    double pos[3] = {0, 250, 500}, tg[3];
+    tm_fr_assign(&none, &f, 60, pos, 3, 0, 800, 50, tg);
+    CHECK_NEAR(tg[2], 775, 1e-9);
+    CHECK(tg[0] >= 75 && tg[0] <= 175);    /* between 0 and 250 */
+    CHECK(tg[1] >= 325 && tg[1] <= 425);   /* between 250 and 500 */
+    printf("# targets of vehicles at 0, 250, 500 m: %.0f, %.0f, %.0f m\n", tg[0], tg[1], tg[2]);
+    /* every vehicle computes the same assignment from the same data */
+    double again[3];
+    tm_fr_assign(&none, &f, 60, pos, 3, 0, 800, 50, again);
+    CHECK(again[0] == tg[0] && again[1] == tg[1] && again[2] == tg[2]);
+    /* the record is bounded: the oldest looks go first, and are counted */
+    for (int i = 0; i < TM_FR_MAX_POINTS + 52; i++)
+        tm_fr_add(&none, i, 0);
+    CHECK(none.n == TM_FR_MAX_POINTS && none.dropped == 52);
+    tm_fr_add(&none, NAN, 0);   /* not a position: not recorded */
+    CHECK(none.dropped == 52);
+}

@@ -32,6 +32,8 @@ const stream = new EventSource('/api/events');
 stream.onmessage = ev => {
   const d = JSON.parse(ev.data);
   if (d.world) S.world = d.world;
+  if (d.now.epoch !== S.epoch && typeof CV !== 'undefined') { CV.structs = {}; }
+  if (d.structures && typeof cvStructures === 'function') cvStructures(d.structures);
   if (d.now.epoch !== S.epoch) { S.series = {}; S.epoch = d.now.epoch; }
   for (const [name, part] of Object.entries(d.series)) {
     if (part.reset || !S.series[name]) S.series[name] = [];
@@ -126,6 +128,7 @@ function updatePanel() {
     }
     showAck(vid);
   }
+  if (typeof cvUpdate === 'function') cvUpdate(now);
   $('agents').innerHTML = agentsHtml(now.agents || {});
   const w = S.world;
   $('world-info').textContent = w ? `${w.name || ''} ${w.bathymetry_ref ? '· seabed ' + w.bathymetry_ref : ''}` +
@@ -286,7 +289,7 @@ function fit() {
   return true;
 }
 $('fit').addEventListener('click', fit);
-for (const id of ['show-nav', 'show-true', 'show-seabed']) $(id).addEventListener('change', () => { S.dirty = true; });
+for (const id of ['show-nav', 'show-true', 'show-seabed', 'show-water']) $(id).addEventListener('change', () => { S.dirty = true; });
 
 let drag = null;
 canvas.addEventListener('mousedown', e => { drag = [e.offsetX, e.offsetY]; canvas.style.cursor = 'grabbing'; });
@@ -336,6 +339,27 @@ function drawSeabed(sb) {
   }
   $('legend').innerHTML = `seabed ${fmt(lo)}–${fmt(hi)} m · <span style="color:#ff5252">●</span> mine-like ` +
     `<span style="color:#9e9e9e">●</span> clutter <span style="color:#ffd54f">●</span> unknown · ◇ true target (◆ identified) · △ LBL`;
+}
+
+// The water's temperature (a world with an ocean, docs/sampling.md), over the seabed:
+// cold blue to warm red across the layer's own range, and its legend.
+function drawWater(wt) {
+  if (!wt || wt.error || !$('show-water').checked) return false;
+  let lo = Infinity, hi = -Infinity;
+  for (const row of wt.temp) for (const v of row) { lo = Math.min(lo, v); hi = Math.max(hi, v); }
+  const span = Math.max(hi - lo, 0.01);
+  for (let i = 0; i < wt.temp.length; i++) {
+    for (let j = 0; j < wt.temp[i].length; j++) {
+      const f = (wt.temp[i][j] - lo) / span;
+      ctx.fillStyle = `rgb(${Math.round(40 + 160 * f)},${Math.round(60 + 30 * (1 - Math.abs(2 * f - 1)))},${Math.round(200 - 160 * f)})`;
+      const [x0, y0] = toScreen(wt.north0 + (i + 1) * wt.dn, wt.east0 + j * wt.de);
+      const [x1, y1] = toScreen(wt.north0 + i * wt.dn, wt.east0 + (j + 1) * wt.de);
+      ctx.fillRect(x0, y0, x1 - x0 + 1, y1 - y0 + 1);
+    }
+  }
+  $('legend').innerHTML = `water at ${fmt(wt.depth_m)} m: <span style="color:#2850c8">${fmt(lo)}</span>–` +
+    `<span style="color:#c85a28">${fmt(hi)}</span> °C (at the start)`;
+  return true;
 }
 
 function drawGrid() {
@@ -401,6 +425,7 @@ function draw() {
   const r = devicePixelRatio, now = S.now, w = S.world || {};
   ctx.fillStyle = '#0b1622'; ctx.fillRect(0, 0, canvas.width, canvas.height);
   drawSeabed(w.seabed);
+  drawWater(w.water);
   drawGrid();
   drawWorld(w);
   const contactsNow = S.series.contacts || [];

@@ -1,0 +1,1 @@
+"""Team keys for command authentication (docs/security.md): auv-keygen."""
