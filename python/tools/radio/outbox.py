@@ -166,8 +166,8 @@ class Outbox:
 
     def on_manager_ack(self, seq: int, text: str) -> Transfer | None:
         t = next((x for x in reversed(self.finished) if x.seq == seq and x.state >= cs.STATE_DELIVERED), None)
-        if t is not None and t.state in (cs.STATE_DELIVERED, cs.STATE_ACKNOWLEDGED):
-            t.set(cs.STATE_ACKNOWLEDGED, (t.message + "; " if t.message else "") + text)
+        if t is not None and t.state in (cs.STATE_DELIVERED, cs.STATE_ACKNOWLEDGED) and text not in t.message:
+            t.set(cs.STATE_ACKNOWLEDGED, (t.message + "; " if t.message else "") + text)  # one per manager
         return t
 
     def due(self, now_s: float, utime: int) -> list[radio_chunk_t]:
