@@ -140,9 +140,11 @@ def radio_shore(
     acoustic: Mapping[str, int] | None = None,
     link_timeout_s: float | None = None,
     retry_s: float | None = None,
+    key_file: PathLike | None = None,
     python: PathLike = sys.executable,
 ) -> list[str]:
-    """The shore radio gateway (docs/radio.md); acoustic: team index per vehicle."""
+    """The shore radio gateway (docs/radio.md); acoustic: team index per vehicle;
+    key_file: the team keys its acoustic commands are tagged with (docs/security.md)."""
     cmd = [str(python), "-m", "tools.radio.shore_gateway", "--vehicles", ",".join(vehicles), "--clock", clock]
     if acoustic:
         cmd += ["--acoustic", ",".join(f"{v}={i}" for v, i in acoustic.items())]
@@ -150,6 +152,8 @@ def radio_shore(
         cmd += ["--link-timeout-s", f"{link_timeout_s:g}"]
     if retry_s is not None:
         cmd += ["--retry-s", f"{retry_s:g}"]
+    if key_file is not None:
+        cmd += ["--key-file", str(key_file)]
     return cmd + ["--lcm-url", lcm_url]
 
 
@@ -162,9 +166,11 @@ def radio_vehicle(
     team_index: int | None = None,
     report_period_s: float | None = None,
     end_manager: str | None = None,
+    key_file: PathLike | None = None,
     python: PathLike = sys.executable,
 ) -> list[str]:
-    """A vehicle's radio gateway (docs/radio.md); spool: its partial transfers."""
+    """A vehicle's radio gateway (docs/radio.md); spool: its partial transfers; key_file:
+    the team keys acoustic commands are verified with and the managers' commands signed."""
     cmd = [str(python), "-m", "tools.radio.vehicle_gateway", "--vehicle", vehicle, "--spool", str(spool)]
     cmd += ["--clock", clock]
     if team_index is not None:
@@ -173,6 +179,8 @@ def radio_vehicle(
         cmd += ["--report-period-s", f"{report_period_s:g}"]
     if end_manager is not None:
         cmd += ["--end-manager", end_manager]
+    if key_file is not None:
+        cmd += ["--key-file", str(key_file)]
     return cmd + ["--lcm-url", lcm_url]
 
 

@@ -134,3 +134,80 @@ def test_the_shore_queue_is_bounded_and_goes_acoustic_only_when_the_radio_is_dow
     assert len(tx) == 16 and tx[0].dst_vehicle == "AUV1"
     v = TeamCodec().decode_frame(bytes(tx[0].payload)).messages[0].values
     assert (v["origin"], v["target"], v["kind"], v["counter"]) == (15, 2, 1, 9)
+
+
+def test_acoustic_commands_with_team_keys_are_tagged_checked_and_signed(tmp_path):
+    """With the team's keys (docs/security.md, "Acoustic"): the shore tags each acoustic
+    command, the vehicle's gateway runs a tagged one once and signs what it issues to the
+    managers; a stranger's modem (no key, or another key), a frame with one bit changed,
+    and a replay are refused and counted; during a rotation the old key still verifies."""
+    from auvlcm import auth
+    from tools.keys.keygen import main as keygen
+
+    team, stranger = tmp_path / "team.key", tmp_path / "stranger.key"
+    assert keygen([str(team)]) == 0 and keygen([str(stranger)]) == 0
+    ring, strange = auth.load_keys(team), auth.load_keys(stranger)
+    lc = lcm.LCM("memq://")
+    sargs = shore_parser().parse_args(["--vehicles", "AUV1", "--clock", "system", "--acoustic", "AUV1=2"])
+    sargs.ring = ring
+    shore = ShoreGateway(lc, sargs)
+    modem = Heard(lc, r"SHORE\.MODEM_TX")
+    abort = mission_command_t()
+    abort.vehicle, abort.seq, abort.command = "AUV1", 9, mission_command_t.CMD_ABORT
+    shore._on_command("SHORE.AUV1.MISSION_CMD", abort.encode())
+    shore.tick()
+    drain(lc)
+    frame_bytes = bytes(modem_tx_t.decode(modem.msgs[0][1]).payload)
+    vals = TeamCodec().decode_frame(frame_bytes).messages[0].values
+    assert (vals["mac_hi"], vals["mac_lo"]) != (0, 0)
+
+    vargs = vehicle_parser().parse_args(["--vehicle", "AUV1", "--spool", str(tmp_path / "sp"), "--clock", "system"])
+    vargs.team_index, vargs.ring = 2, ring
+    gw = VehicleGateway(lc, vargs)
+    cmds = Heard(lc, r"AUV1\.MISSION_CMD")
+
+    def hear(payload: bytes) -> None:
+        m = modem_rx_t()
+        m.vehicle, m.src_vehicle, m.kind = "AUV1", "SHORE", modem_tx_t.KIND_TEAM
+        m.payload, m.n_bytes = payload, len(payload)
+        gw._on_modem("AUV1.MODEM_RX", m)
+
+    codec = TeamCodec()
+    forged = dict(vals, counter=vals["counter"] + 1)  # a stranger's frame: a new counter, the old tag
+    hear(codec.encode("command", forged))
+    untagged = dict(vals, counter=vals["counter"] + 2, mac_hi=0, mac_lo=0)  # a modem with no key
+    hear(codec.encode("command", untagged))
+    other = dict(vals, counter=vals["counter"] + 3)
+    t = auth.acoustic_tag(
+        strange.signing.secret, codec.encode("command", dict(other, mac_hi=0, mac_lo=0)), other["counter"]
+    )
+    hear(codec.encode("command", dict(other, mac_hi=t >> 16, mac_lo=t & 0xFFFF)))  # another team's key
+    hear(frame_bytes)  # the shore's: run
+    gw.counters.clear()  # a restarted gateway's memory: the window still refuses the copy
+    hear(frame_bytes)
+    drain(lc)
+    assert gw.refused == {"acoustic bad_mac": 3, "acoustic replay": 1}, gw.refused
+    assert len(cmds.msgs) == 1
+    issued = mission_command_t.decode(cmds.msgs[0][1])
+    assert issued.command == mission_command_t.CMD_ABORT and issued.seq == vals["counter"]
+    assert auth.Verifier(ring).verify(issued) == auth.OK  # a manager with the key acts on it
+    # a rotation: the vehicle holds the old and the new key; a shore not rotated yet still tags with the old
+    assert keygen([str(team), "--rotate", "--id", "team-next"]) == 0
+    rotated = auth.load_keys(team)
+    vargs.ring = rotated
+    gw2 = VehicleGateway(lc, vargs)
+    tagger_vals = dict(vals, counter=vals["counter"] + 10)
+    t = auth.acoustic_tag(
+        ring.signing.secret, codec.encode("command", dict(tagger_vals, mac_hi=0, mac_lo=0)), tagger_vals["counter"]
+    )
+    payload = codec.encode("command", dict(tagger_vals, mac_hi=t >> 16, mac_lo=t & 0xFFFF))
+    m = modem_rx_t()
+    m.vehicle, m.src_vehicle, m.kind, m.payload, m.n_bytes = (
+        "AUV1",
+        "SHORE",
+        modem_tx_t.KIND_TEAM,
+        payload,
+        len(payload),
+    )
+    gw2._on_modem("AUV1.MODEM_RX", m)
+    assert rotated.signing.id == "team-next" and gw2.stats["acoustic_commands"] == 1 and gw2.refused == {}

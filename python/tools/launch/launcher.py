@@ -296,7 +296,7 @@ class Launcher:
             ids = [v.id for v in self.sc.vehicles]
             cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=radio_section.model_settings(r))
             self._start(Child("SHORE.radio", cmd, self.out / "radio.out", tier=TIER_SIMULATOR))
-            cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic)
+            cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic, key_file=self.sc.key_file)
             self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
         for v in self.mine:
             spool = self.out / f"{v.id}.radio_spool"
@@ -307,6 +307,7 @@ class Launcher:
                 team_index=r.acoustic.get(v.id),
                 report_period_s=r.report_period_s,
                 end_manager=v.end_manager,
+                key_file=self.sc.key_file,
             )
             self._start(Child(f"{v.id}.radio", cmd, self.out / f"{v.id}.radio.out", tier=TIER_MANAGER))
 

@@ -38,12 +38,13 @@ from auv import (
 from auv import (
     radio_command_status_t as cs,
 )
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from tools.console.mission_commands import COMMANDS
+from tools.radio.acoustic_auth import Tagger
 from tools.radio.assembler import MAX_BYTES
 from tools.radio.outbox import MAX_QUEUE, MAX_URGENT, Outbox, Transfer
 from tools.radio.pipe import BytePipe, serve
@@ -84,6 +85,7 @@ class ShoreGateway:
         self.acoustic: list[tuple[float, bytes, str]] = []  # (when, team frame, vehicle)
         self.seq = 0
         self.codec = TeamCodec()
+        self.tagger = Tagger(args.ring) if args.ring is not None else None  # acoustic tags (acoustic_auth.py)
         self.dropped = 0
         self.pending: list[tuple[str, bytes]] = []
         vs = "|".join(self.vehicles)
@@ -103,11 +105,15 @@ class ShoreGateway:
         t0 = now if now is not None else 0.0
         acoustic_room = len(self.acoustic) < MAX_ACOUSTIC_FRAMES  # else by radio, at the next surfacing
         if now is not None and code in ACOUSTIC and not box.link_up(now) and v in self.team and acoustic_room:
-            t = Transfer(seq & COUNTER_MASK or 1, v, suffix, data, seq, what, now, box.expiry_s, box.chunk_bytes)
+            # the counter: with keys, the tagger's (it only grows); else the command's own seq
+            counter = self.tagger.counter() if self.tagger else seq & COUNTER_MASK or 1
+            t = Transfer(counter, v, suffix, data, seq, what, now, box.expiry_s, box.chunk_bytes)
             t.route = "acoustic"
             t.set(cs.STATE_IN_FLIGHT)
             box.finished.append(t)
             msg = dict(origin=SHORE_INDEX, target=self.team[v], kind=ACOUSTIC[code], counter=t.tid, mac_hi=0, mac_lo=0)
+            if self.tagger:
+                msg = self.tagger.tag(self.codec, msg)
             body = self.codec.encode("command", msg)
             self.acoustic += [(now + i * self.acoustic_interval_s, body, v) for i in range(self.repeats)]
             return
@@ -194,6 +200,8 @@ def parser() -> argparse.ArgumentParser:
     pipe.add_argument("--device", default="", metavar="PATH", help="a real radio's serial device")
     ap.add_argument("--acoustic-repeats", type=int, default=3)
     ap.add_argument("--acoustic-interval-s", type=float, default=10.0)
+    auth.add_key_file_argument(ap)
+    ap.set_defaults(ring=None)  # main() loads the key file into it
     return ap
 
 
@@ -203,7 +211,9 @@ def main(argv: list[str] | None = None) -> int:
         url = check_local(args.url or default_url())
         if not 64 <= args.chunk_bytes <= 4096:
             raise ValueError("--chunk-bytes must be 64 .. 4096")
-    except ValueError as exc:
+        # the team keys: acoustic commands are tagged with the newest (radio ones travel as signed)
+        args.ring = auth.ring_for(args.key_file, "auv-radio-shore")
+    except (ValueError, auth.KeyFileError) as exc:
         print(f"auv-radio-shore: {exc}", file=sys.stderr)
         return 2
     lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost

@@ -44,11 +44,12 @@ from auv import (
     radio_frame_t,
     radio_report_t,
 )
-from auvlcm import programs
+from auvlcm import auth, programs
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url, with_receive_buffer
+from tools.radio.acoustic_auth import Checker
 from tools.radio.assembler import Assembler
 from tools.radio.pipe import BytePipe, serve
 from tools.radio.wire import Clock, frame, payload
@@ -80,6 +81,11 @@ class VehicleGateway:
         self.seq = 0
         self.counters: deque[int] = deque(maxlen=16)
         self.codec = TeamCodec()
+        # with team keys: acoustic commands checked (acoustic_auth.py) and the commands it
+        # issues to the managers signed, so a manager that takes only signed commands acts
+        self.ring: auth.KeyRing | None = args.ring
+        self.checker = Checker(args.ring) if args.ring is not None else None
+        self.refused: dict[str, int] = {}
         self.stats = {"delivered": 0, "acoustic_commands": 0, "frames_dropped": 0}
         rx = self.rx = Receiver(lc)
         v = self.v
@@ -133,6 +139,11 @@ class VehicleGateway:
                 continue
             if vals["kind"] not in ACOUSTIC_KINDS or vals["counter"] in self.counters:
                 continue  # a repeat of one already run, or no command we issue
+            if self.checker is not None:
+                why = self.checker.check(self.codec, vals)
+                if why != auth.OK:  # a stranger's modem, or a frame heard before
+                    self.refused[f"acoustic {why}"] = self.refused.get(f"acoustic {why}", 0) + 1
+                    continue
             self.counters.append(vals["counter"])
             name, code = ACOUSTIC_KINDS[vals["kind"]]
             cmd = mission_command_t()
@@ -145,6 +156,8 @@ class VehicleGateway:
                 code,
             )
             cmd.plan_name, cmd.plan_text, cmd.reason = "", "", f"shore, acoustic {name} #{vals['counter']}"
+            if self.ring is not None:
+                auth.sign(cmd, self.ring, f"auv-radio-vehicle {self.v}")
             self.lc.publish(f"{self.v}.MISSION_CMD", cmd.encode())
             self.stats["acoustic_commands"] += 1
 
@@ -175,11 +188,12 @@ class VehicleGateway:
             r.depth_m, r.nav_status, r.nav_utime = n.depth_m, n.status, n.utime
         held = self.asm.holding()
         r.n_transfers, r.transfer_id, r.next_index = len(held), [t for t, _ in held], [i for _, i in held]
-        r.refused = sum(self.asm.refused.values())
+        r.refused = sum(self.asm.refused.values()) + sum(self.refused.values())
         return r
 
     def summary(self) -> str:
-        refused = ", ".join(f"{k} {n}" for k, n in sorted(self.asm.refused.items())) or "none"
+        every = {**self.asm.refused, **self.refused}
+        refused = ", ".join(f"{k} {n}" for k, n in sorted(every.items())) or "none"
         s = self.stats
         pipe = f", pipe dropped {dict(self.pipe.deframer.dropped)}" if self.pipe is not None else ""
         return (
@@ -202,6 +216,8 @@ def parser() -> argparse.ArgumentParser:
     pipe.add_argument("--tcp", default="", metavar="HOST:PORT", help="a real radio's TCP port (docs/radio.md)")
     pipe.add_argument("--device", default="", metavar="PATH", help="a real radio's serial device")
     ap.add_argument("--idle-expiry-s", type=float, default=3600.0, help="drop a partial transfer idle this long")
+    auth.add_key_file_argument(ap)
+    ap.set_defaults(ring=None)  # main() loads the key file into it
     return ap
 
 
@@ -209,7 +225,8 @@ def main(argv: list[str] | None = None) -> int:
     args = parser().parse_args(argv)
     try:
         url = check_local(args.url or default_url())
-    except ValueError as exc:
+        args.ring = auth.ring_for(args.key_file, "auv-radio-vehicle")
+    except (ValueError, auth.KeyFileError) as exc:
         print(f"auv-radio-vehicle: {exc}", file=sys.stderr)
         return 2
     lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
