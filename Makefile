@@ -239,9 +239,11 @@ validate: $(GEN_PY_STAMP)
 	$(VENV)/bin/auv-sim-validate
 
 # The tests too long for the suite's budget (each says so when `make test` skips
-# it): today the backseat team flight (tests/hil/test_hil_wire.py).
+# it): the backseat team flight (tests/hil/test_hil_wire.py) and the plain
+# survey demo over a small area (tests/test_demo.py).
 test-slow: build sanitize
-	AUV_SLOW_TESTS=1 tests/isolated_net.sh $(VPY) -m pytest -p no:xdist -rs tests/hil/test_hil_wire.py $(PYTEST_ARGS)
+	AUV_SLOW_TESTS=1 tests/isolated_net.sh $(VPY) -m pytest -p no:xdist -rs tests/hil/test_hil_wire.py \
+	  tests/test_demo.py $(PYTEST_ARGS)
 
 # The suite STRESS_RUNS times in a row with demos running beside it: a test
 # that waits on wall time instead of on what it waits for fails here.

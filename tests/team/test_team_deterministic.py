@@ -12,7 +12,7 @@ from __future__ import annotations
 import small_team as st
 from logcompare import SKIP, compare, cut, messages
 
-LIMIT_S = 150.0  # sim time: the first status rounds and contacts
+LIMIT_S = 110.0  # sim time: the first status rounds and contacts
 WALL_PACED = ("SIM.CLOCK_SYNC", "SIM.ENV_HEARTBEAT", "SIM.ENV_ELECTION")
 
 
