@@ -231,6 +231,7 @@ def test_the_plan_structure_travels_with_the_status(lcm_url, child_env, sanitize
         assert plans[2].plan == "new.chasm" and plans[2].plan_id != p.plan_id
         assert "done_here" in plans[2].state_path
         assert w.status[-1].plan_id == plans[2].plan_id
+        assert w.status[-1].plan == "new.chasm"  # the status names the plan that runs, not the first
     finally:
         stop(mgr)
 

@@ -148,6 +148,7 @@ static void load_plan(manager_t *mg, const auv_mission_command_t *c)
         ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_FAILED, "new plan loaded but its inputs cannot be subscribed");
         return;
     }
+    mgr_status_set_plan(&mg->status, c->plan_name);
     ack(mg, c->seq, AUV_MISSION_ACK_T_RESULT_OK, "plan loaded");
 }
 

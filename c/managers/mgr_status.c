@@ -21,6 +21,13 @@ void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager
     snprintf(s->channel, sizeof s->channel, "%s.CHASM.%s", vehicle, manager);
 }
 
+void mgr_status_set_plan(mgr_status_ctx *s, const char *plan)
+{
+    const char *slash = strrchr(plan, '/');
+    snprintf(s->plan_buf, sizeof s->plan_buf, "%s", slash ? slash + 1 : plan);
+    s->plan = s->plan_buf;
+}
+
 static void publish(const mgr_status_ctx *s, lcm_t *lcm, const chasm_machine *m, const chasm_status *st, int64_t now_us,
                     const mgr_drop_counts *drops, double cycle_cost_us)
 {

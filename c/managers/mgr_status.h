@@ -20,7 +20,8 @@ typedef struct {
 typedef struct {
     const char *vehicle;
     const char *manager;
-    const char *plan;
+    const char *plan;       /* the running plan's file name (plan_buf after a LOAD_PLAN) */
+    char plan_buf[MGR_MAX_PLAN_NAME + 1];
     char channel[MGR_MAX_CHANNEL + 1]; /* <VEHICLE>.CHASM.<MANAGER> */
     /* --status-rate: at most one status per period of mission time, plus one
      * at once whenever something an operator acts on changed; 0: every cycle. */
@@ -36,6 +37,10 @@ typedef struct {
     mgr_drop_counts drops;
     const char *plan_id;    /* the structure's (mgr_structure.h), "" before it is built */
 } mgr_status_ctx;
+
+/* The plan a LOAD_PLAN put in place: the statuses name it from now on (its
+ * file name, as for the plan the manager started with). */
+void mgr_status_set_plan(mgr_status_ctx *s, const char *plan);
 
 /* rate_hz 0: a status every cycle (the default). */
 void mgr_status_init(mgr_status_ctx *s, const char *vehicle, const char *manager, const char *plan, double rate_hz);
