@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import os
 import select
+import signal
 import socket
 import struct
 import termios
@@ -27,6 +28,7 @@ import time
 import tty
 import zlib
 from collections import Counter
+from typing import Any, Callable
 
 from auv import radio_frame_t
 
@@ -166,3 +168,22 @@ def serve(lc, pipe: BytePipe | None, on_frame, tick, stop: list) -> None:
                 next_open = time.monotonic() + 1.0
                 pipe.open()
         tick()
+
+
+def run_gateway(program: str, url: str, make: Callable[[Any], Any]) -> Any:
+    """A gateway process's life, for both gateways: its LCM (a receive buffer big
+    enough for an upload's many datagrams: none may be lost), the gateway make(lc)
+    builds, "ready" once subscribed (what is published from then on is heard), the
+    loop until SIGINT or SIGTERM; returns the gateway for its summary."""
+    import lcm
+
+    from auvlcm.url import with_receive_buffer
+
+    lc = lcm.LCM(with_receive_buffer(url))
+    gw = make(lc)
+    stop: list[int] = []
+    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
+    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
+    print(f"{program}: ready", flush=True)
+    serve(lc, gw.pipe, gw._on_frame, gw.tick, stop)
+    return gw

@@ -21,7 +21,6 @@ SHORE.<VEHICLE>.RADIO_REPORT (the vehicle's status home).
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 
 import lcm
@@ -42,12 +41,12 @@ from auvlcm import auth, programs
 from auvlcm.decode import DecodeError, decode_strict
 from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
-from auvlcm.url import check_local, default_url, with_receive_buffer
+from auvlcm.url import check_local, default_url
 from tools.console.mission_commands import COMMANDS
 from tools.radio.acoustic_auth import Tagger
 from tools.radio.assembler import MAX_BYTES
 from tools.radio.outbox import MAX_QUEUE, MAX_URGENT, Outbox, Transfer
-from tools.radio.pipe import BytePipe, serve
+from tools.radio.pipe import BytePipe, run_gateway
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -216,13 +215,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, auth.KeyFileError) as exc:
         print(f"auv-radio-shore: {exc}", file=sys.stderr)
         return 2
-    lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
-    gw = ShoreGateway(lc, args)
-    stop: list[int] = []
-    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
-    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
-    print("auv-radio-shore: ready", flush=True)  # subscribed: what is published from now on is heard
-    serve(lc, gw.pipe, gw._on_frame, gw.tick, stop)
+    gw = run_gateway("auv-radio-shore", url, lambda lc: ShoreGateway(lc, args))
     pipe = f", pipe dropped {dict(gw.pipe.deframer.dropped)}" if gw.pipe is not None else ""
     print(f"auv-radio-shore: frames dropped {gw.dropped}{pipe}", file=sys.stderr)
     return 0

@@ -26,7 +26,6 @@ frames.
 from __future__ import annotations
 
 import argparse
-import signal
 import sys
 from collections import deque
 from pathlib import Path
@@ -48,10 +47,10 @@ from auvlcm import auth, programs
 from auvlcm.decode import DecodeError
 from auvlcm.rx import Receiver
 from auvlcm.team_codec import TeamCodec
-from auvlcm.url import check_local, default_url, with_receive_buffer
+from auvlcm.url import check_local, default_url
 from tools.radio.acoustic_auth import Checker
 from tools.radio.assembler import Assembler
-from tools.radio.pipe import BytePipe, serve
+from tools.radio.pipe import BytePipe, run_gateway
 from tools.radio.wire import Clock, frame, payload
 
 SHORE = "SHORE"
@@ -229,13 +228,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ValueError, auth.KeyFileError) as exc:
         print(f"auv-radio-vehicle: {exc}", file=sys.stderr)
         return 2
-    lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
-    gw = VehicleGateway(lc, args)
-    stop: list[int] = []
-    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
-    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
-    print("auv-radio-vehicle: ready", flush=True)  # subscribed: what is published from now on is heard
-    serve(lc, gw.pipe, gw._on_frame, gw.tick, stop)
+    gw = run_gateway("auv-radio-vehicle", url, lambda lc: VehicleGateway(lc, args))
     print(gw.summary(), file=sys.stderr)
     return 0
 

@@ -51,12 +51,9 @@ typedef struct {
     double worst_report;             /* |reported east - front| */
 } zz_run;
 
-/* Flies m for `seconds` with the temperature of water(east) + noise_c * noise, a
- * reading every cycle (`bad`: every third reading is NaN, 99 degC or not valid). */
-static zz_run fly_front(chasm_machine *m, kin_vehicle *v, double seconds, double noise_c, int bad)
+/* The vehicle's navigation and the water where it is, at t = 0, then the plan starts. */
+static void start_in_water(chasm_machine *m, const kin_vehicle *v)
 {
-    zz_run r = {0};
-    uint32_t seed = 12345;
     pt_set(m, "nav.north_m", v->n, 0);
     pt_set(m, "nav.east_m", v->e, 0);
     pt_set(m, "nav.depth_m", v->depth, 0);
@@ -64,6 +61,15 @@ static zz_run fly_front(chasm_machine *m, kin_vehicle *v, double seconds, double
     pt_set(m, "ctd.temperature_c", water(v->e), 0);
     pt_set_bool(m, "ctd.valid", 1, 0);
     chasm_start(m, 0);
+}
+
+/* Flies m for `seconds` with the temperature of water(east) + noise_c * noise, a
+ * reading every cycle (`bad`: every third reading is NaN, 99 degC or not valid). */
+static zz_run fly_front(chasm_machine *m, kin_vehicle *v, double seconds, double noise_c, int bad)
+{
+    zz_run r = {0};
+    uint32_t seed = 12345;
+    start_in_water(m, v);
     int legs = 1, k = 0;
     for (double t = DT; t < seconds && !strcmp(pt_leaf(m), "zz"); t += DT, k++) {
         double temp = water(v->e) + noise_c * noise(&seed);
@@ -197,13 +203,7 @@ void zigzag_follows_in_course(void)
     if (!m)
         return;
     kin_vehicle v = {0, 40, 60 * DEG, 5.0, 1.5, 0, 0, 10 * DEG};
-    pt_set(m, "nav.north_m", v.n, 0);
-    pt_set(m, "nav.east_m", v.e, 0);
-    pt_set(m, "nav.depth_m", v.depth, 0);
-    pt_set(m, "nav.u_mps", v.u, 0);
-    pt_set(m, "ctd.temperature_c", water(v.e), 0);
-    pt_set_bool(m, "ctd.valid", 1, 0);
-    chasm_start(m, 0);
+    start_in_water(m, &v);
     double north_at_turn = 0, t = DT;
     int turned_at = -1;
     for (; t < 1200 && pt_get_int(m, "crossings") < 8; t += DT) {
