@@ -136,6 +136,10 @@ def child_env() -> dict[str, str]:
 # `make test` runs the suite on pytest-xdist workers with `--dist loadgroup`:
 # each test file is one unit of work (its module fixtures run once), and files
 # that share a session fixture are one unit together (the fixture runs once).
+# The units are made by the scheduler below, from the test's file: xdist's own
+# loadgroup marks a test by renaming its node id, which pytest 9 no longer
+# lets it do, so every file was split across the workers and an expensive
+# module fixture (a team flown, a reference run) was made once per worker.
 SHARED_SESSION = {
     "nav/test_nav_replay.py": "nav survey",  # nav_fixtures.survey: a recorded survey
     "nav/test_nav_live.py": "nav survey",
@@ -144,32 +148,54 @@ SHARED_SESSION = {
 # end (measured: `make test PYTEST_ARGS=--durations=0`, docs/contributing.md).
 LONGEST_FIRST = [
     "hil/test_hil_wire.py",
+    "team/test_team_faults.py",
     "test_demo.py",
     "team/test_team_loss.py",
     "team/test_leader_follower.py",
-    "team/test_team_faults.py",
     "multihil/test_nodes.py",
     "hosts/test_agents.py",
-    "multihil/test_multihost.py",
-    "team/test_team_deterministic.py",
-    "nav survey",
-    "hosts/test_hil_topology.py",
-    "team/test_team_crossing.py",
+    "missions/test_missions.py",
     "tools/test_montecarlo.py",
-    "test_manager_status_rate.py",
-    "chasm/test_chasm_fuzz.py",
-    "multihil/test_sim_world.py",
+    "tools/test_launch.py",
+    "nav survey",
+    "tools/test_launch_backseat.py",
+    "team/test_team_crossing.py",
+    "drivers/test_driver_fuzz.py",
+    "plugins/test_pilot_closed_loop.py",
+    "tools/test_recorder_wire.py",
+    "multihil/test_multihost.py",
+    "test_docs_commands.py",
+    "tools/test_report.py",
+    "tools/test_report_deterministic.py",
+    "tools/test_sampling_team.py",
+    "team/test_team_deterministic.py",
 ]
 
 
-@pytest.hookimpl(tryfirst=True)  # before xdist reads the groups
+def work_unit(nodeid: str) -> str:
+    """The unit of work a test belongs to: its file (relative to tests/), or the
+    group of files that share a session fixture."""
+    path = nodeid.split("::", 1)[0].split("@", 1)[0]
+    rel = path.removeprefix("tests/")
+    return SHARED_SESSION.get(rel, rel)
+
+
+def pytest_xdist_make_scheduler(config, log):
+    """`--dist loadgroup`: one unit per file (work_unit), handed out in the
+    collection's order (LONGEST_FIRST), not xdist's biggest-count-first."""
+    if config.getoption("dist", "no") != "loadgroup":
+        return None
+    from xdist.scheduler import LoadScopeScheduling
+
+    class FileUnits(LoadScopeScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return work_unit(nodeid)
+
+    config.option.loadscopereorder = False
+    return FileUnits(config, log)
+
+
 def pytest_collection_modifyitems(config, items):
-    tests = ROOT / "tests"
-    groups = {}
-    for item in items:
-        rel = item.path.relative_to(tests).as_posix() if item.path.is_relative_to(tests) else item.nodeid
-        groups[item.nodeid] = SHARED_SESSION.get(rel, rel)
-        item.add_marker(pytest.mark.xdist_group(groups[item.nodeid]))
     rank = {name: i for i, name in enumerate(LONGEST_FIRST)}
     # stable: within a rank the collection order stays
-    items.sort(key=lambda it: rank.get(groups[it.nodeid], len(rank)))
+    items.sort(key=lambda it: rank.get(work_unit(it.nodeid), len(rank)))
