@@ -51,6 +51,7 @@ typedef struct {
     int min_year;
     double uere_m;
     double epoch_timeout_s;
+    int64_t last_rx;    /* receive time of the newest bytes: an epoch closes on quiet */
     int settings_done;
 
     nmea_framer framer;
