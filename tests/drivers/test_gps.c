@@ -259,6 +259,16 @@ static void test_real_receivers(void)
     CHECK_NEAR(r->fix[0].longitude_deg, -(121 + 18.85886 / 60), 1e-12);
     free(r);
 
+    /* UBX binary frames between the sentences ('$' bytes in them): one run of
+     * garbage between two sentences is one count, and no bad character */
+    r = rig_new(NULL);
+    feed(r, a, T0);
+    const char ubx[] = "\xb5\x62\x01\x07\x5c\x00$\x01\x02$G\x00\xff\xb5\x62\x01\x35$\x80";
+    gps_protocol.feed(&r->g, &r->ctx, (const uint8_t *)ubx, sizeof ubx - 1, T0 + 1000);
+    feed(r, b, T0 + 2000);
+    CHECK(r->n == 1 && count(r, "garbage") == 1 && r->ctx.reasons.total == 1);
+    free(r);
+
     /* NMEA 4.11: RMC's nav status (u-blox always V: "not given"), GSA's system
      * id, GSV/GST/TXT/GLL/GNS/DTM and u-blox's PUBX interleaved; an RMC mode
      * 'V' (Magellan's "not valid") with status V is no fix, not a refusal */

@@ -150,6 +150,14 @@ static void test_real_receivers_framing(void)
     CHECK(nmea_parse_line("$GPZDA,222449,25,10,2010,+00,00", 31, 1, &s) == NMEA_OK && s.checksummed == 0);
     CHECK(nmea_parse_line(a, strlen(a), 1, &s) == NMEA_OK && s.checksummed == 1);
     CHECK(nmea_parse_line("$GPZDA,222449,25,10,2010,+00,00*1", 33, 1, &s) == NMEA_BAD_CHECKSUM);
+    /* a u-blox's binary UBX frames between its sentences, a '$' inside them:
+     * garbage, not a sentence with a bad character */
+    memset(refused, 0, sizeof refused);
+    nmea_framer_init(&f, 0);
+    const char ubx[] = "\xb5\x62\x01\x07\x5c\x00$\x01\x02$G\x00\xff";
+    CHECK(feed(&f, ubx, sizeof ubx - 1, refused, &s) == 0);
+    CHECK(refused[NMEA_BAD_CHAR] == 0 && f.garbage_bytes == sizeof ubx - 1);
+    CHECK(feed(&f, a, strlen(a), refused, &s) == 1);
 }
 
 static const unit_test tests[] = {

@@ -173,6 +173,13 @@ int nmea_framer_push(nmea_framer *f, uint8_t c, nmea_sentence *out)
     if (f->skipping)
         return -1;
     if (c < 0x20 || c > 0x7e) {
+        if (f->len <= 6 && !memchr(f->buf, ',', f->len)) {
+            /* a '$' in binary (a u-blox's UBX frames between its sentences)
+             * began no sentence: all of it is garbage, not a broken line */
+            f->garbage_bytes += f->len + 1;
+            f->in_sentence = 0;
+            return -1;
+        }
         f->skipping = 1; /* the rest of this line is not a sentence */
         return NMEA_BAD_CHAR;
     }

@@ -139,7 +139,7 @@ static void gps_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n, 
             if (!g->in_garbage)
                 drv_drop(ctx, "garbage", "bytes outside any sentence, from 0x%02x", bytes[i]);
             g->in_garbage = 1;
-        } else if (g->framer.in_sentence) {
+        } else if (r >= 0) { /* a line ended: the run of garbage before it is over */
             g->in_garbage = 0;
         }
     }
