@@ -246,6 +246,11 @@ static void test_real_receivers(void)
     /* but an RMC without its checksum is refused: there it is mandatory */
     feed(r, "$GPRMC,222450,A,3349.0337,S,01843.9282,E,0.0,318.0,251010,,\r\n", T0 + 1000000);
     CHECK(count(r, "no checksum") == 1);
+    /* and a receiver that has checksummed is held to it: a line without is one
+     * that lost its *hh */
+    feed(r, sentence("GPZDA,222451,25,10,2010,00,00"), T0 + 1100000);
+    feed(r, "$GPGGA,222451,3349.0337,S,01843.9282,E,1,07,02.31,000115.4,M,0033.3,M,,\r\n", T0 + 1200000);
+    CHECK(count(r, "no checksum") == 2 && r->ctx.frames_decoded == 5);
     free(r);
 
     /* a receiver whose buffer overflowed: sentences run together without CR LF */

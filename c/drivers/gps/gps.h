@@ -58,6 +58,7 @@ typedef struct {
     nmea_sentence sentence;
     uint64_t garbage_seen;
     int in_garbage;
+    int seen_checksum;  /* this receiver checksums its sentences: it is held to it */
 
     gps_epoch ep;
     unsigned expect;    /* the timed sentences the receiver sent in its last epoch */

@@ -114,6 +114,14 @@ static void on_sentence(gps_state *g, drv_ctx *ctx, int64_t stamp)
 {
     gps_values v;
     char why[200];
+    /* A receiver that never checksums (an HP 58534A) is taken as it is; one
+     * that does and sends a line without is a line that lost its *hh */
+    if (g->sentence.checksummed)
+        g->seen_checksum = 1;
+    else if (g->seen_checksum) {
+        drv_drop(ctx, "no checksum", "%.80s: this receiver checksums its sentences", g->sentence.text);
+        return;
+    }
     const char *reason = gps_decode(&g->sentence, g->min_year, &v, why, sizeof why);
     if (reason) {
         drv_drop(ctx, reason, "%s", why);
