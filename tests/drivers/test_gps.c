@@ -251,6 +251,8 @@ static void test_real_receivers(void)
     feed(r, sentence("GPZDA,222451,25,10,2010,00,00"), T0 + 1100000);
     feed(r, "$GPGGA,222451,3349.0337,S,01843.9282,E,1,07,02.31,000115.4,M,0033.3,M,,\r\n", T0 + 1200000);
     CHECK(count(r, "no checksum") == 2 && r->ctx.frames_decoded == 5);
+    feed(r, "$POLYN,TIME,RESTART_OCCURRED\r\n", T0 + 1300000); /* MTK's own, never checksummed */
+    CHECK(count(r, "no checksum") == 2 && r->ctx.frames_decoded == 6);
     free(r);
 
     /* a receiver whose buffer overflowed: sentences run together without CR LF */

@@ -115,10 +115,12 @@ static void on_sentence(gps_state *g, drv_ctx *ctx, int64_t stamp)
     gps_values v;
     char why[200];
     /* A receiver that never checksums (an HP 58534A) is taken as it is; one
-     * that does and sends a line without is a line that lost its *hh */
+     * that does and sends a standard sentence without is a line that lost its
+     * *hh. (Its maker's proprietary lines are the maker's: MTK's $POLYN come
+     * without, among checksummed sentences; none is used.) */
     if (g->sentence.checksummed)
         g->seen_checksum = 1;
-    else if (g->seen_checksum) {
+    else if (g->seen_checksum && g->sentence.talker[0]) {
         drv_drop(ctx, "no checksum", "%.80s: this receiver checksums its sentences", g->sentence.text);
         return;
     }
