@@ -399,7 +399,7 @@ static void test_bridge_error_and_timeouts(void)
 }
 
 /* What Micro-Modem 2 firmware prints (our own sentences in its shapes, as
- * ros_acomms and goby's users record them): statistics of versions 7 and 8
+ * public host code quotes them): statistics of versions 7 and 8
  * with version 6's fields first, ISO date-times, hierarchical parameter
  * names, a CAREV without its time; and the many sentences the bridge does
  * not use, which are not refusals. */
