@@ -37,11 +37,28 @@ static void test_hdt_from_any_talker(void)
     cfg = AHRS_NMEA_DEFAULTS;
     CHECK(decode("HEHDT,274.07,M", &cfg, &r) == AHRS_NMEA_NOT_TRUE);
     CHECK(decode("HEHDT,274.07", &cfg, &r) == AHRS_NMEA_NOT_TRUE);
-    CHECK(decode("HEHDT,,T", &cfg, &r) == AHRS_NMEA_MISSING_FIELD);
+    /* a gyro still settling says "no heading" with an empty field: valid, no value */
+    CHECK(decode("HEHDT,,T", &cfg, &r) == AHRS_NMEA_OK && !r.has_heading);
+    CHECK(decode("HEHDT", &cfg, &r) == AHRS_NMEA_MISSING_FIELD);
     CHECK(decode("HEHDT,361,T", &cfg, &r) == AHRS_NMEA_HEADING_RANGE);
     CHECK(decode("HEHDT,-1,T", &cfg, &r) == AHRS_NMEA_HEADING_RANGE);
     CHECK(decode("HEHDT,2e2,T", &cfg, &r) == AHRS_NMEA_BAD_FIELD);
     CHECK(decode("GPGGA,1,2", &cfg, &r) == AHRS_NMEA_NOT_MINE);
+}
+
+/* THS (NMEA 3.0 on): heading and mode; V (not valid) or empty is no value */
+static void test_ths(void)
+{
+    ahrs_nmea_config cfg = AHRS_NMEA_DEFAULTS;
+    ahrs_nmea_reading r;
+    CHECK(decode("HETHS,274.07,A", &cfg, &r) == AHRS_NMEA_OK && r.has_heading);
+    CHECK_NEAR(r.heading_rad, 274.07 * DEG, 1e-12);
+    CHECK(decode("INTHS,12.5,E", &cfg, &r) == AHRS_NMEA_OK && r.has_heading);
+    CHECK(decode("HETHS,274.07,V", &cfg, &r) == AHRS_NMEA_OK && !r.has_heading);
+    CHECK(decode("HETHS,,V", &cfg, &r) == AHRS_NMEA_OK && !r.has_heading);
+    CHECK(decode("HETHS,274.07,Q", &cfg, &r) == AHRS_NMEA_STATUS_RANGE);
+    CHECK(decode("HETHS,400,A", &cfg, &r) == AHRS_NMEA_HEADING_RANGE);
+    CHECK(decode("HETHS,274.07", &cfg, &r) == AHRS_NMEA_MISSING_FIELD);
 }
 
 static void test_pashr(void)
@@ -61,6 +78,11 @@ static void test_pashr(void)
     /* older firmware: no IMU status; a receiver that leaves heave empty */
     CHECK(decode("PASHR,163029.000,158.09,T,-0.30,+0.31,,0.029,0.029,0.059,2", &cfg, &r) == AHRS_NMEA_OK);
     CHECK(r.imu_status == -1 && r.gnss_quality == 2 && !r.has_heave);
+    /* Ashtech's own $PASHR family (a name first, not a time) is not ours */
+    CHECK(decode("PASHR,POS,0,03,183530.00,2037.76012,N,08704.07373,W,058.48,,000.0,000.0,-000.0,04.1,02.0,03.5,"
+                 "01.8,GA10",
+                 &cfg, &r) == AHRS_NMEA_NOT_MINE);
+    CHECK(decode("PASHR,ATT,183530.0,158.09,-0.30,+0.31,0.0021,0.0054,0", &cfg, &r) == AHRS_NMEA_NOT_MINE);
     /* a device with the other signs, configured */
     cfg.roll_sign = cfg.pitch_sign = -1;
     CHECK(decode("PASHR,163029.000,158.09,T,-0.30,+0.31,+0.01,0.029,0.029,0.059,1,1", &cfg, &r) == AHRS_NMEA_OK);
@@ -176,6 +198,7 @@ static void test_vnymr_refusals(void)
 
 static const unit_test tests[] = {
     {"ahrs_hdt_from_any_talker", test_hdt_from_any_talker},
+    {"ahrs_ths", test_ths},
     {"ahrs_pashr", test_pashr},
     {"ahrs_pashr_refusals", test_pashr_refusals},
     {"ahrs_vnymr", test_vnymr},

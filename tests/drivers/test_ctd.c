@@ -140,6 +140,12 @@ static void test_ctd_stream_cut_anywhere(void)
     for (int k = 0; k < 3; k++)
         CHECK(a->scan[k].temperature_c == b->scan[k].temperature_c &&
               a->scan[k].pressure_dbar == b->scan[k].pressure_dbar);
+    /* lines ended by CR alone or LF alone are scans as well */
+    rig *c = rig_new();
+    feed(c, "12.3456, 3.81234, 5.123\r0A53711BC7220C14C1\nS>\r16.0000, 4.40000, 2.000, 33.1\r", T0);
+    CHECK(c->n == 3 && c->ctx.reasons.total == 0);
+    CHECK(c->scan[2].temperature_c == a->scan[2].temperature_c);
+    free(c);
     feed(b, "12.3456, 3.81", T0);
     ctd_protocol.reset(&b->s, &b->ctx);
     feed(b, "234, 5.123\r\n", T0);

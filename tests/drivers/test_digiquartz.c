@@ -49,6 +49,16 @@ static void test_dq_commands_and_answers(void)
     CHECK(refused[DQ_WRONG_ADDRESS] == 1 && refused[DQ_BAD_VALUE] == 1 && refused[DQ_BAD_CHAR] == 1);
     CHECK(refused[DQ_TOO_LONG] == 1);
     CHECK(feed(&f, "*AB01\r\n*00\r\n", refused, &a) == 0 && refused[DQ_NOT_AN_ANSWER] == 2);
+    /* real lines: spaces and a unit word around the number; the host's own
+     * commands read back on a two-wire RS-485 line are not answers nor errors */
+    memset(refused, 0, sizeof refused);
+    CHECK(feed(&f, "*0001 14.7069 psia\r\n", refused, &a) == 1);
+    CHECK_NEAR(a.value, 14.7069, 1e-12);
+    CHECK(feed(&f, "*0001-1.25 C\r\n*000122.031\r\n", refused, &a) == 2);
+    CHECK_NEAR(a.value, 22.031, 1e-12);
+    CHECK(feed(&f, "*0100P3\r\n*0100EW\r\n", refused, &a) == 0 && refused[DQ_OWN_COMMAND] == 2);
+    CHECK(refused[DQ_BAD_VALUE] == 0 && refused[DQ_WRONG_ADDRESS] == 0);
+    CHECK(feed(&f, "*000114.7 psia psia\r\n*000114.7psia\r\n", refused, &a) == 0 && refused[DQ_BAD_VALUE] == 2);
 }
 
 static void test_dq_units_and_depth(void)

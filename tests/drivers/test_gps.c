@@ -128,10 +128,11 @@ static void test_each_talker(void)
               (nmea_unix_day(2024, 7, 15) * 86400 + 3600 + 2 * 60 + 3) * INT64_C(1000000) + 500000);
         free(r);
     }
-    /* a GGA from a talker that is no GNSS receiver */
+    /* a GGA from a talker that is no GNSS receiver: valid, not ours, ignored */
     rig *r = rig_new(NULL);
     feed(r, sentence("HEGGA,010203,3530.0000,S,17410.0000,W,1,10,0.8,3.0,M,,M,,"), T0);
-    CHECK(count(r, "unknown talker") == 1 && r->n == 0);
+    gps_protocol.finish(&r->g, &r->ctx, T0 + 1000000);
+    CHECK(r->ctx.reasons.total == 0 && r->n == 0 && r->ctx.frames_decoded == 1);
     free(r);
 }
 
@@ -162,7 +163,8 @@ static void test_absurd_values_refused(void)
         {"GPRMC,123519,A,4807.038,N,01131.000,E,2000.0,084.4,230324,003.1,W", "bad speed"},
         {"GPRMC,123519,A,4807.038,N,01131.000,E,-1.0,084.4,230324,003.1,W", "bad speed"},
         {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,400.0,230324,003.1,W", "bad course"},
-        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W,Q", "bad mode"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W,AD", "bad mode"},
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W,1", "bad mode"},
         {"GPRMC,123519,A,,,,,022.4,084.4,230324,003.1,W", "missing position"},
         {"GPVTG,054.7,T,034.4,M,-5.5,N,010.2,K", "bad speed"},
         {"GPVTG,554.7,T,034.4,M,005.5,N,010.2,K", "bad course"},
@@ -202,7 +204,7 @@ static void test_stream_errors_counted(void)
     snprintf(stream, sizeof stream,
              "\x01\x02junk%s"                                           /* garbage, then a good one */
              "$GPGGA,000002,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,*00\r\n" /* bad checksum */
-             "$GPGGA,000003,0100.000,N,00100.000,E,1,05,1.0,0.0,M,,M,,\r\n"    /* no checksum */
+             "$GPRMC,000003,A,0100.000,N,00100.000,E,0.5,90.0,010125,,\r\n"    /* RMC: no checksum */
              "$GPGGA,000004,0100.0"                                      /* cut by the next */
              "%s\r\n"                                                    /* an endless line */
              "$GPGGA,00\x80" "0005*11\r\n",                              /* a byte outside ASCII */
@@ -221,6 +223,143 @@ static void test_stream_errors_counted(void)
     feed(r, good, T0 + 2000000);
     CHECK(count(r, "truncated sentence") == 1);
     CHECK(r->ctx.frames_decoded == 2);
+    free(r);
+}
+
+/* Receivers as gpsd's recordings show them (our own sentences in their
+ * shapes): each is valid NMEA, and none may be refused or counted. */
+static void test_real_receivers(void)
+{
+    /* HP 58534A: no checksums at all (NMEA makes it optional but in RMC);
+     * ZDA's local zone "+00"; DOP and altitude with leading zeros */
+    rig *r = rig_new(NULL);
+    feed(r, "$GPZDA,222449,25,10,2010,+00,00\r\n", T0);
+    feed(r, "$GPGGA,222449,3349.0337,S,01843.9282,E,1,07,02.31,000115.4,M,0033.3,M,,\r\n", T0 + 10000);
+    feed(r, "$GPVTG,318.0,T,341.9,M,000.0,N,0000.1,K,A\r\n", T0 + 20000);
+    feed(r, "$PFEC,GPtps,101025222449,3,1,1,090101000000,00,15,101025162124,1607,167104\r\n", T0 + 30000);
+    gps_protocol.tick(&r->g, &r->ctx, T0 + 700000); /* GGA alone: the epoch times out */
+    CHECK(r->n == 1 && r->ctx.reasons.total == 0 && r->ctx.frames_decoded == 4);
+    CHECK_NEAR(r->fix[0].latitude_deg, -(33 + 49.0337 / 60), 1e-12);
+    CHECK_NEAR(r->fix[0].hdop, 2.31, 1e-12);
+    CHECK_NEAR(r->fix[0].altitude_m, 115.4, 1e-9);
+    CHECK(r->fix[0].utc_utime == (nmea_unix_day(2010, 10, 25) * 86400 + 22 * 3600 + 24 * 60 + 49) * INT64_C(1000000));
+    /* but an RMC without its checksum is refused: there it is mandatory */
+    feed(r, "$GPRMC,222450,A,3349.0337,S,01843.9282,E,0.0,318.0,251010,,\r\n", T0 + 1000000);
+    CHECK(count(r, "no checksum") == 1);
+    /* and a receiver that has checksummed is held to it: a line without is one
+     * that lost its *hh */
+    feed(r, sentence("GPZDA,222451,25,10,2010,00,00"), T0 + 1100000);
+    feed(r, "$GPGGA,222451,3349.0337,S,01843.9282,E,1,07,02.31,000115.4,M,0033.3,M,,\r\n", T0 + 1200000);
+    CHECK(count(r, "no checksum") == 2 && r->ctx.frames_decoded == 5);
+    feed(r, "$POLYN,TIME,RESTART_OCCURRED\r\n", T0 + 1300000); /* MTK's own, never checksummed */
+    CHECK(count(r, "no checksum") == 2 && r->ctx.frames_decoded == 6);
+    free(r);
+
+    /* a receiver whose buffer overflowed: sentences run together without CR LF */
+    r = rig_new(NULL);
+    char run[400];
+    const char *a = sentence("GNRMC,101010.00,A,4404.14083,N,12118.85886,W,0.011,,240118,,,A,V");
+    const char *b = sentence("GNGGA,101010.00,4404.14083,N,12118.85886,W,1,12,0.68,1142.7,M,-21.3,M,,");
+    snprintf(run, sizeof run, "%.*s%s", (int)strlen(a) - 2, a, b);
+    feed(r, run, T0);
+    CHECK(r->n == 1 && r->ctx.reasons.total == 0);
+    CHECK_NEAR(r->fix[0].longitude_deg, -(121 + 18.85886 / 60), 1e-12);
+    free(r);
+
+    /* UBX binary frames between the sentences ('$' bytes in them): one run of
+     * garbage between two sentences is one count, and no bad character */
+    r = rig_new(NULL);
+    feed(r, a, T0);
+    const char ubx[] = "\xb5\x62\x01\x07\x5c\x00$\x01\x02$G\x00\xff\xb5\x62\x01\x35$\x80";
+    gps_protocol.feed(&r->g, &r->ctx, (const uint8_t *)ubx, sizeof ubx - 1, T0 + 1000);
+    feed(r, b, T0 + 2000);
+    CHECK(r->n == 1 && count(r, "garbage") == 1 && r->ctx.reasons.total == 1);
+    free(r);
+
+    /* NMEA 4.11: RMC's nav status (u-blox always V: "not given"), GSA's system
+     * id, GSV/GST/TXT/GLL/GNS/DTM and u-blox's PUBX interleaved; an RMC mode
+     * 'V' (Magellan's "not valid") with status V is no fix, not a refusal */
+    r = rig_new(NULL);
+    const char *lines[] = {
+        "GNTXT,01,01,02,u-blox AG - www.u-blox.com",
+        "GNRMC,083559.00,A,4717.11437,N,00833.91522,E,0.004,77.52,091202,,,A,V",
+        "GNGGA,083559.00,4717.11437,N,00833.91522,E,1,08,1.01,499.6,M,48.0,M,,",
+        "GNGSA,A,3,23,29,07,08,09,18,26,,,,,,1.94,1.18,1.54,1",
+        "GNGSA,A,3,65,67,80,81,82,88,66,,,,,,1.94,1.18,1.54,2",
+        "GPGSV,3,1,10,23,38,230,44,29,71,156,47,07,29,116,41,08,09,081,36,1",
+        "GNGST,083559.00,1.5,,,,1.2,0.9,2.1",
+        "GNGLL,4717.11437,N,00833.91522,E,083559.00,A,A",
+        "GNGNS,083559.00,4717.11437,N,00833.91522,E,AANN,08,1.01,499.6,48.0,,,V",
+        "GNVTG,77.52,T,,M,0.004,N,0.008,K,A",
+        "GPDTM,W84,,0.0,N,0.0,E,0.0,W84",
+        "PUBX,00,083559.00,4717.11437,N,00833.91522,E,546.589,G3,2.1,2.0,0.007,77.52,0.007,,0.92,1.19,0.77,9,0,0",
+        "INRMC,194101,A,4426.1130,N,07140.5596,W,5.2,77.3,160906,15.8,W",
+        "QZGSV,1,1,01,193,60,120,40",
+        "GPRMC,205150.00,V,,,,,,,,,,,V",
+    };
+    for (size_t k = 0; k < sizeof lines / sizeof lines[0]; k++)
+        feed(r, sentence(lines[k]), T0 + (int64_t)k * 10000);
+    gps_protocol.finish(&r->g, &r->ctx, T0 + 1000000);
+    if (r->ctx.reasons.total)
+        fprintf(stderr, "real receivers: %s\n", r->ctx.last_error);
+    CHECK(r->ctx.reasons.total == 0);
+    CHECK(r->ctx.frames_decoded == (int64_t)(sizeof lines / sizeof lines[0]));
+    CHECK(r->n == 2); /* the u-blox epoch, and the Humminbird's relayed (IN) RMC */
+    CHECK(r->fix[0].quality == 1 && r->fix[0].satellites == 8 && r->fix[0].fix_type == AUV_GPS_FIX_T_FIX_3D);
+    CHECK_NEAR(r->fix[1].latitude_deg, 44 + 26.1130 / 60, 1e-12);
+    CHECK_NEAR(r->fix[1].speed_mps, 5.2 * 1852.0 / 3600.0, 1e-12);
+    free(r);
+
+    /* VTG before NMEA 2.0: four fields, no unit letters; GSA cut short
+     * without a fix (iTrek); an unknown mode letter keeps status A's fix */
+    r = rig_new(NULL);
+    feed(r, sentence("GPGSA,A,1,,,,"), T0);
+    feed(r, sentence("GPVTG,054.7,034.4,005.5,010.2"), T0 + 10000);
+    feed(r, sentence("GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,"), T0 + 20000);
+    gps_protocol.tick(&r->g, &r->ctx, T0 + 700000);
+    CHECK(r->n == 1 && r->ctx.reasons.total == 0);
+    CHECK_NEAR(r->fix[0].speed_mps, 5.5 * 1852.0 / 3600.0, 1e-12);
+    CHECK_NEAR(r->fix[0].course_deg, 54.7, 1e-12);
+    CHECK(isnan(r->fix[0].pdop));
+    feed(r, sentence("GPRMC,123520,A,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W,X"), T0 + 1000000);
+    gps_protocol.finish(&r->g, &r->ctx, T0 + 2000000);
+    CHECK(r->n == 2 && r->fix[1].quality == 1 && r->ctx.reasons.total == 0);
+    free(r);
+
+    /* no fix, as receivers say it: MTK's placeholder 8960.000000 N (89 deg 60
+     * min) and 1980's date, TN200's 36000.0000 N, a Garmin's simulator (GGA
+     * quality 8, RMC status V mode S), a Hemisphere coasting on no satellite
+     * (quality 1, 00 satellites). Valid sentences, nothing refused, no fix;
+     * only a sane date is kept (the ZDA-less receiver's UTC) */
+    r = rig_new(NULL);
+    const char *nofix[] = {
+        "GPGGA,235946.005,8960.000000,N,00000.000000,E,0,0,,137.000,M,13.000,M,,",
+        "GPRMC,235946.005,V,8960.000000,N,00000.000000,E,0.000,0.00,050180,,,N",
+        "GPRMC,000416.984,V,36000.0000,N,72000.0000,E,0.000000,,260120,,",
+        "GPRMC,125106,V,3854.5087,N,07726.4523,W,0.0,0.0,241011,10.5,W,S",
+        "GPGGA,125106,3854.5087,N,07726.4523,W,8,10,2.0,268.8,M,-33.9,M,,",
+        "GPGGA,194050.00,4221.8237733,N,07101.9411707,W,1,00,3.3,10.835,M,-33.320,M,,",
+        "GPRMC,194050.00,A,4221.8237733,N,07101.9411707,W,0.0,0.0,070918,,,S",
+    };
+    for (size_t k = 0; k < sizeof nofix / sizeof nofix[0]; k++)
+        feed(r, sentence(nofix[k]), T0 + (int64_t)k * 100000);
+    gps_protocol.finish(&r->g, &r->ctx, T0 + 2000000);
+    if (r->ctx.reasons.total)
+        fprintf(stderr, "no fix: %s\n", r->ctx.last_error);
+    CHECK(r->n == 0 && r->ctx.reasons.total == 0);
+    CHECK(r->g.have_date && r->g.date_day == nmea_unix_day(2018, 9, 7)); /* the newest sane date, never 1980 */
+    free(r);
+
+    /* 9600 baud: GGA, then a dozen GSV over 0.8 s, then the RMC. The line is
+     * never quiet, so the epoch waits for its RMC (its speed is the fix's) */
+    r = rig_new(NULL);
+    feed(r, sentence("GPGGA,053232.438,3114.8789,N,12135.2442,E,1,06,1.2,153.8,M,8.3,M,,0000"), T0);
+    for (int k = 1; k <= 12; k++)
+        feed(r, sentence("GPGSV,6,1,21,05,00,000,27,06,00,000,24,07,00,000,24,11,00,000,22"), T0 + k * 65000);
+    feed(r, sentence("GNRMC,053232.438,A,3114.8789,N,12135.2442,E,0.26,167.42,020315,,,A"), T0 + 850000);
+    CHECK(r->n == 1 && r->ctx.reasons.total == 0);
+    CHECK_NEAR(r->fix[0].speed_mps, 0.26 * 1852.0 / 3600.0, 1e-12);
+    CHECK(r->fix[0].utime == T0);
     free(r);
 }
 
@@ -358,6 +497,7 @@ static void test_hostile_corpus(void)
 static const unit_test tests[] = {
     {"gps_published_examples", test_published_examples},
     {"gps_each_talker", test_each_talker},
+    {"gps_real_receivers", test_real_receivers},
     {"gps_absurd_values_refused", test_absurd_values_refused},
     {"gps_stream_errors_counted", test_stream_errors_counted},
     {"gps_epochs", test_epochs},

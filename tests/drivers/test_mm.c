@@ -165,7 +165,12 @@ static void test_refusals(void)
     CHECK_STR(refusal("CARXD,2,1,0,9,AB"), "bad frame number");
     CHECK_STR(refusal("CADRQ,123456,1,2,0,32,0"), "bad frame number");
     CHECK_STR(refusal("CADRQ,256060,1,2,0,32,1"), "bad time");
-    CHECK_STR(refusal("CCCFG,src,1"), "bad name");
+    CHECK_STR(refusal("CCCFG,1SRC,1"), "bad name");
+    CHECK_STR(refusal("CCCFG,S-C,1"), "bad name");
+    CHECK_STR(refusal("CAREV,2025-06-06T23:01:23.3x,AUV,2.0.27087"), "bad time");
+    CHECK_STR(refusal("CAREV,2025-06-06 23:01:23,AUV,2.0.27087"), "bad time");
+    CHECK_STR(refusal("CAXST,100,20250606,230103.000935,3,0,200,5000,25000,1,0,1,0,0,1,5,2,25000"),
+              "unknown version");
     CHECK_STR(refusal("CAXST,7,1,2"), "missing fields");
     /* formatting refuses what parsing would */
     mm_msg m = {.kind = MM_CCCYC};
@@ -393,6 +398,64 @@ static void test_bridge_error_and_timeouts(void)
     CHECK(B.state == MM_IDLE && B.status.timeouts == 2 && O.n_sentences == 3);
 }
 
+/* What Micro-Modem 2 firmware prints (our own sentences in its shapes, as
+ * public host code quotes them): statistics of versions 7 and 8
+ * with version 6's fields first, ISO date-times, hierarchical parameter
+ * names, a CAREV without its time; and the many sentences the bridge does
+ * not use, which are not refusals. */
+static void test_later_firmware(void)
+{
+    mm_msg m;
+    const char *why;
+    CHECK(parse_body("CACST,8,0,20250606230123.348554,06,32767,45,0102,0123,07,00,00,00,00,1,001,002,0,5,3,1,150,"
+                     "26.0,9.48,-100,-6.48,-01,0.01,51,25000,5000,0,-1,-1,00",
+                     &m, &why) == 0);
+    CHECK(m.kind == MM_CACST && m.u.cst.version == 8 && m.u.cst.mode == 0 && m.u.cst.rate == 1);
+    CHECK(m.u.cst.src == 1 && m.u.cst.dest == 2 && m.u.cst.nframes == 3 && m.u.cst.nbad == 1);
+    CHECK_NEAR(m.u.cst.snr_in, 26.0, 1e-12);
+    CHECK_NEAR(m.u.cst.doppler, 0.01, 1e-12);
+    CHECK(parse_body("CACST,7,0,20250606230123.348554,06,32767,45,0102,0123,07,00,00,00,00,3,002,001,0,3,2,0,150,"
+                     "14.5,9.48,-100,-6.48,-01,0.01,51,25000,5000,0",
+                     &m, &why) == 0);
+    CHECK(m.u.cst.version == 7 && m.u.cst.rate == 3 && m.u.cst.src == 2);
+    CHECK(parse_body("CAXST,7,20250606,230117.336548,3,0,200,5000,25000,1,2,1,0,3,3,5,192,25000", &m, &why) == 0);
+    CHECK(m.kind == MM_CAXST && m.u.xst.version == 7 && m.u.xst.rate == 1 && m.u.xst.src == 2);
+    CHECK(m.u.xst.dest == 1 && m.u.xst.nframes_sent == 3 && m.u.xst.nbytes == 192);
+    CHECK(parse_body("CAREV,2025-06-06T23:01:03.000935,AUV,2.0.27087", &m, &why) == 0);
+    CHECK_NEAR(m.u.rev.time_s, 23 * 3600 + 60 + 3.000935, 1e-6);
+    CHECK_STR(m.u.rev.version, "2.0.27087");
+    CHECK(parse_body("CAREV,181807,COPROC,0.20.0.56", &m, &why) == 0);
+    CHECK_STR(m.u.rev.ident, "COPROC");
+    CHECK(parse_body("CAREV,INIT,2.0.27087", &m, &why) == 0 && m.u.rev.time_s == -1);
+    CHECK_STR(m.u.rev.ident, "INIT");
+    CHECK_STR(m.u.rev.version, "2.0.27087");
+    CHECK(parse_body("CADRQ,2025-06-06T23:01:03.5,1,2,1,64,1", &m, &why) == 0 && m.u.drq.nbytes == 64);
+    CHECK(parse_body("CAERR,2025-06-06T23:01:03,DTO,4,Data timeout", &m, &why) == 0 && m.u.err.number == 4);
+    round_trip("CACFG,xst.version,7", &m);
+    CHECK_STR(m.u.cfg.name, "xst.version");
+    round_trip("CACFG,pwramp.txlevel,3", &m);
+    /* not used by the bridge, not refusals */
+    const char *others[] = {"CATXP,32", "CATXF,32", "CAMSG,BAD_CRC,4", "CAMPR,2,1,1.2345", "CATMS,0,2025-06-06T23:01:03Z",
+                            "CACLK,2025,06,06,23,01,03", "CAMUC,1,2,0F0F", "CATMG,2025-06-06T23:01:03,1,3",
+                            "CACMD,PNG,0,1,1,0,3", "SNTTA,1.2,,,,230103"};
+    for (size_t k = 0; k < sizeof others / sizeof others[0]; k++)
+        CHECK(parse_body(others[k], &m, &why) == 1 && m.kind == MM_NONE);
+    /* the bridge: a reboot announced without a time still reconfigures */
+    setup(0, 1);
+    modem_says("CAREV,INIT,2.0.27087", 1000);
+    CHECK(O.n_sentences == 3);
+    CHECK_STR(O.sentence[0], "CCCFG,SRC,1");
+    /* a frame received with version-8 statistics: its SNR */
+    modem_says("CACYC,0,2,1,1,0,1", 5000000);
+    modem_says("CARXD,2,1,0,1,0102", 5100000);
+    modem_says("CACST,8,0,20250606230123.348554,06,32767,45,0102,0123,07,00,00,00,00,1,002,001,0,5,1,0,150,12.25,"
+               "9.48,-100,-6.48,-01,0.01,51,25000,5000,0,-1,-1,00",
+               5200000);
+    CHECK(O.n_frames == 1 && B.status.received == 1 && B.status.lost == 0);
+    CHECK_NEAR(O.frame[0].snr_db, 12.25, 1e-12);
+    CHECK(O.frame[0].rate == 1);
+}
+
 /* Every file of the hostile corpus through the framer, the parser and a
  * bridge: no crash, no sanitizer report; bad_* files' sentences are all
  * refused (by the framer or the parser), ok_* files' all accepted. */
@@ -453,6 +516,7 @@ static const unit_test tests[] = {
     {"mm_rates", test_rates},
     {"mm_host_sentences", test_host_sentences},
     {"mm_modem_sentences", test_modem_sentences},
+    {"mm_later_firmware", test_later_firmware},
     {"mm_refusals", test_refusals},
     {"mm_table", test_table},
     {"mm_bridge_start", test_bridge_start},

@@ -117,8 +117,52 @@ static void test_fields(void)
     CHECK(nmea_field_double(&s, 20, &d) == 0); /* past the last field: empty */
 }
 
+/* What real receivers send that the standard allows or that leaves no
+ * doubt (gpsd's recordings of dozens of receivers show each). */
+static void test_real_receivers_framing(void)
+{
+    nmea_framer f;
+    nmea_sentence s;
+    int refused[NMEA_RESULT_COUNT] = {0};
+    char a[128], b[128], stream[512];
+    nmea_format(a, sizeof a, "GPGSA,A,1,,,,,,,,,,,,,,,");
+    nmea_format(b, sizeof b, "GPRMC,235949.00,V,0000.0000,N,00000.0000,E,,,220899,,,N");
+    /* a full output buffer drops the CR LF: "...*1E$GPRMC,...": both are whole */
+    int len = snprintf(stream, sizeof stream, "%.*s%s", (int)strlen(a) - 2, a, b);
+    nmea_framer_init(&f, 0);
+    CHECK(feed(&f, stream, (size_t)len, refused, &s) == 2);
+    CHECK_STR(s.type, "RMC");
+    for (int k = 1; k < NMEA_RESULT_COUNT; k++)
+        CHECK(refused[k] == 0);
+    /* the same with one checksum digit lost: cut, not whole */
+    len = snprintf(stream, sizeof stream, "%.*s%s", (int)strlen(a) - 3, a, b);
+    nmea_framer_init(&f, 0);
+    CHECK(feed(&f, stream, (size_t)len, refused, &s) == 1 && refused[NMEA_TRUNCATED] == 1);
+    /* a line ended by LF alone, by CR alone; a lower-case checksum */
+    memset(refused, 0, sizeof refused);
+    nmea_framer_init(&f, 0);
+    const char *ends = "$GPRMC,205150.00,V,,,,,,,,,,,V*4a\n$GPRMC,205150.00,V,,,,,,,,,,,V*4A\r"
+                       "$GPRMC,205150.00,V,,,,,,,,,,,V*4a\r\n";
+    CHECK(feed(&f, ends, strlen(ends), refused, &s) == 3);
+    CHECK(refused[NMEA_BAD_CHECKSUM] == 0 && s.checksummed == 1 && s.nfields == 13);
+    /* no checksum: refused, or accepted and marked where the framer allows it */
+    CHECK(parse("$GPZDA,222449,25,10,2010,+00,00\r\n", &s) == NMEA_NO_CHECKSUM);
+    CHECK(nmea_parse_line("$GPZDA,222449,25,10,2010,+00,00", 31, 1, &s) == NMEA_OK && s.checksummed == 0);
+    CHECK(nmea_parse_line(a, strlen(a), 1, &s) == NMEA_OK && s.checksummed == 1);
+    CHECK(nmea_parse_line("$GPZDA,222449,25,10,2010,+00,00*1", 33, 1, &s) == NMEA_BAD_CHECKSUM);
+    /* a u-blox's binary UBX frames between its sentences, a '$' inside them:
+     * garbage, not a sentence with a bad character */
+    memset(refused, 0, sizeof refused);
+    nmea_framer_init(&f, 0);
+    const char ubx[] = "\xb5\x62\x01\x07\x5c\x00$\x01\x02$G\x00\xff";
+    CHECK(feed(&f, ubx, sizeof ubx - 1, refused, &s) == 0);
+    CHECK(refused[NMEA_BAD_CHAR] == 0 && f.garbage_bytes == sizeof ubx - 1);
+    CHECK(feed(&f, a, strlen(a), refused, &s) == 1);
+}
+
 static const unit_test tests[] = {
     {"checksum_and_split", test_checksum_and_split},
+    {"real_receivers_framing", test_real_receivers_framing},
     {"framer_survives_any_stream", test_framer_survives_any_stream},
     {"fields", test_fields},
     {NULL, NULL},

@@ -1,5 +1,6 @@
 #include "drivers/ahrs/ahrs_nmea.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <string.h>
 
@@ -144,14 +145,52 @@ static ahrs_nmea_result vnymr(const nmea_sentence *s, const ahrs_nmea_config *cf
     return AHRS_NMEA_OK;
 }
 
+/* HDT with its heading field empty: a gyro still settling, a GNSS compass
+ * without its two fixes, says "no heading" this way; valid, and no value. */
+static ahrs_nmea_result hdt(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
+{
+    if (s->nfields >= 1 && !s->field[0][0])
+        return AHRS_NMEA_OK;
+    return heading(s, 0, cfg, out);
+}
+
+/* THS (NMEA 0183 3.0 on, HDT's successor): true heading and its mode, A
+ * autonomous, E estimated (dead reckoning), M manual, S simulator, V not
+ * valid. A heading marked V, or none, is no value. */
+static ahrs_nmea_result ths(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
+{
+    if (s->nfields < 2)
+        return AHRS_NMEA_MISSING_FIELD;
+    const char *mode = s->field[1];
+    if (strlen(mode) != 1 || !strchr("AEMSV", mode[0]))
+        return AHRS_NMEA_STATUS_RANGE;
+    if (mode[0] == 'V' || !s->field[0][0])
+        return AHRS_NMEA_OK;
+    double deg;
+    ahrs_nmea_result r = need(s, 0, &deg);
+    if (r != AHRS_NMEA_OK)
+        return r;
+    if (!(deg >= 0.0 && deg <= 360.0))
+        return AHRS_NMEA_HEADING_RANGE;
+    out->heading_rad = wrap_2pi((deg + cfg->heading_offset_deg) * DEG);
+    out->has_heading = 1;
+    return AHRS_NMEA_OK;
+}
+
 ahrs_nmea_result ahrs_nmea_decode(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
 {
     memset(out, 0, sizeof *out);
     out->gnss_quality = out->imu_status = -1;
+    /* Ashtech's $PASHR family (PASHR,POS / ATT / MCA ...: a name first, not a
+     * time) shares the address; only the attitude sentence is ours */
+    if (!strcmp(s->type, "PASHR") && s->nfields > 0 && isalpha((unsigned char)s->field[0][0]))
+        return AHRS_NMEA_NOT_MINE;
     if (!strcmp(s->type, "PASHR"))
         return pashr(s, cfg, out);
     if (s->talker[0] && !strcmp(s->type, "HDT"))
-        return heading(s, 0, cfg, out);
+        return hdt(s, cfg, out);
+    if (s->talker[0] && !strcmp(s->type, "THS"))
+        return ths(s, cfg, out);
     if (!strcmp(s->talker, "VN") && !strcmp(s->type, "YMR"))
         return vnymr(s, cfg, out);
     return AHRS_NMEA_NOT_MINE;

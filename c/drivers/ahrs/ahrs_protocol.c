@@ -136,7 +136,7 @@ static void ahrs_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n,
             if (!a->in_garbage)
                 drv_drop(ctx, "garbage", "bytes outside any sentence, from 0x%02x", bytes[i]);
             a->in_garbage = 1;
-        } else if (a->framer.in_sentence) {
+        } else if (r >= 0) { /* a line ended: the run of garbage before it is over */
             a->in_garbage = 0;
         }
     }

@@ -54,23 +54,30 @@ static int hexval(int c)
     return -1;
 }
 
-/* The address field: 2-letter talker + 3-letter type (GPGGA), or a proprietary
- * 'P' address (PASHR, PRDID: up to 15 characters), letters and digits only. */
+/* The address field: 2-letter talker + 3-letter type (GPGGA), or a
+ * proprietary one: 'P', the maker's three-letter code and what the maker
+ * puts after it. NMEA 0183 leaves a proprietary sentence's content to its
+ * maker, and makers use it freely: SiRF's "$PSRFTXTVersion GSW3.2.2*78" has
+ * no comma and a space. So a proprietary address is any printable text (its
+ * type keeps the leading letters and digits, up to 15); a standard one is
+ * exactly 5 capitals or digits. */
 static nmea_result split_address(const char *addr, nmea_sentence *out)
 {
     size_t n = strlen(addr);
-    if (n < 2 || n >= sizeof out->type)
-        return NMEA_BAD_ADDRESS;
-    for (size_t i = 0; i < n; i++)
-        if (!isupper((unsigned char)addr[i]) && !isdigit((unsigned char)addr[i]))
-            return NMEA_BAD_ADDRESS;
-    if (addr[0] == 'P') {
+    if (n >= 2 && addr[0] == 'P' && isupper((unsigned char)addr[1])) {
+        size_t k = 0;
+        while (k < n && k + 1 < sizeof out->type && isalnum((unsigned char)addr[k]))
+            k++;
         out->talker[0] = '\0';
-        memcpy(out->type, addr, n + 1);
+        memcpy(out->type, addr, k);
+        out->type[k] = '\0';
         return NMEA_OK;
     }
     if (n != 5)
         return NMEA_BAD_ADDRESS;
+    for (size_t i = 0; i < n; i++)
+        if (!isupper((unsigned char)addr[i]) && !isdigit((unsigned char)addr[i]))
+            return NMEA_BAD_ADDRESS;
     memcpy(out->talker, addr, 2);
     out->talker[2] = '\0';
     memcpy(out->type, addr + 2, 4);
@@ -104,6 +111,7 @@ nmea_result nmea_parse_line(const char *line, size_t len, int allow_no_checksum,
     } else if (!allow_no_checksum) {
         return NMEA_NO_CHECKSUM;
     }
+    out->checksummed = star != NULL;
     size_t body = end - 1; /* without the '$' */
     memcpy(out->storage, line + 1, body);
     out->storage[body] = '\0';
@@ -127,15 +135,27 @@ nmea_result nmea_parse_line(const char *line, size_t len, int allow_no_checksum,
     return NMEA_OK;
 }
 
+/* The buffer holds a whole sentence: it ends with '*' and two hex digits. */
+static int ends_with_checksum(const nmea_framer *f)
+{
+    return f->len >= 4 && f->buf[f->len - 3] == '*' && hexval(f->buf[f->len - 2]) >= 0 &&
+           hexval(f->buf[f->len - 1]) >= 0;
+}
+
 int nmea_framer_push(nmea_framer *f, uint8_t c, nmea_sentence *out)
 {
     if (c == '$' || c == '!') {
-        int truncated = f->in_sentence && !f->skipping;
+        int r = -1;
+        if (f->in_sentence && !f->skipping)
+            /* a sentence whose *hh is complete ends here even without its
+             * CR LF (a receiver's full output buffer); else it was cut */
+            r = ends_with_checksum(f) ? (int)nmea_parse_line(f->buf, f->len, f->allow_no_checksum, out)
+                                      : NMEA_TRUNCATED;
         f->in_sentence = 1;
         f->skipping = 0;
         f->len = 0;
         f->buf[f->len++] = (char)c;
-        return truncated ? NMEA_TRUNCATED : -1;
+        return r;
     }
     if (!f->in_sentence) {
         if (c != '\r' && c != '\n')
@@ -153,6 +173,13 @@ int nmea_framer_push(nmea_framer *f, uint8_t c, nmea_sentence *out)
     if (f->skipping)
         return -1;
     if (c < 0x20 || c > 0x7e) {
+        if (f->len <= 6 && !memchr(f->buf, ',', f->len)) {
+            /* a '$' in binary (a u-blox's UBX frames between its sentences)
+             * began no sentence: all of it is garbage, not a broken line */
+            f->garbage_bytes += f->len + 1;
+            f->in_sentence = 0;
+            return -1;
+        }
         f->skipping = 1; /* the rest of this line is not a sentence */
         return NMEA_BAD_CHAR;
     }

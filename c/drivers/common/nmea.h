@@ -11,6 +11,17 @@
  * checksum, and a sentence cut short by a new `$` (truncated). Each refusal
  * has a reason, which the drivers count.
  *
+ * Real receivers bend the framing in ways the standard allows or that carry
+ * no doubt, and those are accepted: a line ended by CR LF, LF alone or CR
+ * alone; a checksum in lower-case hex; a complete sentence (its `*hh`
+ * present) followed at once by the next `$` with no line end between (some
+ * receivers drop the CR LF when their output buffer is full): the first is
+ * parsed, the second begins. The checksum is optional in NMEA 0183 for most
+ * sentences (mandatory in RMA, RMB and RMC since version 2.0): a framer made
+ * with allow_no_checksum accepts a line without one and marks it
+ * (nmea_sentence.checksummed = 0) so that a driver refuses it where the
+ * sentence's definition requires one.
+ *
  * NMEA 0183 limits a sentence to 82 characters; proprietary ones run longer:
  * a Micro-Modem $CARXD of a PSK rate carries a 256-byte frame as 512 hex
  * digits (c/drivers/modem/mm_msg.h), some 540 characters in all, hence 600. */
@@ -42,6 +53,7 @@ typedef struct {
     char talker[3];   /* "GP", "GN", "HC", "CC", "CA", ...; "" for a proprietary sentence */
     char type[16];    /* "GGA", "HDT", "RXD"; for a proprietary sentence its whole address ("PASHR") */
     int nfields;      /* fields after the address */
+    int checksummed;  /* it carried *hh (and it matched); 0: none, allowed by the framer */
     const char *field[NMEA_MAX_FIELDS]; /* each NUL-terminated, "" when empty */
     char text[NMEA_MAX_SENTENCE + 1];   /* the sentence as received, without CR LF */
     char storage[NMEA_MAX_SENTENCE + 1];
@@ -59,8 +71,9 @@ typedef struct {
 void nmea_framer_init(nmea_framer *f, int allow_no_checksum);
 
 /* One byte of the stream. Returns NMEA_OK with *out filled when a sentence
- * ended and passed every check; a refusal reason when a line was refused;
- * -1 when neither happened with this byte. */
+ * ended (at a line end, or at the `$` that follows its *hh at once) and
+ * passed every check; a refusal reason when a line was refused; -1 when
+ * neither happened with this byte. */
 int nmea_framer_push(nmea_framer *f, uint8_t byte, nmea_sentence *out);
 
 /* Checks and splits one line ("$...*hh", CR LF optional) into *out. */

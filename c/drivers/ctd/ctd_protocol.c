@@ -115,7 +115,12 @@ static void ctd_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n, 
     ctd_state *s = state;
     for (size_t i = 0; i < n; i++) {
         char c = (char)bytes[i];
-        if (c == '\n') {
+        /* a scan ends with CR LF; a line that ends with CR alone or LF alone
+         * (a terminal server's, a converter's) ends as well; the empty line
+         * between the CR and the LF of CR LF is nothing */
+        if (c == '\n' || c == '\r') {
+            if (s->n == 0 && !s->overflow)
+                continue;
             if (s->overflow)
                 drv_drop(ctx, "line too long", "over %d characters", SBE49_MAX_LINE);
             else

@@ -193,6 +193,8 @@ static void depth_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n
         int r = dq_framer_push(&s->framer, bytes[i], HOST, s->address, &a);
         if (r == DQ_OK)
             on_answer(s, ctx, &a, stamp);
+        else if (r == DQ_OWN_COMMAND)
+            ; /* our query read back on a two-wire RS-485 line: neither */
         else if (r > 0)
             on_refused(s, ctx, r, stamp);
         /* bytes outside any line: one count per run of them, not per byte */

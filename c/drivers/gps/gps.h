@@ -51,12 +51,14 @@ typedef struct {
     int min_year;
     double uere_m;
     double epoch_timeout_s;
+    int64_t last_rx;    /* receive time of the newest bytes: an epoch closes on quiet */
     int settings_done;
 
     nmea_framer framer;
     nmea_sentence sentence;
     uint64_t garbage_seen;
     int in_garbage;
+    int seen_checksum;  /* this receiver checksums its sentences: it is held to it */
 
     gps_epoch ep;
     unsigned expect;    /* the timed sentences the receiver sent in its last epoch */

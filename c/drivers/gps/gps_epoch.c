@@ -2,8 +2,11 @@
  * that carry a time (GGA, RMC) belong to the epoch of that UTC time of day.
  * The fix is published as soon as the epoch holds every timed sentence the
  * receiver sent in its previous epoch (GGA and RMC, or only the one it
- * sends), else when a sentence of another time arrives, or when the epoch has
- * been open --epoch-timeout seconds (a sentence lost to a bad checksum).
+ * sends), else when a sentence of another time arrives, or when the line has
+ * been quiet --epoch-timeout seconds (the burst ended without it: a sentence
+ * lost to a bad checksum). Quiet, not open: at 9600 baud a receiver's burst
+ * of GGA, GSA, a dozen GSV and RMC takes most of a second, and a timeout from
+ * the epoch's first sentence would publish it before its RMC came.
  * GSA and VTG carry no time: the newest of each, if received within
  * AUX_MAX_AGE of the epoch, lends its DOPs, fix mode and speed (GSA usually
  * follows GGA, so a fix takes the previous epoch's DOPs: they change slowly).
@@ -146,6 +149,7 @@ void gps_epoch_sentence(gps_state *g, drv_ctx *ctx, const gps_values *v, int64_t
 
 void gps_epoch_tick(gps_state *g, drv_ctx *ctx, int64_t now)
 {
-    if (g->ep.open && !g->ep.published && now - g->ep.stamp > (int64_t)(g->epoch_timeout_s * 1e6))
+    int64_t since = g->last_rx > g->ep.stamp ? g->last_rx : g->ep.stamp;
+    if (g->ep.open && !g->ep.published && now - since > (int64_t)(g->epoch_timeout_s * 1e6))
         gps_epoch_close(g, ctx);
 }

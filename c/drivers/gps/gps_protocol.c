@@ -98,7 +98,7 @@ static int gps_init(void *state, drv_ctx *ctx)
         g->uere_m = DEFAULT_UERE_M;
     if (!(g->settings_done & 4))
         g->epoch_timeout_s = DEFAULT_EPOCH_TIMEOUT_S;
-    nmea_framer_init(&g->framer, 0);
+    nmea_framer_init(&g->framer, 1); /* the checksum is optional but in RMC (gps_sentence.c) */
     g->gsa_stamp = g->vtg_stamp = -1;
     g->fix_type = auv_type_find("gps_fix_t");
     if (!g->fix_type) {
@@ -114,6 +114,16 @@ static void on_sentence(gps_state *g, drv_ctx *ctx, int64_t stamp)
 {
     gps_values v;
     char why[200];
+    /* A receiver that never checksums (an HP 58534A) is taken as it is; one
+     * that does and sends a standard sentence without is a line that lost its
+     * *hh. (Its maker's proprietary lines are the maker's: MTK's $POLYN come
+     * without, among checksummed sentences; none is used.) */
+    if (g->sentence.checksummed)
+        g->seen_checksum = 1;
+    else if (g->seen_checksum && g->sentence.talker[0]) {
+        drv_drop(ctx, "no checksum", "%.80s: this receiver checksums its sentences", g->sentence.text);
+        return;
+    }
     const char *reason = gps_decode(&g->sentence, g->min_year, &v, why, sizeof why);
     if (reason) {
         drv_drop(ctx, reason, "%s", why);
@@ -126,6 +136,7 @@ static void on_sentence(gps_state *g, drv_ctx *ctx, int64_t stamp)
 static void gps_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n, int64_t stamp)
 {
     gps_state *g = state;
+    g->last_rx = stamp;
     for (size_t i = 0; i < n; i++) {
         int r = nmea_framer_push(&g->framer, bytes[i], &g->sentence);
         if (r == NMEA_OK)
@@ -138,7 +149,7 @@ static void gps_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n, 
             if (!g->in_garbage)
                 drv_drop(ctx, "garbage", "bytes outside any sentence, from 0x%02x", bytes[i]);
             g->in_garbage = 1;
-        } else if (g->framer.in_sentence) {
+        } else if (r >= 0) { /* a line ended: the run of garbage before it is over */
             g->in_garbage = 0;
         }
     }
@@ -152,7 +163,7 @@ static void gps_reset(void *state, drv_ctx *ctx)
     (void)ctx;
     /* a half sentence of a lost stream never ends; the epoch may still
      * complete from the bytes that follow the reopening */
-    nmea_framer_init(&g->framer, 0);
+    nmea_framer_init(&g->framer, 1); /* the checksum is optional but in RMC (gps_sentence.c) */
     g->garbage_seen = 0;
     g->in_garbage = 0;
 }
@@ -169,7 +180,7 @@ static const drv_flag gps_flags[] = {
     {"--min-year", "YEAR", "refuse dates before YEAR (default 2000: a lost almanac, a week rollover)",
      gps_set_min_year},
     {"--uere", "M", "user range error: horizontal_sigma_m = M x HDOP (default 2)", gps_set_uere},
-    {"--epoch-timeout", "S", "publish an incomplete epoch after S seconds (default 0.5)", gps_set_epoch_timeout},
+    {"--epoch-timeout", "S", "publish an incomplete epoch after S seconds of quiet (default 0.5)", gps_set_epoch_timeout},
     {0},
 };
 

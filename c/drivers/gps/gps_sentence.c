@@ -15,9 +15,16 @@
 #define MAX_SPEED_KN 1000.0
 #define MAX_DOP 100.0
 
+/* The talkers whose GGA, RMC, VTG, GSA and ZDA are a GNSS receiver's: the
+ * constellations (GPS, GLONASS, Galileo, BeiDou as GB and as the older BD,
+ * QZSS as GQ and as the older QZ, NavIC), the combined GN, and the
+ * integrated navigation and instrumentation talkers IN and II, through which
+ * a chart plotter or an echo sounder relays its receiver's fixes. The same
+ * sentences from any other talker are valid NMEA but not a position source
+ * of ours: ignored, not refused. */
 static int gnss_talker(const char *t)
 {
-    static const char *const talkers[] = {"GP", "GN", "GL", "GA", "GB", "BD", "GQ", "GI"};
+    static const char *const talkers[] = {"GP", "GN", "GL", "GA", "GB", "BD", "GQ", "QZ", "GI", "IN", "II"};
     for (size_t i = 0; i < sizeof talkers / sizeof talkers[0]; i++)
         if (!strcmp(t, talkers[i]))
             return 1;
@@ -71,19 +78,42 @@ static const char *date_check(const nmea_sentence *s, int64_t day, int min_year,
     return NULL;
 }
 
+/* A sentence that says "no fix" (GGA quality 0, RMC status V) carries
+ * whatever its receiver keeps before a fix: MTK's 8960.0000 N (89 deg 60 min),
+ * 36000.0000 N, 1980's date. Nothing of it is used, so nothing of it is
+ * refused: only its time of day is kept, and its date if the date is sane.
+ * (Framing, checksum, the quality or status field itself are still checked.) */
+static void no_fix(const nmea_sentence *s, int time_field, int date_field, int min_year, gps_values *v)
+{
+    v->has_time = nmea_field_time_of_day(s, time_field, &v->tod) == 1;
+    v->has_pos = 0;
+    v->quality = 0;
+    if (date_field >= 0 && v->has_time && nmea_field_date_ddmmyy(s, date_field, &v->day) == 1 &&
+        v->day >= nmea_unix_day(min_year, 1, 1))
+        v->has_date = 1;
+}
+
 static const char *gga(const nmea_sentence *s, int min_year, gps_values *v, char *why, size_t whylen)
 {
-    (void)min_year;
     const char *r;
     long q, n;
     if (s->nfields < 9)
         REFUSE("too few fields", "%s: %d fields, GGA has 14", s->text, s->nfields);
-    if ((r = time_of_day(s, 0, v, why, whylen)) || (r = position(s, 1, v, why, whylen)))
-        return r;
     int qr = nmea_field_int(s, 5, &q);
     if (qr < 0 || (qr == 1 && (q < 0 || q > 8)))
         REFUSE("bad fix quality", "%s: fix quality '%s' (0 .. 8)", s->text, s->field[5]);
-    v->quality = qr == 1 ? (int)q : 0;
+    /* 0: no fix; 8: the receiver's simulator (a demonstration's position,
+     * which its RMC marks V); a satellite fix (1..5) from no satellite: a
+     * receiver coasting on its last fix (Hemisphere's "1,00"). None is a fix. */
+    long sats0;
+    int zero_sats = nmea_field_int(s, 6, &sats0) == 1 && sats0 == 0;
+    if (qr == 0 || q == 0 || q == 8 || (q <= 5 && zero_sats)) {
+        no_fix(s, 0, -1, min_year, v);
+        return NULL;
+    }
+    if ((r = time_of_day(s, 0, v, why, whylen)) || (r = position(s, 1, v, why, whylen)))
+        return r;
+    v->quality = (int)q;
     int nr = nmea_field_int(s, 6, &n);
     if (nr < 0 || (nr == 1 && (n < 0 || n > 99)))
         REFUSE("bad satellites", "%s: satellites '%s' (0 .. 99)", s->text, s->field[6]);
@@ -100,7 +130,10 @@ static const char *gga(const nmea_sentence *s, int min_year, gps_values *v, char
     return NULL;
 }
 
-/* RMC's mode indicator (NMEA 2.3 on) as a GGA quality; 'N' is no fix. */
+/* RMC's mode indicator (NMEA 2.3 on) as a GGA quality; 'N' (no fix), 'S'
+ * (simulator) and 'V' (not valid, some receivers' spelling of it) are 0; another capital
+ * letter, a mode of a later version or a maker's, is left to the status
+ * field (-2); anything else is malformed (-1). */
 static int mode_quality(char m)
 {
     switch (m) {
@@ -111,28 +144,35 @@ static int mode_quality(char m)
     case 'F': return 5;
     case 'E': return 6;
     case 'M': return 7;
-    case 'S': return 8;
+    case 'S': return 0; /* the receiver's simulator: no fix of the vehicle's */
     case 'N': return 0;
-    default: return -1;
+    case 'V': return 0;
+    default: return m >= 'A' && m <= 'Z' ? -2 : -1;
     }
 }
 
 static const char *rmc(const nmea_sentence *s, int min_year, gps_values *v, char *why, size_t whylen)
 {
     const char *r;
+    if (!s->checksummed) /* NMEA 0183 2.0 on: RMC's checksum is mandatory */
+        REFUSE("no checksum", "%s: an RMC without its checksum", s->text);
     if (s->nfields < 9)
         REFUSE("too few fields", "%s: %d fields, RMC has 11 or more", s->text, s->nfields);
-    if ((r = time_of_day(s, 0, v, why, whylen)) || (r = position(s, 2, v, why, whylen)))
-        return r;
     const char *st = s->field[1];
     if (strcmp(st, "A") != 0 && strcmp(st, "V") != 0)
         REFUSE("bad status", "%s: status '%s' (A or V)", s->text, st);
-    v->quality = st[0] == 'A' ? 1 : 0;
+    if (st[0] == 'V') {
+        no_fix(s, 0, 8, min_year, v);
+        return NULL;
+    }
+    if ((r = time_of_day(s, 0, v, why, whylen)) || (r = position(s, 2, v, why, whylen)))
+        return r;
+    v->quality = 1;
     if (s->nfields > 11 && s->field[11][0]) {
         int q = s->field[11][1] ? -1 : mode_quality(s->field[11][0]);
-        if (q < 0)
+        if (q == -1)
             REFUSE("bad mode", "%s: mode '%s'", s->text, s->field[11]);
-        if (v->quality)
+        if (v->quality && q != -2)
             v->quality = q;
     }
     double kn;
@@ -155,8 +195,26 @@ static const char *rmc(const nmea_sentence *s, int min_year, gps_values *v, char
     return NULL;
 }
 
+/* VTG of NMEA 0183 before 2.0: course true, course magnetic, knots, km/h,
+ * without the unit letters (four fields). */
+static const char *vtg_v1(const nmea_sentence *s, gps_values *v, char *why, size_t whylen)
+{
+    double kn, kmh;
+    if (ranged(s, 0, 0.0, 360.0, &v->course_deg) < 0)
+        REFUSE("bad course", "%s: course '%s'", s->text, s->field[0]);
+    if (v->course_deg == 360.0)
+        v->course_deg = 0.0;
+    int a = ranged(s, 2, 0.0, MAX_SPEED_KN, &kn), b = ranged(s, 3, 0.0, MAX_SPEED_KN * 1.852, &kmh);
+    if (a < 0 || b < 0)
+        REFUSE("bad speed", "%s: speed '%s' kn, '%s' km/h", s->text, s->field[2], s->field[3]);
+    v->speed_mps = a == 1 ? kn * KNOT_MPS : b == 1 ? kmh / 3.6 : NAN;
+    return NULL;
+}
+
 static const char *vtg(const nmea_sentence *s, gps_values *v, char *why, size_t whylen)
 {
+    if (s->nfields == 4 && strcmp(s->field[1], "T") != 0)
+        return vtg_v1(s, v, why, whylen);
     if (s->nfields < 8)
         REFUSE("too few fields", "%s: %d fields, VTG has 8 or more", s->text, s->nfields);
     if (ranged(s, 0, 0.0, 360.0, &v->course_deg) < 0 || (s->field[0][0] && strcmp(s->field[1], "T") != 0))
@@ -173,15 +231,22 @@ static const char *vtg(const nmea_sentence *s, gps_values *v, char *why, size_t 
     return NULL;
 }
 
+/* GSA: selection mode, fix mode, 12 satellites, PDOP, HDOP, VDOP (and NMEA
+ * 4.11's system id). Without a fix some receivers cut it short after the
+ * fix mode ("$GPGSA,A,1,,,,*32"): that is a fix mode and no DOPs. */
 static const char *gsa(const nmea_sentence *s, gps_values *v, char *why, size_t whylen)
 {
     long m;
-    if (s->nfields < 17)
+    if (s->nfields < 2)
         REFUSE("too few fields", "%s: %d fields, GSA has 17 or more", s->text, s->nfields);
     int mr = nmea_field_int(s, 1, &m);
     if (mr < 0 || (mr == 1 && (m < 1 || m > 3)))
         REFUSE("bad fix mode", "%s: fix mode '%s' (1 .. 3)", s->text, s->field[1]);
     v->fix_mode = mr == 1 ? (int)m : 0;
+    if (s->nfields < 17 && v->fix_mode != 1)
+        REFUSE("too few fields", "%s: %d fields, GSA has 17 or more", s->text, s->nfields);
+    if (s->nfields < 17)
+        return NULL;
     if (ranged(s, 14, 0.0, MAX_DOP, &v->pdop) < 0 || ranged(s, 15, 0.0, MAX_DOP, &v->hdop) < 0 ||
         ranged(s, 16, 0.0, MAX_DOP, &v->vdop) < 0)
         REFUSE("bad dop", "%s: PDOP '%s', HDOP '%s', VDOP '%s'", s->text, s->field[14], s->field[15], s->field[16]);
@@ -226,8 +291,10 @@ const char *gps_decode(const nmea_sentence *s, int min_year, gps_values *v, char
             v->kind = kinds[i].kind;
     if (v->kind == GPS_OTHER)
         return NULL;
-    if (!gnss_talker(s->talker))
-        REFUSE("unknown talker", "%s: talker '%s' is not a GNSS one", s->text, s->talker);
+    if (!gnss_talker(s->talker)) {
+        v->kind = GPS_OTHER; /* valid, not a receiver's: ignored (above) */
+        return NULL;
+    }
     switch (v->kind) {
     case GPS_GGA: return gga(s, min_year, v, why, whylen);
     case GPS_RMC: return rmc(s, min_year, v, why, whylen);

@@ -6,6 +6,7 @@
 
 #include <ctype.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 /* Index = rate (packet type). Rates 1-5 are PSK; 0 is FH-FSK. */
@@ -86,12 +87,37 @@ static int opt_double(reader *r, int i, double *out)
     return 0;
 }
 
+/* An ISO 8601 date and time, YYYY-MM-DDTHH:MM:SS[.ffffff] (the time fields
+ * of Micro-Modem 2 firmware), into seconds of the day; -1 if it is not one. */
+static double iso_time_of_day(const char *v)
+{
+    static const char shape[] = "dddd-dd-ddTdd:dd:dd";
+    size_t n = strlen(v);
+    if (n < sizeof shape - 1)
+        return -1;
+    for (size_t i = 0; i < sizeof shape - 1; i++)
+        if (shape[i] == 'd' ? !isdigit((unsigned char)v[i]) : v[i] != shape[i])
+            return -1;
+    if (v[19] && (v[19] != '.' || strspn(v + 20, "0123456789") != n - 20))
+        return -1;
+    int hh = (v[11] - '0') * 10 + (v[12] - '0'), mm = (v[14] - '0') * 10 + (v[15] - '0'),
+        ss = (v[17] - '0') * 10 + (v[18] - '0');
+    if (hh > 23 || mm > 59 || ss > 60)
+        return -1;
+    return hh * 3600.0 + mm * 60.0 + ss + (v[19] ? atof(v + 19) : 0.0);
+}
+
+/* The modem's time of a message: HHMMSS[.sss] (the interface guide), or the
+ * ISO date and time of later firmware; empty is -1. */
 static int time_field(reader *r, int i, double *out)
 {
     *out = -1;
     int k = nmea_field_time_of_day(r->s, i, out);
-    if (k < 0)
-        return fail(r, "bad time");
+    if (k < 0) {
+        *out = iso_time_of_day(r->s->field[i]);
+        if (*out < 0)
+            return fail(r, "bad time");
+    }
     return 0;
 }
 
@@ -109,19 +135,21 @@ static int hex_field(reader *r, int i, mm_data *d)
     return 0;
 }
 
-/* A parameter name: 2-5 capital letters or digits, starting with a letter. */
+/* A parameter name: the interface guide's three capital letters (SRC, CST,
+ * BR1, ALL), or Micro-Modem 2 firmware's hierarchical ones (xst.version,
+ * pwramp.txlevel): a letter, then letters, digits, '.' and '_'. */
 static int name_ok(const char *s)
 {
     size_t n = strlen(s);
-    if (n < 2 || n > 5 || !isupper((unsigned char)s[0]))
+    if (n < 2 || n >= sizeof(((mm_cfg *)0)->name) || !isalpha((unsigned char)s[0]))
         return 0;
     for (size_t i = 0; i < n; i++)
-        if (!isupper((unsigned char)s[i]) && !isdigit((unsigned char)s[i]))
+        if (!isalnum((unsigned char)s[i]) && s[i] != '.' && s[i] != '_')
             return 0;
     return 1;
 }
 
-/* A value: 1-23 printable characters that cannot end a field or a sentence. */
+/* A value: printable characters that cannot end a field or a sentence. */
 static int value_ok(const char *s)
 {
     size_t n = strlen(s);
@@ -230,19 +258,26 @@ static int err(reader *r, mm_err *e)
     return 0;
 }
 
+/* CAREV,HHMMSS,IDENT,VERSION; some firmware leaves the time out after a boot
+ * (CAREV,INIT,VERSION): a first field that starts with a letter is the
+ * identifier. */
 static int rev(reader *r, mm_rev *v)
 {
     const nmea_sentence *s = r->s;
-    if (s->nfields < 2 || !s->field[1][0])
+    int o = s->nfields > 0 && isalpha((unsigned char)s->field[0][0]) ? 0 : 1;
+    v->time_s = -1;
+    if (s->nfields < 1 + o || !s->field[o][0])
         return fail(r, "missing fields");
-    if (time_field(r, 0, &v->time_s))
+    if (o && time_field(r, 0, &v->time_s))
         return -1;
-    copy_text(v->ident, sizeof v->ident, s->field[1]);
-    copy_text(v->version, sizeof v->version, s->nfields > 2 ? s->field[2] : "");
+    copy_text(v->ident, sizeof v->ident, s->field[o]);
+    copy_text(v->version, sizeof v->version, s->nfields > o + 1 ? s->field[o + 1] : "");
     return 0;
 }
 
-/* Version 0 starts with a YYYYMMDD date; version 6 with 6. */
+/* Version 0 starts with a YYYYMMDD date; versions 6 and later with their
+ * number, and keep version 6's fields where it put them (7 and 8, of Micro-
+ * Modem 2 firmware, add theirs at the end). */
 static int xst(reader *r, mm_xst *x)
 {
     const nmea_sentence *s = r->s;
@@ -250,7 +285,7 @@ static int xst(reader *r, mm_xst *x)
     if (s->nfields < 15 || nmea_field_int(s, 0, &first) != 1)
         return fail(r, "missing fields");
     x->version = first > 19700000 ? 0 : (int)first;
-    if (x->version != 0 && x->version != 6)
+    if (x->version != 0 && (x->version < 6 || x->version > MM_MAX_STAT_VERSION))
         return fail(r, "unknown version");
     int o = x->version ? 1 : 0;
     if (s->nfields < 15 + o)
@@ -272,7 +307,7 @@ static int cst(reader *r, mm_cst *c)
     if (s->nfields < 22 || nmea_field_int(s, 0, &first) != 1)
         return fail(r, "missing fields");
     c->version = first >= 6 ? (int)first : 0;
-    if (c->version != 0 && c->version != 6)
+    if (c->version > MM_MAX_STAT_VERSION)
         return fail(r, "unknown version");
     int o = c->version ? 1 : 0;
     if (s->nfields < 22 + o)

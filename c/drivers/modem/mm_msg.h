@@ -50,8 +50,8 @@ typedef enum {
 const char *mm_kind_name(mm_kind k);
 
 typedef struct {
-    char name[8];    /* three or four capital letters: SRC, CST, ALL, ... */
-    char value[24];  /* CCCFG and CACFG; "" in a CCCFQ */
+    char name[32];   /* SRC, CST, ALL, ...; Micro-Modem 2: xst.version, ... */
+    char value[48];  /* CCCFG and CACFG; "" in a CCCFQ */
 } mm_cfg;
 
 typedef struct {
@@ -96,7 +96,10 @@ typedef struct {
 } mm_rev;
 
 /* Transmit statistics. Version 0 has no version field (its first field is a
- * YYYYMMDD date); version 6 puts 6 first and shifts the rest by one. */
+ * YYYYMMDD date); version 6 puts 6 first and shifts the rest by one; the
+ * later versions of Micro-Modem 2 firmware (7, 8) keep version 6's fields and
+ * add theirs after them. Versions above MM_MAX_STAT_VERSION are refused. */
+#define MM_MAX_STAT_VERSION 99
 typedef struct {
     int version;
     int rate, src, dest, ack, nframes_expected, nframes_sent, packet_type, nbytes;

@@ -210,7 +210,7 @@ static void modem_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n
             if (!s->in_garbage)
                 drv_drop(ctx, "garbage", "bytes outside any sentence, from 0x%02x", bytes[i]);
             s->in_garbage = 1;
-        } else if (s->framer.in_sentence) {
+        } else if (r >= 0) { /* a line ended: the run of garbage before it is over */
             s->in_garbage = 0;
         }
     }

@@ -31,6 +31,7 @@ const char *dq_result_name(dq_result r)
         [DQ_WRONG_ADDRESS] = "wrong address",
         [DQ_BAD_VALUE] = "malformed value",
         [DQ_VALUE_RANGE] = "value out of range",
+        [DQ_OWN_COMMAND] = "own command",
     };
     return r >= 0 && r < DQ_RESULT_COUNT ? names[r] : "unknown";
 }
@@ -57,11 +58,27 @@ static dq_result parse(const char *line, size_t len, int host, int sensor, dq_an
     int to = two_digits(line + 1), from = two_digits(line + 3);
     if (to < 0 || from < 0)
         return DQ_NOT_AN_ANSWER;
+    if (to == sensor && from == host && len > 5 && isupper((unsigned char)line[5]))
+        return DQ_OWN_COMMAND; /* "*0100P3" read back from the line */
     if (to != host || from != sensor)
         return DQ_WRONG_ADDRESS;
-    /* a plain decimal: optional sign, digits, at most one '.', at most 20 characters */
+    /* a plain decimal: optional sign, digits, at most one '.', at most 20
+     * characters; spaces around it and a unit word after it are allowed */
     const char *v = line + 5;
-    size_t digits = 0, dots = 0, n = len - 5;
+    size_t n = len - 5;
+    while (n > 0 && *v == ' ')
+        v++, n--;
+    while (n > 0 && v[n - 1] == ' ')
+        n--;
+    size_t word = n;
+    while (word > 0 && isalpha((unsigned char)v[word - 1]))
+        word--;
+    if (word < n && word > 0 && v[word - 1] == ' ' && n - word <= 8) { /* "14.7069 psia" */
+        n = word;
+        while (n > 0 && v[n - 1] == ' ')
+            n--;
+    }
+    size_t digits = 0, dots = 0;
     for (size_t i = 0; i < n; i++) {
         char c = v[i];
         if (isdigit((unsigned char)c))

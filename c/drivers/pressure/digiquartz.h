@@ -7,6 +7,12 @@
  *                                    temperature", UN=n "set the pressure unit"
  *   sensor: *ssddVALUE<CR><LF>       the answer, addressed back: *000114.7069
  *
+ * Real sensors and their lines add to it, and this is accepted: spaces
+ * between the address and the number, and a unit after it ("*0001 14.7069
+ * psia": a number then a word of letters, which is not checked: the driver
+ * set the unit); and on a two-wire RS-485 line the host reads back its own
+ * commands ("*0100P3"): DQ_OWN_COMMAND, ignored.
+ *
  * The answer carries a number in the sensor's configured unit (UN: 1 psi,
  * 2 hPa (mbar), 3 bar, 4 kPa, 5 MPa, 6 inHg, 7 mmHg, 8 mH2O), not the unit
  * itself: the driver sets the unit at start and converts to pascals.
@@ -50,6 +56,8 @@ typedef enum {
     DQ_WRONG_ADDRESS,      /* addressed to another host, or from another sensor */
     DQ_BAD_VALUE,          /* not a plain decimal number */
     DQ_VALUE_RANGE,        /* a pressure below 0 or above 2000 bar; a temperature outside -10..60 C */
+    DQ_OWN_COMMAND,        /* the host's own command read back (a two-wire RS-485 line
+                            * echoes what the host sends): not an answer, not an error */
     DQ_RESULT_COUNT
 } dq_result;
 
