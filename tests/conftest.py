@@ -180,6 +180,7 @@ def work_unit(nodeid: str) -> str:
     return SHARED_SESSION.get(rel, rel)
 
 
+@pytest.hookimpl(optionalhook=True)  # a run without xdist (-p no:xdist) has no such hook
 def pytest_xdist_make_scheduler(config, log):
     """`--dist loadgroup`: one unit per file (work_unit), handed out in the
     collection's order (LONGEST_FIRST), not xdist's biggest-count-first."""
