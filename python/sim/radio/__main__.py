@@ -11,6 +11,10 @@ Out: RADIO.RX.<NODE> (the frames that arrived), <VEHICLE>.RADIO_LINK
      --shore-modem-depth-m: the vehicles' simulated modems hear them as any
      other frame), a summary at exit.
 
+With --pipe AUV1=PATH a vehicle's radio is a byte pipe instead (sim.radio.pipe_node):
+a pseudo-terminal at PATH where its gateway (auv-radio, a driver) reads and writes
+the framed frames as on a real radio modem; RADIO.RX/TX.AUV1 are then not used.
+
 Every setting of the model (sim.radio.link.RadioConfig) is a flag:
 --bitrate-bps, --latency-s, --loss, --max-range-m, --antenna-height-m,
 --wave-height-m, --shore-north-m, --shore-east-m, ...
@@ -20,6 +24,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import select
 import signal
 import sys
 import time
@@ -33,6 +38,7 @@ from auvlcm.url import check_local, default_url, with_receive_buffer
 from sim.modem.config import ModemConfig
 from sim.modem.transmitter import Transmitter
 from sim.radio.link import SHORE, RadioConfig, RadioLink
+from sim.radio.pipe_node import PipeNode, parse_pipes
 
 NODE_RE = r"[A-Za-z0-9_]+"
 
@@ -42,6 +48,7 @@ def _parser() -> argparse.ArgumentParser:
     programs.add_lcm_url_argument(ap, "LCM URL (default $LCM_DEFAULT_URL or the project's)", default=None)
     ap.add_argument("--vehicles", required=True, help="comma-separated vehicle ids")
     ap.add_argument("--clock", choices=("sim", "system"), default="sim", help="SIM.CLOCK or this machine's")
+    ap.add_argument("--pipe", default="", metavar="NODE=PATH,...", help="a node's radio as a pty at PATH")
     ap.add_argument("--shore-modem-depth-m", type=float, default=2.0, help="the shore modem's transducer depth")
     for f in dataclasses.fields(RadioConfig):
         ap.add_argument("--" + f.name.replace("_", "-"), type=type(f.default), default=f.default, metavar="X")
@@ -68,6 +75,21 @@ class RadioSim:
         self.shore_modem_depth_m = 2.0
         self.modem_requests: list[modem_tx_t] = []
         self.rx.subscribe("SHORE\\.MODEM_TX", modem_tx_t, lambda c, m: self.modem_requests.append(m))
+        self.pipes: dict[str, PipeNode] = {}
+
+    def serve_pipes(self, timeout_s: float) -> None:
+        """Waits for LCM or a pipe's bytes (timeout_s at most), and takes them."""
+        by_fd = {fd: p for p in self.pipes.values() for fd in p.fds()}
+        ready, _, _ = select.select([self.lc.fileno(), *by_fd], [], [], timeout_s)
+        for fd in ready:
+            if fd == self.lc.fileno():
+                self.lc.handle()
+            else:
+                p = by_fd[fd]
+                for f in p.read(fd):
+                    self._on_frame(f"RADIO.TX.{p.node}", f)
+        for p in self.pipes.values():
+            p.flush()
 
     def _on_truth(self, channel: str, m: ground_truth_t) -> None:
         v = channel.split(".", 1)[0]
@@ -93,7 +115,11 @@ class RadioSim:
             self.seq += 1
             out.utime, out.src, out.dst, out.seq = round(fr.t_arrive * 1e6), fr.src, fr.dst, self.seq
             out.n_bytes, out.payload = len(fr.payload), fr.payload
-            self.lc.publish(f"RADIO.RX.{fr.dst}", out.encode())
+            pipe = self.pipes.get(fr.dst)
+            if pipe is not None:
+                pipe.write(out.encode())
+            else:
+                self.lc.publish(f"RADIO.RX.{fr.dst}", out.encode())
         self._shore_modem()
         due = self.now >= self.next_status - 1e-6  # a period of 0.05 s adds up to a hair over the clock
         for v in self.vehicles:
@@ -143,6 +169,7 @@ class RadioSim:
             + "; ".join(parts)
             + (f" (drops: {reasons})" if reasons else "")
             + (f"; refused {self.refused} frames" if self.refused else "")
+            + "".join(f"; {p.summary()}" for p in self.pipes.values())
             + f"; heard {sum(s.stats.delivered for s in self.rx.subscriptions)} messages, clock at {self.now or 0:.2f} s"
         )
 
@@ -151,6 +178,7 @@ def main(argv: list[str] | None = None) -> int:
     args = _parser().parse_args(argv)
     try:
         url = check_local(args.url or default_url())
+        pipes = parse_pipes(args.pipe)
     except ValueError as exc:
         print(f"auv-radio-sim: {exc}", file=sys.stderr)
         return 2
@@ -159,19 +187,25 @@ def main(argv: list[str] | None = None) -> int:
     lc = lcm.LCM(with_receive_buffer(url))  # a 20 kB upload is many datagrams: none may be lost
     sim = RadioSim(lc, cfg, vehicles, args.clock == "sim")
     sim.shore_modem_depth_m = args.shore_modem_depth_m
+    sim.pipes = {node: PipeNode(node, path) for node, path in pipes.items()}
     stop = []
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
     print("auv-radio-sim: ready", flush=True)  # subscribed: what is published from now on is heard
     while not stop:
         try:
-            lc.handle_timeout(10)
+            if sim.pipes:
+                sim.serve_pipes(0.01)
+            else:
+                lc.handle_timeout(10)
         except OSError:  # EINTR from the signal that stops us: the loop checks
             continue
         if not sim.sim_clock:
             sim.now = time.time()
             sim.step()
     print(sim.summary(), file=sys.stderr)
+    for p in sim.pipes.values():
+        p.close()
     return 0
 
 

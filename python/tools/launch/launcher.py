@@ -289,21 +289,24 @@ class Launcher:
 
     def start_radio(self) -> None:
         """The surface radio (docs/radio.md): its model and the shore gateway on the
-        clock's host, a gateway for each vehicle of this host. They follow SIM.CLOCK
-        and are not lockstep participants."""
+        clock's host, a gateway for each vehicle of this host (`auv-radio`, the
+        vehicle's driver, on its radio modem's pty that the model makes in the run
+        folder). They follow SIM.CLOCK and are not lockstep participants."""
         r, url = self.sc.radio, self.child_url
+        pipes = {v.id: self.out / f"{v.id}.radio.pty" for v in self.sc.vehicles}
         if self.host is None or self.host == self.sc.time.host:
             ids = [v.id for v in self.sc.vehicles]
-            cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=radio_section.model_settings(r))
+            cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=radio_section.model_settings(r), pipes=pipes)
             self._start(Child("SHORE.radio", cmd, self.out / "radio.out", tier=TIER_SIMULATOR))
             cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic, key_file=self.sc.key_file)
             self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
         for v in self.mine:
-            spool = self.out / f"{v.id}.radio_spool"
             cmd = programs.radio_vehicle(
+                self.build,
                 vehicle=v.id,
-                spool=spool,
+                spool=self.out / f"{v.id}.radio_spool",
                 lcm_url=url,
+                port=pipes[v.id],
                 team_index=r.acoustic.get(v.id),
                 report_period_s=r.report_period_s,
                 end_manager=v.end_manager,
