@@ -321,11 +321,17 @@ static void test_a_restart_resumes_from_the_spool(void)
     f = fopen(path, "w");
     fputs("{\"header\": {\"transfer_id\": 8}}", f);
     fclose(f);
+    char orphan[600];
+    snprintf(orphan, sizeof orphan, "%s/5.part", spool); /* bytes whose meta was never written */
+    f = fopen(orphan, "wb");
+    fputs("x", f);
+    fclose(f);
     r = rig_open(3600);
     int64_t ids[4];
     int32_t next[4];
     CHECK(ra_holding(&r->a, ids, next, 4) == 1 && ids[0] == 7 && next[0] == 4);
     CHECK(reason(r, "spool: unreadable partial transfer") == 1 && access(path, F_OK) != 0);
+    CHECK(reason(r, "spool: bytes without meta") == 1 && access(orphan, F_OK) != 0 && files(".part") == 1);
     ra_offer o;
     for (int i = 4; i < N_CHUNKS; i++) {
         chunk k = make(7, i);

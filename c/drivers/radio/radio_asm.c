@@ -62,6 +62,25 @@ static void count(ra_assembler *a, drv_ctx *ctx, const char *reason, const char 
     drv_drop(ctx, reason, "%s", detail);
 }
 
+/* The names in dir ending in ext (done.json aside), sorted; at most cap. */
+static int list(const char *dir, const char *ext, char names[][80], int cap)
+{
+    DIR *d = opendir(dir);
+    if (!d)
+        return 0;
+    int n = 0;
+    size_t m = strlen(ext);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL && n < cap) {
+        size_t len = strlen(e->d_name);
+        if (len > m && len < 80 && !strcmp(e->d_name + len - m, ext) && strcmp(e->d_name, "done.json"))
+            strcpy(names[n++], e->d_name);
+    }
+    closedir(d);
+    qsort(names, (size_t)n, sizeof names[0], (int (*)(const void *, const void *))strcmp);
+    return n;
+}
+
 static void load(ra_assembler *a, drv_ctx *ctx)
 {
     char path[600];
@@ -72,20 +91,9 @@ static void load(ra_assembler *a, drv_ctx *ctx)
             count(a, ctx, "spool: unreadable done list", path);
         a->n_done = n < 0 ? 0 : n;
     }
-    DIR *d = opendir(a->spool);
-    if (!d)
-        return;
     /* in the order of the names, as the Python's sorted glob */
     char names[64][80];
-    int n = 0;
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL && n < 64) {
-        size_t len = strlen(e->d_name);
-        if (len > 5 && len < sizeof names[0] && !strcmp(e->d_name + len - 5, ".json") && strcmp(e->d_name, "done.json"))
-            strcpy(names[n++], e->d_name);
-    }
-    closedir(d);
-    qsort(names, (size_t)n, sizeof names[0], (int (*)(const void *, const void *))strcmp);
+    int n = list(a->spool, ".json", names, 64);
     for (int i = 0; i < n; i++) {
         ra_partial p;
         snprintf(path, sizeof path, "%s/%.79s", a->spool, names[i]);
@@ -113,6 +121,17 @@ static void load(ra_assembler *a, drv_ctx *ctx)
         *slot = p;
         slot->used = 1;
         slot->last_s = NAN; /* idle from now on: the spool does not say since when */
+    }
+    /* bytes whose meta is gone or was never written: nothing can resume them */
+    n = list(a->spool, ".part", names, 64);
+    for (int i = 0; i < n; i++) {
+        char *end;
+        long long tid = strtoll(names[i], &end, 10);
+        if (end != names[i] && !strcmp(end, ".part") && find(a, tid))
+            continue;
+        snprintf(path, sizeof path, "%s/%.79s", a->spool, names[i]);
+        count(a, ctx, "spool: bytes without meta", path);
+        unlink(path);
     }
 }
 
@@ -323,7 +342,7 @@ void ra_offer_chunk(ra_assembler *a, drv_ctx *ctx, const auv_radio_chunk_t *c, d
         p->h.count = c->count;
         p->h.total_bytes = c->total_bytes;
         snprintf(p->h.sha256_hex, sizeof p->h.sha256_hex, "%s", c->sha256_hex);
-        if (append(a, tid, NULL, 0, "wb") < 0) {
+        if (append(a, tid, NULL, 0, "wb") < 0 || rsp_save_meta(a, p) < 0) { /* a restart knows it from now on */
             forget(a, tid);
             REFUSE("spool error", 0, RA_REFUSED, "cannot write the spool %s", a->spool);
             return;
