@@ -123,16 +123,20 @@ def radio_sim(
     clock: str = "sim",
     settings: Mapping[str, object] | None = None,
     pipes: Mapping[str, PathLike] | None = None,
+    lockstep_name: str | None = None,
     python: PathLike = sys.executable,
 ) -> list[str]:
     """The simulated surface radio (`python -m sim.radio`, docs/radio.md); settings:
     sim.radio.link.RadioConfig's fields, each a flag (bitrate_bps -> --bitrate-bps);
-    pipes: the vehicles whose radio is a byte pipe, a pty at that path (auv-radio's port)."""
+    pipes: the vehicles whose radio is a byte pipe, a pty at that path (auv-radio's port);
+    lockstep_name: it takes part in a lockstep world under that name."""
     cmd = [str(python), "-m", "sim.radio", "--vehicles", ",".join(vehicles), "--clock", clock, "--lcm-url", lcm_url]
     for k, v in (settings or {}).items():
         cmd += ["--" + k.replace("_", "-"), f"{v:g}" if isinstance(v, float) else str(v)]
     if pipes:
         cmd += ["--pipe", ",".join(f"{n}={p}" for n, p in pipes.items())]
+    if lockstep_name:
+        cmd += ["--lockstep-name", lockstep_name]
     return cmd
 
 

@@ -37,6 +37,7 @@ from auvlcm.rx import Receiver
 from auvlcm.url import check_local, default_url, with_receive_buffer
 from sim.modem.config import ModemConfig
 from sim.modem.transmitter import Transmitter
+from sim.multihil.lockstep import Participation
 from sim.radio.link import SHORE, RadioConfig, RadioLink
 from sim.radio.pipe_node import PipeNode, parse_pipes
 
@@ -49,6 +50,7 @@ def _parser() -> argparse.ArgumentParser:
     ap.add_argument("--vehicles", required=True, help="comma-separated vehicle ids")
     ap.add_argument("--clock", choices=("sim", "system"), default="sim", help="SIM.CLOCK or this machine's")
     ap.add_argument("--pipe", default="", metavar="NODE=PATH,...", help="a node's radio as a pty at PATH")
+    ap.add_argument("--lockstep-name", default="", help="take part in a lockstep world under this name")
     ap.add_argument("--shore-modem-depth-m", type=float, default=2.0, help="the shore modem's transducer depth")
     for f in dataclasses.fields(RadioConfig):
         ap.add_argument("--" + f.name.replace("_", "-"), type=type(f.default), default=f.default, metavar="X")
@@ -76,6 +78,11 @@ class RadioSim:
         self.modem_requests: list[modem_tx_t] = []
         self.rx.subscribe("SHORE\\.MODEM_TX", modem_tx_t, lambda c, m: self.modem_requests.append(m))
         self.pipes: dict[str, PipeNode] = {}
+        self.part: Participation | None = None
+
+    def pipes_open(self) -> bool:
+        """Every pipe has its reader (a gateway opened the pty)."""
+        return all(p.transport.connected() for p in self.pipes.values())
 
     def serve_pipes(self, timeout_s: float) -> None:
         """Waits for LCM or a pipe's bytes (timeout_s at most), and takes them."""
@@ -95,11 +102,21 @@ class RadioSim:
         v = channel.split(".", 1)[0]
         self.link.set_position(v, m.eta[0], m.eta[1], m.eta[2])
 
+    def take_part(self, name: str) -> None:
+        """A participant of a lockstep world: each lockstep step is reported done
+        once the model has stepped to it, so the world never runs ahead of the radio."""
+        self.part = Participation(name, lambda m: self.lc.publish("SIM.LOCKSTEP", m.encode()))
+
     def _on_clock(self, channel: str, m: sim_clock_t) -> None:
         t = m.utime * 1e-6
+        lock = self.part is not None and m.mode == sim_clock_t.MODE_LOCKSTEP
+        if lock:
+            self.part.on_clock(m.step, m.utime)
         if self.now is None or t > self.now:
             self.now = t
             self.step()
+        if lock:
+            self.part.done()
 
     def _on_frame(self, channel: str, f: radio_frame_t) -> None:
         src = channel.rsplit(".", 1)[1]
@@ -170,6 +187,7 @@ class RadioSim:
             + (f" (drops: {reasons})" if reasons else "")
             + (f"; refused {self.refused} frames" if self.refused else "")
             + "".join(f"; {p.summary()}" for p in self.pipes.values())
+            + (f"; lockstep: {self.part.last_done + 1} steps reported" if self.part is not None else "")
             + f"; heard {sum(s.stats.delivered for s in self.rx.subscriptions)} messages, clock at {self.now or 0:.2f} s"
         )
 
@@ -188,6 +206,8 @@ def main(argv: list[str] | None = None) -> int:
     sim = RadioSim(lc, cfg, vehicles, args.clock == "sim")
     sim.shore_modem_depth_m = args.shore_modem_depth_m
     sim.pipes = {node: PipeNode(node, path) for node, path in pipes.items()}
+    if args.lockstep_name:
+        sim.take_part(args.lockstep_name)
     stop = []
     signal.signal(signal.SIGINT, lambda *_: stop.append(1))
     signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
@@ -200,6 +220,10 @@ def main(argv: list[str] | None = None) -> int:
                 lc.handle_timeout(10)
         except OSError:  # EINTR from the signal that stops us: the loop checks
             continue
+        if sim.part is not None and (sim.part.seen_clock or sim.pipes_open()):
+            # registers once every vehicle's gateway has its radio open (the world
+            # then starts with them listening), or repeats a report nobody acted on
+            sim.part.poll()
         if not sim.sim_clock:
             sim.now = time.time()
             sim.step()
