@@ -295,7 +295,8 @@ class Launcher:
         folder). They follow SIM.CLOCK; the model takes part in the lockstep
         (lockstep_names.RADIO: the world waits for it at every step), the gateways do not."""
         r, url = self.sc.radio, self.child_url
-        pipes = {v.id: self.out / f"{v.id}.radio.pty" for v in self.sc.vehicles}
+        # the ptys are the clock's host's: a vehicle of another host has no radio yet (docs/radio.md)
+        pipes = {v.id: self.out / f"{v.id}.radio.pty" for v in self.sc.vehicles_on(self.sc.time.host)}
         if self.host is None or self.host == self.sc.time.host:
             ids = [v.id for v in self.sc.vehicles]
             settings = radio_section.model_settings(r)
@@ -308,6 +309,9 @@ class Launcher:
             cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic, key_file=self.sc.key_file)
             self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
         for v in self.mine:
+            if v.id not in pipes:
+                print(f"launch: {v.id} is not on the radio's host {self.sc.time.host}: no radio gateway", flush=True)
+                continue
             cmd = programs.radio_vehicle(
                 self.build,
                 vehicle=v.id,
