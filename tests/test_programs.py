@@ -178,7 +178,12 @@ def test_no_program_spells_the_url_flag_the_old_way():
 
 def test_radio_builders_use_documented_flags(tmp_path):
     sim = programs.radio_sim(
-        vehicles=["AUV1", "AUV2"], lcm_url="udpm://x", settings={"bitrate_bps": 9600.0}, pipes={"AUV1": tmp_path / "p"}
+        vehicles=["AUV1", "AUV2"],
+        lcm_url="udpm://x",
+        settings={"bitrate_bps": 9600.0},
+        pipes={"AUV1": tmp_path / "p"},
+        lockstep_name="SHORE.radio",
+        shore_lcm_url="udpm://y",
     )
     assert sim[sim.index("--pipe") + 1] == f"AUV1={tmp_path / 'p'}"
     assert sim[sim.index("--bitrate-bps") + 1] == "9600" and sim[sim.index("--vehicles") + 1] == "AUV1,AUV2"

@@ -124,12 +124,14 @@ def radio_sim(
     settings: Mapping[str, object] | None = None,
     pipes: Mapping[str, PathLike] | None = None,
     lockstep_name: str | None = None,
+    shore_lcm_url: str | None = None,
     python: PathLike = sys.executable,
 ) -> list[str]:
     """The simulated surface radio (`python -m sim.radio`, docs/radio.md); settings:
     sim.radio.link.RadioConfig's fields, each a flag (bitrate_bps -> --bitrate-bps);
     pipes: the vehicles whose radio is a byte pipe, a pty at that path (auv-radio's port);
-    lockstep_name: it takes part in a lockstep world under that name."""
+    lockstep_name: it takes part in a lockstep world under that name; shore_lcm_url: the
+    shore's own LCM (its gateway's and tools')."""
     cmd = [str(python), "-m", "sim.radio", "--vehicles", ",".join(vehicles), "--clock", clock, "--lcm-url", lcm_url]
     for k, v in (settings or {}).items():
         cmd += ["--" + k.replace("_", "-"), f"{v:g}" if isinstance(v, float) else str(v)]
@@ -137,6 +139,8 @@ def radio_sim(
         cmd += ["--pipe", ",".join(f"{n}={p}" for n, p in pipes.items())]
     if lockstep_name:
         cmd += ["--lockstep-name", lockstep_name]
+    if shore_lcm_url:
+        cmd += ["--shore-lcm-url", shore_lcm_url]
     return cmd
 
 

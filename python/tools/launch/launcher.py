@@ -300,13 +300,18 @@ class Launcher:
         if self.host is None or self.host == self.sc.time.host:
             ids = [v.id for v in self.sc.vehicles]
             settings = radio_section.model_settings(r)
-            cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=settings, pipes=pipes, lockstep_name=RADIO)
+            shore = r.shore_lcm_url or None  # the shore's own network, or the world's
+            cmd = programs.radio_sim(
+                vehicles=ids, lcm_url=url, settings=settings, pipes=pipes, lockstep_name=RADIO, shore_lcm_url=shore
+            )
             self._start(Child("SHORE.radio", cmd, self.out / "radio.out", tier=TIER_SIMULATOR))
             # the gateways open the model's ptys at once rather than after a retry's backoff
             deadline = time.monotonic() + PTY_WAIT_S
             while not all(p.is_symlink() for p in pipes.values()) and time.monotonic() < deadline:
                 time.sleep(0.02)
-            cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic, key_file=self.sc.key_file)
+            cmd = programs.radio_shore(
+                vehicles=ids, lcm_url=shore or url, acoustic=r.acoustic, key_file=self.sc.key_file
+            )
             self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
         for v in self.mine:
             if v.id not in pipes:
