@@ -271,7 +271,7 @@ static int append(const ra_assembler *a, int64_t tid, const uint8_t *data, size_
     FILE *f = fopen(path, mode);
     if (!f)
         return -1;
-    int ok = fwrite(data, 1, n, f) == n;
+    int ok = n == 0 || fwrite(data, 1, n, f) == n; /* (fwrite takes no NULL, even for 0 bytes) */
     return (fclose(f) == 0 && ok) ? 0 : -1;
 }
 
