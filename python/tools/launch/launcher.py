@@ -312,7 +312,16 @@ class Launcher:
             cmd = programs.radio_shore(
                 vehicles=ids, lcm_url=shore or url, acoustic=r.acoustic, key_file=self.sc.key_file
             )
-            self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
+            shore_out = self.out / "shore_gateway.out"
+            gateway = Child("SHORE.gateway", cmd, shore_out, tier=TIER_MANAGER)
+            self._start(gateway)
+            # the world starts once the model registers, which waits for the vehicles' gateways
+            # (below): so started after the shore's is ready, none of them misses the start
+            deadline = time.monotonic() + STARTUP_TIMEOUT_S
+            while time.monotonic() < deadline and gateway.poll() is None:
+                if shore_out.exists() and "auv-radio-shore: ready" in shore_out.read_text(errors="replace"):
+                    break
+                time.sleep(0.02)
         for v in self.mine:
             if v.id not in pipes:
                 print(f"launch: {v.id} is not on the radio's host {self.sc.time.host}: no radio gateway", flush=True)
