@@ -203,6 +203,7 @@ def test_radio_builders_use_documented_flags(tmp_path):
         report_period_s=1,
         end_manager="PILOT",
         key_file=tmp_path / "k",
+        peers=["AUV2", "AUV3"],
     )
     assert veh[0] == str(BUILD / "bin" / "auv-radio") and veh[veh.index("--spool") + 1] == str(tmp_path)
     _every_flag_documented(veh[1:], veh[:1])

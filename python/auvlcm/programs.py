@@ -182,13 +182,17 @@ def radio_vehicle(
     report_period_s: float | None = None,
     end_manager: str | None = None,
     key_file: PathLike | None = None,
+    peers: Iterable[str] = (),
     raw: bool = False,
 ) -> list[str]:
     """A vehicle's radio gateway, `auv-radio` (c/drivers/radio, docs/radio.md), on the
     radio modem's serial `port` (the simulated radio's pty) or `tcp` "HOST:PORT";
     spool: its partial transfers; key_file: the team keys acoustic commands are
-    verified with and the managers' commands signed."""
+    verified with and the managers' commands signed; peers: the teammates its status also
+    goes to (and whose status it publishes)."""
     extra: list[PathLike] = ["--spool", str(spool)]
+    if peers:
+        extra += ["--peers", ",".join(peers)]
     if team_index is not None:
         extra += ["--team-index", str(team_index)]
     if report_period_s is not None:

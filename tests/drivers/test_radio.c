@@ -16,6 +16,7 @@
 #include "auv/auv_radio_ack_t.h"
 #include "auv/auv_radio_chunk_t.h"
 #include "auv/auv_radio_frame_t.h"
+#include "auv/auv_radio_report_t.h"
 #include "common/auth_mac.h"
 #include "common/crc32.h"
 #include "common/lcm_rx.h"
@@ -564,6 +565,52 @@ static void test_acoustic_commands_run_once_from_the_shore_to_their_target(void)
     free(s);
 }
 
+/* A frame from vehicle src to AUV1 carrying payload, through the protocol's pipe. */
+static void hear_from(radio_state *s, drv_ctx *ctx, const char *src, const uint8_t *payload, int len)
+{
+    uint8_t frame_enc[1200], pipe[1300];
+    auv_radio_frame_t f = {.utime = 1, .src = (char *)src, .dst = "AUV1", .seq = 1, .n_bytes = len,
+                           .payload = (uint8_t *)payload};
+    int fk = auv_radio_frame_t_encode(frame_enc, 0, sizeof frame_enc, &f);
+    size_t pk = rp_encode(frame_enc, (size_t)fk, pipe, sizeof pipe);
+    radio_protocol.feed(s, ctx, pipe, pk, 2000000);
+}
+
+static void test_a_peers_status_is_published_and_nothing_else_from_a_vehicle(void)
+{
+    outbox *out = calloc(1, sizeof *out);
+    radio_state *s = calloc(1, sizeof *s);
+    drv_ctx ctx;
+    drv_ctx_init(&ctx, "test", "AUV1", "RADIO", capture, out);
+    ctx.quiet = 1;
+    char err[200];
+    CHECK(radio_peers_parse(s, "AUV2,AUV3", err, sizeof err) == 0 && s->n_peers == 2);
+    CHECK(radio_peers_parse(s, "AUV2,,AUV3", err, sizeof err) < 0 && radio_peers_parse(s, "SHORE", err, sizeof err) < 0);
+    CHECK(radio_peers_parse(s, "AUV2,AUV3", err, sizeof err) == 0);
+    CHECK(radio_protocol.init(s, &ctx) == 0);
+    uint8_t rep[600];
+    auv_radio_report_t r = {.vehicle = "AUV2", .mission = "RUNNING survey", .n_transfers = 0};
+    int n = auv_radio_report_t_encode(rep, 0, sizeof rep, &r);
+    hear_from(s, &ctx, "AUV2", rep, n);       /* a teammate's status: published as it came */
+    hear_from(s, &ctx, "AUV9", rep, n);       /* not a teammate */
+    hear_from(s, &ctx, "AUV3", rep, n);       /* a teammate speaking for another */
+    uint8_t chunk[600];
+    auv_radio_chunk_t c = {.transfer_id = 1, .vehicle = "AUV1", .channel = "MISSION_CMD", .count = 1,
+                           .total_bytes = 3, .sha256_hex = "", .n_bytes = 3, .data = (uint8_t *)"abc"};
+    int k = auv_radio_chunk_t_encode(chunk, 0, sizeof chunk, &c);
+    hear_from(s, &ctx, "AUV2", chunk, k);     /* a command from a vehicle: never */
+    CHECK(out->n == 1 && out->len[0] == n && !memcmp(out->data[0], rep, (size_t)n));
+    CHECK_STR(out->channel[0], "AUV1.PEER_RADIO_REPORT");
+    CHECK(s->peer_reports == 1 && s->frames_dropped == 3);
+    CHECK(drv_reasons_get(&ctx.reasons, "not a peer") == 1 &&
+          drv_reasons_get(&ctx.reasons, "another vehicle's status") == 1 &&
+          drv_reasons_get(&ctx.reasons, "not a peer's status") == 1);
+    for (int i = 0; i < out->n; i++)
+        free(out->data[i]);
+    free(out);
+    free(s);
+}
+
 static const unit_test tests[] = {
     {"radio_in_order_gives_the_whole_once", test_in_order_gives_the_whole_once},
     {"radio_out_of_order_duplicated_and_another_transfer", test_out_of_order_duplicated_and_another_transfer},
@@ -577,6 +624,7 @@ static const unit_test tests[] = {
     {"radio_the_pipe_finds_every_good_frame_in_noise", test_the_pipe_finds_every_good_frame_in_noise},
     {"radio_a_command_crosses_byte_for_byte", test_a_command_crosses_byte_for_byte},
     {"radio_acoustic_commands_run_once", test_acoustic_commands_run_once_from_the_shore_to_their_target},
+    {"radio_a_peers_status_is_published", test_a_peers_status_is_published_and_nothing_else_from_a_vehicle},
     {NULL, NULL},
 };
 

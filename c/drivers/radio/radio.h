@@ -26,6 +26,7 @@
 #define RADIO_ACK_BYTES 1024  /* an encoded mission_ack_t (longer ones are not relayed) */
 #define RADIO_COUNTERS 16     /* acoustic counters remembered: repeats run once */
 #define RADIO_SHORE_INDEX 15
+#define RADIO_MAX_PEERS 8     /* teammates a vehicle's status also goes to (--peers) */
 
 typedef struct {
     uint8_t data[RADIO_ACK_BYTES];
@@ -71,6 +72,11 @@ typedef struct {
     int64_t last_sign_counter;
     int64_t acoustic_refused;
 
+    /* vehicle to vehicle (radio_peers.c) */
+    char peers[RADIO_MAX_PEERS][RA_ID_LEN];
+    int n_peers;
+    int64_t peer_reports;
+
     /* the summary line at exit */
     int64_t delivered, acoustic_commands, frames_dropped, frames_unsent;
 } radio_state;
@@ -79,8 +85,14 @@ extern const drv_protocol radio_protocol;
 extern const drv_flag radio_flags[];
 extern char radio_chasm_suffix[80];
 
-/* Frames a payload (an encoded protocol message) to the shore on the pipe. */
+/* Frames a payload (an encoded protocol message) to the shore on the pipe; radio_send_to: to node dst. */
 void radio_send(radio_state *s, const uint8_t *payload, int len, int64_t now);
+void radio_send_to(radio_state *s, const char *dst, const uint8_t *payload, int len, int64_t now);
+/* Vehicle to vehicle (radio_peers.c): --peers ID,ID; the status to each peer; a frame
+ * from another vehicle (a peer's status, published on <V>.PEER_RADIO_REPORT, or dropped). */
+int radio_peers_parse(radio_state *s, const char *list, char *err, size_t errlen);
+void radio_peers_send(radio_state *s, const uint8_t *report, int len, int64_t now);
+void radio_peers_heard(radio_state *s, const char *src, const uint8_t *payload, int len, int64_t now);
 /* A team-link frame heard on the modem (radio_acoustic.c). */
 void radio_acoustic_heard(radio_state *s, const uint8_t *frame, int len, int64_t now);
 /* The key file for acoustic commands; 0 or -1 (logged). */

@@ -65,6 +65,11 @@ static int set_expiry(void *st, const char *v, char *err, size_t errlen)
     return number(v, 0, 1e9, &((radio_state *)st)->idle_expiry_s, err, errlen, "--idle-expiry-s");
 }
 
+static int set_peers(void *st, const char *v, char *err, size_t errlen)
+{
+    return radio_peers_parse(st, v, err, errlen);
+}
+
 static int set_key_file(void *st, const char *v, char *err, size_t errlen)
 {
     (void)err, (void)errlen;
@@ -79,6 +84,7 @@ const drv_flag radio_flags[] = {
     {"--surface-depth-m", "M", "at the surface above this navigation depth (default 0.5)", set_surface},
     {"--report-period-s", "S", "the status home's period at the surface (default 2)", set_report},
     {"--idle-expiry-s", "S", "drop a partial transfer idle this long (default 3600)", set_expiry},
+    {"--peers", "ID,ID", "teammates the status also goes to; theirs is published on <V>.PEER_RADIO_REPORT", set_peers},
     {"--key-file", "PATH", "team keys: acoustic commands checked, the commands issued signed", set_key_file},
     {0},
 };

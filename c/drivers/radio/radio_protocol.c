@@ -21,7 +21,12 @@
 
 void radio_send(radio_state *s, const uint8_t *payload, int len, int64_t now)
 {
-    auv_radio_frame_t f = {.utime = now, .src = (char *)s->ctx->vehicle, .dst = SHORE, .seq = ++s->seq,
+    radio_send_to(s, SHORE, payload, len, now);
+}
+
+void radio_send_to(radio_state *s, const char *dst, const uint8_t *payload, int len, int64_t now)
+{
+    auv_radio_frame_t f = {.utime = now, .src = (char *)s->ctx->vehicle, .dst = (char *)dst, .seq = ++s->seq,
                            .n_bytes = len, .payload = (uint8_t *)payload};
     int n = auv_radio_frame_t_encoded_size(&f);
     uint8_t *frame = malloc((size_t)n), *out = malloc((size_t)n + RP_OVERHEAD);
@@ -76,6 +81,11 @@ static void on_frame(void *user, const uint8_t *bytes, size_t n)
         drv_drop(s->ctx, "undecodable frame", "%zu bytes with a good CRC", n);
         return;
     }
+    if (!strcmp(f.dst, s->ctx->vehicle) && strcmp(f.src, SHORE)) { /* a teammate's: never a command */
+        radio_peers_heard(s, f.src, f.payload, f.n_bytes, now);
+        auv_radio_frame_t_decode_cleanup(&f);
+        return;
+    }
     auv_radio_chunk_t c;
     int is_chunk = rx_decode(auv_type_find("radio_chunk_t"), f.payload, f.n_bytes, &c) == 0;
     if (!is_chunk || strcmp(f.dst, s->ctx->vehicle)) {
@@ -117,7 +127,13 @@ static void report(radio_state *s, int64_t now)
         r.nav_status = s->nav_status;
         r.nav_utime = s->nav_utime;
     }
-    SEND(auv_radio_report_t, s, &r, now);
+    int len = auv_radio_report_t_encoded_size(&r);
+    uint8_t *b = malloc((size_t)len);
+    if (b && auv_radio_report_t_encode(b, 0, len, &r) == len) {
+        radio_send(s, b, len, now);
+        radio_peers_send(s, b, len, now); /* and to the teammates in range */
+    }
+    free(b);
 }
 
 static void radio_tick(void *st, drv_ctx *ctx, int64_t now)
@@ -268,9 +284,9 @@ static void radio_finish(void *st, drv_ctx *ctx, int64_t now)
         k += (size_t)snprintf(refused + k, sizeof refused - k, "%s%s %lld", k ? ", " : "", ctx->reasons.name[i],
                               (long long)ctx->reasons.count[i]);
     fprintf(stderr, "auv-radio %s: delivered %lld, acoustic commands %lld, frames dropped %lld, unsent %lld, "
-                    "refused: %s\n",
+                    "peer reports %lld, refused: %s\n",
             ctx->vehicle, (long long)s->delivered, (long long)s->acoustic_commands, (long long)s->frames_dropped,
-            (long long)s->frames_unsent, k ? refused : "none");
+            (long long)s->frames_unsent, (long long)s->peer_reports, k ? refused : "none");
     if (s->have_ring)
         auth_keys_clear(&s->ring);
 }

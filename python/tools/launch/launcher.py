@@ -336,6 +336,7 @@ class Launcher:
                 report_period_s=r.report_period_s,
                 end_manager=v.end_manager,
                 key_file=self.sc.key_file,
+                peers=[p for p in pipes if p != v.id] if r.peers else (),
             )
             self._start(Child(f"{v.id}.radio", cmd, self.out / f"{v.id}.radio.out", tier=TIER_MANAGER))
 
