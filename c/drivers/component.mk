@@ -33,7 +33,7 @@ DRIVERS_LIBS = $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_PROTOCOL_SRCS)) $(1)/lib/li
 # codec): every program that links the protocols links the codec, and the
 # radio's objects wait for it to be generated
 DRIVERS_LIBS += $(1)/obj/gen/team/team_codec.o $(1)/obj/c/teamlink/team_bits.o
-$(foreach v,$(VARIANTS),$(patsubst %.c,$(v)/obj/%.o,$(wildcard c/drivers/radio/*.c))): | $(GEN)/team/codec.stamp
+$(foreach v,$(VARIANTS),$(patsubst %.c,$(v)/obj/%.o,$(wildcard c/drivers/radio/*.c) tests/drivers/test_radio.c)): | $(GEN)/team/codec.stamp
 DRIVERS_LINK = $$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 
 define drivers_rules
