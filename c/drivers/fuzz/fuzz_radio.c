@@ -54,12 +54,19 @@ static uint8_t pattern_byte(int64_t tid, int32_t i) { return (uint8_t)(i * 31 + 
 
 static uint8_t whole[RA_MAX_BYTES / 64]; /* the patterns the script may complete: sizes up to 65535 */
 
+static void remove_spool(void)
+{
+    count_files("", 1);
+    rmdir(spool);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     if (!spool[0]) {
         /* in memory where there is /dev/shm: an input is dozens of small writes */
         snprintf(spool, sizeof spool, "%s/fuzz_radio.XXXXXX", access("/dev/shm", W_OK) == 0 ? "/dev/shm" : "/tmp");
         check(mkdtemp(spool) != NULL, "a spool");
+        atexit(remove_spool);
     }
     count_files("", 1);
     drv_ctx ctx;
