@@ -177,7 +177,15 @@ def test_no_program_spells_the_url_flag_the_old_way():
 
 
 def test_radio_builders_use_documented_flags(tmp_path):
-    sim = programs.radio_sim(vehicles=["AUV1", "AUV2"], lcm_url="udpm://x", settings={"bitrate_bps": 9600.0})
+    sim = programs.radio_sim(
+        vehicles=["AUV1", "AUV2"],
+        lcm_url="udpm://x",
+        settings={"bitrate_bps": 9600.0},
+        pipes={"AUV1": tmp_path / "p"},
+        lockstep_name="SHORE.radio",
+        shore_lcm_url="udpm://y",
+    )
+    assert sim[sim.index("--pipe") + 1] == f"AUV1={tmp_path / 'p'}"
     assert sim[sim.index("--bitrate-bps") + 1] == "9600" and sim[sim.index("--vehicles") + 1] == "AUV1,AUV2"
     _every_flag_documented(sim, sim[:3])
     shore = programs.radio_shore(
@@ -186,6 +194,16 @@ def test_radio_builders_use_documented_flags(tmp_path):
     assert shore[shore.index("--acoustic") + 1] == "AUV1=0"
     _every_flag_documented(shore[2:], shore[:3])
     veh = programs.radio_vehicle(
-        vehicle="AUV1", spool=tmp_path, lcm_url="udpm://x", team_index=0, report_period_s=1, end_manager="PILOT"
+        BUILD,
+        vehicle="AUV1",
+        spool=tmp_path,
+        lcm_url="udpm://x",
+        port=tmp_path / "pty",
+        team_index=0,
+        report_period_s=1,
+        end_manager="PILOT",
+        key_file=tmp_path / "k",
+        peers=["AUV2", "AUV3"],
     )
-    _every_flag_documented(veh[2:], veh[:3])
+    assert veh[0] == str(BUILD / "bin" / "auv-radio") and veh[veh.index("--spool") + 1] == str(tmp_path)
+    _every_flag_documented(veh[1:], veh[:1])

@@ -1,5 +1,6 @@
 #include "common/auth_commands.h"
 
+#include <stdio.h>
 #include <stdlib.h>
 
 static auth_fields fields_of(const auv_command_auth_t *x)
@@ -37,4 +38,24 @@ auth_result auth_verify_mission_command(auth_verifier *v, const auv_mission_comm
 auth_result auth_verify_plugin_upload(auth_verifier *v, const auv_plugin_upload_t *u, int64_t now_us)
 {
     VERIFY_ENCODED(auv_plugin_upload_t, v, u, now_us);
+}
+
+int auth_sign_mission_command(auv_mission_command_t *c, const auth_key *key, const char *sender, int64_t counter,
+                              char sender_buf[AUTH_MAX_SENDER + 1], uint8_t mac[AUTH_MAC_BYTES])
+{
+    snprintf(sender_buf, AUTH_MAX_SENDER + 1, "%s", sender);
+    c->auth.key_id = (char *)key->id;
+    c->auth.sender = sender_buf;
+    c->auth.counter = counter;
+    c->auth.mac_len = 0;
+    c->auth.mac = mac;
+    int n = auv_mission_command_t_encoded_size(c);
+    uint8_t *buf = n > 0 ? malloc((size_t)n) : NULL;
+    int ok = buf && auv_mission_command_t_encode(buf, 0, n, c) == n &&
+             auth_hmac_sha256(key->secret, key->len, buf, (size_t)n, mac) == 0;
+    free(buf);
+    if (!ok)
+        return -1;
+    c->auth.mac_len = AUTH_MAC_BYTES;
+    return 0;
 }

@@ -29,6 +29,11 @@ DRIVERS_FUZZ := $(sort $(patsubst c/drivers/fuzz/fuzz_%.c,%,$(wildcard c/drivers
 # (the Maestro's corpus test calls its fuzz target's maestro_fuzz_one())
 DRIVERS_TEST_SRCS := $(sort $(wildcard tests/drivers/*.c)) c/drivers/fuzz/fuzz_maestro.c $(UNIT_HARNESS_SRCS)
 DRIVERS_LIBS = $(patsubst %.c,$(1)/obj/%.o,$(DRIVERS_PROTOCOL_SRCS)) $(1)/lib/libauvdrivers.a $(1)/lib/libauvcommon.a $(1)/lib/libauvtypes.a
+# the radio gateway reads the shore's team-link `command` (c/teamlink's generated
+# codec): every program that links the protocols links the codec, and the
+# radio's objects wait for it to be generated
+DRIVERS_LIBS += $(1)/obj/gen/team/team_codec.o $(1)/obj/c/teamlink/team_bits.o
+$(foreach v,$(VARIANTS),$(patsubst %.c,$(v)/obj/%.o,$(wildcard c/drivers/radio/*.c) tests/drivers/test_radio.c)): | $(GEN)/team/codec.stamp
 DRIVERS_LINK = $$(Q)$$(CC) $$(vflags) $$^ -o $$@ $$(LCM_LDLIBS) $$(LDLIBS_ALL)
 
 define drivers_rules

@@ -122,13 +122,25 @@ def radio_sim(
     lcm_url: str,
     clock: str = "sim",
     settings: Mapping[str, object] | None = None,
+    pipes: Mapping[str, PathLike] | None = None,
+    lockstep_name: str | None = None,
+    shore_lcm_url: str | None = None,
     python: PathLike = sys.executable,
 ) -> list[str]:
     """The simulated surface radio (`python -m sim.radio`, docs/radio.md); settings:
-    sim.radio.link.RadioConfig's fields, each a flag (bitrate_bps -> --bitrate-bps)."""
+    sim.radio.link.RadioConfig's fields, each a flag (bitrate_bps -> --bitrate-bps);
+    pipes: the vehicles whose radio is a byte pipe, a pty at that path (auv-radio's port);
+    lockstep_name: it takes part in a lockstep world under that name; shore_lcm_url: the
+    shore's own LCM (its gateway's and tools')."""
     cmd = [str(python), "-m", "sim.radio", "--vehicles", ",".join(vehicles), "--clock", clock, "--lcm-url", lcm_url]
     for k, v in (settings or {}).items():
         cmd += ["--" + k.replace("_", "-"), f"{v:g}" if isinstance(v, float) else str(v)]
+    if pipes:
+        cmd += ["--pipe", ",".join(f"{n}={p}" for n, p in pipes.items())]
+    if lockstep_name:
+        cmd += ["--lockstep-name", lockstep_name]
+    if shore_lcm_url:
+        cmd += ["--shore-lcm-url", shore_lcm_url]
     return cmd
 
 
@@ -158,30 +170,40 @@ def radio_shore(
 
 
 def radio_vehicle(
+    build: Path,
     *,
     vehicle: str,
     spool: PathLike,
     lcm_url: str,
+    port: PathLike | None = None,
+    tcp: str | None = None,
     clock: str = "sim",
     team_index: int | None = None,
     report_period_s: float | None = None,
     end_manager: str | None = None,
     key_file: PathLike | None = None,
-    python: PathLike = sys.executable,
+    peers: Iterable[str] = (),
+    raw: bool = False,
 ) -> list[str]:
-    """A vehicle's radio gateway (docs/radio.md); spool: its partial transfers; key_file:
-    the team keys acoustic commands are verified with and the managers' commands signed."""
-    cmd = [str(python), "-m", "tools.radio.vehicle_gateway", "--vehicle", vehicle, "--spool", str(spool)]
-    cmd += ["--clock", clock]
+    """A vehicle's radio gateway, `auv-radio` (c/drivers/radio, docs/radio.md), on the
+    radio modem's serial `port` (the simulated radio's pty) or `tcp` "HOST:PORT";
+    spool: its partial transfers; key_file: the team keys acoustic commands are
+    verified with and the managers' commands signed; peers: the teammates its status also
+    goes to (and whose status it publishes)."""
+    extra: list[PathLike] = ["--spool", str(spool)]
+    if peers:
+        extra += ["--peers", ",".join(peers)]
     if team_index is not None:
-        cmd += ["--team-index", str(team_index)]
+        extra += ["--team-index", str(team_index)]
     if report_period_s is not None:
-        cmd += ["--report-period-s", f"{report_period_s:g}"]
+        extra += ["--report-period-s", f"{report_period_s:g}"]
     if end_manager is not None:
-        cmd += ["--end-manager", end_manager]
+        extra += ["--end-manager", end_manager]
     if key_file is not None:
-        cmd += ["--key-file", str(key_file)]
-    return cmd + ["--lcm-url", lcm_url]
+        extra += ["--key-file", str(key_file)]
+    return device_driver(
+        build, "radio", vehicle=vehicle, lcm_url=lcm_url, port=port, tcp=tcp, raw=raw, clock=clock, extra=extra
+    )
 
 
 def auv_recorder(build: Path, *, lcm_url: str, log: PathLike, stats: PathLike | None = None) -> list[str]:

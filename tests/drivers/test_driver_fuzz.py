@@ -33,6 +33,9 @@ def test_every_fuzz_target_has_a_corpus():
 # overflow, so it gets most; the normal build (-O2's code) a few. 100 000 each took
 # 6 min of the suite's 2 cores; `make fuzz` is the long run (FUZZ_SECONDS each).
 RUNS = {"sanitized": 20_000, "normal": 3_000}
+# A radio input writes its chunks to a spool (files, renames): 5 times the cost of a
+# parser's; its long run is `make fuzz`.
+RUNS_OF = {"radio": {"sanitized": 4_000, "normal": 1_000}}
 
 
 @pytest.mark.parametrize("name", TARGETS)
@@ -46,7 +49,7 @@ def test_corpus_and_mutations_do_not_crash(name, variant_dir, child_env, tmp_pat
             str(exe),
             "--no-dict",
             "--runs",
-            str(RUNS["sanitized" if variant_dir.name == "san" else "normal"]),
+            str(RUNS_OF.get(name, RUNS)["sanitized" if variant_dir.name == "san" else "normal"]),
             "--seed",
             "7",
             str(corpus),

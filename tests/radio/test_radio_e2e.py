@@ -1,7 +1,8 @@
 """The surface radio over real processes: a chasm-manager, the radio model
 (python -m sim.radio), the shore and vehicle gateways, on one LCM world. The
-test drives the clock and the vehicle (AUV1.NAV for the software, AUV1.TRUTH
-for the radio) as a simulator would, and publishes what the operator's tool
+vehicle's gateway is the vehicle's driver, auv-radio, on the radio modem's
+pty that the model makes (its byte pipe, as at sea). The test drives the
+clock and the vehicle (AUV1.NAV for the software, AUV1.TRUTH for the radio) as a simulator would, and publishes what the operator's tool
 would on the shore's side (SHORE.AUV1.*).
 
 - a vehicle out of range: the upload waits, queued;
@@ -122,14 +123,18 @@ class Sea(World):
 
 
 def _procs(url: str, env: dict, spool) -> list[subprocess.Popen]:
+    pty = spool.parent / "AUV1.radio.pty"  # the vehicle's radio modem, made by the model
     cmds = [
         programs.radio_sim(
             vehicles=["AUV1"],
             lcm_url=url,
             settings={"bitrate_bps": BITRATE, "max_range_m": 1000.0, "status_period_s": 0.05},
+            pipes={"AUV1": pty},
         ),
         programs.radio_shore(vehicles=["AUV1"], lcm_url=url, acoustic={"AUV1": 0}, link_timeout_s=1.0, retry_s=1.0),
-        programs.radio_vehicle(vehicle="AUV1", spool=spool, lcm_url=url, team_index=0, report_period_s=0.3),
+        programs.radio_vehicle(
+            BUILD, vehicle="AUV1", spool=spool, lcm_url=url, port=pty, team_index=0, report_period_s=0.3
+        ),
     ]
     procs = [subprocess.Popen(c, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True) for c in cmds]
     for p in procs:
@@ -229,6 +234,6 @@ def test_upload_cut_by_a_dive_resumes_then_a_plan_uses_it_and_an_abort_goes_acou
         print("MANAGER:", code, mgr.stderr.read()[-2000:], file=sys.stderr)
         assert code == 0
     assert codes == [0, 0, 0], errs
-    assert "auv-radio-vehicle AUV1: delivered 0, acoustic commands 0" in first_life, first_life
-    assert "auv-radio-vehicle AUV1: delivered 2, acoustic commands 1" in errs[2], errs[2]
+    assert "auv-radio AUV1: delivered 0, acoustic commands 0" in first_life, first_life
+    assert "auv-radio AUV1: delivered 2, acoustic commands 1" in errs[2], errs[2]
     assert "unknown transfer" not in errs[2], errs[2]  # it resumed from its spool, never from chunk 0

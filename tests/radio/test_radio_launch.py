@@ -6,6 +6,7 @@ station's frame, heard by the vehicle's simulated modem, aborts its plan."""
 
 from __future__ import annotations
 
+import re
 import subprocess
 import sys
 import time
@@ -52,7 +53,9 @@ def test_the_launcher_starts_the_radio_and_the_status_comes_home(tmp_path, lcm_u
     run = subprocess.run(cmd + ["--lcm-url", lcm_url], env=child_env, capture_output=True, text=True, timeout=180)
     assert run.returncode == 6, run.stdout + run.stderr  # the time limit: the plan runs on
     out = tmp_path / "run"
-    assert "auv-radio-vehicle AUV1: delivered 0" in (out / "AUV1.radio.out").read_text()
+    assert "auv-radio AUV1: delivered 0" in (out / "AUV1.radio.out").read_text()
+    steps = re.search(r"lockstep: (\d+) steps reported", (out / "radio.out").read_text())
+    assert steps and int(steps[1]) >= 150, (out / "radio.out").read_text()  # the model took part: 8 s of 0.05 s
     assert "auv-radio-shore: frames dropped 0" in (out / "shore_gateway.out").read_text()
     reports, links = [], []
     for ev in lcm.EventLog(str(out / "run.lcmlog"), "r"):

@@ -1,7 +1,8 @@
-"""The gateways over a byte pipe, as at sea (tools/radio/pipe.py): the framing
-finds every good frame in noise, and two gateway processes connected through
-a TCP "air" that adds line noise carry a command byte for byte and bring the
-status home."""
+"""The gateways over a byte pipe, as at sea (tools/radio/pipe.py, and in C
+c/drivers/radio/radio_pipe.c): the framing finds every good frame in noise,
+and the two gateways (the shore's in Python, the vehicle's auv-radio in C)
+connected through a TCP "air" that adds line noise carry a command byte for
+byte and bring the status home: each side reads the other's framing."""
 
 from __future__ import annotations
 
@@ -14,9 +15,11 @@ import threading
 import time
 
 import lcm
+from conftest import BUILD
 from lcm_proc import stop, wait_for_line
 
 from auv import mission_command_t, nav_solution_t
+from auvlcm import programs
 from tools.radio.pipe import MAX_FRAME, Deframer, encode
 from tools.radio.wire import frame
 
@@ -92,10 +95,16 @@ def test_two_gateways_over_a_noisy_pipe_carry_a_command_and_the_status(tmp_path,
             stderr=subprocess.PIPE,
             text=True,
         ),
-        subprocess.Popen(
-            [py, "-m", "tools.radio.vehicle_gateway", "--vehicle", "AUV1", "--spool", str(tmp_path / "spool")]
-            + ["--tcp", f"127.0.0.1:{air.ports[1]}", "--report-period-s", "0.2"]
-            + common,
+        subprocess.Popen(  # the vehicle's: auv-radio, C on the driver framework, the same framing
+            programs.radio_vehicle(
+                BUILD,
+                vehicle="AUV1",
+                spool=tmp_path / "spool",
+                lcm_url=lcm_url,
+                tcp=f"127.0.0.1:{air.ports[1]}",
+                clock="system",
+                report_period_s=0.2,
+            ),
             env=child_env,
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
@@ -124,4 +133,5 @@ def test_two_gateways_over_a_noisy_pipe_carry_a_command_and_the_status(tmp_path,
         codes = [stop(p, signal.SIGTERM) for p in procs]
         errs = [p.stderr.read() for p in procs]
     assert codes == [0, 0], errs
-    assert "pipe dropped {'noise bytes':" in errs[0] and "pipe dropped {'noise bytes':" in errs[1], errs
+    assert "pipe dropped {'noise bytes':" in errs[0], errs[0]
+    assert "auv-radio AUV1: delivered 1" in errs[1] and "noise bytes" in errs[1], errs[1]

@@ -33,8 +33,16 @@ def test_a_scenario_without_radio_has_none(tmp_path):
 
 
 def test_radio_keys_are_read(tmp_path):
-    r = load_scenario(_scenario(tmp_path, {"bitrate_bps": 9600, "acoustic": {"AUV1": 3}, "report_period_s": 1})).radio
+    keys = {
+        "bitrate_bps": 9600,
+        "acoustic": {"AUV1": 3},
+        "report_period_s": 1,
+        "shore_lcm_url": "udpm://x",
+        "peers": True,
+    }
+    r = load_scenario(_scenario(tmp_path, keys)).radio
     assert r.bitrate_bps == 9600 and r.acoustic == {"AUV1": 3} and r.report_period_s == 1
+    assert r.shore_lcm_url == "udpm://x" and r.peers is True
 
 
 @pytest.mark.parametrize(

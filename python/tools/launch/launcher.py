@@ -43,7 +43,7 @@ from sim.multihil.lockstep import lockstep_msg
 from tools.launch.annotate import Annotator
 from tools.launch.backseat import FrontseatPort, frontseat_cmd
 from tools.launch.fault_step import FaultStepper, takes_part
-from tools.launch.lockstep_names import participants
+from tools.launch.lockstep_names import RADIO, participants
 from tools.launch.mission_watch import MissionWatch
 from tools.launch.procs import TIER_FILTER, TIER_MANAGER, TIER_SIMULATOR, Child, stop_together
 from tools.launch.recorder_cmd import recorder_cmd, recorder_takes_part
@@ -56,6 +56,7 @@ EXIT = {"done": 0, "aborted": 3, "failed": 4, "died": 5, "time limit": 6, "inter
 STARTUP_TIMEOUT_S = 90.0
 END_WAIT_S = 5.0  # at most this long for the last step's reports (tools/launch/fault_step.py)
 CHILD_CHECK_S = 0.05  # how often the loops look for a child that exited
+PTY_WAIT_S = 10.0  # at most this long for the radio model to make its ptys (start_radio)
 
 
 def nav_configs(
@@ -289,25 +290,53 @@ class Launcher:
 
     def start_radio(self) -> None:
         """The surface radio (docs/radio.md): its model and the shore gateway on the
-        clock's host, a gateway for each vehicle of this host. They follow SIM.CLOCK
-        and are not lockstep participants."""
+        clock's host, a gateway for each vehicle of this host (`auv-radio`, the
+        vehicle's driver, on its radio modem's pty that the model makes in the run
+        folder). They follow SIM.CLOCK; the model takes part in the lockstep
+        (lockstep_names.RADIO: the world waits for it at every step), the gateways do not."""
         r, url = self.sc.radio, self.child_url
+        # the ptys are the clock's host's: a vehicle of another host has no radio yet (docs/radio.md)
+        pipes = {v.id: self.out / f"{v.id}.radio.pty" for v in self.sc.vehicles_on(self.sc.time.host)}
         if self.host is None or self.host == self.sc.time.host:
             ids = [v.id for v in self.sc.vehicles]
-            cmd = programs.radio_sim(vehicles=ids, lcm_url=url, settings=radio_section.model_settings(r))
+            settings = radio_section.model_settings(r)
+            shore = r.shore_lcm_url or None  # the shore's own network, or the world's
+            cmd = programs.radio_sim(
+                vehicles=ids, lcm_url=url, settings=settings, pipes=pipes, lockstep_name=RADIO, shore_lcm_url=shore
+            )
             self._start(Child("SHORE.radio", cmd, self.out / "radio.out", tier=TIER_SIMULATOR))
-            cmd = programs.radio_shore(vehicles=ids, lcm_url=url, acoustic=r.acoustic, key_file=self.sc.key_file)
-            self._start(Child("SHORE.gateway", cmd, self.out / "shore_gateway.out", tier=TIER_MANAGER))
+            # the gateways open the model's ptys at once rather than after a retry's backoff
+            deadline = time.monotonic() + PTY_WAIT_S
+            while not all(p.is_symlink() for p in pipes.values()) and time.monotonic() < deadline:
+                time.sleep(0.02)
+            cmd = programs.radio_shore(
+                vehicles=ids, lcm_url=shore or url, acoustic=r.acoustic, key_file=self.sc.key_file
+            )
+            shore_out = self.out / "shore_gateway.out"
+            gateway = Child("SHORE.gateway", cmd, shore_out, tier=TIER_MANAGER)
+            self._start(gateway)
+            # the world starts once the model registers, which waits for the vehicles' gateways
+            # (below): so started after the shore's is ready, none of them misses the start
+            deadline = time.monotonic() + STARTUP_TIMEOUT_S
+            while time.monotonic() < deadline and gateway.poll() is None:
+                if shore_out.exists() and "auv-radio-shore: ready" in shore_out.read_text(errors="replace"):
+                    break
+                time.sleep(0.02)
         for v in self.mine:
-            spool = self.out / f"{v.id}.radio_spool"
+            if v.id not in pipes:
+                print(f"launch: {v.id} is not on the radio's host {self.sc.time.host}: no radio gateway", flush=True)
+                continue
             cmd = programs.radio_vehicle(
+                self.build,
                 vehicle=v.id,
-                spool=spool,
+                spool=self.out / f"{v.id}.radio_spool",
                 lcm_url=url,
+                port=pipes[v.id],
                 team_index=r.acoustic.get(v.id),
                 report_period_s=r.report_period_s,
                 end_manager=v.end_manager,
                 key_file=self.sc.key_file,
+                peers=[p for p in pipes if p != v.id] if r.peers else (),
             )
             self._start(Child(f"{v.id}.radio", cmd, self.out / f"{v.id}.radio.out", tier=TIER_MANAGER))
 

@@ -14,11 +14,15 @@ from __future__ import annotations
 from tools.launch.fault_step import NAME as LAUNCHER
 from tools.launch.fault_step import is_lockstep_multihil
 
+RADIO = "SHORE.radio"  # the surface radio's model (docs/radio.md), with `radio:`
+
 
 def participants(sc, recorder: bool) -> set[str]:
-    """Each vehicle's simulator, managers and onboard filter, and the recorder
-    (if the run records with auv-recorder, which takes part)."""
+    """Each vehicle's simulator, managers and onboard filter, the recorder (if
+    the run records with auv-recorder, which takes part) and the radio model."""
     names = {"SIM.RECORDER"} if recorder else set()
+    if getattr(sc, "radio", None) is not None:
+        names.add(RADIO)
     for v in sc.vehicles:
         names.add(f"{v.id}.sim")
         names |= {f"{v.id}.{m.name}" for m in v.managers}

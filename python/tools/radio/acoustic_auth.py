@@ -1,9 +1,10 @@
 """The acoustic commands' authentication (docs/security.md, "Acoustic"; docs/radio.md):
 the team link's `command` message carries a 24-bit counter and a 32-bit tag
 (mac_hi, mac_lo), auvlcm.auth.acoustic_tag over the message as encoded with the tag
-0, under the team's newest key. The vehicle's gateway tries every key of its ring
-(two during a rotation), each with its own replay window (auth.AcousticVerifier):
-a frame is run once, only if a key tags it and its counter is new.
+0, under the team's newest key. This is the shore's side; the vehicle's gateway
+(auv-radio, c/drivers/radio/radio_acoustic.c) tries every key of its ring (two
+during a rotation), each with its own replay window: a frame is run once, only if
+a key tags it and its counter is new.
 
 The counter is the shore's clock in whole seconds modulo 2^24 (194 days), kept
 strictly increasing within the shore gateway: a restarted shore goes on above its
@@ -40,23 +41,3 @@ class Tagger:
     def tag(self, codec: TeamCodec, vals: dict) -> dict:
         t = auth.acoustic_tag(self.ring.signing.secret, untagged(codec, vals), vals["counter"])
         return {**vals, "mac_hi": t >> 16, "mac_lo": t & 0xFFFF}
-
-
-class Checker:
-    """The vehicle's side: a replay window per key of the ring."""
-
-    def __init__(self, ring: auth.KeyRing) -> None:
-        self.windows = [(k, auth.AcousticVerifier(k.secret)) for k in ring.keys]
-
-    def check(self, codec: TeamCodec, vals: dict) -> str:
-        """auth.OK, or why not: bad_mac (no key tags it), replay, stale."""
-        body = untagged(codec, vals)
-        tag = (int(vals["mac_hi"]) << 16) | int(vals["mac_lo"])
-        why = "bad_mac"
-        for _key, window in self.windows:
-            r = window.verify(body, int(vals["counter"]), tag)
-            if r == auth.OK:
-                return r
-            if r != "bad_mac":
-                why = r  # this key tags it: a replay or a stale counter
-        return why

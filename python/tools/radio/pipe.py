@@ -1,8 +1,10 @@
 """The radio as a byte pipe: how the gateways talk to a real radio modem.
 
 A radio modem (Freewave class) is a transparent serial link: bytes in at one
-end come out at the other, or not. The gateways frame each radio_frame_t on
-it as
+end come out at the other, or not. Each radio_frame_t goes on it as (the one
+definition: docs/radio.md, "The byte pipe"; the vehicle's gateway, auv-radio,
+frames it in C, c/drivers/radio/radio_pipe.c, and the tests hold the two
+together)
 
     0xA5 0x5A, length (4 bytes, big endian), the encoded radio_frame_t, CRC-32 (4 bytes)
 
@@ -171,7 +173,7 @@ def serve(lc, pipe: BytePipe | None, on_frame, tick, stop: list) -> None:
 
 
 def run_gateway(program: str, url: str, make: Callable[[Any], Any]) -> Any:
-    """A gateway process's life, for both gateways: its LCM (a receive buffer big
+    """The shore gateway process's life: its LCM (a receive buffer big
     enough for an upload's many datagrams: none may be lost), the gateway make(lc)
     builds, "ready" once subscribed (what is published from then on is heard), the
     loop until SIGINT or SIGTERM; returns the gateway for its summary."""

@@ -44,10 +44,9 @@ from auvlcm.team_codec import TeamCodec
 from auvlcm.url import check_local, default_url
 from tools.console.mission_commands import COMMANDS
 from tools.radio.acoustic_auth import Tagger
-from tools.radio.assembler import MAX_BYTES
 from tools.radio.outbox import MAX_QUEUE, MAX_URGENT, Outbox, Transfer
 from tools.radio.pipe import BytePipe, run_gateway
-from tools.radio.wire import Clock, frame, payload
+from tools.radio.wire import MAX_BYTES, Clock, frame, payload
 
 SHORE = "SHORE"
 SHORE_INDEX = 15

@@ -16,6 +16,10 @@ import lcm
 from auv import mission_ack_t, radio_ack_t, radio_chunk_t, radio_frame_t, radio_report_t, sim_clock_t
 from auvlcm.decode import DecodeError, decode_strict
 
+# The largest command the vehicle's gateway takes (auv-radio, RA_MAX_BYTES in
+# c/drivers/radio/radio_asm.h): a plugin or a plan; the shore refuses more at once.
+MAX_BYTES = 4 * 1024 * 1024
+
 PAYLOAD_TYPES = {c._get_packed_fingerprint(): c for c in (radio_chunk_t, radio_ack_t, radio_report_t, mission_ack_t)}
 
 

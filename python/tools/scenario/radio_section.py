@@ -6,6 +6,8 @@ shore and the vehicles. With it the launcher starts the radio model
       bitrate_bps: 115200      # and every other key of sim.radio.link.RadioConfig
       report_period_s: 2.0     # the vehicles' status home while at the surface
       acoustic: {AUV1: 0}      # team index of each vehicle the shore may command acoustically
+      peers: true              # the status also goes vehicle to vehicle (PEER_RADIO_REPORT)
+      shore_lcm_url: "udpm://239.255.76.68:7667?ttl=0"   # the shore's own LCM (default: the world's)
 """
 
 from __future__ import annotations
@@ -20,6 +22,8 @@ from sim.radio.link import RadioConfig
 @dataclass
 class RadioSection(RadioConfig):
     report_period_s: float = setting(2.0, gt=0.0)
+    peers: bool = False  # each vehicle's status also goes to its teammates in radio range
+    shore_lcm_url: str = ""  # the shore's own LCM ("": the world's); the shore gateway and tools use it
     acoustic: dict[str, int] = field(default_factory=dict)
 
 
