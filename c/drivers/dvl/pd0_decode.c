@@ -50,11 +50,9 @@ static pd0_result fixed_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
         e->beam_angle_deg = AT(d, 59);
     }
     e->n_beams = AT(d, 9);
-    e->n_cells = AT(d, 10);
+    e->n_cells = AT(d, 10); /* a byte: never over PD0_MAX_CELLS; 0 when only bottom track is pinged */
     if (e->n_beams < 1 || e->n_beams > PD0_MAX_BEAMS)
         return PD0_BAD_BEAMS;
-    if (e->n_cells > PD0_MAX_CELLS)
-        return PD0_TOO_MANY_CELLS;
     e->pings_per_ensemble = (int)U16(d, 11);
     e->cell_size_m = U16(d, 13) * 0.01;
     e->blank_m = U16(d, 15) * 0.01;
@@ -95,15 +93,24 @@ static void set_rtc(pd0_rtc *t, int year, const uint8_t *c, int y2k)
                t->hour < 24 && t->minute < 60 && t->second < 60 && t->hundredths < 100;
 }
 
+/* The Y2K clock's century byte where a unit has one (19 or 20); firmware
+ * that leaves the clock's bytes zero (0) has not. */
+#define CENTURY_OK(c) ((c) >= 19 && (c) <= 21)
+/* The old clock's two-digit year: 80..99 were the 1900s (RDI's units date
+ * from 1991), the rest this century. */
+#define OLD_CLOCK_YEAR(yy) ((yy) >= 80 ? 1900 + (yy) : 2000 + (yy))
+
 static pd0_result variable_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
 {
     if (len < VARIABLE_MIN)
         return PD0_SHORT_TYPE;
     e->ensemble_number = (uint32_t)U16(d, 3) | (uint32_t)AT(d, 12) << 16;
-    /* the 2-digit year of the old clock (5-11) is of this century; the Y2K
-     * clock (58-65: century, year, month, ... hundredths) says it outright */
-    set_rtc(&e->rtc, 2000 + AT(d, 5), d + 4, 0);
-    if (len >= VARIABLE_Y2K)
+    /* the 2-digit year of the old clock (5-11); the Y2K clock (58-65:
+     * century, year, month, ... hundredths) says the century outright, and
+     * is the one read where the leader has it (an Ocean Surveyor's 60-byte
+     * leader has not) */
+    set_rtc(&e->rtc, OLD_CLOCK_YEAR(AT(d, 5)), d + 4, 0);
+    if (len >= VARIABLE_Y2K && CENTURY_OK(AT(d, 58)))
         set_rtc(&e->rtc, AT(d, 58) * 100 + AT(d, 59), d + 58, 1);
     e->bit_result = (uint16_t)U16(d, 13);
     e->sound_speed_mps = U16(d, 15);
@@ -150,7 +157,7 @@ static pd0_result bottom_track(const uint8_t *d, size_t len, pd0_ensemble *e)
         return PD0_SHORT_TYPE;
     e->has_bottom_track = 1;
     e->bt_pings = (int)U16(d, 3);
-    for (int b = 0; b < PD0_MAX_BEAMS; b++) {
+    for (int b = 0; b < PD0_BT_BEAMS; b++) {
         /* range: 16 bits of cm at 17.., and an MSB byte (65536 cm) at 78.. */
         uint32_t cm = U16(d, 17 + 2 * b);
         if (len >= BOTTOM_MSB)
@@ -171,7 +178,7 @@ pd0_result pd0_decode(const uint8_t *p, size_t n, pd0_ensemble *e)
     for (int c = 0; c < PD0_MAX_CELLS; c++)
         for (int b = 0; b < PD0_MAX_BEAMS; b++)
             e->velocity_mps[c][b] = NAN;
-    for (int b = 0; b < PD0_MAX_BEAMS; b++) {
+    for (int b = 0; b < PD0_BT_BEAMS; b++) {
         e->bt_range_m[b] = -1.0;
         e->bt_velocity_mps[b] = NAN;
     }
@@ -244,9 +251,11 @@ int64_t pd0_rtc_utime(const pd0_rtc *t)
     return s * 1000000 + (int64_t)t->hundredths * 10000;
 }
 
-long pd0_continuity_update(pd0_continuity *c, uint32_t number)
+long pd0_continuity_update(pd0_continuity *c, uint32_t number, int64_t device_utime)
 {
     number &= 0xFFFFFF;
+    int64_t last_utime = c->last_utime;
+    c->last_utime = device_utime;
     if (!c->have) {
         c->have = 1;
         c->last = number;
@@ -259,9 +268,16 @@ long pd0_continuity_update(pd0_continuity *c, uint32_t number)
         c->in_order++;
         return 0;
     }
-    if (d == 0) {
+    /* the same number: the same ensemble again (sent twice, or copied)
+     * unless both clocks say it came a second or more later: then the count
+     * was restarted one back (WinRiver II resuming a transect) */
+    if (d == 0 && (device_utime == 0 || last_utime == 0 || device_utime - last_utime < PD0_SAME_ENSEMBLE_US)) {
         c->repeats++;
         return -1;
+    }
+    if (d == 0) {
+        c->restarts++;
+        return -2;
     }
     if (d < 0x800000) { /* forward: the ones between were lost */
         c->gaps++;
