@@ -301,6 +301,12 @@ static void test_ocean_surveyor_leaders(void)
     add_standard(&s);
     n = finish(0x7F, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK && E.rtc.year == 1998);
+    /* the Ocean Surveyor's lowest frequency code, 110 */
+    s.cfg_lsb = 0x4E;
+    begin();
+    add_standard(&s);
+    n = finish(0x7F, B);
+    CHECK(pd0_decode(B, n, &E) == PD0_OK && E.frequency_khz == 38);
     /* a long leader whose Y2K bytes are zero (firmware without that clock):
      * the old clock, not the year 17 */
     s = workhorse();

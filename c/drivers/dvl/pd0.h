@@ -115,7 +115,7 @@ typedef struct {
     /* fixed leader (0x0000) */
     int fw_version, fw_revision;
     uint16_t system_config;  /* LSB: frequency, convex, facing up; MSB: beam angle, beams */
-    int frequency_khz;       /* 75 .. 2400; 0 if the code is not a published one */
+    int frequency_khz;       /* 38 .. 2400; 0 if the code is not a published one */
     int convex;              /* 1 convex transducer, 0 concave */
     int facing_up;
     double beam_angle_deg;   /* 15, 20, 30, or the fixed leader's angle byte for "other" */

@@ -36,7 +36,7 @@ static pd0_result fixed_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
     e->fw_revision = AT(d, 4);
     e->system_config = (uint16_t)U16(d, 5);
     unsigned lsb = AT(d, 5), msb = AT(d, 6);
-    static const int khz[8] = {75, 150, 300, 600, 1200, 2400, 0, 0};
+    static const int khz[8] = {75, 150, 300, 600, 1200, 2400, 38, 0}; /* 110: an Ocean Surveyor 38 */
     e->frequency_khz = khz[lsb & 7];
     e->convex = (lsb >> 3) & 1;
     e->facing_up = (lsb >> 7) & 1;
