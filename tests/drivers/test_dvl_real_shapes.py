@@ -27,7 +27,7 @@ CLEAN = ("waves_between", "winriver_many_types", "ocean_surveyor", "sentinel_v")
 def test_the_driver_takes_every_real_shape(lcm_url, tmp_path, child_env):
     data = pd0_shapes.renumber(b"".join(getattr(pd0_shapes, name)() for name in CLEAN), first=1)
     n = sum(1 for r in pd0_shapes.records(data) if r[:2] == b"\x7f\x7f")
-    assert n == 8 and sum(1 for r in pd0_shapes.records(data) if r[:2] == b"\x7f\x79") == 3
+    assert n == 6 and sum(1 for r in pd0_shapes.records(data) if r[:2] == b"\x7f\x79") == 3
     bus = Bus(lcm_url, "DVL", dvl_t)
     pty = Pty(tmp_path / "dvl0")
     cmd = programs.device_driver(
@@ -52,7 +52,7 @@ def test_the_driver_takes_every_real_shape(lcm_url, tmp_path, child_env):
         assert s.frames_decoded == n
         assert [d.ensemble for d in bus.msgs] == list(range(1, n + 1))
         # bottom lock where the shape has bottom track (the Sentinel V has none)
-        assert [d.mode for d in bus.msgs] == [dvl_t.MODE_BOTTOM_LOCK] * 6 + [dvl_t.MODE_WATER_TRACK] * 2
+        assert [d.mode for d in bus.msgs] == [dvl_t.MODE_BOTTOM_LOCK] * 4 + [dvl_t.MODE_WATER_TRACK] * 2
         for d in bus.msgs:
             assert all(math.isfinite(v) for v in d.velocity_mps) and d.device_utime > 0
         bus.wait(lambda: bus.health and bus.health[-1].decode_errors == 0, "health")

@@ -72,6 +72,8 @@ typedef struct {
     uint8_t buf[PD0_MAX_ENSEMBLE + 2];
     size_t start, len;       /* held bytes are buf[start .. len) */
     size_t deliver;          /* an ensemble handed out last call: dropped on the next */
+    size_t need;             /* the held header waits for this many bytes (0: not known), so a
+                              * read of a few bytes does not check its offset table again */
     uint64_t garbage_bytes;  /* bytes skipped while looking for a header */
     uint64_t waves_packets;  /* 7F 79 packets (a Workhorse's waves option) checked and skipped */
 } pd0_framer;

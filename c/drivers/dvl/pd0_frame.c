@@ -123,15 +123,18 @@ static int scan(pd0_framer *f, const uint8_t **ens, size_t *ens_len)
     for (;;) {
         align(f);
         size_t have = f->len - f->start, need = 0;
-        if (have < 2)
+        if (have < 2 || have < f->need)
             return -1;
+        f->need = 0;
         const uint8_t *p = f->buf + f->start;
         pd0_result r = check_header(p, have, &need);
         if (p[1] == WAVES_ID) {
             /* not an ensemble: skipped whole when its sum is good, else its
              * first byte is garbage (nothing the driver decodes was lost) */
-            if (r == PD0_OK && need)
+            if (r == PD0_OK && need) {
+                f->need = need;
                 return -1;
+            }
             if (r == PD0_OK) {
                 f->start += (size_t)u16(p + 2) + 2;
                 f->waves_packets++;
@@ -145,8 +148,10 @@ static int scan(pd0_framer *f, const uint8_t **ens, size_t *ens_len)
             f->start++; /* resync one byte after the refused header */
             return r;
         }
-        if (need)
+        if (need) {
+            f->need = need;
             return -1;
+        }
         *ens = p;
         *ens_len = (size_t)u16(p + 2) + 2;
         f->deliver = *ens_len;
@@ -198,5 +203,6 @@ int pd0_framer_flush(pd0_framer *f)
     else
         f->garbage_bytes += have; /* too little to be a header, or a waves packet cut */
     f->start = f->len = 0;
+    f->need = 0;
     return r;
 }
