@@ -473,7 +473,9 @@ static void test_garbage_and_resync(void)
     uint32_t last = 0;
     int ok = feed(&f, stream, at, 7, refused, &last);
     CHECK(ok == 3 && last == 9);
-    CHECK(refused[PD0_BAD_LENGTH] == 1);
+    /* the junk's last 7F with the ensemble's 7F 7F is a header of 7F 15 01 as
+     * its 24-bit length; then the short length */
+    CHECK(refused[PD0_BAD_LENGTH] == 2);
     CHECK(refused[PD0_BAD_OFFSET] == 1);
     CHECK(refused[PD0_BAD_CHECKSUM] == 2); /* the corrupted one, and the one cut by a new ensemble */
     CHECK(f.garbage_bytes > 0);
@@ -493,6 +495,10 @@ static void test_every_refusal(void)
     put16(B + 2, 60000); /* any 16-bit length is a PD0 length: this one is past the buffer */
     CHECK(pd0_decode(B, n, &E) == PD0_TRUNCATED);
     put16(B + 2, 4);
+    CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
+    /* the byte after the length is its MSB (the Pathfinder's manual): over 64 kB */
+    n = build(&s, B);
+    B[4] = 1;
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
     n = build(&s, B);
     B[n - 1] ^= 1;

@@ -316,6 +316,23 @@ static void test_ocean_surveyor_leaders(void)
     n = finish(0x7F, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK && !E.rtc.y2k && E.rtc.year == 2017);
     CHECK(pd0_rtc_utime(&E.rtc) > 0);
+    /* a Pathfinder's 77-byte leader: spare where the Y2K clock would be, so
+     * bytes there that are not that clock (its year not the old clock's) are
+     * not read as one */
+    s = workhorse();
+    s.variable_len = 77;
+    begin();
+    add_standard(&s);
+    types_buf[type_off[1] + 58] = 63; /* "2063" */
+    n = finish(0x7F, B);
+    CHECK(pd0_decode(B, n, &E) == PD0_OK && !E.rtc.y2k && E.rtc.year == 2017);
+    /* and its 24-bit length: the byte after the 16 bits is their MSB */
+    s = workhorse();
+    begin();
+    add_standard(&s);
+    n = finish(0x7F, B);
+    B[4] = 2; /* 128 kB more than the 16 bits say: longer than any unit sends */
+    CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
 }
 
 static void test_sentinel_v_and_beam_counts(void)

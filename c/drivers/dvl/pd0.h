@@ -7,8 +7,9 @@
  * No LCM calls, no I/O, no allocation: bytes in, checked values out.
  *
  * An ensemble, all integers little-endian:
- *   header    7F 7F, the number of bytes up to the checksum (16 bits), a spare
- *             byte, the number of data types N (one byte: up to 255), then N
+ *   header    7F 7F, the number of bytes up to the checksum (16 bits, and the
+ *             next byte, "spare" in the Workhorse's manual, their MSB in the
+ *             Pathfinder's), the number of data types N (one byte: up to 255), then N
  *             offsets (16 bits each, from the first 7F) of the data types,
  *             each starting with its 16-bit ID; the first data type follows
  *             the offsets;
@@ -29,8 +30,9 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* The length field's range: 16 bits, so an ensemble and its checksum fit
- * 65537 bytes. The framer holds one at most. */
+/* The longest ensemble taken (no unit sends one near it: 7.3 kB is the
+ * longest seen, WinRiver II's); the framer holds one at most. A length over
+ * it (the 24-bit length allows 16 MB) is refused as a bad length. */
 #define PD0_MAX_ENSEMBLE 65535
 #define PD0_MAX_TYPES 255 /* the header's one-byte count (WinRiver II sends 60+ with its NMEA) */
 /* Beams of the profile: 4 for a Janus head, 5 where the vertical beam is in
@@ -45,7 +47,8 @@
 typedef enum {
     PD0_OK = 0,
     PD0_BAD_CHECKSUM,       /* the sum does not match */
-    PD0_BAD_LENGTH,         /* the length field: shorter than its header and offsets */
+    PD0_BAD_LENGTH,         /* the length field: shorter than its header and offsets, or over
+                             * PD0_MAX_ENSEMBLE */
     PD0_BAD_HEADER,         /* no data types */
     PD0_TRUNCATED,          /* fewer bytes than the length says: a buffer, or a stream that went quiet */
     PD0_BAD_OFFSET,         /* the first data type not right after the offsets, an offset past the end, or

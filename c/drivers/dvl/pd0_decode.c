@@ -8,6 +8,7 @@
 #include "drivers/dvl/pd0.h"
 
 pd0_result pd0__check_whole(const uint8_t *p, size_t n);
+size_t pd0__length(const uint8_t *p);
 
 static unsigned u16(const uint8_t *p) { return (unsigned)p[0] | (unsigned)p[1] << 8; }
 static int s16(const uint8_t *p) { return (int16_t)u16(p); }
@@ -94,7 +95,9 @@ static void set_rtc(pd0_rtc *t, int year, const uint8_t *c, int y2k)
 }
 
 /* The Y2K clock's century byte where a unit has one (19 or 20); firmware
- * that leaves the clock's bytes zero (0) has not. */
+ * that leaves the clock's bytes zero has not, nor has a Pathfinder, whose
+ * leader is as long but spare there: the clock is read when its century is
+ * one and its year the old clock's. */
 #define CENTURY_OK(c) ((c) >= 19 && (c) <= 21)
 /* The old clock's two-digit year: 80..99 were the 1900s (RDI's units date
  * from 1991), the rest this century. */
@@ -110,7 +113,7 @@ static pd0_result variable_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
      * is the one read where the leader has it (an Ocean Surveyor's 60-byte
      * leader has not) */
     set_rtc(&e->rtc, OLD_CLOCK_YEAR(AT(d, 5)), d + 4, 0);
-    if (len >= VARIABLE_Y2K && CENTURY_OK(AT(d, 58)))
+    if (len >= VARIABLE_Y2K && CENTURY_OK(AT(d, 58)) && AT(d, 59) == AT(d, 5))
         set_rtc(&e->rtc, AT(d, 58) * 100 + AT(d, 59), d + 58, 1);
     e->bit_result = (uint16_t)U16(d, 13);
     e->sound_speed_mps = U16(d, 15);
@@ -185,7 +188,7 @@ pd0_result pd0_decode(const uint8_t *p, size_t n, pd0_ensemble *e)
     pd0_result r = pd0__check_whole(p, n);
     if (r != PD0_OK)
         return r;
-    size_t nbytes = u16(p + 2), ntypes = p[5];
+    size_t nbytes = pd0__length(p), ntypes = p[5];
     size_t off[PD0_MAX_TYPES + 1];
     for (size_t i = 0; i < ntypes; i++)
         off[i] = u16(p + 6 + 2 * i);

@@ -35,6 +35,12 @@ uint16_t pd0_checksum(const uint8_t *p, size_t n)
 
 static unsigned u16(const uint8_t *p) { return (unsigned)p[0] | (unsigned)p[1] << 8; }
 
+/* The bytes up to the checksum: 16 bits at 3-4 and, the Pathfinder's manual
+ * says, the "spare" byte 5 as their MSB (a checksum offset of 24 bits; the
+ * Workhorse's manual calls it spare and sends 0). */
+size_t pd0__length(const uint8_t *p);
+size_t pd0__length(const uint8_t *p) { return (size_t)u16(p + 2) | (size_t)p[4] << 16; }
+
 /* The checks of a header whose first `have` bytes are known; the framer
  * calls it as bytes arrive, the decoder with the whole buffer. Returns
  * PD0_OK when what is known is fine, *need set to the bytes still needed
@@ -44,13 +50,14 @@ static unsigned u16(const uint8_t *p) { return (unsigned)p[0] | (unsigned)p[1] <
  * to 64 kB, a minute of a 9600-baud stream) is refused at once, not held. */
 static pd0_result check_header(const uint8_t *p, size_t have, size_t *need)
 {
-    if (have < 4) {
-        *need = 4;
+    if (have < 5) {
+        *need = 5;
         return PD0_OK;
     }
-    size_t nbytes = u16(p + 2);
-    /* 6 header bytes and one offset at least */
-    if (nbytes < 8)
+    size_t nbytes = pd0__length(p);
+    /* 6 header bytes and one offset at least; longer than the framer holds
+     * (no unit sends that much: a false 7F 7F, or a broken length) */
+    if (nbytes < 8 || nbytes > PD0_MAX_ENSEMBLE)
         return PD0_BAD_LENGTH;
     if (have < 6) {
         *need = 6;
@@ -136,7 +143,7 @@ static int scan(pd0_framer *f, const uint8_t **ens, size_t *ens_len)
                 return -1;
             }
             if (r == PD0_OK) {
-                f->start += (size_t)u16(p + 2) + 2;
+                f->start += pd0__length(p) + 2;
                 f->waves_packets++;
             } else {
                 f->start++;
@@ -153,7 +160,7 @@ static int scan(pd0_framer *f, const uint8_t **ens, size_t *ens_len)
             return -1;
         }
         *ens = p;
-        *ens_len = (size_t)u16(p + 2) + 2;
+        *ens_len = pd0__length(p) + 2;
         f->deliver = *ens_len;
         return PD0_OK;
     }
