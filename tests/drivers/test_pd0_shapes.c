@@ -7,7 +7,8 @@
  *   - an Ocean Surveyor (VMDAS): a 60-byte variable leader without the Y2K
  *     clock, an 81-byte bottom track, fixed attitude types 0x3000 / 0x30D8;
  *   - a Sentinel V: the beam angle in the fixed leader's byte ("other", 25
- *     degrees), its 0x7000.. and beam-5 types; 5 and 3 beam profiles;
+ *     degrees), its 0x7000.. and beam-5 types; a leader saying 3 or 5 beams
+ *     over the same four values a cell;
  *   - an ensemble longer than 16 kB, a bottom-track-only unit (0 cells);
  *   - a count restarted one back at another time (a new ping, not a repeat). */
 #include <math.h>
@@ -65,7 +66,7 @@ typedef struct {
     uint8_t cfg_lsb, cfg_msb, ex, angle_byte, century, year;
     uint32_t number;
     uint8_t second;
-    int16_t vel[5];  /* every cell's values, per beam */
+    int16_t vel[4];  /* every cell's values, per beam */
 } shape;
 
 static shape workhorse(void)
@@ -77,7 +78,7 @@ static shape workhorse(void)
     s.century = 20;
     s.year = 17;
     s.number = 224;
-    for (int b = 0; b < 5; b++)
+    for (int b = 0; b < 4; b++)
         s.vel[b] = (int16_t)(100 * (b + 1));
     return s;
 }
@@ -124,11 +125,14 @@ static void add_standard(const shape *s)
         v[63] = s->second;
         v[64] = 72;
     }
-    size_t per = (size_t)s->cells * (size_t)s->beams;
+    /* four values a cell whatever the leader's beam count (the published
+     * "2 bytes + 8 bytes per depth cell") */
+    size_t per = (size_t)s->cells * 4;
     uint8_t *vel = add(0x0100, 2 + 2 * per);
     for (int c = 0; c < s->cells; c++)
-        for (int b = 0; b < s->beams; b++)
-            put16(vel + 2 + 2 * (c * s->beams + b), (unsigned)(uint16_t)(s->vel[b] + c));
+        for (int b = 0; b < 4; b++)
+            put16(vel + 2 + 2 * (c * 4 + b),
+                  (unsigned)(uint16_t)(s->vel[b] == PD0_INVALID_VELOCITY ? s->vel[b] : s->vel[b] + c));
     for (unsigned id = 0x0200; id <= 0x0400; id += 0x0100)
         memset(add(id, 2 + per) + 2, 100, per);
     if (s->bt_len) {
@@ -360,27 +364,32 @@ static void test_sentinel_v_and_beam_counts(void)
     auv_dvl_t d;
     pd0_to_dvl(&E, &m, &d);
     CHECK(d.mode == AUV_DVL_T_MODE_WATER_TRACK);
-    /* five beams in the profile (the vertical one last): the Janus four solve it alike */
+    /* the leader's number of beams is the beams the velocity uses, not the
+     * data's layout: with 5 or 3 the profile is the same four values a cell
+     * (read with that count as the stride it would be misread, or cut short) */
     double v4[3];
-    CHECK(d.mode == AUV_DVL_T_MODE_WATER_TRACK);
     memcpy(v4, d.velocity_mps, sizeof v4);
-    s.beams = 5;
-    begin();
-    add_standard(&s);
-    n = finish(0x7F, B);
-    CHECK(pd0_decode(B, n, &E) == PD0_OK && E.n_beams == 5);
-    CHECK_NEAR(E.velocity_mps[9][4], (500 + 9) * 1e-3, 1e-12);
-    pd0_to_dvl(&E, &m, &d);
-    CHECK(d.mode == AUV_DVL_T_MODE_WATER_TRACK);
-    for (int i = 0; i < 3; i++)
-        CHECK_NEAR(d.velocity_mps[i], v4[i], 1e-12);
-    /* three beams in the earth frame: east, north, up and no error velocity */
+    for (int beams = 3; beams <= 5; beams += 2) {
+        s.beams = beams;
+        begin();
+        add_standard(&s);
+        n = finish(0x7F, B);
+        CHECK(pd0_decode(B, n, &E) == PD0_OK && E.n_beams == beams);
+        CHECK_NEAR(E.velocity_mps[9][3], (400 + 9) * 1e-3, 1e-12);
+        CHECK_NEAR(E.velocity_mps[1][0], (100 + 1) * 1e-3, 1e-12);
+        pd0_to_dvl(&E, &m, &d);
+        CHECK(d.mode == AUV_DVL_T_MODE_WATER_TRACK);
+        for (int i = 0; i < 3; i++)
+            CHECK_NEAR(d.velocity_mps[i], v4[i], 1e-12);
+    }
+    /* three beams in use, beam 4 marked bad: the 3-beam solution (EX allows it) */
+    s.vel[3] = PD0_INVALID_VELOCITY;
     s.beams = 3;
-    s.ex = 3 << 3;
+    s.ex = 0x02;
     begin();
     add_standard(&s);
     n = finish(0x7F, B);
-    CHECK(pd0_decode(B, n, &E) == PD0_OK && E.n_beams == 3);
+    CHECK(pd0_decode(B, n, &E) == PD0_OK && E.three_beam);
     pd0_to_dvl(&E, &m, &d);
     CHECK(d.mode == AUV_DVL_T_MODE_WATER_TRACK && d.error_velocity_mps == 0);
 }

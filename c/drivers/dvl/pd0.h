@@ -35,9 +35,13 @@
  * it (the 24-bit length allows 16 MB) is refused as a bad length. */
 #define PD0_MAX_ENSEMBLE 65535
 #define PD0_MAX_TYPES 255 /* the header's one-byte count (WinRiver II sends 60+ with its NMEA) */
-/* Beams of the profile: 4 for a Janus head, 5 where the vertical beam is in
- * the profile, 3 for some; bottom track always has four (PD0_BT_BEAMS). */
+/* The fixed leader's number of beams is the beams used for the velocity
+ * (3 when a unit solves with three, 4, 5 with a vertical beam), not the
+ * layout of the data: the profile types hold four values per cell whatever
+ * it says ("2 bytes + 8 bytes per depth cell" for the velocity; a Sentinel V's
+ * fifth beam has data types of its own), and bottom track four per type. */
 #define PD0_MAX_BEAMS 5
+#define PD0_PROFILE_BEAMS 4
 #define PD0_BT_BEAMS 4
 /* The fixed leader's one-byte cell count (WN: 1..128 on a Workhorse, more
  * on a Rio Grande or Ocean Surveyor, 132 seen): all of it is decoded. */
@@ -124,7 +128,8 @@ typedef struct {
     int convex;              /* 1 convex transducer, 0 concave */
     int facing_up;
     double beam_angle_deg;   /* 15, 20, 30, or the fixed leader's angle byte for "other" */
-    int n_beams, n_cells, pings_per_ensemble;
+    int n_beams;             /* beams used for the velocity (the profile has PD0_PROFILE_BEAMS) */
+    int n_cells, pings_per_ensemble;
     double cell_size_m, blank_m, bin1_distance_m;
     uint8_t coord_transform; /* the EX byte */
     pd0_frame frame;         /* from EX bits 3-4 */
@@ -143,10 +148,10 @@ typedef struct {
 
     /* profile: [cell][beam]; velocities in the frame above, NAN where marked invalid */
     int has_velocity, has_correlation, has_intensity, has_percent_good;
-    double velocity_mps[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t correlation[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t intensity[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t percent_good[PD0_MAX_CELLS][PD0_MAX_BEAMS];
+    double velocity_mps[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t correlation[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t intensity[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t percent_good[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
 
     /* bottom track (0x0600); per beam whatever the frame, velocities in the frame */
     int has_bottom_track;

@@ -131,13 +131,13 @@ static pd0_result variable_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
 /* Velocity, correlation, intensity and percent good: [cell][beam] after the ID. */
 static pd0_result profile(const uint8_t *d, size_t len, unsigned id, pd0_ensemble *e)
 {
-    size_t per = (size_t)e->n_beams * (size_t)e->n_cells;
+    size_t per = (size_t)PD0_PROFILE_BEAMS * (size_t)e->n_cells;
     size_t width = id == VELOCITY ? 2 : 1;
     if (len < 2 + per * width)
         return PD0_SHORT_TYPE;
     const uint8_t *v = d + 2;
     for (int c = 0; c < e->n_cells; c++)
-        for (int b = 0; b < e->n_beams; b++, v += width) {
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++, v += width) {
             switch (id) {
             case VELOCITY:
                 e->velocity_mps[c][b] = s16(v) == PD0_INVALID_VELOCITY ? NAN : s16(v) * 0.001;
@@ -179,7 +179,7 @@ pd0_result pd0_decode(const uint8_t *p, size_t n, pd0_ensemble *e)
 {
     memset(e, 0, sizeof *e);
     for (int c = 0; c < PD0_MAX_CELLS; c++)
-        for (int b = 0; b < PD0_MAX_BEAMS; b++)
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++)
             e->velocity_mps[c][b] = NAN;
     for (int b = 0; b < PD0_BT_BEAMS; b++) {
         e->bt_range_m[b] = -1.0;

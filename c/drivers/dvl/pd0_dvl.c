@@ -139,8 +139,9 @@ int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double
     switch (e->frame) {
     case PD0_FRAME_BEAM: {
         int n_good;
-        /* beams 1-4 are the Janus four (a fifth, vertical, beam is not in the solution) */
-        if (e->n_beams < 4 || !beam_to_inst(e, v4, v, err_mps, &n_good))
+        /* beams 1-4, the Janus four, whatever the leader's count (a beam left
+         * out is marked invalid: the 3-beam solution, where allowed) */
+        if (!beam_to_inst(e, v4, v, err_mps, &n_good))
             return 0;
         inst_to_ship(e, v, ship);
         break;

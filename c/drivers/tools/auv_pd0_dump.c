@@ -54,7 +54,7 @@ static void print_ensemble(const pd0_ensemble *e, const auv_dvl_t *d)
     printf(",\"velocity_mps\":[");
     for (int c = 0; c < e->n_cells; c++) {
         printf(c ? ",[" : "[");
-        for (int b = 0; b < e->n_beams; b++) {
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++) {
             if (b)
                 printf(",");
             num(e->velocity_mps[c][b]);
