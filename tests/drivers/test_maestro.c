@@ -42,6 +42,10 @@ static void test_published_examples(void)
     CHECK(BYTES(b, maestro_get_errors(&POLOLU, b), 0xAA, 0x0C, 0x21));
     CHECK(BYTES(b, maestro_go_home(&COMPACT, b), 0xA2));
     CHECK(BYTES(b, maestro_go_home(&POLOLU, b), 0xAA, 0x0C, 0x22));
+    /* the baud rate indication 0xAA, as a whole Pololu Get Errors in either framing */
+    CHECK(BYTES(b, maestro_baud_indication(&COMPACT, b), 0xAA, 0x0C, 0x21));
+    maestro_framing dev3 = {1, 3};
+    CHECK(BYTES(b, maestro_baud_indication(&dev3, b), 0xAA, 0x03, 0x21));
     /* the extremes of a 14-bit number, and what the protocol cannot say */
     CHECK(BYTES(b, maestro_set_target(&COMPACT, b, 23, 16383), 0x84, 0x17, 0x7F, 0x7F));
     CHECK(maestro_set_target(&COMPACT, b, 24, 6000) == 0);

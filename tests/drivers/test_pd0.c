@@ -446,10 +446,16 @@ static void test_garbage_and_resync(void)
     memcpy(stream, junk, sizeof junk - 1);
     at += sizeof junk - 1;
     at += build(&s, stream + at);
-    /* a header with an absurd length: refused, the stream goes on */
-    const uint8_t absurd[] = {0x7F, 0x7F, 0xFF, 0xFF, 0x00, 0x05};
+    /* a header with a length shorter than itself: refused, the stream goes on */
+    const uint8_t absurd[] = {0x7F, 0x7F, 0x05, 0x00, 0x00, 0x05};
     memcpy(stream + at, absurd, sizeof absurd);
     at += sizeof absurd;
+    /* a 7F 7F in garbage, its length 64 kB: refused by its offset table at
+     * once, not held for the bytes it asks for (the ensembles behind it come
+     * out now, ok == 3 below) */
+    const uint8_t false_header[] = {0x7F, 0x7F, 0xFF, 0xFF, 0x00, 0x02, 0x34, 0x12, 0x00, 0x10};
+    memcpy(stream + at, false_header, sizeof false_header);
+    at += sizeof false_header;
     /* an ensemble with a bad sum, then a good one right after */
     size_t bad = build(&s, stream + at);
     stream[at + 40] ^= 0x55;
@@ -467,7 +473,10 @@ static void test_garbage_and_resync(void)
     uint32_t last = 0;
     int ok = feed(&f, stream, at, 7, refused, &last);
     CHECK(ok == 3 && last == 9);
-    CHECK(refused[PD0_BAD_LENGTH] == 1);
+    /* the junk's last 7F with the ensemble's 7F 7F is a header of 7F 15 01 as
+     * its 24-bit length; then the short length */
+    CHECK(refused[PD0_BAD_LENGTH] == 2);
+    CHECK(refused[PD0_BAD_OFFSET] == 1);
     CHECK(refused[PD0_BAD_CHECKSUM] == 2); /* the corrupted one, and the one cut by a new ensemble */
     CHECK(f.garbage_bytes > 0);
     /* a device that stops mid-ensemble for good: a read timeout flushes it */
@@ -483,9 +492,13 @@ static void test_every_refusal(void)
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
     /* a length pointing past the buffer */
     CHECK(pd0_decode(B, n - 3, &E) == PD0_TRUNCATED);
-    put16(B + 2, 60000);
-    CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
+    put16(B + 2, 60000); /* any 16-bit length is a PD0 length: this one is past the buffer */
+    CHECK(pd0_decode(B, n, &E) == PD0_TRUNCATED);
     put16(B + 2, 4);
+    CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
+    /* the byte after the length is its MSB (the Pathfinder's manual): over 64 kB */
+    n = build(&s, B);
+    B[4] = 1;
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_LENGTH);
     n = build(&s, B);
     B[n - 1] ^= 1;
@@ -493,9 +506,8 @@ static void test_every_refusal(void)
     n = build(&s, B);
     B[5] = 0;
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_HEADER);
-    B[5] = PD0_MAX_TYPES + 1;
-    CHECK(pd0_decode(B, n, &E) == PD0_BAD_HEADER);
-    /* offsets: inside the header, past the end, out of order */
+    /* offsets: inside the header, past the end, out of order, and the first
+     * one not right after the offsets */
     n = build(&s, B);
     put16(B + 6, 4);
     reseal(B);
@@ -508,21 +520,25 @@ static void test_every_refusal(void)
     put16(B + 8, 20);
     reseal(B);
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_OFFSET);
+    n = build(&s, B);
+    put16(B + 6, (unsigned)(B[6] | B[7] << 8) + 2);
+    reseal(B);
+    CHECK(pd0_decode(B, n, &E) == PD0_BAD_OFFSET);
     /* a velocity type too short for its cells: the cell count raised */
     n = build(&s, B);
     B[20 + 9] = NCELLS + 1;
     reseal(B);
     CHECK(pd0_decode(B, n, &E) == PD0_SHORT_TYPE);
     n = build(&s, B);
-    B[20 + 9] = 200;
+    B[20 + 9] = 255; /* every cell count of the byte is one (pd0_shapes: 132), here more than the bytes */
     reseal(B);
-    CHECK(pd0_decode(B, n, &E) == PD0_TOO_MANY_CELLS);
+    CHECK(pd0_decode(B, n, &E) == PD0_SHORT_TYPE);
     n = build(&s, B);
     B[20 + 8] = 0;
     reseal(B);
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_BEAMS);
     n = build(&s, B);
-    B[20 + 8] = 5;
+    B[20 + 8] = PD0_MAX_BEAMS + 1;
     reseal(B);
     CHECK(pd0_decode(B, n, &E) == PD0_BAD_BEAMS);
     s.angle_code = 3;
@@ -564,30 +580,30 @@ static void test_every_refusal(void)
 static void test_continuity(void)
 {
     pd0_continuity c = {0};
-    CHECK(pd0_continuity_update(&c, 100) == 0);
-    CHECK(pd0_continuity_update(&c, 101) == 0);
-    CHECK(pd0_continuity_update(&c, 104) == 2);
-    CHECK(pd0_continuity_update(&c, 104) == -1);
-    CHECK(pd0_continuity_update(&c, 3) == -2);
+    CHECK(pd0_continuity_update(&c, 100, 0) == 0);
+    CHECK(pd0_continuity_update(&c, 101, 0) == 0);
+    CHECK(pd0_continuity_update(&c, 104, 0) == 2);
+    CHECK(pd0_continuity_update(&c, 104, 0) == -1);
+    CHECK(pd0_continuity_update(&c, 3, 0) == -2);
     CHECK(c.gaps == 1 && c.missed == 2 && c.repeats == 1 && c.restarts == 1 && c.in_order == 2);
     /* the 16-bit number rolls into its MSB byte, and 24 bits wrap to 0 */
-    CHECK(pd0_continuity_update(&c, 0xFFFF) == 0xFFFF - 3 - 1);
-    CHECK(pd0_continuity_update(&c, 0x10000) == 0);
-    CHECK(pd0_continuity_update(&c, 0xFFFFFE) == -2); /* more than half the range ahead: behind */
-    CHECK(pd0_continuity_update(&c, 0xFFFFFF) == 0);
-    CHECK(pd0_continuity_update(&c, 0) == 0);
-    CHECK(pd0_continuity_update(&c, 2) == 1);
+    CHECK(pd0_continuity_update(&c, 0xFFFF, 0) == 0xFFFF - 3 - 1);
+    CHECK(pd0_continuity_update(&c, 0x10000, 0) == 0);
+    CHECK(pd0_continuity_update(&c, 0xFFFFFE, 0) == -2); /* more than half the range ahead: behind */
+    CHECK(pd0_continuity_update(&c, 0xFFFFFF, 0) == 0);
+    CHECK(pd0_continuity_update(&c, 0, 0) == 0);
+    CHECK(pd0_continuity_update(&c, 2, 0) == 1);
     /* from the bytes: LSB 0xFFFF then MSB 1, LSB 0 */
     spec s = base();
     s.number = 0x00FFFF;
     size_t n = build(&s, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
     pd0_continuity d = {0};
-    pd0_continuity_update(&d, E.ensemble_number);
+    pd0_continuity_update(&d, E.ensemble_number, 0);
     s.number = 0x010000;
     n = build(&s, B);
     CHECK(pd0_decode(B, n, &E) == PD0_OK);
-    CHECK(pd0_continuity_update(&d, E.ensemble_number) == 0 && E.ensemble_number == 65536);
+    CHECK(pd0_continuity_update(&d, E.ensemble_number, 0) == 0 && E.ensemble_number == 65536);
 }
 
 static const unit_test tests[] = {

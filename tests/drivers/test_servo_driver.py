@@ -58,6 +58,7 @@ class Wire:
             c.min_qus, c.max_qus = 4, 16383
         self.seen: list[tuple[int, int, int]] = []
         self.written = 0
+        self.head = b""  # the first bytes the driver wrote
 
     def service(self) -> None:
         while select.select([self.pty.master], [], [], 0)[0]:
@@ -68,6 +69,7 @@ class Wire:
                     raise
                 return
             self.written += len(data)
+            self.head += data[: max(0, 16 - len(self.head))]
             reply = self.maestro.feed(data)
             if reply:
                 self.pty.write(reply)
@@ -123,8 +125,10 @@ def test_servo_on_a_pty(sanitized, lcm_url, tmp_path, child_env):
     bus = ServoBus(lcm_url, wire)
     proc = start(servo_cmd(tmp_path, lcm_url, table, sanitized), tmp_path, child_env)
     try:
-        # the start: each channel's limits, then neutral; nothing counted
+        # the start: the baud rate indication (a whole Get Errors: AA, device 12,
+        # 21), each channel's limits, then neutral; nothing counted
         bus.wait(lambda: wire.last() == NEUTRAL, "neutral at the start")
+        assert wire.head.startswith(b"\xaa\x0c\x21\x87"), wire.head.hex()
         ch1 = wire.maestro.channels[1]
         assert (ch1.speed, ch1.accel) == (100, 4)
         s = bus.wait_status(lambda s: s.port_open, "the port open")

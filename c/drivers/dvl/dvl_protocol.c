@@ -150,10 +150,10 @@ static int holds_header(const pd0_framer *f)
 
 /* The ensemble number's continuity; returns 0 when the ensemble is not to be
  * published (a repeat: the same ping twice would count twice in a filter). */
-static int check_continuity(dvl_state *s, drv_ctx *ctx, uint32_t number)
+static int check_continuity(dvl_state *s, drv_ctx *ctx, uint32_t number, int64_t device_utime)
 {
     uint32_t last = s->cont.last;
-    long k = pd0_continuity_update(&s->cont, number);
+    long k = pd0_continuity_update(&s->cont, number, device_utime);
     if (k > 0)
         drv_drop(ctx, "ensemble gap", "ensemble %u after %u: %ld missed", number, last, k);
     else if (k == -1)
@@ -171,7 +171,7 @@ static void on_ensemble(dvl_state *s, drv_ctx *ctx, const uint8_t *p, size_t n, 
         return;
     }
     drv_frame_ok(ctx, stamp);
-    if (!check_continuity(s, ctx, s->ens.ensemble_number))
+    if (!check_continuity(s, ctx, s->ens.ensemble_number, pd0_rtc_utime(&s->ens.rtc)))
         return;
     auv_dvl_t m;
     memset(&m, 0, sizeof m);
@@ -201,9 +201,8 @@ static void dvl_feed(void *state, drv_ctx *ctx, const uint8_t *bytes, size_t n, 
         } else {
             drv_drop(ctx, pd0_result_name((pd0_result)r), "a header in the read ending at stream byte %llu",
                      (unsigned long long)s->bytes_in);
-            /* a bad offset table skips its whole ensemble; the others resync
-             * one byte on, through the rest of the refused ensemble */
-            s->after_refusal = r != PD0_BAD_OFFSET;
+            /* the search resumes one byte on, through the rest of the refused ensemble */
+            s->after_refusal = 1;
         }
     }
     count_garbage(s, ctx);

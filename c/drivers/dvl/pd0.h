@@ -1,19 +1,27 @@
 /* Teledyne RDI PD0, the binary ensemble of Workhorse, Pathfinder, Tasman and
- * Navigator DVLs and ADCPs (the "Commands and Output Data Format" manuals):
- * an incremental framer over any byte stream, a strict decoder of one
- * ensemble, ensemble-number continuity, and the ensemble turned into the
- * project's dvl_t (docs/drivers.md, "DVL: Teledyne RDI PD0").
+ * Navigator DVLs and of RDI's ADCPs (Rio Grande, Ocean Surveyor, RiverPro,
+ * Sentinel V; the "Commands and Output Data Format" manuals): an incremental
+ * framer over any byte stream, a strict decoder of one ensemble,
+ * ensemble-number continuity, and the ensemble turned into the project's
+ * dvl_t (docs/drivers.md, "DVL: Teledyne RDI PD0").
  * No LCM calls, no I/O, no allocation: bytes in, checked values out.
  *
  * An ensemble, all integers little-endian:
- *   header    7F 7F, the number of bytes up to the checksum (16 bits), a spare
- *             byte, the number of data types N, then N offsets (16 bits each,
- *             from the first 7F) of the data types, each starting with its
- *             16-bit ID;
+ *   header    7F 7F, the number of bytes up to the checksum (16 bits, and the
+ *             next byte, "spare" in the Workhorse's manual, their MSB in the
+ *             Pathfinder's), the number of data types N (one byte: up to 255), then N
+ *             offsets (16 bits each, from the first 7F) of the data types,
+ *             each starting with its 16-bit ID; the first data type follows
+ *             the offsets;
  *   data      0x0000 fixed leader, 0x0080 variable leader, 0x0100 velocity,
  *             0x0200 correlation, 0x0300 echo intensity, 0x0400 percent good,
- *             0x0600 bottom track (others are skipped and counted);
+ *             0x0600 bottom track; any other ID (navigation 0x2000-0x2104,
+ *             NMEA 0x2022, fixed attitude 0x3000-0x30FF, beam 5 0x0A00-0x0F01,
+ *             Sentinel V 0x7000-0x7004, surface layer 0x0010-0x0510, ...) is
+ *             skipped by its offset and counted;
  *   checksum  the sum of every byte before it, modulo 65536 (16 bits).
+ * Between ensembles a Workhorse with the waves option sends waves packets,
+ * framed the same way but led by 7F 79: the framer checks and skips them.
  *
  * Every refusal has a reason (pd0_result_name), which the driver counts. */
 #ifndef DRIVERS_PD0_H
@@ -22,30 +30,39 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* An ensemble longer than this is refused as a bad length: a 4-beam unit at
- * its most cells (below) with every data type is under 6 kB; the margin is
- * for data types we skip (navigation, status). The framer never holds more. */
-#define PD0_MAX_ENSEMBLE 16384
-#define PD0_MAX_TYPES 32 /* data types in one ensemble; the devices send at most ~12 */
-#define PD0_MAX_BEAMS 4
-/* The Workhorse/Navigator limit of the WN command (1..128): a count above is
- * refused as too many cells, never silently cut. */
-#define PD0_MAX_CELLS 128
+/* The longest ensemble taken (no unit sends one near it: 7.3 kB is the
+ * longest seen, WinRiver II's); the framer holds one at most. A length over
+ * it (the 24-bit length allows 16 MB) is refused as a bad length. */
+#define PD0_MAX_ENSEMBLE 65535
+#define PD0_MAX_TYPES 255 /* the header's one-byte count (WinRiver II sends 60+ with its NMEA) */
+/* The fixed leader's number of beams is the beams used for the velocity
+ * (3 when a unit solves with three, 4, 5 with a vertical beam), not the
+ * layout of the data: the profile types hold four values per cell whatever
+ * it says ("2 bytes + 8 bytes per depth cell" for the velocity; a Sentinel V's
+ * fifth beam has data types of its own), and bottom track four per type. */
+#define PD0_MAX_BEAMS 5
+#define PD0_PROFILE_BEAMS 4
+#define PD0_BT_BEAMS 4
+/* The fixed leader's one-byte cell count (WN: 1..128 on a Workhorse, more
+ * on a Rio Grande or Ocean Surveyor, 132 seen): all of it is decoded. */
+#define PD0_MAX_CELLS 255
 #define PD0_INVALID_VELOCITY (-32768) /* the raw marker of a bad velocity */
 
 typedef enum {
     PD0_OK = 0,
     PD0_BAD_CHECKSUM,       /* the sum does not match */
-    PD0_BAD_LENGTH,         /* the length field: shorter than its header, or over PD0_MAX_ENSEMBLE */
-    PD0_BAD_HEADER,         /* no data types, or over PD0_MAX_TYPES */
+    PD0_BAD_LENGTH,         /* the length field: shorter than its header and offsets, or over
+                             * PD0_MAX_ENSEMBLE */
+    PD0_BAD_HEADER,         /* no data types */
     PD0_TRUNCATED,          /* fewer bytes than the length says: a buffer, or a stream that went quiet */
-    PD0_BAD_OFFSET,         /* a data type's offset inside the header, past the end, or not increasing */
+    PD0_BAD_OFFSET,         /* the first data type not right after the offsets, an offset past the end, or
+                             * not increasing: known before the whole ensemble is (a false 7F 7F is
+                             * refused early, not held for the bytes its length says) */
     PD0_SHORT_TYPE,         /* a data type shorter than its fields (its beams x cells) */
     PD0_DUPLICATE_TYPE,     /* the same data type twice */
     PD0_NO_FIXED_LEADER,
     PD0_NO_VARIABLE_LEADER,
     PD0_BAD_BEAMS,          /* 0 beams, or more than PD0_MAX_BEAMS */
-    PD0_TOO_MANY_CELLS,     /* over PD0_MAX_CELLS */
     PD0_BAD_BEAM_ANGLE,     /* "other" in the system configuration and no usable angle byte */
     PD0_BAD_ATTITUDE,       /* heading >= 360, |pitch| > 90 or |roll| > 180 degrees */
     PD0_RESULT_COUNT
@@ -62,7 +79,10 @@ typedef struct {
     uint8_t buf[PD0_MAX_ENSEMBLE + 2];
     size_t start, len;       /* held bytes are buf[start .. len) */
     size_t deliver;          /* an ensemble handed out last call: dropped on the next */
+    size_t need;             /* the held header waits for this many bytes (0: not known), so a
+                              * read of a few bytes does not check its offset table again */
     uint64_t garbage_bytes;  /* bytes skipped while looking for a header */
+    uint64_t waves_packets;  /* 7F 79 packets (a Workhorse's waves option) checked and skipped */
 } pd0_framer;
 
 void pd0_framer_init(pd0_framer *f);
@@ -70,7 +90,9 @@ void pd0_framer_init(pd0_framer *f);
 /* Takes bytes of the stream. Returns PD0_OK with *ens / *ens_len set to one
  * whole ensemble (header to checksum, checksum verified, offsets inside it;
  * valid until the next call), a refusal reason, or -1 when every byte given
- * was taken and nothing more is complete. *used is how many of the n bytes
+ * was taken and nothing more is complete. A waves packet (7F 79, its sum
+ * good) is skipped whole and counted in waves_packets; a 7F 79 that is not
+ * one is garbage. *used is how many of the n bytes
  * were taken; call again with the rest (n may be 0) until it returns -1:
  *
  *     while ((r = pd0_framer_push(&f, p, n, &used, &e, &len)) != -1) {
@@ -102,11 +124,12 @@ typedef struct {
     /* fixed leader (0x0000) */
     int fw_version, fw_revision;
     uint16_t system_config;  /* LSB: frequency, convex, facing up; MSB: beam angle, beams */
-    int frequency_khz;       /* 75 .. 2400; 0 if the code is not a published one */
+    int frequency_khz;       /* 38 .. 2400; 0 if the code is not a published one */
     int convex;              /* 1 convex transducer, 0 concave */
     int facing_up;
     double beam_angle_deg;   /* 15, 20, 30, or the fixed leader's angle byte for "other" */
-    int n_beams, n_cells, pings_per_ensemble;
+    int n_beams;             /* beams used for the velocity (the profile has PD0_PROFILE_BEAMS) */
+    int n_cells, pings_per_ensemble;
     double cell_size_m, blank_m, bin1_distance_m;
     uint8_t coord_transform; /* the EX byte */
     pd0_frame frame;         /* from EX bits 3-4 */
@@ -125,21 +148,22 @@ typedef struct {
 
     /* profile: [cell][beam]; velocities in the frame above, NAN where marked invalid */
     int has_velocity, has_correlation, has_intensity, has_percent_good;
-    double velocity_mps[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t correlation[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t intensity[PD0_MAX_CELLS][PD0_MAX_BEAMS];
-    uint8_t percent_good[PD0_MAX_CELLS][PD0_MAX_BEAMS];
+    double velocity_mps[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t correlation[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t intensity[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
+    uint8_t percent_good[PD0_MAX_CELLS][PD0_PROFILE_BEAMS];
 
     /* bottom track (0x0600); per beam whatever the frame, velocities in the frame */
     int has_bottom_track;
     int bt_pings;
-    double bt_range_m[PD0_MAX_BEAMS];    /* RDI's BT range with its MSB byte: the VERTICAL range seen along
-                                          * the beam (slant x cos(beam angle)), not corrected for pitch and
-                                          * roll; -1 where 0 (no bottom) */
-    double bt_velocity_mps[PD0_MAX_BEAMS]; /* NAN where marked invalid */
-    uint8_t bt_correlation[PD0_MAX_BEAMS], bt_eval_amplitude[PD0_MAX_BEAMS], bt_percent_good[PD0_MAX_BEAMS];
+    double bt_range_m[PD0_BT_BEAMS];    /* RDI's BT range with its MSB byte where the data type has them:
+                                         * the VERTICAL range seen along the beam (slant x cos(beam
+                                         * angle)), not corrected for pitch and roll; -1 where 0 (no
+                                         * bottom) */
+    double bt_velocity_mps[PD0_BT_BEAMS]; /* NAN where marked invalid */
+    uint8_t bt_correlation[PD0_BT_BEAMS], bt_eval_amplitude[PD0_BT_BEAMS], bt_percent_good[PD0_BT_BEAMS];
 
-    int unknown_types;       /* data types skipped (navigation, status, beam 5, ...) */
+    int unknown_types;       /* data types skipped (navigation, NMEA, status, beam 5, ...) */
 } pd0_ensemble;
 
 /* Decodes one whole ensemble (n bytes from its first 7F; n may exceed it:
@@ -155,13 +179,22 @@ int64_t pd0_rtc_utime(const pd0_rtc *t);
 typedef struct {
     int have;
     uint32_t last;
+    int64_t last_utime;      /* the device time of the last number (pd0_rtc_utime), 0 if none */
     uint64_t in_order, gaps, missed, repeats, restarts;
 } pd0_continuity;
 
+/* The same number within this much device time is the same ensemble again. */
+#define PD0_SAME_ENSEMBLE_US 1000000
+
 /* Returns 0 in order (the first number too), the count missed after a gap,
- * -1 for a repeat of the last number, -2 for a step back (the device
- * restarted). Numbers are 24 bits and wrap from 0xFFFFFF to 0. */
-long pd0_continuity_update(pd0_continuity *c, uint32_t number);
+ * -1 for a repeat of the last ensemble (its number again within
+ * PD0_SAME_ENSEMBLE_US of its device time, or with no time to tell them
+ * apart), -2 for a step back or the same number a second or more later (the
+ * device restarted its count: WinRiver II numbers the first ensemble of a
+ * resumed transect as the last one of the previous, a new ping all the
+ * same). Numbers are 24 bits and wrap from 0xFFFFFF to 0. device_utime:
+ * pd0_rtc_utime of the ensemble, 0 if none. */
+long pd0_continuity_update(pd0_continuity *c, uint32_t number, int64_t device_utime);
 
 /* ------------------------------------------------------------------ dvl_t */
 struct _auv_dvl_t;
@@ -186,9 +219,11 @@ void pd0_to_dvl(const pd0_ensemble *e, const pd0_mounting *m, struct _auv_dvl_t 
 
 /* The pieces, for tests and tools: the vehicle's velocity in body axes from
  * four values in the ensemble's frame (the PD0 sense: the bottom's or the
- * water's velocity relative to the DVL); returns 0 if it cannot (too few
- * good values). *err_mps: the error velocity, 0 when not given. */
-int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double v4[PD0_MAX_BEAMS], double body[3],
+ * water's velocity relative to the DVL; beams 1-4 of a Janus head in the beam
+ * frame, X Y Z and the error velocity in the others: NAN where there is none);
+ * returns 0 if it cannot (too few good values). *err_mps: the error velocity,
+ * 0 when not given. */
+int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double v4[4], double body[3],
                       double *err_mps);
 /* altitude_m from the bottom-track ranges (see pd0_dvl.c); -1 if fewer than 3. */
 double pd0_altitude(const pd0_ensemble *e);

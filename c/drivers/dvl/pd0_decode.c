@@ -8,6 +8,7 @@
 #include "drivers/dvl/pd0.h"
 
 pd0_result pd0__check_whole(const uint8_t *p, size_t n);
+size_t pd0__length(const uint8_t *p);
 
 static unsigned u16(const uint8_t *p) { return (unsigned)p[0] | (unsigned)p[1] << 8; }
 static int s16(const uint8_t *p) { return (int16_t)u16(p); }
@@ -36,7 +37,7 @@ static pd0_result fixed_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
     e->fw_revision = AT(d, 4);
     e->system_config = (uint16_t)U16(d, 5);
     unsigned lsb = AT(d, 5), msb = AT(d, 6);
-    static const int khz[8] = {75, 150, 300, 600, 1200, 2400, 0, 0};
+    static const int khz[8] = {75, 150, 300, 600, 1200, 2400, 38, 0}; /* 110: an Ocean Surveyor 38 */
     e->frequency_khz = khz[lsb & 7];
     e->convex = (lsb >> 3) & 1;
     e->facing_up = (lsb >> 7) & 1;
@@ -50,11 +51,9 @@ static pd0_result fixed_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
         e->beam_angle_deg = AT(d, 59);
     }
     e->n_beams = AT(d, 9);
-    e->n_cells = AT(d, 10);
+    e->n_cells = AT(d, 10); /* a byte: never over PD0_MAX_CELLS; 0 when only bottom track is pinged */
     if (e->n_beams < 1 || e->n_beams > PD0_MAX_BEAMS)
         return PD0_BAD_BEAMS;
-    if (e->n_cells > PD0_MAX_CELLS)
-        return PD0_TOO_MANY_CELLS;
     e->pings_per_ensemble = (int)U16(d, 11);
     e->cell_size_m = U16(d, 13) * 0.01;
     e->blank_m = U16(d, 15) * 0.01;
@@ -95,15 +94,26 @@ static void set_rtc(pd0_rtc *t, int year, const uint8_t *c, int y2k)
                t->hour < 24 && t->minute < 60 && t->second < 60 && t->hundredths < 100;
 }
 
+/* The Y2K clock's century byte where a unit has one (19 or 20); firmware
+ * that leaves the clock's bytes zero has not, nor has a Pathfinder, whose
+ * leader is as long but spare there: the clock is read when its century is
+ * one and its year the old clock's. */
+#define CENTURY_OK(c) ((c) >= 19 && (c) <= 21)
+/* The old clock's two-digit year: 80..99 were the 1900s (RDI's units date
+ * from 1991), the rest this century. */
+#define OLD_CLOCK_YEAR(yy) ((yy) >= 80 ? 1900 + (yy) : 2000 + (yy))
+
 static pd0_result variable_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
 {
     if (len < VARIABLE_MIN)
         return PD0_SHORT_TYPE;
     e->ensemble_number = (uint32_t)U16(d, 3) | (uint32_t)AT(d, 12) << 16;
-    /* the 2-digit year of the old clock (5-11) is of this century; the Y2K
-     * clock (58-65: century, year, month, ... hundredths) says it outright */
-    set_rtc(&e->rtc, 2000 + AT(d, 5), d + 4, 0);
-    if (len >= VARIABLE_Y2K)
+    /* the 2-digit year of the old clock (5-11); the Y2K clock (58-65:
+     * century, year, month, ... hundredths) says the century outright, and
+     * is the one read where the leader has it (an Ocean Surveyor's 60-byte
+     * leader has not) */
+    set_rtc(&e->rtc, OLD_CLOCK_YEAR(AT(d, 5)), d + 4, 0);
+    if (len >= VARIABLE_Y2K && CENTURY_OK(AT(d, 58)) && AT(d, 59) == AT(d, 5))
         set_rtc(&e->rtc, AT(d, 58) * 100 + AT(d, 59), d + 58, 1);
     e->bit_result = (uint16_t)U16(d, 13);
     e->sound_speed_mps = U16(d, 15);
@@ -121,13 +131,13 @@ static pd0_result variable_leader(const uint8_t *d, size_t len, pd0_ensemble *e)
 /* Velocity, correlation, intensity and percent good: [cell][beam] after the ID. */
 static pd0_result profile(const uint8_t *d, size_t len, unsigned id, pd0_ensemble *e)
 {
-    size_t per = (size_t)e->n_beams * (size_t)e->n_cells;
+    size_t per = (size_t)PD0_PROFILE_BEAMS * (size_t)e->n_cells;
     size_t width = id == VELOCITY ? 2 : 1;
     if (len < 2 + per * width)
         return PD0_SHORT_TYPE;
     const uint8_t *v = d + 2;
     for (int c = 0; c < e->n_cells; c++)
-        for (int b = 0; b < e->n_beams; b++, v += width) {
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++, v += width) {
             switch (id) {
             case VELOCITY:
                 e->velocity_mps[c][b] = s16(v) == PD0_INVALID_VELOCITY ? NAN : s16(v) * 0.001;
@@ -150,7 +160,7 @@ static pd0_result bottom_track(const uint8_t *d, size_t len, pd0_ensemble *e)
         return PD0_SHORT_TYPE;
     e->has_bottom_track = 1;
     e->bt_pings = (int)U16(d, 3);
-    for (int b = 0; b < PD0_MAX_BEAMS; b++) {
+    for (int b = 0; b < PD0_BT_BEAMS; b++) {
         /* range: 16 bits of cm at 17.., and an MSB byte (65536 cm) at 78.. */
         uint32_t cm = U16(d, 17 + 2 * b);
         if (len >= BOTTOM_MSB)
@@ -169,16 +179,16 @@ pd0_result pd0_decode(const uint8_t *p, size_t n, pd0_ensemble *e)
 {
     memset(e, 0, sizeof *e);
     for (int c = 0; c < PD0_MAX_CELLS; c++)
-        for (int b = 0; b < PD0_MAX_BEAMS; b++)
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++)
             e->velocity_mps[c][b] = NAN;
-    for (int b = 0; b < PD0_MAX_BEAMS; b++) {
+    for (int b = 0; b < PD0_BT_BEAMS; b++) {
         e->bt_range_m[b] = -1.0;
         e->bt_velocity_mps[b] = NAN;
     }
     pd0_result r = pd0__check_whole(p, n);
     if (r != PD0_OK)
         return r;
-    size_t nbytes = u16(p + 2), ntypes = p[5];
+    size_t nbytes = pd0__length(p), ntypes = p[5];
     size_t off[PD0_MAX_TYPES + 1];
     for (size_t i = 0; i < ntypes; i++)
         off[i] = u16(p + 6 + 2 * i);
@@ -244,9 +254,11 @@ int64_t pd0_rtc_utime(const pd0_rtc *t)
     return s * 1000000 + (int64_t)t->hundredths * 10000;
 }
 
-long pd0_continuity_update(pd0_continuity *c, uint32_t number)
+long pd0_continuity_update(pd0_continuity *c, uint32_t number, int64_t device_utime)
 {
     number &= 0xFFFFFF;
+    int64_t last_utime = c->last_utime;
+    c->last_utime = device_utime;
     if (!c->have) {
         c->have = 1;
         c->last = number;
@@ -259,9 +271,16 @@ long pd0_continuity_update(pd0_continuity *c, uint32_t number)
         c->in_order++;
         return 0;
     }
-    if (d == 0) {
+    /* the same number: the same ensemble again (sent twice, or copied)
+     * unless both clocks say it came a second or more later: then the count
+     * was restarted one back (WinRiver II resuming a transect) */
+    if (d == 0 && (device_utime == 0 || last_utime == 0 || device_utime - last_utime < PD0_SAME_ENSEMBLE_US)) {
         c->repeats++;
         return -1;
+    }
+    if (d == 0) {
+        c->restarts++;
+        return -2;
     }
     if (d < 0x800000) { /* forward: the ones between were lost */
         c->gaps++;

@@ -131,7 +131,7 @@ static void ship_to_body(const pd0_mounting *m, const double ship[3], double bod
     mul(R, v, body);
 }
 
-int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double v4[PD0_MAX_BEAMS], double body[3],
+int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double v4[4], double body[3],
                       double *err_mps)
 {
     double v[3], ship[3], M[3][3], p = 0, r = 0;
@@ -139,7 +139,9 @@ int pd0_body_velocity(const pd0_ensemble *e, const pd0_mounting *m, const double
     switch (e->frame) {
     case PD0_FRAME_BEAM: {
         int n_good;
-        if (e->n_beams != 4 || !beam_to_inst(e, v4, v, err_mps, &n_good))
+        /* beams 1-4, the Janus four, whatever the leader's count (a beam left
+         * out is marked invalid: the 3-beam solution, where allowed) */
+        if (!beam_to_inst(e, v4, v, err_mps, &n_good))
             return 0;
         inst_to_ship(e, v, ship);
         break;

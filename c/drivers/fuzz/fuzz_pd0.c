@@ -40,7 +40,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 abort(); /* a framer that does not move on */
             if (r == PD0_OK && pd0_decode(e, len, &ens) == PD0_OK) {
                 pd0_to_dvl(&ens, &m, &out);
-                pd0_continuity_update(&cont, ens.ensemble_number);
+                pd0_continuity_update(&cont, ens.ensemble_number, pd0_rtc_utime(&ens.rtc));
             }
         }
         at += n;

@@ -94,6 +94,12 @@ size_t maestro_get_errors(const maestro_framing *f, uint8_t *out) { return heade
 
 size_t maestro_go_home(const maestro_framing *f, uint8_t *out) { return header(f, out, MAESTRO_GO_HOME); }
 
+size_t maestro_baud_indication(const maestro_framing *f, uint8_t *out)
+{
+    maestro_framing pololu = {1, f->pololu ? f->device : MAESTRO_DEFAULT_DEVICE};
+    return header(&pololu, out, MAESTRO_GET_ERRORS);
+}
+
 const char *maestro_error_name(unsigned bit)
 {
     static const char *const names[] = {

@@ -68,6 +68,16 @@ size_t maestro_get_moving_state(const maestro_framing *f, uint8_t *out);
 size_t maestro_get_errors(const maestro_framing *f, uint8_t *out);
 size_t maestro_go_home(const maestro_framing *f, uint8_t *out);
 
+/* The first bytes after opening the port, in either framing: a Maestro in its
+ * default serial mode ("UART, detect baud rate") ignores every command until
+ * it has seen the baud rate indication byte 0xAA, and takes that byte as the
+ * start of a Pololu-protocol command. So it goes as a whole, harmless Pololu
+ * command: Get Errors (AA, device, 21; device 12 under the compact framing,
+ * whose table names none), answered by two bytes like any Get Errors (expect
+ * them). A lone 0xAA before compact commands would be a command cut by the
+ * next one: a serial protocol error. */
+size_t maestro_baud_indication(const maestro_framing *f, uint8_t *out);
+
 /* The error bits of Get Errors, as published. */
 #define MAESTRO_ERR_SERIAL_SIGNAL (1u << 0)      /* a stop bit missing: baud rate or noise */
 #define MAESTRO_ERR_SERIAL_OVERRUN (1u << 1)     /* the UART's own buffer overran */

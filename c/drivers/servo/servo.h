@@ -23,6 +23,8 @@ typedef struct {
     maestro_rx rx;
     uint16_t targets[MAESTRO_MAX_CHANNELS]; /* the pulses last sent, or to send on (re)opening */
     int64_t next_poll;                      /* the driver's clock [us]; 0: at the first tick */
+    int baud_sent;                          /* the port opened with the baud indication (a Get Errors):
+                                             * the next poll is a period after the tick that sees it */
     int clamp_logged, resume_logged;
 } servo_state;
 

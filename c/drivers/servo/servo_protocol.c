@@ -68,6 +68,15 @@ static void servo_opened(void *state, drv_ctx *ctx)
 {
     servo_state *s = state;
     uint8_t out[AM_MAX_OUT];
+    /* the baud rate indication first (a Maestro in its default serial mode
+     * hears nothing before it), as a whole Get Errors whose reply is awaited */
+    size_t n = maestro_baud_indication(&s->cfg.framing, out);
+    if (n && drv_write(ctx, out, n) == 0) {
+        maestro_rx_result r = maestro_rx_expect(&s->rx, MAESTRO_Q_ERRORS, 0);
+        if (r != MRX_NONE)
+            drv_drop(ctx, maestro_rx_result_name(r), "Get Errors (the baud rate indication)");
+        s->baud_sent = 1;
+    }
     /* a controller that was powered off lost its speed and acceleration
      * limits, and holds no target: both again */
     drv_write(ctx, out, am_encode_limits(&s->cfg, out));
@@ -78,6 +87,11 @@ static void poll_errors(servo_state *s, drv_ctx *ctx, int64_t now)
 {
     if (s->next_poll - now > SERVO_ERRORS_POLL_US) /* the system clock stepped back */
         s->next_poll = now;
+    if (s->baud_sent) { /* that Get Errors is this period's: its reply has until the next poll */
+        s->baud_sent = 0;
+        s->next_poll = now + SERVO_ERRORS_POLL_US;
+        return;
+    }
     if (!s->have_table || now < s->next_poll)
         return;
     s->next_poll = now + SERVO_ERRORS_POLL_US;

@@ -54,7 +54,7 @@ static void print_ensemble(const pd0_ensemble *e, const auv_dvl_t *d)
     printf(",\"velocity_mps\":[");
     for (int c = 0; c < e->n_cells; c++) {
         printf(c ? ",[" : "[");
-        for (int b = 0; b < e->n_beams; b++) {
+        for (int b = 0; b < PD0_PROFILE_BEAMS; b++) {
             if (b)
                 printf(",");
             num(e->velocity_mps[c][b]);
@@ -127,7 +127,7 @@ int main(int argc, char **argv)
             auv_dvl_t d;
             memset(&d, 0, sizeof d);
             pd0_to_dvl(&e, &m, &d);
-            pd0_continuity_update(&cont, e.ensemble_number);
+            pd0_continuity_update(&cont, e.ensemble_number, pd0_rtc_utime(&e.rtc));
             print_ensemble(&e, &d);
         }
     }
@@ -137,9 +137,9 @@ int main(int argc, char **argv)
         refused[PD0_TRUNCATED]++;
         printf("{\"ok\":false,\"reason\":\"%s\"}\n", pd0_result_name(PD0_TRUNCATED));
     }
-    printf("{\"summary\":true,\"ensembles\":%lu,\"garbage_bytes\":%llu,\"gaps\":%llu,\"missed\":%llu,"
-           "\"repeats\":%llu,\"restarts\":%llu,\"refused\":{",
-           ok, (unsigned long long)fr.garbage_bytes, (unsigned long long)cont.gaps,
+    printf("{\"summary\":true,\"ensembles\":%lu,\"garbage_bytes\":%llu,\"waves_packets\":%llu,\"gaps\":%llu,"
+           "\"missed\":%llu,\"repeats\":%llu,\"restarts\":%llu,\"refused\":{",
+           ok, (unsigned long long)fr.garbage_bytes, (unsigned long long)fr.waves_packets, (unsigned long long)cont.gaps,
            (unsigned long long)cont.missed, (unsigned long long)cont.repeats, (unsigned long long)cont.restarts);
     int first = 1;
     for (int r = 1; r < PD0_RESULT_COUNT; r++)

@@ -102,8 +102,8 @@ class Pd0Encoder:
         self.cfg = cfg or Pd0Config()
         if self.cfg.frame not in FRAMES:
             raise ValueError(f"PD0 frame {self.cfg.frame!r}: one of {', '.join(FRAMES)}")
-        if not 1 <= self.cfg.n_cells <= 128:
-            raise ValueError("PD0 cells: 1..128")
+        if not 0 <= self.cfg.n_cells <= 255:
+            raise ValueError("PD0 cells: 0..255 (the fixed leader's byte)")
         self.number = 0
 
     # ---- a velocity of the vehicle (body axes) as PD0 writes it
@@ -303,16 +303,24 @@ def _mm(v: float) -> int:
     return max(-32767, min(32767, round(v * 1000)))
 
 
-def assemble(types: Sequence[bytes]) -> bytes:
-    """The header, the data types and the checksum."""
+def assemble(types: Sequence[bytes], second: int = 0x7F) -> bytes:
+    """The header, the data types and the checksum; ``second`` 0x79 makes a
+    Workhorse's waves packet, framed the same way."""
     header_len = 6 + 2 * len(types)
     offsets, at = [], header_len
     for t in types:
         offsets.append(at)
         at += len(t)
-    body = struct.pack("<BBHBB", 0x7F, 0x7F, at, 0, len(types)) + struct.pack(f"<{len(types)}H", *offsets)
+    body = struct.pack("<BBHBB", 0x7F, second, at, 0, len(types)) + struct.pack(f"<{len(types)}H", *offsets)
     body += b"".join(types)
     return body + struct.pack("<H", sum(body) & 0xFFFF)
+
+
+def split(ensemble: bytes) -> list[bytes]:
+    """The data types of one ensemble (assemble's inverse), each from its ID."""
+    nbytes, n = struct.unpack_from("<H", ensemble, 2)[0], ensemble[5]
+    offsets = list(struct.unpack_from(f"<{n}H", ensemble, 6)) + [nbytes]
+    return [ensemble[offsets[i] : offsets[i + 1]] for i in range(n)]
 
 
 class Pd0Dvl:
