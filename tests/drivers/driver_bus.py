@@ -189,6 +189,19 @@ def replay_print(
     return printed, reasons
 
 
+def raw_messages(device: str, chunks: Sequence[bytes], t0_us: int = 1_000_000, dt_us: int = 1_000_000):
+    """Bytes a driver read, as its `--raw` recording: one raw_bytes_t per chunk,
+    dt_us apart, on <VEHICLE>.RAW.<device> (what replay_print takes)."""
+    out, offset = [], 0
+    for k, data in enumerate(chunks):
+        raw = raw_bytes_t()
+        raw.utime, raw.vehicle, raw.device, raw.direction = t0_us + k * dt_us, VEHICLE, device, raw_bytes_t.DIR_RX
+        raw.offset, raw.n_bytes, raw.data = offset, len(data), data
+        offset += len(data)
+        out.append((f"{VEHICLE}.RAW.{device}", raw.encode()))
+    return out
+
+
 def f32(x: float) -> float:
     """x as a float field holds it."""
     return struct.unpack("<f", struct.pack("<f", x))[0]

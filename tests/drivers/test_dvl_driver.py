@@ -16,7 +16,7 @@ import time
 import lcm
 import pytest
 from conftest import c_program
-from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, replay_print, same_printed, start
+from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, raw_messages, replay_print, same_printed, start
 
 from auv import dvl_t, raw_bytes_t
 from auvlcm import programs
@@ -161,30 +161,15 @@ def test_dvl_repeat_and_restart_through_the_replay(tmp_path, child_env):
     published."""
     dev = Device()
     m = measurement(dvl_t.MODE_BOTTOM_LOCK)
-    log = lcm.EventLog(str(tmp_path / "r.lcmlog"), "w")
-    offset = 0
-    for k, number in enumerate([7, 8, 8, 1, 2]):
-        data = dev.ensemble(m, number)
-        raw = raw_bytes_t()
-        raw.utime, raw.vehicle, raw.device, raw.direction = 1_000_000 * (k + 1), VEHICLE, "DVL", raw_bytes_t.DIR_RX
-        raw.offset, raw.n_bytes, raw.data = offset, len(data), data
-        offset += len(data)
-        log.write_event(raw.utime, f"{VEHICLE}.RAW.DVL", raw.encode())
-    log.close()
-    cmd = programs.driver_replay(
-        c_program("bin/auv-driver-replay").parent.parent, log=tmp_path / "r.lcmlog", vehicle=VEHICLE, device="DVL"
-    )
-    p = subprocess.run(cmd, capture_output=True, text=True, env=child_env, timeout=60)
-    assert p.returncode == 0, p.stderr
-    got = [dict(re.findall(r"(\w+)=(\S+)", line)) for line in p.stdout.splitlines()]
-    assert [(g["ensemble"], g["utime"]) for g in got] == [
+    raw = raw_messages("DVL", [dev.ensemble(m, number) for number in [7, 8, 8, 1, 2]])
+    printed, reasons = replay_print(tmp_path, raw, child_env, "DVL")
+    assert [(p["ensemble"], p["utime"]) for p in printed] == [
         ("7", "1000000"),
         ("8", "2000000"),
         ("1", "4000000"),
         ("2", "5000000"),
     ]
-    summary = p.stderr.strip().splitlines()[-1]
-    assert "repeated ensemble: 1" in summary and "ensemble number restarted: 1" in summary, summary
+    assert reasons == {"repeated ensemble": 1, "ensemble number restarted": 1}, reasons
 
 
 def test_dvl_mounting_and_usage(tmp_path, child_env):

@@ -9,14 +9,11 @@ from __future__ import annotations
 
 import itertools
 import math
-import re
-import subprocess
 
-import lcm
 from conftest import c_program
-from driver_bus import VEHICLE, Bus, Pty, finish, start
+from driver_bus import VEHICLE, Bus, Pty, finish, raw_messages, replay_print, start
 
-from auv import dvl_t, raw_bytes_t
+from auv import dvl_t
 from auvlcm import programs
 from sim.devices import pd0_shapes
 
@@ -64,19 +61,7 @@ def test_the_driver_takes_every_real_shape(lcm_url, tmp_path, child_env):
 def test_a_count_restarted_one_back_is_published(tmp_path, child_env):
     """WinRiver II's ensemble 127, then 127 again minutes later and 128: three
     pings, three dvl_t; the restart counted, nothing refused."""
-    data = pd0_shapes.count_restarted()
-    log = lcm.EventLog(str(tmp_path / "r.lcmlog"), "w")
-    raw = raw_bytes_t()
-    raw.utime, raw.vehicle, raw.device, raw.direction = 1_000_000, VEHICLE, "DVL", raw_bytes_t.DIR_RX
-    raw.offset, raw.n_bytes, raw.data = 0, len(data), data
-    log.write_event(raw.utime, f"{VEHICLE}.RAW.DVL", raw.encode())
-    log.close()
-    cmd = programs.driver_replay(
-        c_program("bin/auv-driver-replay").parent.parent, log=tmp_path / "r.lcmlog", vehicle=VEHICLE, device="DVL"
-    )
-    p = subprocess.run(cmd, capture_output=True, text=True, env=child_env, timeout=60)
-    assert p.returncode == 0, p.stderr
-    got = [dict(re.findall(r"(\w+)=(\S+)", line)) for line in p.stdout.splitlines()]
-    assert [g["ensemble"] for g in got] == ["127", "127", "128"]
-    summary = p.stderr.strip().splitlines()[-1]
-    assert "ensemble number restarted: 1" in summary and "repeated" not in summary, summary
+    raw = raw_messages("DVL", [pd0_shapes.count_restarted()])
+    printed, reasons = replay_print(tmp_path, raw, child_env, "DVL")
+    assert [p["ensemble"] for p in printed] == ["127", "127", "128"]
+    assert reasons == {"ensemble number restarted": 1}, reasons
