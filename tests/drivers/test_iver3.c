@@ -186,6 +186,9 @@ static void test_request_sentence(void)
     feed(v4, osi("N", "N"), T0);
     setpoint(v4, depth_sp(T0, -M_PI / 2, 3.048, 1.0), T0);
     CHECK_STR(v4->written, sentence("OMS,270.0,10.0,30.0,1.9,10"));
+    /* a heading a hair under north is north (0.0), never 360.0, out of the range */
+    setpoint(v4, depth_sp(T0, 359.97 * M_PI / 180.0, 3.048, 1.0), T0);
+    CHECK_STR(v4->written, sentence("OMS,0.0,10.0,30.0,1.9,10"));
     free(v4);
 }
 
