@@ -229,13 +229,24 @@ static void line_done(iver3_state *s, fs_state *fs, drv_ctx *ctx, int64_t stamp)
         fs_heard(fs, ctx, stamp); /* $ACK, $GPRMC, ...: alive, not used */
 }
 
+static int ends_with_checksum(const iver3_state *s)
+{
+    return s->len >= 4 && s->line[s->len - 3] == '*' && isxdigit((unsigned char)s->line[s->len - 2]) &&
+           isxdigit((unsigned char)s->line[s->len - 1]);
+}
+
 static void iver3_feed(void *ps, fs_state *fs, drv_ctx *ctx, const uint8_t *b, size_t n, int64_t stamp)
 {
     iver3_state *s = ps;
     for (size_t i = 0; i < n; i++) {
         uint8_t c = b[i];
         if (c == '$') {
-            if (s->in_line)
+            /* a whole sentence (its *hh there) run into the next '$' without a
+             * line end (a full output buffer drops the CR LF): two sentences,
+             * as c/drivers/common/nmea.c reads them; a cut one is truncated */
+            if (s->in_line && !s->skipping && ends_with_checksum(s))
+                line_done(s, fs, ctx, stamp);
+            else if (s->in_line)
                 drv_drop(ctx, "truncated", "a new '$' after '%.30s'", s->line);
             s->in_line = 1;
             s->skipping = 0;

@@ -325,6 +325,10 @@ static void test_real_variants(void)
     feed(r, "$C82.8P-3.89R-2.63T20.3D3.2\r\n", T0);
     feed(r, "$OSI,8080808080,N,0,41.5000000,-70.7000000,2.9,0.0,N,32.8,P0,-15.0,m1,0.0,82.8,3.2\r\n", T0);
     CHECK(r->ctx.reasons.total == 0 && r->n_nav == 1 && fabs(r->nav.latitude_deg - 41.5) < 1e-9);
+    /* whole sentences run together without their CR LF (a full output buffer): each read */
+    feed(r, "$C82.8P-3.89R-2.63T20.3D3.2*78$C82.8P-3.89R-2.63T20.3D3.2*78", T0 + 1 * MS);
+    feed(r, "$OSI,8080808080,N,0,41.5000000,-70.7000000,2.9,0.0,N,32.8,P0,-15.0,m1,0.0,82.8,3.2*66\r\n", T0 + 2 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && r->ctx.frames_decoded == 5);
     /* the compass writes what it is set to: more outputs after D (skipped), or fewer fields */
     feed(r, sentence("C90.5P1.5R-2.5T20.1D6.4M51.2Mx12.3My-4.5Mz48.9A1.0Ax0.01Ay0.02Az0.99"), T0 + 10 * MS);
     CHECK(r->ctx.reasons.total == 0);
@@ -335,10 +339,10 @@ static void test_real_variants(void)
     CHECK(fabs(r->fs.nav.depth_m - 6.4 * FT) < 1e-9);
     /* no fix yet: the position empty; the state is read, no NAV with an old position */
     feed(r, sentence("OSI,8080808080,N,0,,,,,N,,,,,,,"), T0 + 30 * MS);
-    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 1 && r->fs.last_heard == T0 + 30 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && r->fs.last_heard == T0 + 30 * MS);
     /* an empty speed or altimeter: not known, the rest stands */
     feed(r, sentence("OSI,8080808080,N,0,41.5001000,-70.7000000,,0.0,N,,P0,-15.0,m1,0.0,82.8,3.2"), T0 + 40 * MS);
-    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && fabs(r->nav.latitude_deg - 41.5001) < 1e-9);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 3 && fabs(r->nav.latitude_deg - 41.5001) < 1e-9);
     CHECK(r->nav.altitude_m == -1.0 && fabs(r->nav.u_mps - 2.9 * 1852.0 / 3600.0) < 1e-9);
     /* the mode's first letter decides (Goby3): mP and Mp are an operator's parking */
     feed(r, osi("mP", "N"), T0 + 50 * MS);
