@@ -233,7 +233,12 @@ static void ack(bluefin_state *s, fs_state *fs, drv_ctx *ctx, const nmea_sentenc
     fs_heard(fs, ctx, stamp);
     if (status <= 1 && acks_rmb(m->field[1])) {
         /* the vehicle refused our request: counted as the core counts its own */
-        const char *why = m->nfields > 6 && *m->field[6] ? m->field[6] : status ? "not processed" : "invalid request";
+        /* the description is the seventh field, after one for future use; a
+         * vehicle that leaves that one out writes it sixth */
+        const char *why = m->nfields > 6 && *m->field[6]   ? m->field[6]
+                          : m->nfields > 5 && *m->field[5] ? m->field[5]
+                          : status                         ? "not processed"
+                                                           : "invalid request";
         fs->setpoints_refused++;
         snprintf(fs->last_refusal, sizeof fs->last_refusal, "refused by the frontseat: %.100s", why);
         drv_drop(ctx, "setpoint: refused by the frontseat", "BFACK status %ld: %.60s", status, why);

@@ -448,6 +448,10 @@ static void test_real_variants(void)
     feed(r, sentence("BFACK,221321.400,bprmb,221321.000,,0,,"), T0 + 90 * MS);
     feed(r, sentence("BFACK,221321.500,rmb,221321.000,7,1,,busy"), T0 + 95 * MS);
     CHECK(count(r, "setpoint: refused by the frontseat") == 3 && strstr(r->fs.last_refusal, "busy") != NULL);
+    /* the description where the field for future use would be: still its words */
+    feed(r, sentence("BFACK,221321.600,RMB,221321.000,,1,Above the minimum depth"), T0 + 96 * MS);
+    CHECK(count(r, "setpoint: refused by the frontseat") == 4);
+    CHECK(strstr(r->fs.last_refusal, "Above the minimum depth") != NULL);
     /* what a vehicle interleaves, each in its published shape: heard, never an error */
     static const char *const others[] = {
         "BFRVL,221322.000,350.0,1.45",
