@@ -270,7 +270,14 @@ static void iver3_feed(void *ps, fs_state *fs, drv_ctx *ctx, const uint8_t *b, s
         }
         if (s->skipping)
             continue;
-        if (c < 0x20 || c > 0x7e) {
+        if ((c < 0x20 || c > 0x7e) && s->len <= 6 && !memchr(s->line, ',', s->len)) {
+            /* a '$' in binary between the lines began no sentence: garbage, not
+             * a broken line (as c/drivers/common/nmea.c reads it) */
+            if (!s->in_garbage)
+                drv_drop(ctx, "garbage", "byte 0x%02x after '%.6s'", c, s->line);
+            s->in_line = 0;
+            s->in_garbage = 1;
+        } else if (c < 0x20 || c > 0x7e) {
             drv_drop(ctx, "bad character", "byte 0x%02x in '%.30s'", c, s->line);
             s->skipping = 1;
         } else if (s->len >= LINE_MAX_CHARS) {

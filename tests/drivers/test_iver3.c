@@ -354,6 +354,10 @@ static void test_real_variants(void)
     CHECK(r->status.state == AUV_FRONTSEAT_STATUS_T_STATE_ERROR && r->status.error);
     CHECK_STR(r->error_text, "SopStlSle");
     CHECK(r->ctx.reasons.total == 0);
+    /* binary between the lines with a '$' in it: one run of garbage, not a broken sentence */
+    feed(r, "$\x01\xb5\x62\x01\x02$C82.8P-3.89R-2.63T20.3D3.2*78\r\n", T0 + 80 * MS);
+    CHECK(count(r, "garbage") == 1 && count(r, "bad character") == 0 && r->ctx.reasons.total == 1);
+    CHECK(r->fs.last_heard == T0 + 80 * MS); /* the compass after it was read */
     free(r);
 }
 
