@@ -18,7 +18,10 @@
  *                       $BFACK  acknowledgement      others: heard, not used
  *
  * TIME is hhmmss.sss of the newest stamp heard (the vehicle's clock is not
- * ours to set; before anything is heard nothing is asked but the logging). */
+ * ours to set; before anything is heard nothing is asked but the logging), or
+ * seconds since 1970 with three decimals once the vehicle's own times are
+ * written so (Huxley writes either: both are read, and answered in kind).
+ * The checksum is optional, as in NMEA 0183 (Goby3 checks it when present). */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -46,11 +49,17 @@ typedef struct {
     /* the vehicle's state */
     char mission[16];     /* the $BFMIS status word */
     int heard_ctl;        /* a $BFCTL was heard: it alone grants control */
+    int epoch_times;      /* the vehicle writes its times as seconds since 1970 */
     int control, shutdown;
 } bluefin_state;
 
-static void time_of(int64_t stamp, char *out, size_t n)
+static void time_of(const bluefin_state *s, int64_t stamp, char *out, size_t n)
 {
+    if (s->epoch_times) {
+        int64_t ms = stamp > 0 ? stamp / 1000 : 0;
+        snprintf(out, n, "%lld.%03d", (long long)(ms / 1000), (int)(ms % 1000));
+        return;
+    }
     int64_t ms = stamp > 0 ? (stamp / 1000) % (86400 * INT64_C(1000)) : 0;
     snprintf(out, n, "%02d%02d%02d.%03d", (int)(ms / 3600000), (int)(ms / 60000 % 60), (int)(ms / 1000 % 60),
              (int)(ms % 1000));
@@ -78,8 +87,29 @@ static int ranged(const nmea_sentence *m, int i, double lo, double hi, double *o
     return r;
 }
 
+/* A time field as the vehicle writes it: hhmmss(.ss) (into seconds of the
+ * day) or seconds since 1970 with decimals (9 to 11 digits before the point:
+ * 1973 to 5138), telling which in *epoch. 0 empty, 1 read, -1 neither. */
+static int vehicle_time(const nmea_sentence *m, int i, double *out, int *epoch)
+{
+    const char *v = i < m->nfields ? m->field[i] : "";
+    size_t int_digits = strspn(v, "0123456789");
+    if (*v && int_digits >= 9 && int_digits <= 11) {
+        double t;
+        if (nmea_field_double(m, i, &t) != 1)
+            return -1;
+        *out = t;
+        *epoch = 1;
+        return 1;
+    }
+    int r = nmea_field_time_of_day(m, i, out);
+    if (r == 1)
+        *epoch = 0;
+    return r;
+}
+
 /* $BFNVG,TIME,LAT,N|S,LON,E|W,QUALITY,ALTITUDE,DEPTH,HEADING,ROLL,PITCH,COMPUTED_TIME */
-static void nvg(fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stamp)
+static void nvg(bluefin_state *s, fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stamp)
 {
     if (m->nfields < 11) {
         drv_drop(ctx, "NVG too short", "%d fields, at least 11", m->nfields);
@@ -87,11 +117,15 @@ static void nvg(fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stam
     }
     double tod, lat = NAN, lon = NAN;
     long quality = 0; /* empty: not known (not used beyond this check) */
-    if (nmea_field_time_of_day(m, 0, &tod) < 0) {
+    int epoch = s->epoch_times;
+    if (vehicle_time(m, 0, &tod, &epoch) < 0) {
         drv_drop(ctx, "bad time", "NVG time '%.20s'", m->field[0]);
         return;
     }
-    if (nmea_field_latitude(m, 1, &lat) < 0 || nmea_field_longitude(m, 3, &lon) < 0 || isnan(lat) != isnan(lon)) {
+    /* no fix: the numbers empty, their hemispheres perhaps still written */
+    int no_lat = !*m->field[1], no_lon = !*m->field[3];
+    if ((!no_lat && nmea_field_latitude(m, 1, &lat) < 0) || (!no_lon && nmea_field_longitude(m, 3, &lon) < 0) ||
+        no_lat != no_lon) {
         drv_drop(ctx, "bad position", "NVG '%.16s' '%.2s' '%.16s' '%.2s'", m->field[1], m->field[2], m->field[3],
                  m->field[4]);
         return;
@@ -114,21 +148,26 @@ static void nvg(fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stam
         return;
     }
     double hdg = NAN, roll = NAN, pitch = NAN;
-    if (ranged(m, 8, 0.0, 360.0, &hdg) < 0 || ranged(m, 9, -180.0, 180.0, &roll) < 0 ||
+    /* a heading of -180 .. 360: some write it signed (wrapped below) */
+    if (ranged(m, 8, -180.0, 360.0, &hdg) < 0 || ranged(m, 9, -180.0, 180.0, &roll) < 0 ||
         ranged(m, 10, -90.0, 90.0, &pitch) < 0) {
         drv_drop(ctx, "attitude out of range", "NVG heading '%.12s' roll '%.12s' pitch '%.12s' deg", m->field[8],
                  m->field[9], m->field[10]);
         return;
     }
-    if (m->nfields > 11 && nmea_field_time_of_day(m, 11, &v) < 0) {
+    int computed_epoch = epoch;
+    if (m->nfields > 11 && vehicle_time(m, 11, &v, &computed_epoch) < 0) {
         drv_drop(ctx, "bad time", "NVG computed time '%.20s'", m->field[11]);
         return;
     }
-    nav.heading_rad = isnan(hdg) ? NAN : fmod(hdg, 360.0) * M_PI / 180.0;
+    s->epoch_times = epoch;
+    nav.heading_rad = isnan(hdg) ? NAN : fmod(hdg + 360.0, 360.0) * M_PI / 180.0;
     nav.roll_rad = roll * M_PI / 180.0;
     nav.pitch_rad = pitch * M_PI / 180.0;
     fs_heard(fs, ctx, stamp);
-    fs_nav_in(fs, ctx, &nav, 1, stamp);
+    /* published with a position of its own: one without (no fix) only updates
+     * the rest, never republishes the last position as new */
+    fs_nav_in(fs, ctx, &nav, !isnan(lat), stamp);
 }
 
 /* $BFNVR,TIME,EAST,NORTH,DOWN [m/s],PITCH_RATE,ROLL_RATE,YAW_RATE: the speed
@@ -172,6 +211,15 @@ static int word_ok(const char *w, size_t max)
     return 1;
 }
 
+/* The command an acknowledgement names: RMB, or written whole (BPRMB), in
+ * either case (Goby3 compares it case-blind). */
+static int acks_rmb(const char *what)
+{
+    if (strlen(what) == 5 && (what[0] == 'B' || what[0] == 'b') && (what[1] == 'P' || what[1] == 'p'))
+        what += 2;
+    return strlen(what) == 3 && (what[0] | 0x20) == 'r' && (what[1] | 0x20) == 'm' && (what[2] | 0x20) == 'b';
+}
+
 /* $BFACK,TIME,SENTENCE,ITS_TIME,INSERT_ID,STATUS,FUTURE,DESCRIPTION: status 0
  * an invalid request, 1 not processed, 2 processed, 3 pending */
 static void ack(bluefin_state *s, fs_state *fs, drv_ctx *ctx, const nmea_sentence *m, int64_t stamp)
@@ -183,10 +231,14 @@ static void ack(bluefin_state *s, fs_state *fs, drv_ctx *ctx, const nmea_sentenc
         return;
     }
     fs_heard(fs, ctx, stamp);
-    const char *what = m->field[1];
-    if (status <= 1 && (!strcmp(what, "RMB") || !strcmp(what, "BPRMB"))) {
+    if (status <= 1 && acks_rmb(m->field[1])) {
         /* the vehicle refused our request: counted as the core counts its own */
-        const char *why = m->nfields > 6 && *m->field[6] ? m->field[6] : status ? "not processed" : "invalid request";
+        /* the description is the seventh field, after one for future use; a
+         * vehicle that leaves that one out writes it sixth */
+        const char *why = m->nfields > 6 && *m->field[6]   ? m->field[6]
+                          : m->nfields > 5 && *m->field[5] ? m->field[5]
+                          : status                         ? "not processed"
+                                                           : "invalid request";
         fs->setpoints_refused++;
         snprintf(fs->last_refusal, sizeof fs->last_refusal, "refused by the frontseat: %.100s", why);
         drv_drop(ctx, "setpoint: refused by the frontseat", "BFACK status %ld: %.60s", status, why);
@@ -201,7 +253,7 @@ static void on_sentence(bluefin_state *s, fs_state *fs, drv_ctx *ctx, const nmea
         return;
     }
     if (!strcmp(t, "NVG")) {
-        nvg(fs, ctx, m, stamp);
+        nvg(s, fs, ctx, m, stamp);
     } else if (!strcmp(t, "NVR")) {
         nvr(fs, ctx, m, stamp);
     } else if (!strcmp(t, "ACK")) {
@@ -276,8 +328,8 @@ static int bluefin_request(void *ps, const fs_limits *lim, const fs_request *rq,
 {
     (void)lim; /* the BPI has no pitch limit nor timeout in its request */
     bluefin_state *s = ps;
-    char t[16], body[128];
-    time_of(s->stamp, t, sizeof t);
+    char t[32], body[128];
+    time_of(s, s->stamp, t, sizeof t);
     if (rq->speed_mps < 0.01) /* stop: no rudder, no pitch, no rpm (Goby3's form) */
         snprintf(body, sizeof body, "BPRMB,%s,0,0,2,0,0,1", t);
     else
@@ -299,8 +351,8 @@ static int bluefin_poll(void *ps, char *out, size_t n)
     }
     if (s->polls % HEARTBEAT_EVERY)
         return 0;
-    char t[16];
-    time_of(s->stamp, t, sizeof t);
+    char t[32];
+    time_of(s, s->stamp, t, sizeof t);
     snprintf(body, sizeof body, "BPSTS,%s,1,auv-frontseat", t);
     return nmea_format(out, n, body);
 }
@@ -308,7 +360,7 @@ static int bluefin_poll(void *ps, char *out, size_t n)
 static void bluefin_reset(void *ps)
 {
     bluefin_state *s = ps;
-    nmea_framer_init(&s->framer, 0);
+    nmea_framer_init(&s->framer, 1); /* the checksum is optional: checked when present */
     s->garbage_seen = 0;
     s->in_garbage = 0;
     s->log_next = 0; /* a new stream: ask for the logging again */

@@ -318,6 +318,7 @@ static int fs_init(void *state, drv_ctx *ctx)
     fs->last_request_sent = fs->last_poll_sent = fs->last_status = INT64_MIN / 2;
     fs->nav = (fs_nav){NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
     fs->published_state = -1;
+    fs->proto->reset(proto_state(fs)); /* its framer's rules set before the first byte, not at the port's opening */
     return 0;
 }
 

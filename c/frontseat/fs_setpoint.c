@@ -80,7 +80,10 @@ const char *fs_setpoint_request(const auv_setpoint_t *sp, const fs_limits *lim, 
     double h = fmod(sp->heading_rad * 180.0 / M_PI, 360.0);
     if (h < 0.0)
         h += 360.0;
-    if (h >= 360.0) /* fmod of -tiny + 360 */
+    /* the wire carries tenths of a degree in 0 .. 359.9: 359.96 is written 0.0,
+     * never 360.0, which is no heading of the range */
+    h = round(h * 10.0) / 10.0;
+    if (h >= 360.0) /* also fmod of -tiny + 360 */
         h = 0.0;
     rq->heading_deg = h;
     rq->depth_m = depth;

@@ -14,7 +14,8 @@
  *
  * The $C sentence has no commas and an address of numbers: not an NMEA
  * address, so this file frames its lines itself (the same rules as
- * c/drivers/common/nmea.c: printable ASCII, a length cap, a checksum). */
+ * c/drivers/common/nmea.c: printable ASCII, a length cap, a checksum checked
+ * when present: optional, as in NMEA 0183). */
 #include <ctype.h>
 #include <math.h>
 #include <stdio.h>
@@ -59,18 +60,11 @@ static int in_range(const char *s, double lo, double hi, double *out)
     return r == 1 && *out >= lo && *out <= hi;
 }
 
-/* The mode word: N normal (its mission), S stopped, P parking, M manual
- * override, mP (also Mp) manual parking, A servo mode (the backseat's $OMS
- * requests steer it), W mission mode (as Goby3's Iver driver and the ACFR
- * driver read them). */
-static int mode_known(const char *m)
-{
-    static const char *const modes[] = {"N", "S", "P", "M", "mP", "Mp", "A", "W"};
-    for (size_t i = 0; i < sizeof modes / sizeof *modes; i++)
-        if (!strcmp(m, modes[i]))
-            return 1;
-    return 0;
-}
+/* The mode word: its first character decides, as Goby3's Iver driver reads
+ * it (a firmware may write more after it): N normal (its mission), S stopped,
+ * P parking, M manual override, m manual parking ("mP"; ACFR writes "Mp",
+ * an M), A servo mode (the backseat's $OMS requests steer it), W mission mode. */
+static int mode_known(const char *m) { return *m && strchr("NSPMmAW", *m) != NULL; }
 
 static void osi(fs_state *fs, drv_ctx *ctx, char **f, int nf, int64_t stamp)
 {
@@ -83,16 +77,20 @@ static void osi(fs_state *fs, drv_ctx *ctx, char **f, int nf, int64_t stamp)
         return;
     }
     fs_nav nav = {NAN, NAN, NAN, NAN, NAN, NAN, NAN, NAN};
-    double v;
-    if (!in_range(f[4], -90.0, 90.0, &nav.lat_deg) || !in_range(f[5], -180.0, 180.0, &nav.lon_deg)) {
+    double v = NAN;
+    /* an empty field is not known (no fix yet, no altimeter, ...): the others
+     * stand; both coordinates or neither */
+    int no_lat = !*f[4], no_lon = !*f[5];
+    if ((!no_lat && !in_range(f[4], -90.0, 90.0, &nav.lat_deg)) ||
+        (!no_lon && !in_range(f[5], -180.0, 180.0, &nav.lon_deg)) || no_lat != no_lon) {
         drv_drop(ctx, "bad position", "OSI latitude '%.20s', longitude '%.20s'", f[4], f[5]);
         return;
     }
-    if (!in_range(f[6], 0.0, 20.0, &v)) {
+    if (*f[6] && !in_range(f[6], 0.0, 20.0, &v)) {
         drv_drop(ctx, "speed out of range", "OSI speed '%.20s' kn (0 .. 20)", f[6]);
         return;
     }
-    nav.speed_mps = v * KN_TO_MPS;
+    nav.speed_mps = *f[6] ? v * KN_TO_MPS : NAN;
     /* the altimeter: empty or negative when it has no bottom */
     int a = number(f[9], &v);
     if (a < 0 || (a == 1 && v > 1000.0)) {
@@ -100,8 +98,9 @@ static void osi(fs_state *fs, drv_ctx *ctx, char **f, int nf, int64_t stamp)
         return;
     }
     nav.altitude_m = a == 1 && v >= 0.0 ? v * FT_TO_M : -1.0;
+    /* the error word: N none, else one or more codes run together ("SopStl") */
     const char *err = f[8];
-    if (strlen(err) > 8) {
+    if (strlen(err) >= sizeof ((fs_report *)0)->error_text) {
         drv_drop(ctx, "bad error field", "OSI error '%.20s'", err);
         return;
     }
@@ -128,43 +127,52 @@ static void osi(fs_state *fs, drv_ctx *ctx, char **f, int nf, int64_t stamp)
     }
     fs_report r = {0};
     snprintf(r.mode, sizeof r.mode, "%s", f[2]);
-    r.has_control = !strcmp(f[2], "A");
-    r.manual = !strcmp(f[2], "M") || !strcmp(f[2], "mP") || !strcmp(f[2], "Mp");
+    r.has_control = f[2][0] == 'A';
+    r.manual = f[2][0] == 'M' || f[2][0] == 'm';
     r.error = *err && strcmp(err, "N") != 0;
     snprintf(r.error_text, sizeof r.error_text, "%s", r.error ? err : "");
     fs_heard(fs, ctx, stamp);
     fs_report_in(fs, ctx, &r, stamp);
-    fs_nav_in(fs, ctx, &nav, 1, stamp);
+    /* published with a position of its own: one without (no fix) updates the
+     * rest and never republishes the last position as new */
+    fs_nav_in(fs, ctx, &nav, !no_lat, stamp);
 }
 
-/* "C<h>P<p>R<r>T<t>D<ft>" */
+/* "C<h>P<p>R<r>T<t>D<ft>": a letter, then its number. The OceanServer
+ * compass behind it writes what it is set to write: a field may be left
+ * out, and others follow (M magnetic field, Mx My Mz, A, Ax Ay Az, ...):
+ * those are skipped, the five known ones read where they stand (C first). */
 static void compass(fs_state *fs, drv_ctx *ctx, const char *body, int64_t stamp)
 {
     static const char keys[] = "CPRTD";
-    double val[5];
-    const char *p = body;
-    for (int i = 0; i < 5; i++) {
-        if (*p != keys[i]) {
-            drv_drop(ctx, "bad compass sentence", "'%.40s': no %c", body, keys[i]);
-            return;
-        }
-        p++;
-        char num[32];
-        size_t k = 0;
+    double val[5] = {NAN, NAN, NAN, NAN, NAN};
+    const char *p = body; /* line_done saw "C" and a number first */
+    while (*p) {
+        char tag[4], num[32];
+        size_t t = 0, k = 0;
+        while (isalpha((unsigned char)*p) && t < sizeof tag - 1)
+            tag[t++] = *p++;
+        tag[t] = '\0';
         while (*p && (isdigit((unsigned char)*p) || *p == '.' || *p == '-' || *p == '+') && k < sizeof num - 1)
             num[k++] = *p++;
         num[k] = '\0';
-        if (number(num, &val[i]) != 1) {
-            drv_drop(ctx, "bad compass sentence", "'%.40s': %c without a number", body, keys[i]);
+        double v;
+        if (!t || number(num, &v) != 1) {
+            drv_drop(ctx, "bad compass sentence", "'%.40s': '%.10s' is not a letter and its number", body,
+                     p - k - t);
             return;
         }
+        const char *known = t == 1 ? strchr(keys, tag[0]) : NULL;
+        if (!known)
+            continue; /* another of the compass's outputs: not used */
+        if (!isnan(val[known - keys])) {
+            drv_drop(ctx, "bad compass sentence", "'%.40s': %s twice", body, tag);
+            return;
+        }
+        val[known - keys] = v;
     }
-    if (*p) {
-        drv_drop(ctx, "bad compass sentence", "'%.40s': trailing '%.10s'", body, p);
-        return;
-    }
-    if (val[0] < 0.0 || val[0] > 360.0 || fabs(val[1]) > 90.0 || fabs(val[2]) > 180.0 || val[4] < -30.0 ||
-        val[4] > 3300.0) {
+    if (val[0] < 0.0 || val[0] > 360.0 || fabs(val[1]) > 90.0 || fabs(val[2]) > 180.0 ||
+        val[4] < -30.0 || val[4] > 3300.0) {
         drv_drop(ctx, "compass out of range", "heading %g, pitch %g, roll %g, depth %g ft", val[0], val[1], val[2],
                  val[4]);
         return;
@@ -181,17 +189,21 @@ static void compass(fs_state *fs, drv_ctx *ctx, const char *body, int64_t stamp)
 static void line_done(iver3_state *s, fs_state *fs, drv_ctx *ctx, int64_t stamp)
 {
     s->line[s->len] = '\0';
+    /* the checksum is optional (NMEA 0183; Goby3's Iver driver checks it when
+     * present): a '*' must be followed by two hex digits and match */
     char *star = strrchr(s->line, '*');
-    if (!star || strlen(star) != 3 || !isxdigit((unsigned char)star[1]) || !isxdigit((unsigned char)star[2])) {
-        drv_drop(ctx, "no checksum", "'%.40s'", s->line);
+    if (star && (strlen(star) != 3 || !isxdigit((unsigned char)star[1]) || !isxdigit((unsigned char)star[2]))) {
+        drv_drop(ctx, "bad checksum", "'%.40s': '*' without two hex digits", s->line);
         return;
     }
-    unsigned want = (unsigned)strtoul(star + 1, NULL, 16);
-    *star = '\0';
     char *body = s->line + 1;
-    if (nmea_checksum(body, strlen(body)) != want) {
-        drv_drop(ctx, "bad checksum", "'%.40s'", body);
-        return;
+    if (star) {
+        unsigned want = (unsigned)strtoul(star + 1, NULL, 16);
+        *star = '\0';
+        if (nmea_checksum(body, strlen(body)) != want) {
+            drv_drop(ctx, "bad checksum", "'%.40s'", body);
+            return;
+        }
     }
     drv_frame_ok(ctx, stamp);
     if (body[0] == 'C' && (isdigit((unsigned char)body[1]) || body[1] == '.' || body[1] == '-')) {
@@ -217,13 +229,24 @@ static void line_done(iver3_state *s, fs_state *fs, drv_ctx *ctx, int64_t stamp)
         fs_heard(fs, ctx, stamp); /* $ACK, $GPRMC, ...: alive, not used */
 }
 
+static int ends_with_checksum(const iver3_state *s)
+{
+    return s->len >= 4 && s->line[s->len - 3] == '*' && isxdigit((unsigned char)s->line[s->len - 2]) &&
+           isxdigit((unsigned char)s->line[s->len - 1]);
+}
+
 static void iver3_feed(void *ps, fs_state *fs, drv_ctx *ctx, const uint8_t *b, size_t n, int64_t stamp)
 {
     iver3_state *s = ps;
     for (size_t i = 0; i < n; i++) {
         uint8_t c = b[i];
         if (c == '$') {
-            if (s->in_line)
+            /* a whole sentence (its *hh there) run into the next '$' without a
+             * line end (a full output buffer drops the CR LF): two sentences,
+             * as c/drivers/common/nmea.c reads them; a cut one is truncated */
+            if (s->in_line && !s->skipping && ends_with_checksum(s))
+                line_done(s, fs, ctx, stamp);
+            else if (s->in_line)
                 drv_drop(ctx, "truncated", "a new '$' after '%.30s'", s->line);
             s->in_line = 1;
             s->skipping = 0;
@@ -247,7 +270,14 @@ static void iver3_feed(void *ps, fs_state *fs, drv_ctx *ctx, const uint8_t *b, s
         }
         if (s->skipping)
             continue;
-        if (c < 0x20 || c > 0x7e) {
+        if ((c < 0x20 || c > 0x7e) && s->len <= 6 && !memchr(s->line, ',', s->len)) {
+            /* a '$' in binary between the lines began no sentence: garbage, not
+             * a broken line (as c/drivers/common/nmea.c reads it) */
+            if (!s->in_garbage)
+                drv_drop(ctx, "garbage", "byte 0x%02x after '%.6s'", c, s->line);
+            s->in_line = 0;
+            s->in_garbage = 1;
+        } else if (c < 0x20 || c > 0x7e) {
             drv_drop(ctx, "bad character", "byte 0x%02x in '%.30s'", c, s->line);
             s->skipping = 1;
         } else if (s->len >= LINE_MAX_CHARS) {

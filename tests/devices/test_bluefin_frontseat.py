@@ -146,7 +146,7 @@ def test_bad_lines_are_counted_and_dropped():
     log_all(em)
     sent.clear()
     em.receive(b"$BPRMB,000010.200,90.0,6.0,0,1.50,1,0*00\r\n", 1.0)
-    em.receive(b"$BPRMB,000010.200,90.0,6.0,0,1.50,1,0\r\n", 1.0)
+    em.receive(b"$BPRMB,000010.200,90.0\r\n", 1.0)  # no checksum (optional): read, and short
     em.receive(b"$BPRMB,0000\xff10.200*12\r\n", 1.0)
     em.receive(b"$BPRMB,00" + compose("BPSTS,000001.000,1,auv-frontseat"), 1.0)
     em.receive(b"$" + b"9" * 700 + b"\r\n", 1.0)
@@ -157,7 +157,7 @@ def test_bad_lines_are_counted_and_dropped():
     assert em.request is None and em.heartbeats == 1
     assert em.refused == {
         "bad checksum": 1,
-        "no checksum": 1,
+        "bad $BPRMB": 1,
         "bad character": 1,
         "truncated": 1,
         "too long": 1,
@@ -165,7 +165,7 @@ def test_bad_lines_are_counted_and_dropped():
         "unsupported sentence": 1,
         "bad $BPLOG": 1,
     }
-    assert [(a[2], a[5]) for a in of(sent, "BFACK")] == [("STS", "2"), ("ABT", "1"), ("LOG", "0")]
+    assert [(a[2], a[5]) for a in of(sent, "BFACK")] == [("RMB", "0"), ("STS", "2"), ("ABT", "1"), ("LOG", "0")]
 
 
 def control_words(em: BluefinFrontseat, sent: list[str], helms: list[tuple[float, str]]) -> list[list[str]]:

@@ -48,10 +48,12 @@ def test_bad_requests_are_refused_by_reason():
     assert em.refused == {
         "bad checksum": 1,
         "$OMS out of range": 1,
-        "bad $OMS": 1,
-        "no checksum": 1,
+        "bad $OMS": 2,
         "unknown sentence": 1,
     }
+    # the checksum is optional (NMEA 0183): a whole request without one is taken
+    em.receive(b"$OMS,90.0,6.0,30.0,2.9,5\r\n", 0.0)
+    assert em.request is not None and em.request.heading_rad == pytest.approx(math.pi / 2)
 
 
 def test_a_poll_is_answered_with_the_compass_and_the_state():

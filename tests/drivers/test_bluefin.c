@@ -368,8 +368,6 @@ static void test_refused_sentences(void)
     *digit = *digit == '0' ? '1' : '0';
     feed(r, bad, T0);
     CHECK(count(r, "bad checksum") == 1);
-    feed(r, "$" NVG "\r\n", T0);
-    CHECK(count(r, "no checksum") == 1);
     feed(r, sentence("BFNVG,221320.000,4130.0000,N,07042.0000,W,1,10.0,3.5"), T0);
     CHECK(count(r, "NVG too short") == 1);
     feed(r, sentence("BFNVG,2213,4130.0000,N,07042.0000,W,1,10.0,3.5,82.8,-2.6,-3.9,221319.900"), T0);
@@ -418,6 +416,67 @@ static void test_refused_sentences(void)
     free(r);
 }
 
+/* What a real Huxley writes beyond our emulator's lines, each read as the
+ * interface's definition allows. */
+static void test_real_variants(void)
+{
+    rig *r = rig_new(NULL);
+    /* the checksum is optional: a line without one is read */
+    feed(r, "$" NVG "\r\n", T0);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 1 && count(r, "no checksum") == 0);
+    /* the times as seconds since 1970 with decimals (the first field and the
+     * computed time): read, and our own sentences' times written the same way */
+    feed(r, sentence("BFNVG,1700000000.250,4130.0000,N,07042.0000,W,1,10.0,4.5,82.8,-2.6,-3.9,1700000000.125"),
+         T0 + 10 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && fabs(r->nav.depth_m - 4.5) < 1e-9);
+    setpoint(r, depth_sp(T0, 1.0, 10.0, 1.5), T0 + 20 * MS);
+    CHECK_STR(r->written, sentence("BPRMB,1700000000.010,57.3,10.0,0,1.50,1,0"));
+    feed(r, sentence("BFNVG,1700000000,4130.0000,N,07042.0000,W,1,10.0,4.5,82.8,-2.6,-3.9,"), T0 + 30 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 3);
+    feed(r, sentence(NVG), T0 + 40 * MS); /* hhmmss again: answered so again */
+    setpoint(r, depth_sp(T0 + 40 * MS, 1.0, 10.0, 1.5), T0 + 40 * MS);
+    CHECK_STR(r->written, sentence("BPRMB,221320.040,57.3,10.0,0,1.50,1,0"));
+    /* no fix: the numbers empty (their hemispheres written or not): the rest read, no NAV */
+    feed(r, sentence("BFNVG,221321.000,,N,,W,0,12.0,5.0,90.0,0.0,0.0,221321.000"), T0 + 50 * MS);
+    feed(r, sentence("BFNVG,221321.100,,,,,,12.0,5.0,90.0,0.0,0.0,221321.100"), T0 + 60 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 4 && fabs(r->fs.nav.depth_m - 5.0) < 1e-9);
+    /* a signed heading (-180 .. 180) is the same direction */
+    feed(r, sentence("BFNVG,221321.200,4130.0000,N,07042.0000,W,1,10.0,3.5,-90.0,0.0,0.0,221321.200"), T0 + 70 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 5 && fabs(r->nav.heading_rad - 270.0 * DEG) < 1e-9);
+    /* the acknowledged command written whole or in lower case is still ours */
+    feed(r, sentence("BFACK,221321.300,BPRMB,221321.000,,1,,Not in a payload behavior"), T0 + 80 * MS);
+    feed(r, sentence("BFACK,221321.400,bprmb,221321.000,,0,,"), T0 + 90 * MS);
+    feed(r, sentence("BFACK,221321.500,rmb,221321.000,7,1,,busy"), T0 + 95 * MS);
+    CHECK(count(r, "setpoint: refused by the frontseat") == 3 && strstr(r->fs.last_refusal, "busy") != NULL);
+    /* the description where the field for future use would be: still its words */
+    feed(r, sentence("BFACK,221321.600,RMB,221321.000,,1,Above the minimum depth"), T0 + 96 * MS);
+    CHECK(count(r, "setpoint: refused by the frontseat") == 4);
+    CHECK(strstr(r->fs.last_refusal, "Above the minimum depth") != NULL);
+    /* what a vehicle interleaves, each in its published shape: heard, never an error */
+    static const char *const others[] = {
+        "BFRVL,221322.000,350.0,1.45",
+        "BFSVS,221322.000,1502.3",
+        "BFDVL,221322.000,1.41,0.02,-0.01,12.1,12.3,11.9,12.0,11.5,221321.950",
+        "BFDVL,221322.100,,,,,,,,11.5,",
+        "BFCTD,221322.000,42150.2,11.52,351.3,221321.900",
+        "BFBOY,221322.000,2,0,ok,12.5",
+        "BFTRM,221322.000,2,0,ok,1.5,-0.2",
+        "BFTOP,221322.000,hello topside",
+        "BFMBS,221322.000,survey.mis,3,7,Payload",
+        "BFMBE,221322.000,survey.mis,3,7,Payload",
+        "BFPLN,221322.000,1,Trackline,4131.0000,N,07043.0000,W",
+        "BFVER,221322.000,1.10",
+        "BFRBS,221322.000,29.8,85",
+        "BFIMU,221322.000,0.01,0.02,9.81,0.0,0.0,0.1",
+        "BFMSG,221322.000,a message, with, commas",
+    };
+    int64_t navs = r->n_nav, total = r->ctx.reasons.total;
+    for (size_t i = 0; i < sizeof others / sizeof *others; i++)
+        feed(r, sentence(others[i]), T0 + (100 + (int64_t)i) * MS);
+    CHECK(r->ctx.reasons.total == total && r->n_nav == navs && r->fs.last_heard == T0 + 114 * MS);
+    free(r);
+}
+
 static long expected(const rig *r, const char *name)
 {
     if (!strcmp(name, "navs"))
@@ -454,6 +513,7 @@ static const unit_test tests[] = {
     {"bluefin_limits", test_limits},
     {"bluefin_states", test_states},
     {"bluefin_refused_sentences", test_refused_sentences},
+    {"bluefin_real_variants", test_real_variants},
     {"bluefin_hostile_corpus", test_hostile_corpus},
     {NULL, NULL},
 };

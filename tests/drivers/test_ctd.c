@@ -104,6 +104,8 @@ static void test_ctd_not_scans_and_refusals(void)
         {"15.0000, 4.00000, 10.000, 60.0000", "out of range"}, /* salinity */
         {"15.0000, 4.00000, 10.000, 35.0, 900.0", "out of range"},
         {"-nan, 4.0, 1.0", "bad number"},
+        {"15.0000, 0x4, 10.000", "bad number"},          /* hex: strtod reads it, no SBE 49 writes it */
+        {"1.5e1, 4.00000, 10.000", "bad number"},        /* an exponent: not the manual's format */
     };
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         int64_t before = count(r, cases[k].reason);

@@ -186,6 +186,9 @@ static void test_request_sentence(void)
     feed(v4, osi("N", "N"), T0);
     setpoint(v4, depth_sp(T0, -M_PI / 2, 3.048, 1.0), T0);
     CHECK_STR(v4->written, sentence("OMS,270.0,10.0,30.0,1.9,10"));
+    /* a heading a hair under north is north (0.0), never 360.0, out of the range */
+    setpoint(v4, depth_sp(T0, 359.97 * M_PI / 180.0, 3.048, 1.0), T0);
+    CHECK_STR(v4->written, sentence("OMS,0.0,10.0,30.0,1.9,10"));
     free(v4);
 }
 
@@ -281,12 +284,14 @@ static void test_refused_sentences(void)
     rig *r = rig_new(NULL);
     feed(r, "$C82.8P-3.89R-2.63T20.3D3.2*79\r\n", T0);
     CHECK(count(r, "bad checksum") == 1);
-    feed(r, "$C82.8P-3.89R-2.63T20.3D3.2\r\n", T0);
-    CHECK(count(r, "no checksum") == 1);
+    feed(r, "$C82.8P-3.89R-2.63T20.3D3.2*7\r\n", T0); /* a '*' without its two digits */
+    CHECK(count(r, "bad checksum") == 2 && count(r, "no checksum") == 0);
     feed(r, sentence("C400.0P0R0T0D1"), T0);
     CHECK(count(r, "compass out of range") == 1);
-    feed(r, sentence("C1.0P0R0D1"), T0);
-    CHECK(count(r, "bad compass sentence") == 1);
+    feed(r, sentence("C1.0P0R0T1D"), T0);      /* a letter without its number */
+    feed(r, sentence("C1.0P0P1R0T1D1"), T0);   /* a field twice */
+    feed(r, sentence("C1.0P0,R0T1D1"), T0);    /* a comma: not a compass sentence */
+    CHECK(count(r, "bad compass sentence") == 3);
     feed(r, osi("X", "N"), T0);
     CHECK(count(r, "unknown mode") == 1);
     feed(r, sentence("OSI,8080808080,N,0,91.0,-70.7,2.9,0.0,N,32.8,P0,-15.0,m1,0.0,82.8,3.2"), T0);
@@ -308,6 +313,51 @@ static void test_refused_sentences(void)
     CHECK(r->n_nav == 0 && r->fs.last_heard == -1); /* nothing refused counts as heard */
     feed(r, sentence("ACK,1,0,0"), T0); /* ACFR's $ACK: heard, not used */
     CHECK(r->fs.last_heard == T0);
+    free(r);
+}
+
+/* What a real Remote Helm writes beyond our emulator's lines, each read as
+ * the protocol's definition allows (Goby3's Iver driver reads them so). */
+static void test_real_variants(void)
+{
+    rig *r = rig_new(NULL);
+    /* the checksum is optional (NMEA 0183): a line without one is read */
+    feed(r, "$C82.8P-3.89R-2.63T20.3D3.2\r\n", T0);
+    feed(r, "$OSI,8080808080,N,0,41.5000000,-70.7000000,2.9,0.0,N,32.8,P0,-15.0,m1,0.0,82.8,3.2\r\n", T0);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 1 && fabs(r->nav.latitude_deg - 41.5) < 1e-9);
+    /* whole sentences run together without their CR LF (a full output buffer): each read */
+    feed(r, "$C82.8P-3.89R-2.63T20.3D3.2*78$C82.8P-3.89R-2.63T20.3D3.2*78", T0 + 1 * MS);
+    feed(r, "$OSI,8080808080,N,0,41.5000000,-70.7000000,2.9,0.0,N,32.8,P0,-15.0,m1,0.0,82.8,3.2*66\r\n", T0 + 2 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && r->ctx.frames_decoded == 5);
+    /* the compass writes what it is set to: more outputs after D (skipped), or fewer fields */
+    feed(r, sentence("C90.5P1.5R-2.5T20.1D6.4M51.2Mx12.3My-4.5Mz48.9A1.0Ax0.01Ay0.02Az0.99"), T0 + 10 * MS);
+    CHECK(r->ctx.reasons.total == 0);
+    CHECK(fabs(r->fs.nav.heading_rad - 90.5 * DEG) < 1e-9 && fabs(r->fs.nav.pitch_rad - 1.5 * DEG) < 1e-9);
+    CHECK(fabs(r->fs.nav.roll_rad + 2.5 * DEG) < 1e-9 && fabs(r->fs.nav.depth_m - 6.4 * FT) < 1e-9);
+    feed(r, sentence("C91.0P2.0R-3.0"), T0 + 20 * MS); /* no temperature, no depth: the depth held */
+    CHECK(r->ctx.reasons.total == 0 && fabs(r->fs.nav.heading_rad - 91.0 * DEG) < 1e-9);
+    CHECK(fabs(r->fs.nav.depth_m - 6.4 * FT) < 1e-9);
+    /* no fix yet: the position empty; the state is read, no NAV with an old position */
+    feed(r, sentence("OSI,8080808080,N,0,,,,,N,,,,,,,"), T0 + 30 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 2 && r->fs.last_heard == T0 + 30 * MS);
+    /* an empty speed or altimeter: not known, the rest stands */
+    feed(r, sentence("OSI,8080808080,N,0,41.5001000,-70.7000000,,0.0,N,,P0,-15.0,m1,0.0,82.8,3.2"), T0 + 40 * MS);
+    CHECK(r->ctx.reasons.total == 0 && r->n_nav == 3 && fabs(r->nav.latitude_deg - 41.5001) < 1e-9);
+    CHECK(r->nav.altitude_m == -1.0 && fabs(r->nav.u_mps - 2.9 * 1852.0 / 3600.0) < 1e-9);
+    /* the mode's first letter decides (Goby3): mP and Mp are an operator's parking */
+    feed(r, osi("mP", "N"), T0 + 50 * MS);
+    CHECK(r->status.state == AUV_FRONTSEAT_STATUS_T_STATE_MANUAL && !r->status.has_control);
+    feed(r, osi("Mp", "N"), T0 + 60 * MS);
+    CHECK(r->status.state == AUV_FRONTSEAT_STATUS_T_STATE_MANUAL);
+    /* several error codes run together: the whole word */
+    feed(r, osi("S", "SopStlSle"), T0 + 70 * MS);
+    CHECK(r->status.state == AUV_FRONTSEAT_STATUS_T_STATE_ERROR && r->status.error);
+    CHECK_STR(r->error_text, "SopStlSle");
+    CHECK(r->ctx.reasons.total == 0);
+    /* binary between the lines with a '$' in it: one run of garbage, not a broken sentence */
+    feed(r, "$\x01\xb5\x62\x01\x02$C82.8P-3.89R-2.63T20.3D3.2*78\r\n", T0 + 80 * MS);
+    CHECK(count(r, "garbage") == 1 && count(r, "bad character") == 0 && r->ctx.reasons.total == 1);
+    CHECK(r->fs.last_heard == T0 + 80 * MS); /* the compass after it was read */
     free(r);
 }
 
@@ -345,6 +395,7 @@ static const unit_test tests[] = {
     {"iver3_limits", test_limits},
     {"iver3_states", test_states},
     {"iver3_refused_sentences", test_refused_sentences},
+    {"iver3_real_variants", test_real_variants},
     {"iver3_hostile_corpus", test_hostile_corpus},
     {NULL, NULL},
 };

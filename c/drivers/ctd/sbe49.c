@@ -36,6 +36,24 @@ static int all_hex(const char *s, size_t n)
     return 1;
 }
 
+/* The manual's numbers are plain decimals ("-1.2345"): strtod would also take
+ * an exponent, hex ("0x1A") or "inf", which no SBE 49 writes. */
+static int plain_decimal(const char *p, const char *end)
+{
+    int digits = 0, dots = 0;
+    if (p < end && (*p == '-' || *p == '+'))
+        p++;
+    for (; p < end; p++) {
+        if (isdigit((unsigned char)*p))
+            digits++;
+        else if (*p == '.' && !dots)
+            dots++;
+        else
+            return 0;
+    }
+    return digits > 0;
+}
+
 /* Decimal fields "a, b, c": up to 6 numbers; -1 if one is not a number. */
 static int decimal_fields(const char *s, size_t n, double *v, int cap)
 {
@@ -49,7 +67,7 @@ static int decimal_fields(const char *s, size_t n, double *v, int cap)
             p++;
         char *end;
         double x = strtod(p, &end);
-        if (end == p || !isfinite(x) || k >= cap)
+        if (end == p || !isfinite(x) || k >= cap || !plain_decimal(p, end))
             return -1;
         v[k++] = x;
         p = end;

@@ -64,11 +64,22 @@ static int on_write(void *user, const uint8_t *data, size_t n)
         return 0;
     double h, d, v;
     int hh, mm, ss, ms, dm, sm, hm;
-    if (sscanf(buf, "$BPRMB,%2d%2d%2d.%3d,0,0,2,0,0,1*", &hh, &mm, &ss, &ms) == 4 && strstr(buf, ",0,0,2,0,0,1*"))
+    check(!strncmp(buf, "$BPRMB,", 7), "a $BPRMB");
+    /* its time: hhmmss.sss, or seconds since 1970 with three decimals (as the vehicle writes its own) */
+    const char *t = buf + 7, *comma = strchr(t, ',');
+    check(comma != NULL, "a $BPRMB");
+    size_t int_digits = strspn(t, "0123456789");
+    check(t[int_digits] == '.' && strspn(t + int_digits + 1, "0123456789") == 3 && t + int_digits + 4 == comma,
+          "a time of three decimals");
+    if (int_digits == 6) {
+        check(sscanf(t, "%2d%2d%2d.%3d", &hh, &mm, &ss, &ms) == 4, "a time of day");
+        check(hh < 24 && mm < 60 && ss < 60 && ms < 1000, "a time of day");
+    } else {
+        check(int_digits >= 9 && int_digits <= 11, "seconds since 1970");
+    }
+    if (!strncmp(comma, ",0,0,2,0,0,1*", 13))
         return 0; /* a stop */
-    check(sscanf(buf, "$BPRMB,%2d%2d%2d.%3d,%lf,%lf,%d,%lf,%d,%d*", &hh, &mm, &ss, &ms, &h, &d, &dm, &v, &sm, &hm) == 10,
-          "a $BPRMB");
-    check(hh < 24 && mm < 60 && ss < 60 && ms < 1000, "a time of day");
+    check(sscanf(comma, ",%lf,%lf,%d,%lf,%d,%d*", &h, &d, &dm, &v, &sm, &hm) == 6, "a $BPRMB");
     check(h >= 0.0 && h < 360.05, "a heading in [0, 360)");
     check(d >= 0.0 && d <= MAX_DEPTH + 0.05, "a depth inside the limit");
     check(v >= 0.0 && v <= MAX_SPEED + 0.005, "a speed inside the limit");

@@ -38,7 +38,7 @@ static void sink(void *user, const char *channel, const auv_type_entry_t *type, 
         check(isfinite(m.depth_m) && m.depth_m > -10.0 && m.depth_m < 1006.0, "a depth in range");
         check(m.heading_rad >= 0.0 && m.heading_rad < 2.0 * M_PI, "a heading in [0, 2pi)");
         check(m.altitude_m == -1.0 || (m.altitude_m >= 0.0 && m.altitude_m <= 305.0), "an altitude");
-        check(m.u_mps >= 0.0 && m.u_mps <= 10.3, "a speed in range");
+        check(isnan(m.u_mps) || (m.u_mps >= 0.0 && m.u_mps <= 10.3), "a speed in range (NaN: none heard yet)");
         auv_nav_solution_t_decode_cleanup(&m);
     } else {
         check(!strcmp(channel, "FUZZ.FRONTSEAT"), "only NAV and FRONTSEAT");

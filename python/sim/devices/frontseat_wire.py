@@ -126,11 +126,11 @@ class FrontseatProtocol(Emulator):
         if not line.isascii() or not line.isprintable():
             self._refuse("bad character")
             return
+        # the checksum is optional (NMEA 0183): checked when a '*' is there
         body, star, cs = line[1:].rpartition("*")
-        if not star or len(cs) != 2:
-            self._refuse("no checksum")
-            return
-        if checksum(body) != cs.upper():
+        if not star:
+            body = line[1:]
+        elif len(cs) != 2 or checksum(body) != cs.upper():
             self._refuse("bad checksum")
             return
         self.sentence(body.split(","), t)
