@@ -143,9 +143,10 @@ def test_signs_and_heading_offset(lcm_url, tmp_path, child_env):
     try:
         bus.wait_status(lambda s: s.port_open, "the port open")
         want = samples(2)
-        pty.write(wire_bytes(want))
-        bus.wait(lambda: len(bus.msgs) >= 2, "two ahrs_t")
-        for got, w in zip(bus.msgs, want):
+        pty.write(wire_bytes(want) + wire_bytes(want, ("PRDID",)))  # RDI's attitude sentence too
+        bus.wait(lambda: len(bus.msgs) >= 4, "four ahrs_t")
+        for got, w in zip(bus.msgs, want + want):
+            assert math.isnan(got.p_radps) and got.valid
             assert got.roll_rad == pytest.approx(-w.roll_rad, abs=TOL_RAD)
             assert got.pitch_rad == pytest.approx(-w.pitch_rad, abs=TOL_RAD)
             assert abs(wrap_pi(got.heading_rad - w.heading_rad - math.radians(15))) < TOL_RAD

@@ -1,5 +1,5 @@
 /* Unit tests of the heading and attitude sentences (c/drivers/ahrs/ahrs_nmea.c):
- * HDT from any talker, PASHR with and without its last field, VectorNav's VNYMR
+ * HDT from any talker, PASHR with and without its last field, RDI's PRDID, VectorNav's VNYMR
  * (the manual's register-27 example as the async sentence), the signs and
  * mounting offset, and every refusal. */
 #include <math.h>
@@ -112,6 +112,35 @@ static void test_pashr_refusals(void)
  * "$VNRRG,27,...*4F"), as its asynchronous $VNYMR output: the same 12 fields. */
 #define VNYMR_EXAMPLE "VNYMR,+006.380,+000.023,-001.953,+1.0640,-0.2531,+3.0614,+00.005,+00.344,-09.758,-0.001222,-0.000450,-0.001218"
 
+/* RDI's $PRDID (pitch, roll, heading), as an Octans or a Workhorse's
+ * external-sensor input writes it, and its refusals. */
+static void test_prdid(void)
+{
+    ahrs_nmea_config cfg = AHRS_NMEA_DEFAULTS;
+    ahrs_nmea_reading r;
+    CHECK(decode("PRDID,-1.31,7.81,47.31", &cfg, &r) == AHRS_NMEA_OK);
+    CHECK(r.has_heading && r.has_attitude && !r.has_time && !r.has_rates && !r.has_accuracy);
+    CHECK_NEAR(r.pitch_rad, -1.31 * DEG, 1e-12);
+    CHECK_NEAR(r.roll_rad, 7.81 * DEG, 1e-12);
+    CHECK_NEAR(r.heading_rad, 47.31 * DEG, 1e-12);
+    /* signs and the mounting's offset, as for the other sentences */
+    cfg.roll_sign = -1;
+    cfg.heading_offset_deg = 20.0;
+    CHECK(decode("PRDID,+002.50,-003.00,350.00", &cfg, &r) == AHRS_NMEA_OK);
+    CHECK_NEAR(r.roll_rad, 3.0 * DEG, 1e-12);
+    CHECK_NEAR(r.pitch_rad, 2.5 * DEG, 1e-12);
+    CHECK_NEAR(r.heading_rad, 10.0 * DEG, 1e-9);
+    cfg = AHRS_NMEA_DEFAULTS;
+    CHECK(decode("PRDID,1.0,2.0", &cfg, &r) == AHRS_NMEA_MISSING_FIELD);
+    CHECK(decode("PRDID,1.0,2.0,3.0,4.0", &cfg, &r) == AHRS_NMEA_BAD_FIELD);
+    CHECK(decode("PRDID,1.0,,3.0", &cfg, &r) == AHRS_NMEA_MISSING_FIELD);
+    CHECK(decode("PRDID,1.0,x,3.0", &cfg, &r) == AHRS_NMEA_BAD_FIELD);
+    CHECK(decode("PRDID,91.0,0,3.0", &cfg, &r) == AHRS_NMEA_ATTITUDE_RANGE);
+    CHECK(decode("PRDID,0,-180.5,3.0", &cfg, &r) == AHRS_NMEA_ATTITUDE_RANGE);
+    CHECK(decode("PRDID,0,0,360.5", &cfg, &r) == AHRS_NMEA_HEADING_RANGE);
+    CHECK(decode("PRDID,0,0,-1", &cfg, &r) == AHRS_NMEA_HEADING_RANGE);
+}
+
 static void test_vnymr(void)
 {
     ahrs_nmea_config cfg = AHRS_NMEA_DEFAULTS;
@@ -201,6 +230,7 @@ static const unit_test tests[] = {
     {"ahrs_ths", test_ths},
     {"ahrs_pashr", test_pashr},
     {"ahrs_pashr_refusals", test_pashr_refusals},
+    {"ahrs_prdid", test_prdid},
     {"ahrs_vnymr", test_vnymr},
     {"ahrs_vnymr_refusals", test_vnymr_refusals},
     {NULL, NULL},

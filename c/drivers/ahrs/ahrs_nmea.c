@@ -145,6 +145,32 @@ static ahrs_nmea_result vnymr(const nmea_sentence *s, const ahrs_nmea_config *cf
     return AHRS_NMEA_OK;
 }
 
+/* $PRDID,ppp.pp,rrr.rr,hhh.hh: Teledyne RDI's attitude sentence (pitch, roll,
+ * true heading, degrees), which gyrocompasses and INS write for an ADCP or a
+ * DVL; pitch bow up and roll port up positive, the project's convention (a
+ * device that differs is given its signs, as for PASHR). No time, no rates. */
+static ahrs_nmea_result prdid(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
+{
+    if (s->nfields < 3)
+        return AHRS_NMEA_MISSING_FIELD;
+    if (s->nfields > 3) /* a fixed layout: a field more is another sentence's or corrupt */
+        return AHRS_NMEA_BAD_FIELD;
+    double pitch, roll, deg;
+    ahrs_nmea_result r;
+    if ((r = need(s, 0, &pitch)) != AHRS_NMEA_OK || (r = need(s, 1, &roll)) != AHRS_NMEA_OK ||
+        (r = need(s, 2, &deg)) != AHRS_NMEA_OK)
+        return r;
+    if (fabs(roll) > 180.0 || fabs(pitch) > 90.0)
+        return AHRS_NMEA_ATTITUDE_RANGE;
+    if (!(deg >= 0.0 && deg <= 360.0))
+        return AHRS_NMEA_HEADING_RANGE;
+    out->heading_rad = wrap_2pi((deg + cfg->heading_offset_deg) * DEG);
+    out->roll_rad = cfg->roll_sign * roll * DEG;
+    out->pitch_rad = cfg->pitch_sign * pitch * DEG;
+    out->has_heading = out->has_attitude = 1;
+    return AHRS_NMEA_OK;
+}
+
 /* HDT with its heading field empty: a gyro still settling, a GNSS compass
  * without its two fixes, says "no heading" this way; valid, and no value. */
 static ahrs_nmea_result hdt(const nmea_sentence *s, const ahrs_nmea_config *cfg, ahrs_nmea_reading *out)
@@ -187,6 +213,8 @@ ahrs_nmea_result ahrs_nmea_decode(const nmea_sentence *s, const ahrs_nmea_config
         return AHRS_NMEA_NOT_MINE;
     if (!strcmp(s->type, "PASHR"))
         return pashr(s, cfg, out);
+    if (!strcmp(s->type, "PRDID"))
+        return prdid(s, cfg, out);
     if (s->talker[0] && !strcmp(s->type, "HDT"))
         return hdt(s, cfg, out);
     if (s->talker[0] && !strcmp(s->type, "THS"))

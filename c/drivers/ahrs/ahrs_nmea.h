@@ -8,6 +8,10 @@
  *                              pitch and heading accuracies (1 sigma, deg), the
  *                              GNSS quality (0-6) and the IMU alignment status
  *                              (0-4, the last field: older firmware omits it)
+ *   $PRDID,ppp.pp,rrr.rr,hhh.hh*hh
+ *                              Teledyne RDI's attitude sentence (an ADCP/DVL's
+ *                              input, written by gyrocompasses and INS): pitch,
+ *                              roll, true heading [deg]; no time, no rates
  *   $VNYMR,yyy.yyy,ppp.ppp,rrr.rrr,mx,my,mz,ax,ay,az,gx,gy,gz*hh
  *                              VectorNav's "Yaw, Pitch, Roll, Magnetic,
  *                              Acceleration and Angular Rates" (register 27,

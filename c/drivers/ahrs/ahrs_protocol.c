@@ -1,10 +1,10 @@
 /* auv-ahrs's protocol: NMEA framing (c/drivers/common/nmea.c) and the heading
  * and attitude sentences (ahrs_nmea.c) behind the driver framework.
  *
- * What is published: one ahrs_t per accepted PASHR or VNYMR, stamped with its
+ * What is published: one ahrs_t per accepted PASHR, PRDID or VNYMR, stamped with its
  * receive time, with its roll, pitch and heading and valid = true. ahrs_t has a
  * single `valid` flag for all six values; VNYMR carries the body rates, PASHR
- * does not: its p, q and r are NaN. A NaN in a "valid" message is what auv-nav
+ * and PRDID do not: its p, q and r are NaN. A NaN in a "valid" message is what auv-nav
  * refuses as implausible (c/nav/nav_lcm.cpp), so auv-nav runs on this driver
  * only with a device sending VNYMR (docs/drivers.md, "auv-ahrs"). An HDT carries
  * no attitude: publishing it would put NaN roll and pitch under valid = true,
@@ -165,10 +165,10 @@ static const drv_flag ahrs_flags[] = {
 const drv_protocol ahrs_protocol = {
     .device = "AHRS",
     .program = "auv-ahrs",
-    .summary = "NMEA 0183 compass/AHRS: $PASHR (heading, roll, pitch) or VectorNav's $VNYMR (yaw, pitch,\n"
-               "roll and the body rates) into one ahrs_t per sentence on <ID>.AHRS, stamped with its\n"
-               "receive time; PASHR's body rates are NaN (it has none). $--HDT is checked and counted,\n"
-               "not published (no attitude).",
+    .summary = "NMEA 0183 compass/AHRS: $PASHR or RDI's $PRDID (heading, roll, pitch) or VectorNav's\n"
+               "$VNYMR (yaw, pitch, roll and the body rates) into one ahrs_t per sentence on <ID>.AHRS,\n"
+               "stamped with its receive time; PASHR's and PRDID's body rates are NaN (they have none).\n"
+               "$--HDT and $--THS are checked and counted, not published (no attitude).",
     .default_baud = 9600,
     .state_size = sizeof(ahrs_state),
     .flags = ahrs_flags,

@@ -1,4 +1,4 @@
-"""The compass/AHRS at the wire: NMEA 0183 $PASHR, $--HDT and VectorNav's $VNYMR for each ahrs_t.
+"""The compass/AHRS at the wire: NMEA 0183 $PASHR, $--HDT, RDI's $PRDID and VectorNav's $VNYMR for each ahrs_t.
 
 One burst per ahrs_t the AHRS model (sim.sensors.instruments.Ahrs) makes, at its
 rate: the sentences in `sentences`, in that order. PASHR carries the time (the
@@ -9,7 +9,8 @@ model has none: an empty field, as receivers that call it reserved), the roll,
 pitch and heading accuracies (`attitude_sigma_deg`, `heading_sigma_deg`: the
 device's claim, not computed from the model), GNSS quality 0 (under water) and
 IMU status `imu_status`. HDT carries the same heading from the `talker`.
-Neither of those carries body rates. $VNYMR does: VectorNav's ASCII "Yaw, Pitch,
+$PRDID (Teledyne RDI's attitude sentence) carries pitch, roll and heading, in
+that order, to 0.01 degree, in the same signs. None of those carries body rates. $VNYMR does: VectorNav's ASCII "Yaw, Pitch,
 Roll, Magnetic, Acceleration and Angular Rates" output (register 27, async header
 YMR; the VN-100 User Manual, UM001, section 7.2.3): yaw, pitch, roll [deg] (a 3-2-1
 Euler sequence from NED: the project's heading, pitch and roll; yaw in -180..180),
@@ -35,7 +36,7 @@ from sim.devices import nmea
 from sim.devices.emulator import Emulator
 from sim.model import Truth
 
-SENTENCES = ("PASHR", "HDT", "VNYMR")
+SENTENCES = ("PASHR", "HDT", "PRDID", "VNYMR")
 DEFAULT_SENTENCES = ("PASHR", "HDT")
 G = 9.80665  # m/s^2, what a still accelerometer reads (VectorNav's own figure of g)
 # a mid-latitude Earth field, north and down [Gauss] (Massachusetts, roughly: 0.2 G
@@ -96,6 +97,9 @@ class AhrsNmea(Emulator):
                 out.append(nmea.sentence("PASHR", self._pashr(msg)))
             elif name == "VNYMR":
                 out.append(nmea.sentence("VNYMR", vnymr_fields(msg, truth)))
+            elif name == "PRDID":
+                pitch, roll = math.degrees(msg.pitch_rad), math.degrees(msg.roll_rad)
+                out.append(nmea.sentence("PRDID", [f"{pitch:.2f}", f"{roll:.2f}", heading_deg(msg.heading_rad)]))
             else:
                 out.append(nmea.sentence(self.options.talker + "HDT", [heading_deg(msg.heading_rad), "T"]))
         return out
