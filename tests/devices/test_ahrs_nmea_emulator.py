@@ -1,5 +1,5 @@
-"""The AHRS emulator's NMEA, read back by an independent parser (pynmea2): PASHR
-and HDT parse with a good checksum and carry the measurement's heading, roll
+"""The AHRS emulator's NMEA, read back by an independent parser (pynmea2): PASHR,
+HDT and RDI's PRDID parse with a good checksum and carry the measurement's heading, roll
 and pitch; VectorNav's VNYMR carries them with the rates, a specific force and a
 magnetic field in the body frame; a dropout sends nothing."""
 
@@ -52,6 +52,17 @@ def test_pashr_and_hdt_parse_and_carry_the_measurement():
     assert math.degrees(msg.roll_rad) < 0  # the sign goes through, not only the magnitude
     assert (pashr.roll_accuracy, pashr.pitch_accuracy, pashr.heading_accuracy) == (0.1, 0.1, 0.5)
     assert (pashr.aiding_status, pashr.imu_status) == (0, 1)
+
+
+def test_prdid_parses_as_rdis_sentence_and_carries_the_measurement():
+    msg, tr = sample()
+    (raw,) = emulator(sentences=["PRDID"]).encode(msg, tr)
+    rdid = pynmea2.parse(raw.decode("ascii").strip(), check=True)
+    assert type(rdid).__name__ == "RDID"  # pynmea2's Teledyne RDI sentence: pitch, roll, heading
+    assert rdid.pitch == pytest.approx(math.degrees(msg.pitch_rad), abs=0.006)
+    assert rdid.roll == pytest.approx(math.degrees(msg.roll_rad), abs=0.006)
+    assert rdid.heading == pytest.approx(math.degrees(msg.heading_rad) % 360, abs=0.006)
+    assert rdid.roll < 0 < rdid.pitch  # the signs go through
 
 
 def test_sentences_and_talker_are_configurable():
