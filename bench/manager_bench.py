@@ -24,7 +24,6 @@ from __future__ import annotations
 import argparse
 import os
 import random
-import select
 import signal
 import statistics
 import subprocess
@@ -38,6 +37,8 @@ from auv import actuators_t, chasm_status_t, nav_solution_t, setpoint_t, sim_clo
 from auvlcm import programs
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+from lcm_proc import wait_for_line  # noqa: E402
 
 BUILD = Path(os.environ.get("AUV_BUILD", ROOT / "build"))
 BUILD = BUILD if BUILD.is_absolute() else ROOT / BUILD
@@ -107,16 +108,12 @@ def rpm_value(k: int) -> float:
 
 def start(cmd: list[str], ready: str) -> subprocess.Popen:
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-    end = time.monotonic() + 20
-    while time.monotonic() < end:
-        if select.select([p.stdout], [], [], 0.2)[0]:
-            line = p.stdout.readline()
-            if ready in line:
-                return p
-            if not line:
-                break
-    p.kill()
-    raise SystemExit(f"manager_bench: {cmd[0]} did not start")
+    try:
+        wait_for_line(p, ready, timeout=20)  # tests/lcm_proc.py: select() on a text pipe misses buffered lines
+    except AssertionError as e:
+        p.kill()
+        raise SystemExit(f"manager_bench: {cmd[0]} did not start: {e}") from None
+    return p
 
 
 def stop(p: subprocess.Popen) -> None:

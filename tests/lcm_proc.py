@@ -24,18 +24,40 @@ def lcm_tool(name: str) -> str:
 
 
 def wait_for_line(proc: subprocess.Popen, text: str, timeout: float = 10.0) -> str:
-    """Read proc's stdout until a line contains text; fail on timeout or exit."""
+    """Read proc's stdout until a line contains text; fail on timeout or exit.
+
+    The pipe is read without blocking, and select() waits only when the text
+    buffer is empty: a select() after a readline() could wait in vain for a
+    line that readline() had already taken into the buffer (two lines written
+    at once). What follows the line stays in proc.stdout for its next reader."""
     deadline = time.monotonic() + timeout
-    seen = []
-    while time.monotonic() < deadline:
-        ready, _, _ = select.select([proc.stdout], [], [], 0.1)
-        if ready:
-            line = proc.stdout.readline()
-            if not line:
-                break
-            seen.append(line)
-            if text in line:
-                return line
+    fd = proc.stdout.fileno()
+    blocking = os.get_blocking(fd)
+    os.set_blocking(fd, False)
+    seen: list[str] = []
+    partial = ""
+    try:
+        while True:
+            chunk = proc.stdout.readline()  # a line, the start of one, or "" when nothing is there
+            if not chunk:
+                left = deadline - time.monotonic()
+                if left <= 0:
+                    break
+                if not select.select([fd], [], [], min(left, 0.1))[0]:
+                    continue
+                chunk = proc.stdout.readline()
+                if not chunk:
+                    break  # readable with nothing to read: the end of its output
+            partial += chunk
+            if partial.endswith("\n"):
+                seen.append(partial)
+                if text in partial:
+                    return partial
+                partial = ""
+    finally:
+        os.set_blocking(fd, blocking)
+    if partial:
+        seen.append(partial)
     raise AssertionError(f"no line with {text!r} within {timeout}s; got {seen!r}")
 
 
