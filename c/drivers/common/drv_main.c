@@ -109,7 +109,7 @@ static int run(driver *d)
     int lcm_fd = d->opt.clock == DRV_CLOCK_SIM || d->subs.n ? lcm_get_fileno(d->lcm) : -1;
     uint8_t buf[READ_CAP];
     int was_open = 0;
-    while (!stop_requested) {
+    while (!stop_requested && !drv_port_ended(&d->port)) { /* a recording ends the run at its end */
         int64_t now_ms = drv_monotonic_ms();
         drv_port_service(&d->port, now_ms);
         struct pollfd fds[2];

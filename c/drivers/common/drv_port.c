@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -112,8 +113,30 @@ static void opened(drv_port *p)
     p->logged_error[0] = '\0';
 }
 
+/* A regular file is a recording (read-only: a protocol's commands must not
+ * land in it), a FIFO a line without settings; neither has termios. */
+static int open_not_a_line(drv_port *p, int64_t now_ms, const struct stat *st)
+{
+    int regular = S_ISREG(st->st_mode);
+    int fd = open(p->path, (regular ? O_RDONLY : O_RDWR) | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        fail(p, now_ms, "cannot open", errno);
+        return 1;
+    }
+    p->fd = fd;
+    p->is_file = regular;
+    fprintf(stderr, "%s: %s is %s\n", p->log_prefix, p->path,
+            regular ? "a file: read once as a recording, to its end, and nothing written to it"
+                    : "a FIFO: read as a line without settings");
+    opened(p);
+    return 1;
+}
+
 static void open_serial(drv_port *p, int64_t now_ms)
 {
+    struct stat st;
+    if (stat(p->path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode)) && open_not_a_line(p, now_ms, &st))
+        return;
     int fd = open(p->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         fail(p, now_ms, "cannot open", errno);
@@ -178,7 +201,7 @@ void drv_port_service(drv_port *p, int64_t now_ms)
 {
     if (p->state == DRV_PORT_CONNECTING && now_ms >= p->retry_at_ms)
         fail(p, now_ms, "cannot connect to", ETIMEDOUT);
-    if (p->state != DRV_PORT_CLOSED || now_ms < p->retry_at_ms)
+    if (p->state != DRV_PORT_CLOSED || now_ms < p->retry_at_ms || p->ended)
         return;
     if (p->is_tcp)
         open_tcp(p, now_ms);
@@ -216,6 +239,12 @@ long drv_port_ready(drv_port *p, short revents, uint8_t *buf, size_t cap, int64_
     }
     if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
         return 0;
+    if (n == 0 && p->is_file) { /* the recording's end: not a loss, nothing to reopen */
+        fprintf(stderr, "%s: %s read to its end\n", p->log_prefix, p->path);
+        drv_port_close(p);
+        p->ended = 1;
+        return -1;
+    }
     /* 0 after poll said readable is the end of the stream (a TCP peer that
      * closed, a tty that hung up); EIO and ENXIO a device that is gone */
     fail(p, now_ms, n == 0 ? "lost" : "lost (read):", n == 0 ? 0 : errno);
@@ -226,6 +255,8 @@ int drv_port_write(drv_port *p, const uint8_t *data, size_t n, int64_t now_ms)
 {
     if (p->state != DRV_PORT_OPEN)
         return -1;
+    if (p->is_file)
+        return 0; /* a recording takes no commands: they go nowhere, and count nowhere */
     size_t done = 0;
     while (done < n) {
         ssize_t w = write(p->fd, data + done, n - done);
@@ -243,6 +274,8 @@ int drv_port_write(drv_port *p, const uint8_t *data, size_t n, int64_t now_ms)
     p->bytes_written += (int64_t)done;
     return done == n ? 0 : -1;
 }
+
+int drv_port_ended(const drv_port *p) { return p->ended; }
 
 void drv_port_close(drv_port *p)
 {

@@ -4,7 +4,13 @@
  * waits on the port. A port that vanishes (EOF, EIO, ENXIO, POLLHUP, a
  * refused or reset connection) is closed and opened again after a backoff
  * that doubles from 100 ms to DRV_PORT_MAX_BACKOFF_MS; each reopening after a
- * loss counts in `reopens`. */
+ * loss counts in `reopens`.
+ *
+ * `--device` may also name what is not a serial line: a FIFO is read as a
+ * line without settings (held open for writing too, so a writer that goes
+ * and comes back is no end), and a regular file is a recording: read once,
+ * to its end, never written to (a protocol's commands are not sent), after
+ * which the port has ended (drv_port_ended) and the driver stops. */
 #ifndef DRV_PORT_H
 #define DRV_PORT_H
 
@@ -17,7 +23,9 @@ typedef enum { DRV_PORT_CLOSED, DRV_PORT_CONNECTING, DRV_PORT_OPEN } drv_port_st
 
 typedef struct {
     int is_tcp;
-    char path[256];        /* serial device */
+    int is_file;           /* a regular file: a recording, read once */
+    int ended;             /* the recording's end was read: never opened again */
+    char path[256];        /* serial device, FIFO or recording */
     int baud;
     char host[256], service[32];
     char name[300];        /* "/dev/ttyUSB0@9600" or "tcp:10.0.0.2:4001" */
@@ -58,5 +66,8 @@ long drv_port_ready(drv_port *p, short revents, uint8_t *buf, size_t cap, int64_
 int drv_port_write(drv_port *p, const uint8_t *data, size_t n, int64_t now_ms);
 
 void drv_port_close(drv_port *p);
+
+/* A recording read to its end: nothing more will come. */
+int drv_port_ended(const drv_port *p);
 
 #endif
