@@ -71,9 +71,9 @@ static int64_t count(const rig *r, const char *reason) { return drv_reasons_get(
 
 static void test_published_examples(void)
 {
-    /* the classic GGA/RMC/GSA/VTG/ZDA examples, checksums as published;
-     * the RMC's 1994 date needs --min-year 1990 */
-    rig *r = rig_new((const char *const[]){"--min-year", "1990", "--origin", "48.1,11.5", NULL});
+    /* the classic GGA/RMC/GSA/VTG/ZDA examples, checksums as published: the
+     * RMC's 1994 date is taken by default */
+    rig *r = rig_new((const char *const[]){"--origin", "48.1,11.5", NULL});
     feed(r, "$GPGSA,A,3,04,05,,09,12,,,24,,,,,2.5,1.3,2.1*39\r\n", T0);
     feed(r, "$GPVTG,054.7,T,034.4,M,005.5,N,010.2,K*48\r\n", T0 + 10000);
     feed(r, "$GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,M,46.9,M,,*47\r\n", T0 + 20000);
@@ -157,7 +157,7 @@ static void test_absurd_values_refused(void)
         {"GPGGA,123519,4807.038,N,01131.000,E,1,08,0.9,545.4,F,46.9,M,,", "bad altitude"},
         {"GPGGA,123519,4807.038,N,01131.000,E,1", "too few fields"},
         {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230380,003.1,W", "date out of range"}, /* 1980 */
-        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230399,003.1,W", "date out of range"}, /* 1999 */
+        {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230389,003.1,W", "date out of range"}, /* 1989 */
         {"GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,310224,003.1,W", "bad date"},
         {"GPRMC,123519,X,4807.038,N,01131.000,E,022.4,084.4,230324,003.1,W", "bad status"},
         {"GPRMC,123519,A,4807.038,N,01131.000,E,2000.0,084.4,230324,003.1,W", "bad speed"},
@@ -185,10 +185,14 @@ static void test_absurd_values_refused(void)
         CHECK(r->n == 0 && r->ctx.frames_decoded == 0);
         free(r);
     }
-    /* the year limit is a setting */
+    /* the year limit is a setting, both ways */
     rig *r = rig_new((const char *const[]){"--min-year", "1980", NULL});
     feed(r, sentence("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230380,003.1,W"), T0);
     CHECK(r->ctx.reasons.total == 0);
+    free(r);
+    r = rig_new((const char *const[]){"--min-year", "2000", NULL});
+    feed(r, sentence("GPRMC,123519,A,4807.038,N,01131.000,E,022.4,084.4,230399,003.1,W"), T0);
+    CHECK(count(r, "date out of range") == 1);
     free(r);
 }
 

@@ -51,7 +51,7 @@ static void sink(void *user, const char *channel, const auv_type_entry_t *type, 
         check(isnan(m->hdop) || (m->hdop >= 0.0 && m->hdop <= 100.0), "hdop");
         check(m->horizontal_sigma_m > 0.0 && isfinite(m->horizontal_sigma_m), "sigma");
         check(m->quality >= 1 && m->quality <= 8 && m->fix_type >= 2, "a fix");
-        check(m->utc_utime == -1 || m->utc_utime >= 946684800000000, "a UTC after --min-year");
+        check(m->utc_utime == -1 || m->utc_utime >= 631152000000000, "a UTC after --min-year (1990)");
     }
     type->info()->decode_cleanup(msg);
     free(msg);

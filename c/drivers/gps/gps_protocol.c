@@ -8,7 +8,10 @@
 
 #include "drivers/gps/gps.h"
 
-#define DEFAULT_MIN_YEAR 2000
+/* 1990: the GPS epoch's 1980 (a receiver that lost its almanac says it) is
+ * refused, NMEA's own 1994 examples are not; a week rollover's 1999 is a
+ * date, wrong but decoded (raise --min-year where that matters) */
+#define DEFAULT_MIN_YEAR 1990
 #define DEFAULT_UERE_M 2.0
 #define DEFAULT_EPOCH_TIMEOUT_S 0.5
 /* WGS-84, as python/sim/geo.py: the two frames must agree to the millimetre */
@@ -177,7 +180,7 @@ static void gps_finish(void *state, drv_ctx *ctx, int64_t now)
 static const drv_flag gps_flags[] = {
     {"--origin", "LAT,LON", "the world's local frame origin, for north_m/east_m (flat earth, as the simulator)",
      gps_set_origin},
-    {"--min-year", "YEAR", "refuse dates before YEAR (default 2000: a lost almanac, a week rollover)",
+    {"--min-year", "YEAR", "refuse dates before YEAR (default 1990: a lost almanac says 1980)",
      gps_set_min_year},
     {"--uere", "M", "user range error: horizontal_sigma_m = M x HDOP (default 2)", gps_set_uere},
     {"--epoch-timeout", "S", "publish an incomplete epoch after S seconds of quiet (default 0.5)", gps_set_epoch_timeout},
