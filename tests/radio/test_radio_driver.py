@@ -20,7 +20,7 @@ import lcm
 import pytest
 from lcm_proc import stop, wait_for_line
 
-from auv import mission_command_t, modem_rx_t, modem_tx_t, radio_ack_t, radio_frame_t
+from auv import driver_status_t, mission_command_t, modem_rx_t, modem_tx_t, radio_ack_t, radio_frame_t
 from auvlcm import auth
 from auvlcm.team_codec import TeamCodec
 from tools.radio.outbox import Outbox
@@ -59,7 +59,12 @@ class Radio:
         return until()
 
     def stop(self) -> tuple[int, str]:
+        """Stop it, then read what it wrote to the pipe's end (its exit closes
+        the pipe): nothing it sent is left unread, and no wait on wall time."""
         code = stop(self.proc, signal.SIGTERM)
+        self.conn.settimeout(20)
+        while chunk := self.conn.recv(65536):
+            self.heard += self.deframer.feed(chunk)
         self.conn.close()
         self.listener.close()
         return code, self.proc.stderr.read()
@@ -99,8 +104,6 @@ def test_a_command_crosses_byte_for_byte_and_a_flood_changes_nothing(variant_dir
             lc.handle_timeout(50)
         acks = lambda: [radio_ack_t.decode(bytes(f.payload)) for f in radio.heard]  # noqa: E731
         assert radio.read(lambda: len(radio.heard) >= len(unknown) + len(good))
-        time.sleep(0.2)
-        radio.read(lambda: False, timeout=0.1)
     finally:
         code, err = radio.stop()
     assert code == 0, err
@@ -169,11 +172,16 @@ def test_acoustic_commands_with_team_keys_are_checked_and_signed(variant_dir, tm
         heard.append(good)  # out of the 16 counters remembered: the replay window refuses it
         for h in heard:
             lc.publish("AUV1.MODEM_RX", _modem_rx(h))
+        # its status counts the last frame's refusal: every frame before it was
+        # handled, and each command it issued is in this LCM's queue
+        status: list[driver_status_t] = []
+        lc.subscribe("AUV1.DRIVER.RADIO", lambda c, d: status.append(driver_status_t.decode(d)))
         deadline = time.monotonic() + 20
-        while len(cmds) < 17 and time.monotonic() < deadline:
+        while time.monotonic() < deadline and not (
+            status and dict(zip(status[-1].reason, status[-1].reason_count)).get("acoustic replay") == 1
+        ):
             lc.handle_timeout(50)
-        time.sleep(0.3)
-        while lc.handle_timeout(50):
+        while lc.handle_timeout(0):
             pass
     finally:
         code, err = radio.stop()
