@@ -172,7 +172,7 @@ def replay_print(
 ) -> tuple[list[dict[str, str]], dict[str, int]]:
     """The recorded raw messages as a log, through auv-driver-replay --print:
     the printed messages' fields, and the summary's drops by reason."""
-    log = lcm.EventLog(str(tmp_path / "raw.lcmlog"), "w")
+    log = lcm.EventLog(str(tmp_path / "raw.lcmlog"), "w", overwrite=True)  # one per call
     for channel, data in raw:
         log.write_event(raw_bytes_t.decode(data).utime, channel, data)
     log.close()

@@ -9,11 +9,8 @@ dvl_t again through auv-driver-replay."""
 from __future__ import annotations
 
 import math
-import re
-import subprocess
 import time
 
-import lcm
 import pytest
 from conftest import c_program
 from driver_bus import VEHICLE, Bus, Pty, check_usage_errors, finish, raw_messages, replay_print, same_printed, start
@@ -178,25 +175,10 @@ def test_dvl_mounting_and_usage(tmp_path, child_env):
     absurd flags are refused."""
     dev = Device()
     m = measurement(dvl_t.MODE_BOTTOM_LOCK, (1.0, 0.0, 0.0))
-    data = dev.ensemble(m)
-    raw = raw_bytes_t()
-    raw.utime, raw.vehicle, raw.device, raw.direction = 5_000_000, VEHICLE, "DVL", raw_bytes_t.DIR_RX
-    raw.offset, raw.n_bytes, raw.data = 0, len(data), data
-    log = lcm.EventLog(str(tmp_path / "m.lcmlog"), "w")
-    log.write_event(raw.utime, f"{VEHICLE}.RAW.DVL", raw.encode())
-    log.close()
+    raw = raw_messages("DVL", [dev.ensemble(m)], t0_us=5_000_000)
     outs = []
     for mounting in [(0.0, 0.0, 0.0), (90.0, 0.0, 0.0)]:
-        cmd = programs.driver_replay(
-            c_program("bin/auv-driver-replay").parent.parent,
-            log=tmp_path / "m.lcmlog",
-            vehicle=VEHICLE,
-            device="DVL",
-            extra=programs.dvl_flags(mounting_deg=mounting),
-        )
-        p = subprocess.run(cmd, capture_output=True, text=True, env=child_env, timeout=60)
-        assert p.returncode == 0, p.stderr
-        fields = dict(re.findall(r"(\w+)=(\S+)", p.stdout))
+        (fields,), _ = replay_print(tmp_path, raw, child_env, "DVL", programs.dvl_flags(mounting_deg=mounting))
         assert fields["utime"] == "5000000"
         outs.append([float(x) for x in fields["velocity_mps"].split(",")])
     # the same wire from a DVL whose forward (beam 3) is the vehicle's
