@@ -115,13 +115,13 @@ static void opened(drv_port *p)
 
 /* A regular file is a recording (read-only: a protocol's commands must not
  * land in it), a FIFO a line without settings; neither has termios. */
-static int open_not_a_line(drv_port *p, int64_t now_ms, const struct stat *st)
+static void open_not_a_line(drv_port *p, int64_t now_ms, const struct stat *st)
 {
     int regular = S_ISREG(st->st_mode);
     int fd = open(p->path, (regular ? O_RDONLY : O_RDWR) | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         fail(p, now_ms, "cannot open", errno);
-        return 1;
+        return;
     }
     p->fd = fd;
     p->is_file = regular;
@@ -129,14 +129,15 @@ static int open_not_a_line(drv_port *p, int64_t now_ms, const struct stat *st)
             regular ? "a file: read once as a recording, to its end, and nothing written to it"
                     : "a FIFO: read as a line without settings");
     opened(p);
-    return 1;
 }
 
 static void open_serial(drv_port *p, int64_t now_ms)
 {
     struct stat st;
-    if (stat(p->path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode)) && open_not_a_line(p, now_ms, &st))
+    if (stat(p->path, &st) == 0 && (S_ISREG(st.st_mode) || S_ISFIFO(st.st_mode))) {
+        open_not_a_line(p, now_ms, &st);
         return;
+    }
     int fd = open(p->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     if (fd < 0) {
         fail(p, now_ms, "cannot open", errno);
